@@ -1,0 +1,307 @@
+//! Contact laws between the two structures (SPEC §2.7).
+//!
+//! Penetration at a contact level is `δ = w₁(h) − w₂(h) − d`; with δ ≤ 0 there is no force, and no
+//! law ever pulls (the force is clamped at zero while the structures separate). The force `F ≥ 0`
+//! pushes structure 1 to the left and structure 2 to the right (SPEC §2.4).
+
+use std::f64::consts::PI;
+
+/// How the damped Hertz law's hysteresis factor χ depends on the coefficient of restitution e.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HertzDampModel {
+    /// Lankarani & Nikravesh (1990): χ = 3(1 − e²)/4. Derived for e near 1.
+    LankaraniNikravesh,
+    /// Hunt & Crossley (1975): χ = 3(1 − e)/2.
+    HuntCrossley,
+    /// Ye, Li & Zhu (2009): χ = 8(1 − e)/(5e).
+    YeLiZhu,
+}
+
+impl HertzDampModel {
+    /// χ for restitution e.
+    pub fn chi(self, e: f64) -> f64 {
+        match self {
+            HertzDampModel::LankaraniNikravesh => 3.0 * (1.0 - e * e) / 4.0,
+            HertzDampModel::HuntCrossley => 3.0 * (1.0 - e) / 2.0,
+            HertzDampModel::YeLiZhu => 8.0 * (1.0 - e) / (5.0 * e),
+        }
+    }
+
+    /// Name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            HertzDampModel::LankaraniNikravesh => "lankarani-nikravesh",
+            HertzDampModel::HuntCrossley => "hunt-crossley",
+            HertzDampModel::YeLiZhu => "ye-li-zhu",
+        }
+    }
+}
+
+/// A contact law with its user-facing parameters. Damped laws are turned into forces for a
+/// given effective mass m* by [`ContactLaw::resolve`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactLaw {
+    /// Linear spring: `F = k δ`; k in N/m.
+    Linear {
+        /// k, N/m.
+        stiffness: f64,
+    },
+    /// Kelvin–Voigt: `F = max(0, k δ + c δ̇)`, `c = 2ξ√(k m*)`,
+    /// `ξ = −ln e/√(π² + ln² e)` (Anagnostopoulos 1988).
+    Kelvin {
+        /// k, N/m.
+        stiffness: f64,
+        /// Target coefficient of restitution e ∈ (0, 1].
+        restitution: f64,
+    },
+    /// Hertz: `F = k_h δ^{3/2}` (paper eq. 5); k_h in N/m^{3/2}.
+    Hertz {
+        /// k_h, N/m^{3/2}.
+        stiffness: f64,
+    },
+    /// Damped Hertz: `F = max(0, k_h δ^{3/2} (1 + χ δ̇/v₀))`, v₀ = δ̇ at the onset of the
+    /// contact episode, χ from e by the chosen model.
+    HertzDamp {
+        /// k_h, N/m^{3/2}.
+        stiffness: f64,
+        /// Target coefficient of restitution e ∈ (0, 1].
+        restitution: f64,
+        /// How χ follows from e.
+        model: HertzDampModel,
+    },
+    /// Jankowski (2005) nonlinear viscoelastic: `F = k_h δ^{3/2} + c δ̇` while approaching
+    /// (δ̇ > 0), `F = k_h δ^{3/2}` while separating; `c = 2ξ√(m* k_h √δ)`,
+    /// `ξ = 9√5 (1 − e²) / (2e (e(9π − 16) + 16))`.
+    Jankowski {
+        /// k_h, N/m^{3/2}.
+        stiffness: f64,
+        /// Target coefficient of restitution e ∈ (0, 1].
+        restitution: f64,
+    },
+}
+
+impl ContactLaw {
+    /// Name as written in scenario files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ContactLaw::Linear { .. } => "linear",
+            ContactLaw::Kelvin { .. } => "kelvin",
+            ContactLaw::Hertz { .. } => "hertz",
+            ContactLaw::HertzDamp { .. } => "hertzdamp",
+            ContactLaw::Jankowski { .. } => "jankowski",
+        }
+    }
+
+    /// The force law for a contact point whose two sides have effective mass `m_star` (kg):
+    /// `1/m* = Σ_n φ₁ₙ(h)² + Σ_n φ₂ₙ(h)²` (see [`crate::system`]).
+    pub fn resolve(&self, m_star: f64) -> ContactForce {
+        match *self {
+            ContactLaw::Linear { stiffness } => ContactForce::Linear { k: stiffness },
+            ContactLaw::Kelvin {
+                stiffness,
+                restitution,
+            } => {
+                let ln_e = restitution.ln();
+                let xi = -ln_e / (PI * PI + ln_e * ln_e).sqrt();
+                ContactForce::Kelvin {
+                    k: stiffness,
+                    c: 2.0 * xi * (stiffness * m_star).sqrt(),
+                }
+            }
+            ContactLaw::Hertz { stiffness } => ContactForce::Hertz { k: stiffness },
+            ContactLaw::HertzDamp {
+                stiffness,
+                restitution,
+                model,
+            } => ContactForce::HertzDamp {
+                k: stiffness,
+                chi: model.chi(restitution),
+            },
+            ContactLaw::Jankowski {
+                stiffness,
+                restitution,
+            } => {
+                let e = restitution;
+                let xi =
+                    9.0 * 5f64.sqrt() * (1.0 - e * e) / (2.0 * e * (e * (9.0 * PI - 16.0) + 16.0));
+                ContactForce::Jankowski {
+                    k: stiffness,
+                    c0: 2.0 * xi * (m_star * stiffness).sqrt(),
+                }
+            }
+        }
+    }
+}
+
+/// A contact law ready to evaluate: parameters that depend on the effective mass are resolved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactForce {
+    /// `F = k δ`.
+    Linear {
+        /// N/m.
+        k: f64,
+    },
+    /// `F = max(0, k δ + c δ̇)`.
+    Kelvin {
+        /// N/m.
+        k: f64,
+        /// N·s/m.
+        c: f64,
+    },
+    /// `F = k δ^{3/2}`.
+    Hertz {
+        /// N/m^{3/2}.
+        k: f64,
+    },
+    /// `F = max(0, k δ^{3/2}(1 + χ δ̇/v₀))`.
+    HertzDamp {
+        /// N/m^{3/2}.
+        k: f64,
+        /// Dimensionless hysteresis factor χ.
+        chi: f64,
+    },
+    /// `F = k δ^{3/2} + c₀ δ^{1/4} δ̇` for δ̇ > 0, else `k δ^{3/2}`.
+    Jankowski {
+        /// N/m^{3/2}.
+        k: f64,
+        /// `2ξ√(m* k)`, N·s/m^{5/4}.
+        c0: f64,
+    },
+}
+
+impl ContactForce {
+    /// Contact force (N, ≥ 0) at penetration δ (m), penetration rate δ̇ (m/s) and approach speed
+    /// at the onset of the episode v₀ (m/s; only the damped Hertz law uses it).
+    #[inline(always)]
+    pub fn force(&self, delta: f64, delta_dot: f64, v0: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            ContactForce::Linear { k } => k * delta,
+            ContactForce::Kelvin { k, c } => (k * delta + c * delta_dot).max(0.0),
+            ContactForce::Hertz { k } => k * delta * delta.sqrt(),
+            ContactForce::HertzDamp { k, chi } => {
+                let damping = if v0 > 0.0 { chi * delta_dot / v0 } else { 0.0 };
+                (k * delta * delta.sqrt() * (1.0 + damping)).max(0.0)
+            }
+            ContactForce::Jankowski { k, c0 } => {
+                let elastic = k * delta * delta.sqrt();
+                if delta_dot > 0.0 {
+                    elastic + c0 * delta.sqrt().sqrt() * delta_dot
+                } else {
+                    elastic
+                }
+            }
+        }
+    }
+
+    /// Energy stored in the elastic part of the law at penetration δ, J:
+    /// `½kδ²` (linear, Kelvin) or `(2/5)k δ^{5/2}` (Hertz family).
+    #[inline]
+    pub fn potential(&self, delta: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            ContactForce::Linear { k } | ContactForce::Kelvin { k, .. } => 0.5 * k * delta * delta,
+            ContactForce::Hertz { k }
+            | ContactForce::HertzDamp { k, .. }
+            | ContactForce::Jankowski { k, .. } => 0.4 * k * delta * delta * delta.sqrt(),
+        }
+    }
+
+    /// Tangent stiffness dF/dδ of the elastic part at δ, N/m: used to warn when the contact
+    /// makes an explicit step unstable.
+    #[inline]
+    pub fn tangent_stiffness(&self, delta: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            ContactForce::Linear { k } | ContactForce::Kelvin { k, .. } => k,
+            ContactForce::Hertz { k }
+            | ContactForce::HertzDamp { k, .. }
+            | ContactForce::Jankowski { k, .. } => 1.5 * k * delta.sqrt(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_force_without_penetration_and_never_tension() {
+        let laws = [
+            ContactLaw::Linear { stiffness: 1e9 },
+            ContactLaw::Kelvin {
+                stiffness: 1e9,
+                restitution: 0.5,
+            },
+            ContactLaw::Hertz { stiffness: 1e10 },
+            ContactLaw::HertzDamp {
+                stiffness: 1e10,
+                restitution: 0.5,
+                model: HertzDampModel::HuntCrossley,
+            },
+            ContactLaw::Jankowski {
+                stiffness: 1e10,
+                restitution: 0.5,
+            },
+        ];
+        for law in laws {
+            let f = law.resolve(1e5);
+            assert_eq!(f.force(-1e-3, 1.0, 1.0), 0.0);
+            assert_eq!(f.force(0.0, 1.0, 1.0), 0.0);
+            // separating fast at a small penetration: damping would pull, the clamp forbids it
+            assert!(f.force(1e-6, -100.0, 0.1) >= 0.0);
+        }
+    }
+
+    #[test]
+    fn hertz_force_and_potential() {
+        let f = ContactLaw::Hertz {
+            stiffness: 2.808e10,
+        }
+        .resolve(1.0);
+        let d = 0.004;
+        assert!((f.force(d, 0.0, 0.0) - 2.808e10 * d.powf(1.5)).abs() < 1e-3);
+        // dU/dδ = F
+        let e = 1e-9;
+        let du = (f.potential(d + e) - f.potential(d - e)) / (2.0 * e);
+        assert!((du - f.force(d, 0.0, 0.0)).abs() < 1e-6 * f.force(d, 0.0, 0.0));
+    }
+
+    /// The three χ formulas as printed in the literature.
+    #[test]
+    fn hysteresis_factors() {
+        let e = 0.6;
+        assert!((HertzDampModel::LankaraniNikravesh.chi(e) - 0.48).abs() < 1e-15);
+        assert!((HertzDampModel::HuntCrossley.chi(e) - 0.6).abs() < 1e-15);
+        assert!((HertzDampModel::YeLiZhu.chi(e) - 8.0 * 0.4 / 3.0).abs() < 1e-15);
+    }
+
+    /// Kelvin damping ratio: e = 1 gives no damping; ξ(e) from the closed form.
+    #[test]
+    fn kelvin_damping() {
+        let f = ContactLaw::Kelvin {
+            stiffness: 1e8,
+            restitution: 1.0,
+        }
+        .resolve(2e5);
+        assert_eq!(f, ContactForce::Kelvin { k: 1e8, c: 0.0 });
+        let e: f64 = 0.5;
+        let xi = -e.ln() / (PI * PI + e.ln().powi(2)).sqrt();
+        if let ContactForce::Kelvin { c, .. } = (ContactLaw::Kelvin {
+            stiffness: 1e8,
+            restitution: e,
+        })
+        .resolve(2e5)
+        {
+            assert!((c - 2.0 * xi * (1e8f64 * 2e5).sqrt()).abs() < 1e-6 * c);
+        } else {
+            panic!("kelvin resolves to kelvin");
+        }
+    }
+}

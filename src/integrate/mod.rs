@@ -1,0 +1,199 @@
+//! Time integration of the assembled [`System`] (SPEC §2.9).
+//!
+//! An integrator advances the modal state and reports every step to an [`Observer`]; it knows
+//! nothing of files or of what is kept. Alongside the state it integrates, with the same order,
+//! the energy flows (input work, structural damping, work into the contacts) and each level's
+//! impulse, so that energy balance and impulses are exact to the method's accuracy.
+
+mod rk4;
+
+pub use rk4::{rk4_max_stable_dt, rk4_stability_limit};
+
+use crate::system::{LevelState, System};
+
+/// Integration method (`[solver] method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Classical fixed-step fourth-order Runge–Kutta: the paper's method.
+    Rk4,
+}
+
+impl Method {
+    /// Name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk4 => "rk4",
+        }
+    }
+}
+
+/// Solver settings, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Method.
+    pub method: Method,
+    /// Time step, s.
+    pub dt: f64,
+    /// Simulated duration, s.
+    pub duration: f64,
+}
+
+/// Initial modal state (default: at rest relative to the ground, SPEC §2.8).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct InitialState {
+    /// Modal displacements η(0), structure 1 then 2 (empty: zeros).
+    pub q: Vec<f64>,
+    /// Modal velocities η̇(0) (empty: zeros).
+    pub v: Vec<f64>,
+}
+
+/// Cumulative quantities integrated alongside the state.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Tally {
+    /// Work done by the ground loading since t = 0, J.
+    pub input: f64,
+    /// Energy dissipated by structural damping, J.
+    pub damping: f64,
+    /// Work done on the contacts, `Σ_k ∫ F_k δ̇_k dt`, J (stored + dissipated in contact).
+    pub contact: f64,
+    /// Impulse of each level's contact force, `∫ F_k dt`, N·s.
+    pub impulse: Vec<f64>,
+}
+
+/// What an observer sees at the end of each step (and once at t = 0).
+#[derive(Debug)]
+pub struct StepView<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// Modal displacements.
+    pub q: &'a [f64],
+    /// Modal velocities.
+    pub v: &'a [f64],
+    /// Contact state of every level.
+    pub levels: &'a [LevelState],
+    /// Cumulative energy flows and impulses.
+    pub tally: &'a Tally,
+}
+
+/// Receives the solution as it is computed.
+pub trait Observer {
+    /// Called at t = 0 and after every step.
+    fn observe(&mut self, system: &System, step: &StepView);
+}
+
+/// Counters of one integration.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Stats {
+    /// Steps taken.
+    pub steps: usize,
+    /// Right-hand-side evaluations.
+    pub evaluations: usize,
+    /// Largest `ω_c·dt` met in contact, where `ω_c = √(k_t/m*)` is the contact's tangent
+    /// frequency: above ≈2.8 an explicit step is locally unstable, above ≈0.5 inaccurate.
+    pub max_contact_omega_dt: f64,
+}
+
+/// Why an integration could not be carried out.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// The step exceeds the method's stability limit for the structures' highest mode.
+    #[error(
+        "time step dt = {dt} s is beyond {method}'s stability limit: mode {mode} of structure {structure} \
+         (ω = {omega:.4} rad/s, ζ = {zeta}) needs dt ≤ {max_dt:.6e} s; the largest stable dt for this \
+         scenario is {max_dt:.6e} s (reduce dt, or keep fewer modes)"
+    )]
+    UnstableStep {
+        /// Method name.
+        method: &'static str,
+        /// Requested step, s.
+        dt: f64,
+        /// Largest stable step, s.
+        max_dt: f64,
+        /// Structure (1 or 2) of the limiting mode.
+        structure: usize,
+        /// Limiting mode (1-based).
+        mode: usize,
+        /// Its ω, rad/s.
+        omega: f64,
+        /// Its ζ.
+        zeta: f64,
+    },
+    /// The solution became non-finite.
+    #[error(
+        "the solution diverged at t = {t:.6} s (largest contact ω·dt met: {contact_omega_dt:.3}; \
+         above ≈2.8 the contact is too stiff for this step): reduce dt"
+    )]
+    Diverged {
+        /// Time, s.
+        t: f64,
+        /// Largest contact ω·dt met before.
+        contact_omega_dt: f64,
+    },
+}
+
+impl SolverSettings {
+    /// Check the step against the method's linear stability limit for every mode of `system`.
+    pub fn check_stability(&self, system: &System) -> Result<(), SolveError> {
+        match self.method {
+            Method::Rk4 => {
+                let (max_dt, j) = rk4_max_stable_dt(system);
+                if self.dt > max_dt {
+                    let n1 = system.n1();
+                    let (structure, mode) = if j < n1 { (1, j + 1) } else { (2, j - n1 + 1) };
+                    let omega = system.omega()[j];
+                    return Err(SolveError::UnstableStep {
+                        method: self.method.name(),
+                        dt: self.dt,
+                        max_dt,
+                        structure,
+                        mode,
+                        omega,
+                        zeta: system.damping_coefficients()[j] / (2.0 * omega),
+                    });
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Integrate `system` from `initial` over `settings.duration`, reporting to `observer`.
+pub fn integrate<O: Observer>(
+    system: &System,
+    settings: &SolverSettings,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<Stats, SolveError> {
+    settings.check_stability(system)?;
+    match settings.method {
+        Method::Rk4 => rk4::run(system, settings, initial, observer),
+    }
+}
+
+/// Number of steps of size ≤ dt covering `duration`, and the size of the last one.
+pub(crate) fn step_plan(dt: f64, duration: f64) -> (usize, f64) {
+    let steps = ((duration / dt) - 1e-9).ceil().max(1.0) as usize;
+    let last = duration - (steps - 1) as f64 * dt;
+    (steps, last)
+}
+
+/// Start of a contact episode at a level: the approach speed v₀, interpolated at the crossing
+/// of δ = 0 between the previous and the current step end.
+pub(crate) fn update_onsets(onset: &mut [f64], prev: &[LevelState], now: &[LevelState]) {
+    for k in 0..onset.len() {
+        if now[k].delta > 0.0 {
+            if onset[k] == 0.0 {
+                let (p, c) = (prev[k], now[k]);
+                let theta = if p.delta < 0.0 {
+                    p.delta / (p.delta - c.delta)
+                } else {
+                    0.0
+                };
+                let v0 = p.delta_dot + theta * (c.delta_dot - p.delta_dot);
+                onset[k] = v0.max(c.delta_dot).max(1e-12);
+            }
+        } else {
+            onset[k] = 0.0;
+        }
+    }
+}

@@ -1,0 +1,237 @@
+//! One structure reduced to its cantilever modes: frequencies, damping ratios, participation
+//! factors and mode shapes (SPEC §2.3–§2.6).
+
+use crate::cantilever::Mode;
+
+/// How the structure's stiffness is given (SPEC §2.6). All are converted to EI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stiffness {
+    /// Bending stiffness EI, N·m².
+    Bending(f64),
+    /// First-mode period T₁, s: EI = m L⁴ (ω₁/λ₁²)².
+    Period(f64),
+    /// Lumped tip stiffness k = 3EI/L³, N/m.
+    Tip(f64),
+}
+
+/// Damping of a structure (SPEC §2.5): exactly one of the two forms.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Damping {
+    /// Modal damping ratios: one value for every mode, or one per mode. No air term in the forcing.
+    Modal(Vec<f64>),
+    /// Physical (paper eq. 1): strain-rate coefficient `c_s/E` in s and air coefficient `c_a`
+    /// in N·s/m². ζ_n = (c_s ω_n²/E + c_a/m)/(2ω_n); the air term also loads the structure with
+    /// −γ_n c_a v_g.
+    Physical {
+        /// c_s/E, s.
+        strain_rate: f64,
+        /// c_a, N·s/m².
+        air: f64,
+    },
+}
+
+/// A checked structure: a uniform cantilever of given height, mass and stiffness.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Structure {
+    /// Name used in reports.
+    pub name: String,
+    /// Height L, m (> 0).
+    pub length: f64,
+    /// Total mass M = m L, kg (> 0).
+    pub mass: f64,
+    /// Stiffness, in one of the accepted forms.
+    pub stiffness: Stiffness,
+    /// Number of modes kept (≥ 1).
+    pub modes: usize,
+    /// Damping.
+    pub damping: Damping,
+}
+
+impl Structure {
+    /// Mass per unit length m, kg/m.
+    pub fn mass_per_length(&self) -> f64 {
+        self.mass / self.length
+    }
+
+    /// Bending stiffness EI, N·m², whatever form the stiffness was given in (SPEC §2.6).
+    pub fn bending_stiffness(&self) -> f64 {
+        let m = self.mass_per_length();
+        let l = self.length;
+        match self.stiffness {
+            Stiffness::Bending(ei) => ei,
+            Stiffness::Period(t) => {
+                let omega1 = 2.0 * std::f64::consts::PI / t;
+                let l1 = Mode::new(1).lambda_squared();
+                m * l.powi(4) * (omega1 / l1).powi(2)
+            }
+            Stiffness::Tip(k) => k * l.powi(3) / 3.0,
+        }
+    }
+
+    /// Reduce to the modal model.
+    pub fn modal(&self) -> ModalModel {
+        let m = self.mass_per_length();
+        let ei = self.bending_stiffness();
+        let base = (ei / (m * self.length.powi(4))).sqrt();
+        let modes = Mode::first(self.modes);
+        let omega: Vec<f64> = modes.iter().map(|md| md.lambda_squared() * base).collect();
+        let (zeta, air) = match &self.damping {
+            Damping::Modal(z) => {
+                let zeta = (0..self.modes)
+                    .map(|i| if z.len() == 1 { z[0] } else { z[i] })
+                    .collect();
+                (zeta, 0.0)
+            }
+            Damping::Physical { strain_rate, air } => {
+                let zeta = omega
+                    .iter()
+                    .map(|w| (strain_rate * w * w + air / m) / (2.0 * w))
+                    .collect();
+                (zeta, *air)
+            }
+        };
+        let root_mass = self.mass.sqrt();
+        let gamma = modes
+            .iter()
+            .map(|md| md.participation() * self.length / root_mass)
+            .collect();
+        ModalModel {
+            length: self.length,
+            mass: self.mass,
+            mass_per_length: m,
+            air_damping: air,
+            modes,
+            omega,
+            zeta,
+            gamma,
+        }
+    }
+}
+
+/// A structure in modal coordinates: `η̈_n + 2ζ_nω_n η̇_n + ω_n² η_n = −γ_n(m a_g + c_a v_g) + s φ_n(h) F`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalModel {
+    /// Height L, m.
+    pub length: f64,
+    /// Total mass M, kg.
+    pub mass: f64,
+    /// Mass per unit length m, kg/m.
+    pub mass_per_length: f64,
+    /// Air damping coefficient c_a used in the forcing, N·s/m² (0 with modal damping).
+    pub air_damping: f64,
+    /// The cantilever modes kept.
+    pub modes: Vec<Mode>,
+    /// Natural circular frequencies ω_n, rad/s.
+    pub omega: Vec<f64>,
+    /// Damping ratios ζ_n.
+    pub zeta: Vec<f64>,
+    /// Participation integrals γ_n = ∫₀ᴸ φ_n dx, m·kg^(−1/2).
+    pub gamma: Vec<f64>,
+}
+
+impl ModalModel {
+    /// Mass-normalised shape φ_n(x) of mode index `n` (0-based), kg^(−1/2); x in m, 0 ≤ x ≤ L.
+    pub fn shape(&self, n: usize, x: f64) -> f64 {
+        self.modes[n].shape(x / self.length) / self.mass.sqrt()
+    }
+
+    /// All φ_n(x), kg^(−1/2).
+    pub fn shapes_at(&self, x: f64) -> Vec<f64> {
+        (0..self.modes.len()).map(|n| self.shape(n, x)).collect()
+    }
+
+    /// Periods T_n = 2π/ω_n, s.
+    pub fn periods(&self) -> Vec<f64> {
+        self.omega
+            .iter()
+            .map(|w| 2.0 * std::f64::consts::PI / w)
+            .collect()
+    }
+
+    /// Participation factor Γ_n = m γ_n, kg^(1/2): the modal load per unit ground acceleration,
+    /// `η̈_n + … = −Γ_n a_g`.
+    pub fn participation_factor(&self, n: usize) -> f64 {
+        self.mass_per_length * self.gamma[n]
+    }
+
+    /// Effective modal mass fraction Γ_n²/M: the share of the total mass mode n moves under
+    /// ground shaking (sums to 1 over all modes; 0.613 for the first cantilever mode).
+    pub fn effective_mass_fraction(&self, n: usize) -> f64 {
+        self.participation_factor(n).powi(2) / self.mass
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn beam(stiffness: Stiffness) -> Structure {
+        Structure {
+            name: "b".into(),
+            length: 12.0,
+            mass: 3.0e6,
+            stiffness,
+            modes: 5,
+            damping: Damping::Modal(vec![0.02]),
+        }
+    }
+
+    /// ω_n = λ_n² √(EI/(m L⁴)) with the tabulated λ₁ (paper eq. 12).
+    #[test]
+    fn frequencies_follow_beam_formula() {
+        let ei = 4.0e11;
+        let s = beam(Stiffness::Bending(ei));
+        let mm = s.modal();
+        let m = 3.0e6 / 12.0;
+        let w1 = 1.875104068711961f64.powi(2) * (ei / (m * 12.0f64.powi(4))).sqrt();
+        assert!((mm.omega[0] - w1).abs() < 1e-12 * w1);
+        let w2 = 4.694091132974175f64.powi(2) * (ei / (m * 12.0f64.powi(4))).sqrt();
+        assert!((mm.omega[1] - w2).abs() < 1e-12 * w2);
+    }
+
+    /// Given by period, the first period comes back; by tip stiffness, EI = kL³/3.
+    #[test]
+    fn alternative_stiffness_forms() {
+        let mm = beam(Stiffness::Period(0.42)).modal();
+        assert!((mm.periods()[0] - 0.42).abs() < 1e-12);
+        let k = 5.0e7;
+        let s = beam(Stiffness::Tip(k));
+        assert!((s.bending_stiffness() - k * 12.0f64.powi(3) / 3.0).abs() < 1e-3);
+    }
+
+    /// Physical damping: ζ_n = (c_s ω²/E + c_a/m)/(2ω) (paper eq. 14).
+    #[test]
+    fn physical_damping_ratio() {
+        let mut s = beam(Stiffness::Period(0.5));
+        s.damping = Damping::Physical {
+            strain_rate: 1e-3,
+            air: 500.0,
+        };
+        let mm = s.modal();
+        let m = 3.0e6 / 12.0;
+        for n in 0..5 {
+            let w = mm.omega[n];
+            let z = (1e-3 * w * w + 500.0 / m) / (2.0 * w);
+            assert!((mm.zeta[n] - z).abs() < 1e-15);
+        }
+        assert_eq!(mm.air_damping, 500.0);
+        assert!((2.0 * PI / mm.omega[0] - 0.5).abs() < 1e-12);
+    }
+
+    /// Static check of the modal sum: a uniform load m·a on a cantilever gives the tip deflection
+    /// a m L⁴/(8 EI). In modal terms w(L) = a m Σ γ_n φ_n(L)/ω_n² (converges fast).
+    #[test]
+    fn static_modal_sum_gives_uniform_load_deflection() {
+        let mut s = beam(Stiffness::Bending(2.0e11));
+        s.modes = 60;
+        let mm = s.modal();
+        let m = mm.mass_per_length;
+        let sum: f64 = (0..60)
+            .map(|n| m * mm.gamma[n] * mm.shape(n, 12.0) / mm.omega[n].powi(2))
+            .sum();
+        let exact = m * 12.0f64.powi(4) / (8.0 * 2.0e11);
+        // Truncation error of the modal sum ~ Σ_{n>60} 1/λ_n^5 — far below 1e-9 relative.
+        assert!((sum - exact).abs() < 1e-9 * exact, "{sum} vs {exact}");
+    }
+}

@@ -1,0 +1,373 @@
+//! What a run keeps: peaks over every integration step, impact events, a history sampled at the
+//! output interval, and the energy balance. The recorder is an [`Observer`]: the integrators
+//! do not know it exists.
+
+use serde::Serialize;
+
+use crate::integrate::{Observer, StepView};
+use crate::system::System;
+
+/// One contact episode at one level: from the first instant of penetration to separation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Impact {
+    /// Contact level index (0-based).
+    pub level: usize,
+    /// Start time (δ crosses 0 upwards, interpolated between steps), s.
+    pub start: f64,
+    /// End time (δ crosses 0 downwards), s; the run's end if still in contact.
+    pub end: f64,
+    /// Peak contact force, N.
+    pub peak_force: f64,
+    /// Impulse `∫F dt`, N·s.
+    pub impulse: f64,
+    /// Largest penetration, m.
+    pub max_penetration: f64,
+    /// Approach speed δ̇ at the start, m/s.
+    pub approach_speed: f64,
+}
+
+/// Per-level results of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LevelRecord {
+    /// Height, m.
+    pub height: f64,
+    /// Peak |w₁(h)|, m.
+    pub peak_w1: f64,
+    /// Peak |w₂(h)|, m.
+    pub peak_w2: f64,
+    /// `max_t [w₁(h) − w₂(h)]`, m: without contact, the gap needed to avoid touching here.
+    pub max_closing: f64,
+    /// Peak contact force, N.
+    pub peak_force: f64,
+    /// Largest penetration, m.
+    pub max_penetration: f64,
+    /// Number of contact episodes.
+    pub impacts: usize,
+    /// Total time in contact, s.
+    pub contact_time: f64,
+}
+
+/// The energy balance of a run: `input = modal + contact_stored + damping + contact_dissipated`
+/// up to the integration error, which `relative_error` measures.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct EnergyBalance {
+    /// Work done by the ground loading, J.
+    pub input: f64,
+    /// Kinetic + strain energy of the structures at the end, minus at the start, J.
+    pub modal_change: f64,
+    /// Energy stored in the contacts at the end, J.
+    pub contact_stored: f64,
+    /// Energy dissipated by structural damping, J.
+    pub damping_dissipated: f64,
+    /// Energy dissipated in the contacts, J (0 for elastic laws, up to integration error).
+    pub contact_dissipated: f64,
+    /// |input − modal_change − contact_stored − damping − contact_dissipated| over the largest
+    /// energy present in the run (peak modal energy, or |input| if larger).
+    pub relative_error: f64,
+}
+
+/// Sampled time history: displacements at the main contact height and every level's force.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct History {
+    /// Sample times, s (multiples of the output interval).
+    pub t: Vec<f64>,
+    /// w₁(h) at the main contact height, m.
+    pub w1: Vec<f64>,
+    /// w₂(h), m.
+    pub w2: Vec<f64>,
+    /// Contact force of each level (outer index: level), N.
+    pub force: Vec<Vec<f64>>,
+}
+
+/// Everything one integration produced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunRecord {
+    /// Per-level results (empty without contact... except displacements: see `main_level`).
+    pub levels: Vec<LevelRecord>,
+    /// Peak |w₁|, |w₂| at the main contact height, m.
+    pub peak: [f64; 2],
+    /// `max_t [w₁ − w₂]` at the main contact height, m.
+    pub max_closing: f64,
+    /// Every impact, in time order per level.
+    pub impacts: Vec<Impact>,
+    /// Sampled history.
+    pub history: History,
+    /// Energy balance.
+    pub energy: EnergyBalance,
+    /// Steps observed.
+    pub steps: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    start: f64,
+    impulse_at_start: f64,
+    peak_force: f64,
+    max_penetration: f64,
+    approach_speed: f64,
+}
+
+/// The recorder. Build with [`Recorder::new`], pass to an integrator, then [`Recorder::finish`].
+#[derive(Debug)]
+pub struct Recorder {
+    /// Heights whose displacements are tracked: the contact levels' (for the no-contact run,
+    /// the same heights are passed in, so that both runs report the same places).
+    heights: Vec<f64>,
+    main: usize,
+    /// φ of structure 1 and 2 at each tracked height: rows of n₁ and n₂.
+    phi1: Vec<Vec<f64>>,
+    phi2: Vec<Vec<f64>>,
+    levels: Vec<LevelRecord>,
+    open: Vec<Option<Open>>,
+    impacts: Vec<Impact>,
+    prev: Option<Sample>,
+    prev_delta: Vec<f64>,
+    interval: f64,
+    next_sample: usize,
+    history: History,
+    last_impulse: Vec<f64>,
+    prev_force: Vec<f64>,
+    modal_initial: f64,
+    stored_initial: f64,
+    energy_peak: f64,
+    last_t: f64,
+    steps: usize,
+    final_energy: EnergyBalance,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    t: f64,
+    w: [f64; 2],
+    wdot: [f64; 2],
+}
+
+impl Recorder {
+    /// A recorder tracking displacements at `heights` (m; the main one is the highest) for
+    /// `system`, sampling the history every `interval` s over `duration` s.
+    pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder {
+        let main = heights
+            .iter()
+            .enumerate()
+            .fold(0, |best, (i, &h)| if h > heights[best] { i } else { best });
+        let [s1, s2] = &system.structures;
+        let phi1 = heights.iter().map(|&h| s1.shapes_at(h)).collect();
+        let phi2 = heights.iter().map(|&h| s2.shapes_at(h)).collect();
+        let samples = (duration / interval + 1e-9).floor() as usize + 1;
+        let nl = system.levels.len();
+        Recorder {
+            heights: heights.to_vec(),
+            main,
+            phi1,
+            phi2,
+            levels: heights
+                .iter()
+                .map(|&h| LevelRecord {
+                    height: h,
+                    peak_w1: 0.0,
+                    peak_w2: 0.0,
+                    max_closing: f64::NEG_INFINITY,
+                    peak_force: 0.0,
+                    max_penetration: 0.0,
+                    impacts: 0,
+                    contact_time: 0.0,
+                })
+                .collect(),
+            open: vec![None; nl],
+            impacts: Vec::with_capacity(64),
+            prev: None,
+            prev_delta: vec![f64::NEG_INFINITY; nl],
+            interval,
+            next_sample: 0,
+            history: History {
+                t: Vec::with_capacity(samples),
+                w1: Vec::with_capacity(samples),
+                w2: Vec::with_capacity(samples),
+                force: vec![Vec::with_capacity(samples); nl],
+            },
+            last_impulse: vec![0.0; nl],
+            prev_force: vec![0.0; nl],
+            modal_initial: 0.0,
+            stored_initial: 0.0,
+            energy_peak: 0.0,
+            last_t: 0.0,
+            steps: 0,
+            final_energy: EnergyBalance::default(),
+        }
+    }
+
+    /// Close open contact episodes and return the record.
+    pub fn finish(mut self) -> RunRecord {
+        for k in 0..self.open.len() {
+            if let Some(o) = self.open[k].take() {
+                self.close(k, o, self.last_t, self.last_impulse[k]);
+            }
+        }
+        for l in &mut self.levels {
+            if !l.max_closing.is_finite() {
+                l.max_closing = 0.0;
+            }
+        }
+        self.impacts
+            .sort_by(|a, b| a.start.total_cmp(&b.start).then(a.level.cmp(&b.level)));
+        let main = &self.levels[self.main];
+        RunRecord {
+            peak: [main.peak_w1, main.peak_w2],
+            max_closing: main.max_closing,
+            levels: self.levels,
+            impacts: self.impacts,
+            history: self.history,
+            energy: self.final_energy,
+            steps: self.steps,
+        }
+    }
+
+    fn close(&mut self, k: usize, o: Open, end: f64, impulse_now: f64) {
+        self.impacts.push(Impact {
+            level: k,
+            start: o.start,
+            end,
+            peak_force: o.peak_force,
+            impulse: impulse_now - o.impulse_at_start,
+            max_penetration: o.max_penetration,
+            approach_speed: o.approach_speed,
+        });
+        let l = &mut self.levels[k];
+        l.impacts += 1;
+        l.contact_time += end - o.start;
+    }
+
+    /// History samples at multiples of the interval in (previous step, this step]: cubic
+    /// Hermite in the displacements (4th-order accurate like the step), linear in the forces.
+    fn sample(&mut self, s: &StepView, now: &Sample) {
+        loop {
+            let tau = self.next_sample as f64 * self.interval;
+            if tau > s.t + 1e-9 * self.interval {
+                break;
+            }
+            self.history.t.push(tau);
+            match self.prev {
+                Some(p) if s.t > p.t => {
+                    let h = s.t - p.t;
+                    let th = ((tau - p.t) / h).clamp(0.0, 1.0);
+                    let (t2, t3) = (th * th, th * th * th);
+                    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+                    let h10 = t3 - 2.0 * t2 + th;
+                    let h01 = -2.0 * t3 + 3.0 * t2;
+                    let h11 = t3 - t2;
+                    let w = |i: usize| {
+                        h00 * p.w[i] + h10 * h * p.wdot[i] + h01 * now.w[i] + h11 * h * now.wdot[i]
+                    };
+                    self.history.w1.push(w(0));
+                    self.history.w2.push(w(1));
+                    for (k, st) in s.levels.iter().enumerate() {
+                        let f = self.prev_force[k] + th * (st.force - self.prev_force[k]);
+                        self.history.force[k].push(f);
+                    }
+                }
+                _ => {
+                    self.history.w1.push(now.w[0]);
+                    self.history.w2.push(now.w[1]);
+                    for (k, st) in s.levels.iter().enumerate() {
+                        self.history.force[k].push(st.force);
+                    }
+                }
+            }
+            self.next_sample += 1;
+        }
+        for (k, st) in s.levels.iter().enumerate() {
+            self.prev_force[k] = st.force;
+        }
+    }
+}
+
+impl Observer for Recorder {
+    fn observe(&mut self, system: &System, s: &StepView) {
+        let (n1, q) = (system.n1(), s.q);
+        // displacements and velocities at every tracked height
+        let mut main_sample = Sample {
+            t: s.t,
+            w: [0.0; 2],
+            wdot: [0.0; 2],
+        };
+        for k in 0..self.heights.len() {
+            let w1 = crate::system::dot(&self.phi1[k], &q[..n1]);
+            let w2 = crate::system::dot(&self.phi2[k], &q[n1..]);
+            let l = &mut self.levels[k];
+            l.peak_w1 = l.peak_w1.max(w1.abs());
+            l.peak_w2 = l.peak_w2.max(w2.abs());
+            l.max_closing = l.max_closing.max(w1 - w2);
+            if k == self.main {
+                main_sample.w = [w1, w2];
+                main_sample.wdot = [
+                    crate::system::dot(&self.phi1[k], &s.v[..n1]),
+                    crate::system::dot(&self.phi2[k], &s.v[n1..]),
+                ];
+            }
+        }
+        // contact episodes
+        for (k, st) in s.levels.iter().enumerate() {
+            let prev = self.prev_delta[k];
+            if st.delta > 0.0 {
+                let o = self.open[k].get_or_insert_with(|| {
+                    let theta = if prev.is_finite() && prev < 0.0 {
+                        prev / (prev - st.delta)
+                    } else {
+                        1.0
+                    };
+                    let t0 = self.last_t + theta * (s.t - self.last_t);
+                    Open {
+                        start: if self.steps == 0 { s.t } else { t0 },
+                        impulse_at_start: s.tally.impulse[k],
+                        peak_force: 0.0,
+                        max_penetration: 0.0,
+                        approach_speed: st.delta_dot,
+                    }
+                });
+                o.peak_force = o.peak_force.max(st.force);
+                o.max_penetration = o.max_penetration.max(st.delta);
+            } else if let Some(o) = self.open[k].take() {
+                let theta = if prev > 0.0 {
+                    prev / (prev - st.delta)
+                } else {
+                    1.0
+                };
+                let end = self.last_t + theta * (s.t - self.last_t);
+                self.close(k, o, end, s.tally.impulse[k]);
+            }
+            let l = &mut self.levels[k];
+            l.peak_force = l.peak_force.max(st.force);
+            l.max_penetration = l.max_penetration.max(st.delta);
+            self.prev_delta[k] = st.delta;
+        }
+        self.last_impulse.copy_from_slice(&s.tally.impulse);
+        self.sample(s, &main_sample);
+        // energy (SPEC §2.7; balance: input = Δmodal + damping + work into contacts)
+        let modal = system.modal_energy(s.q, s.v);
+        let stored = system.contact_energy(s.levels);
+        if self.prev.is_none() {
+            self.modal_initial = modal;
+            self.stored_initial = stored;
+        }
+        self.energy_peak = self.energy_peak.max(modal + stored);
+        let modal_change = modal - self.modal_initial;
+        let residual = s.tally.input - modal_change - s.tally.damping - s.tally.contact;
+        let scale = self
+            .energy_peak
+            .max(s.tally.input.abs())
+            .max(f64::MIN_POSITIVE);
+        self.final_energy = EnergyBalance {
+            input: s.tally.input,
+            modal_change,
+            contact_stored: stored,
+            damping_dissipated: s.tally.damping,
+            contact_dissipated: s.tally.contact - (stored - self.stored_initial),
+            relative_error: residual.abs() / scale,
+        };
+        if self.prev.is_some() {
+            self.steps += 1;
+        }
+        self.last_t = s.t;
+        self.prev = Some(main_sample);
+    }
+}

@@ -1,0 +1,980 @@
+//! Scenario files (SPEC §5): TOML → raw serde structs with spans → [`validate`] → a checked
+//! [`Scenario`] in SI units.
+//!
+//! Every error names the file, the line and column, the key and the allowed range.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::contact::{ContactLaw, HertzDampModel};
+use crate::ground_motion::{
+    AccelUnits, GroundMotion, Harmonic, Record, RecordOptions, STANDARD_GRAVITY,
+};
+use crate::integrate::{Method, SolverSettings};
+use crate::modal::{Damping, Stiffness, Structure};
+use crate::system::{ContactLevel, System};
+
+/// Most modes a structure may keep.
+pub const MAX_MODES: i64 = 500;
+
+/// Where in a scenario file something is.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// File name as given.
+    pub file: String,
+    /// 1-based line and column, when known.
+    pub line_col: Option<(usize, usize)>,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line_col {
+            Some((l, c)) => write!(f, "{}:{}:{}", self.file, l, c),
+            None => write!(f, "{}", self.file),
+        }
+    }
+}
+
+/// Why a scenario was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("cannot read scenario {path}: {source}")]
+    Read {
+        /// Path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, or a value of the wrong type.
+    #[error("{at}: {message}")]
+    Syntax {
+        /// Where.
+        at: Location,
+        /// What the TOML parser said.
+        message: String,
+    },
+    /// A key that the format does not have.
+    #[error("{at}: unknown key `{key}` in {section}{hint}")]
+    UnknownKey {
+        /// Where.
+        at: Location,
+        /// The key.
+        key: String,
+        /// The table it is in.
+        section: String,
+        /// "; did you mean …? valid keys: …"
+        hint: String,
+    },
+    /// A required key is absent.
+    #[error("{at}: missing key `{key}`: {expected}")]
+    Missing {
+        /// Where (the file, or the table).
+        at: Location,
+        /// Full key path, e.g. `structure[1].mass`.
+        key: String,
+        /// What is expected.
+        expected: String,
+    },
+    /// A value outside its allowed range or an inconsistent combination.
+    #[error("{at}: `{key}` = {value}: {reason}")]
+    Invalid {
+        /// Where.
+        at: Location,
+        /// Full key path.
+        key: String,
+        /// The value as given.
+        value: String,
+        /// What is allowed.
+        reason: String,
+    },
+    /// The ground-motion record could not be read.
+    #[error("{at}: `{key}`: {source}")]
+    Record {
+        /// Where the file is named.
+        at: Location,
+        /// The key.
+        key: String,
+        /// The reader's error.
+        source: crate::ground_motion::RecordError,
+    },
+}
+
+// ---------------------------------------------------------------------------------------------
+// Raw schema: what the TOML may contain. All optional so that missing keys get our messages.
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScenario {
+    title: Option<String>,
+    structure: Option<Spanned<Vec<RawStructure>>>,
+    contact: Option<Spanned<RawContact>>,
+    ground_motion: Option<Spanned<RawGround>>,
+    solver: Option<Spanned<RawSolver>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStructure {
+    name: Option<String>,
+    length: Option<Spanned<f64>>,
+    mass: Option<Spanned<f64>>,
+    period: Option<Spanned<f64>>,
+    bending_stiffness: Option<Spanned<f64>>,
+    tip_stiffness: Option<Spanned<f64>>,
+    modes: Option<Spanned<i64>>,
+    damping_ratio: Option<Spanned<RawZeta>>,
+    strain_rate_damping: Option<Spanned<f64>>,
+    air_damping: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum RawZeta {
+    One(f64),
+    Many(Vec<f64>),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawContact {
+    law: Option<Spanned<String>>,
+    stiffness: Option<Spanned<f64>>,
+    restitution: Option<Spanned<f64>>,
+    damping_model: Option<Spanned<String>>,
+    gap: Option<Spanned<f64>>,
+    height: Option<Spanned<f64>>,
+    level: Option<Vec<Spanned<RawLevel>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLevel {
+    height: Option<Spanned<f64>>,
+    gap: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGround {
+    kind: Option<Spanned<String>>,
+    pga: Option<Spanned<f64>>,
+    period: Option<Spanned<f64>>,
+    file: Option<Spanned<String>>,
+    units: Option<Spanned<String>>,
+    scale_to_pga: Option<Spanned<f64>>,
+    dt: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSolver {
+    method: Option<Spanned<String>>,
+    dt: Option<Spanned<f64>>,
+    duration: Option<Spanned<f64>>,
+    output_interval: Option<Spanned<f64>>,
+}
+
+/// Valid keys of each table, for suggestions.
+const TABLES: &[(&str, &[&str])] = &[
+    (
+        "the top level",
+        &["title", "structure", "contact", "ground_motion", "solver"],
+    ),
+    (
+        "[[structure]]",
+        &[
+            "name",
+            "length",
+            "mass",
+            "period",
+            "bending_stiffness",
+            "tip_stiffness",
+            "modes",
+            "damping_ratio",
+            "strain_rate_damping",
+            "air_damping",
+        ],
+    ),
+    (
+        "[contact]",
+        &[
+            "law",
+            "stiffness",
+            "restitution",
+            "damping_model",
+            "gap",
+            "height",
+            "level",
+        ],
+    ),
+    ("[[contact.level]]", &["height", "gap"]),
+    (
+        "[ground_motion]",
+        &[
+            "kind",
+            "pga",
+            "period",
+            "file",
+            "units",
+            "scale_to_pga",
+            "dt",
+        ],
+    ),
+    ("[solver]", &["method", "dt", "duration", "output_interval"]),
+];
+
+/// Contact law names accepted by `[contact] law`.
+pub const CONTACT_LAWS: &[&str] = &["hertz", "linear", "kelvin", "hertzdamp", "jankowski"];
+
+// ---------------------------------------------------------------------------------------------
+// The checked scenario.
+
+/// Contact definition: one law, one or more levels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSpec {
+    /// The force law.
+    pub law: ContactLaw,
+    /// Contact levels (at least one).
+    pub levels: Vec<ContactLevel>,
+}
+
+/// A checked scenario, SI units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scenario {
+    /// Title.
+    pub title: String,
+    /// Structure 1 (left) and 2 (right).
+    pub structures: [Structure; 2],
+    /// Contact.
+    pub contact: ContactSpec,
+    /// Ground motion.
+    pub ground_motion: GroundMotion,
+    /// Solver.
+    pub solver: SolverSettings,
+    /// Sampling interval of the written history, s.
+    pub output_interval: f64,
+}
+
+impl Scenario {
+    /// Read and validate a scenario file. Record files are resolved relative to it.
+    pub fn from_file(path: &Path) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        Scenario::from_toml(&text, &path.display().to_string(), base)
+    }
+
+    /// Validate scenario text. `file` names it in messages; `base_dir` resolves record files.
+    pub fn from_toml(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
+        let ctx = Ctx { text, file };
+        let raw: RawScenario = toml::from_str(text).map_err(|e| ctx.toml_error(&e))?;
+        validate(raw, &ctx, base_dir)
+    }
+
+    /// The assembled system with contact.
+    pub fn system(&self) -> System {
+        System::new(
+            [self.structures[0].modal(), self.structures[1].modal()],
+            &self.contact.law,
+            &self.contact.levels,
+            self.ground_motion.clone(),
+        )
+    }
+
+    /// Height whose displacements are reported as "the" contact height: the highest level, m.
+    pub fn main_height(&self) -> f64 {
+        self.contact
+            .levels
+            .iter()
+            .map(|l| l.height)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+struct Ctx<'a> {
+    text: &'a str,
+    file: &'a str,
+}
+
+impl Ctx<'_> {
+    fn at(&self, offset: Option<usize>) -> Location {
+        Location {
+            file: self.file.to_string(),
+            line_col: offset.map(|o| line_col(self.text, o)),
+        }
+    }
+
+    fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
+        let at = self.at(e.span().map(|s| s.start));
+        let msg = e.message().trim().to_string();
+        if let Some(rest) = msg.strip_prefix("unknown field `") {
+            if let Some(end) = rest.find('`') {
+                let key = rest[..end].to_string();
+                let (section, valid) = self.section_for(e.span().map(|s| s.start), &msg);
+                let best = valid
+                    .iter()
+                    .map(|v| (strsim::jaro_winkler(&key, v), *v))
+                    .max_by(|a, b| a.0.total_cmp(&b.0));
+                let mut hint = String::new();
+                if let Some((score, v)) = best {
+                    if score > 0.75 {
+                        hint.push_str(&format!("; did you mean `{v}`?"));
+                    }
+                }
+                hint.push_str(&format!(" (valid keys: {})", valid.join(", ")));
+                return ScenarioError::UnknownKey {
+                    at,
+                    key,
+                    section,
+                    hint,
+                };
+            }
+        }
+        ScenarioError::Syntax { at, message: msg }
+    }
+
+    /// The table an unknown key sits in: from the expected-key list in serde's message.
+    fn section_for(&self, _offset: Option<usize>, msg: &str) -> (String, Vec<&'static str>) {
+        let expected: Vec<&str> = msg
+            .split("expected one of ")
+            .nth(1)
+            .or_else(|| msg.split("expected ").nth(1))
+            .map(|s| {
+                s.split(',')
+                    .map(|k| k.trim().trim_matches('`'))
+                    .filter(|k| !k.is_empty())
+                    .collect()
+            })
+            .unwrap_or_default();
+        for (name, keys) in TABLES {
+            if !expected.is_empty() && expected.iter().all(|k| keys.contains(k)) {
+                if keys.len() == expected.len() {
+                    return (name.to_string(), keys.to_vec());
+                }
+            }
+        }
+        ("this table".to_string(), Vec::new())
+    }
+}
+
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(text.len());
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
+    (line, col)
+}
+
+/// A validator for one key: checks the value against a range and reports with its location.
+struct Check<'a, 'c> {
+    ctx: &'c Ctx<'a>,
+}
+
+impl Check<'_, '_> {
+    fn invalid<T: fmt::Display>(&self, v: &Spanned<T>, key: &str, reason: &str) -> ScenarioError {
+        ScenarioError::Invalid {
+            at: self.ctx.at(Some(v.span().start)),
+            key: key.to_string(),
+            value: v.get_ref().to_string(),
+            reason: reason.to_string(),
+        }
+    }
+
+    fn missing(&self, key: &str, expected: &str, near: Option<usize>) -> ScenarioError {
+        ScenarioError::Missing {
+            at: self.ctx.at(near),
+            key: key.to_string(),
+            expected: expected.to_string(),
+        }
+    }
+
+    /// A finite number > 0 (unit in the message).
+    fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(v, key, &format!("must be a finite number > 0 ({unit})")))
+        }
+    }
+
+    /// A finite number ≥ 0.
+    fn non_negative(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(v, key, &format!("must be a finite number ≥ 0 ({unit})")))
+        }
+    }
+
+    fn required<'v, T>(
+        &self,
+        v: &'v Option<Spanned<T>>,
+        key: &str,
+        expected: &str,
+        near: Option<usize>,
+    ) -> Result<&'v Spanned<T>, ScenarioError> {
+        v.as_ref().ok_or_else(|| self.missing(key, expected, near))
+    }
+
+    fn restitution(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+        let e = *v.get_ref();
+        if e.is_finite() && e > 0.0 && e <= 1.0 {
+            Ok(e)
+        } else {
+            Err(self.invalid(v, key, "coefficient of restitution must be in (0, 1]"))
+        }
+    }
+}
+
+fn validate(raw: RawScenario, ctx: &Ctx, base_dir: &Path) -> Result<Scenario, ScenarioError> {
+    let c = Check { ctx };
+    let structures = {
+        let list = c.required(
+            &raw.structure,
+            "structure",
+            "two [[structure]] tables (structure 1 on the left, 2 on the right)",
+            None,
+        )?;
+        if list.get_ref().len() != 2 {
+            return Err(ScenarioError::Invalid {
+                at: ctx.at(Some(list.span().start)),
+                key: "structure".into(),
+                value: format!("{} table(s)", list.get_ref().len()),
+                reason: "exactly two [[structure]] tables are needed".into(),
+            });
+        }
+        let start = list.span().start;
+        let mut it = list
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, s)| structure(&c, i, s, start));
+        let a = it.next().unwrap_or_else(|| unreachable!())?;
+        let b = it.next().unwrap_or_else(|| unreachable!())?;
+        [a, b]
+    };
+    let min_length = structures[0].length.min(structures[1].length);
+    let contact = contact(&c, raw.contact.as_ref(), min_length)?;
+    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir)?;
+    let (solver, output_interval) = solver(&c, raw.solver.as_ref())?;
+    let scenario = Scenario {
+        title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
+        structures,
+        contact,
+        ground_motion,
+        solver,
+        output_interval,
+    };
+    // stability: needs the modal model (SPEC §2.9)
+    if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
+        let dt = raw
+            .solver
+            .as_ref()
+            .and_then(|s| s.get_ref().dt.as_ref())
+            .map(|d| d.span().start);
+        return Err(ScenarioError::Invalid {
+            at: ctx.at(dt),
+            key: "solver.dt".into(),
+            value: solver.dt.to_string(),
+            reason: e.to_string(),
+        });
+    }
+    Ok(scenario)
+}
+
+fn structure(
+    c: &Check,
+    i: usize,
+    s: &RawStructure,
+    table_start: usize,
+) -> Result<Structure, ScenarioError> {
+    let key = |k: &str| format!("structure[{}].{k}", i + 1);
+    let near = Some(table_start);
+    let length = c.positive(
+        c.required(&s.length, &key("length"), "height L in m", near)?,
+        &key("length"),
+        "m",
+    )?;
+    let mass = c.positive(
+        c.required(&s.mass, &key("mass"), "total mass M in kg", near)?,
+        &key("mass"),
+        "kg",
+    )?;
+    let given: Vec<(&str, &Spanned<f64>)> = [
+        ("period", &s.period),
+        ("bending_stiffness", &s.bending_stiffness),
+        ("tip_stiffness", &s.tip_stiffness),
+    ]
+    .into_iter()
+    .filter_map(|(k, v)| v.as_ref().map(|v| (k, v)))
+    .collect();
+    let stiffness = match given.as_slice() {
+        [] => {
+            return Err(c.missing(
+                &key("period"),
+                "one of `period` (s), `bending_stiffness` (N·m²) or `tip_stiffness` (N/m)",
+                near,
+            ))
+        }
+        [(k, v)] => {
+            let (unit, make): (&str, fn(f64) -> Stiffness) = match *k {
+                "period" => ("s", Stiffness::Period),
+                "bending_stiffness" => ("N·m²", Stiffness::Bending),
+                _ => ("N/m", Stiffness::Tip),
+            };
+            make(c.positive(v, &key(k), unit)?)
+        }
+        [(k1, _), (k2, v2), ..] => {
+            return Err(c.invalid(
+                v2,
+                &key(k2),
+                &format!(
+                    "give exactly one of `period`, `bending_stiffness`, `tip_stiffness` (also `{k1}` is given)"
+                ),
+            ))
+        }
+    };
+    let modes_v = c.required(&s.modes, &key("modes"), "number of modes, 1 to 500", near)?;
+    let modes = *modes_v.get_ref();
+    if !(1..=MAX_MODES).contains(&modes) {
+        return Err(c.invalid(modes_v, &key("modes"), "must be an integer from 1 to 500"));
+    }
+    let modes = modes as usize;
+    let damping = match (&s.damping_ratio, &s.strain_rate_damping, &s.air_damping) {
+        (Some(z), None, None) => {
+            let values = match z.get_ref() {
+                RawZeta::One(v) => vec![*v],
+                RawZeta::Many(v) => v.clone(),
+            };
+            if values.len() != 1 && values.len() != modes {
+                return Err(ScenarioError::Invalid {
+                    at: c.ctx.at(Some(z.span().start)),
+                    key: key("damping_ratio"),
+                    value: format!("a list of {}", values.len()),
+                    reason: format!("give one ratio, or a list of exactly {modes} (one per mode)"),
+                });
+            }
+            if let Some(bad) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0 && **v < 1.0)) {
+                return Err(ScenarioError::Invalid {
+                    at: c.ctx.at(Some(z.span().start)),
+                    key: key("damping_ratio"),
+                    value: bad.to_string(),
+                    reason: "damping ratios must be in [0, 1)".into(),
+                });
+            }
+            Damping::Modal(values)
+        }
+        (None, None, None) => {
+            return Err(c.missing(
+                &key("damping_ratio"),
+                "damping: `damping_ratio` (e.g. 0.01), or `strain_rate_damping` (c_s/E, s) and/or `air_damping` (c_a, N·s/m²)",
+                near,
+            ))
+        }
+        (Some(z), _, _) => {
+            return Err(ScenarioError::Invalid {
+                at: c.ctx.at(Some(z.span().start)),
+                key: key("damping_ratio"),
+                value: "given with strain_rate_damping/air_damping".into(),
+                reason: "give either `damping_ratio` or the physical coefficients, not both".into(),
+            })
+        }
+        (None, sr, air) => {
+            let strain_rate = match sr {
+                Some(v) => c.non_negative(v, &key("strain_rate_damping"), "s")?,
+                None => 0.0,
+            };
+            let air = match air {
+                Some(v) => c.non_negative(v, &key("air_damping"), "N·s/m²")?,
+                None => 0.0,
+            };
+            Damping::Physical { strain_rate, air }
+        }
+    };
+    Ok(Structure {
+        name: s
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("structure {}", i + 1)),
+        length,
+        mass,
+        stiffness,
+        modes,
+        damping,
+    })
+}
+
+fn contact(
+    c: &Check,
+    raw: Option<&Spanned<RawContact>>,
+    min_length: f64,
+) -> Result<ContactSpec, ScenarioError> {
+    let raw = raw.ok_or_else(|| {
+        c.missing(
+            "contact",
+            "a [contact] table with at least `stiffness` and `gap`",
+            None,
+        )
+    })?;
+    let near = Some(raw.span().start);
+    let r = raw.get_ref();
+    let law_name = r.law.as_ref().map_or("hertz", |l| l.get_ref().as_str());
+    let stiffness_unit = match law_name {
+        "linear" | "kelvin" => "N/m",
+        _ => "N/m^1.5",
+    };
+    let stiffness = c.positive(
+        c.required(
+            &r.stiffness,
+            "contact.stiffness",
+            &format!("contact stiffness in {stiffness_unit}"),
+            near,
+        )?,
+        "contact.stiffness",
+        stiffness_unit,
+    )?;
+    let needs_e = matches!(law_name, "kelvin" | "hertzdamp" | "jankowski");
+    let restitution = match (&r.restitution, needs_e) {
+        (Some(e), true) => c.restitution(e, "contact.restitution")?,
+        (None, true) => {
+            return Err(c.missing(
+                "contact.restitution",
+                &format!("law `{law_name}` needs a coefficient of restitution in (0, 1]"),
+                near,
+            ))
+        }
+        (Some(e), false) => {
+            return Err(c.invalid(
+                e,
+                "contact.restitution",
+                &format!("law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski)"),
+            ))
+        }
+        (None, false) => 1.0,
+    };
+    if let (Some(m), false) = (&r.damping_model, law_name == "hertzdamp") {
+        return Err(c.invalid(
+            m,
+            "contact.damping_model",
+            "only law `hertzdamp` takes a damping model",
+        ));
+    }
+    let law = match law_name {
+        "hertz" => ContactLaw::Hertz { stiffness },
+        "linear" => ContactLaw::Linear { stiffness },
+        "kelvin" => ContactLaw::Kelvin {
+            stiffness,
+            restitution,
+        },
+        "jankowski" => ContactLaw::Jankowski {
+            stiffness,
+            restitution,
+        },
+        "hertzdamp" => {
+            let model = match r.damping_model.as_ref().map(|m| m.get_ref().as_str()) {
+                None | Some("lankarani-nikravesh") => HertzDampModel::LankaraniNikravesh,
+                Some("hunt-crossley") => HertzDampModel::HuntCrossley,
+                Some("ye-li-zhu") => HertzDampModel::YeLiZhu,
+                Some(_) => {
+                    let m = r.damping_model.as_ref().unwrap_or_else(|| unreachable!());
+                    return Err(c.invalid(
+                        m,
+                        "contact.damping_model",
+                        "must be one of \"lankarani-nikravesh\", \"hunt-crossley\", \"ye-li-zhu\"",
+                    ));
+                }
+            };
+            ContactLaw::HertzDamp {
+                stiffness,
+                restitution,
+                model,
+            }
+        }
+        _ => {
+            let l = r.law.as_ref().unwrap_or_else(|| unreachable!());
+            return Err(c.invalid(
+                l,
+                "contact.law",
+                &format!("must be one of {}", quoted(CONTACT_LAWS)),
+            ));
+        }
+    };
+    let height_reason =
+        format!("contact height must be in (0, {min_length}] m, i.e. (0, min(L1, L2)]");
+    let check_height = |h: &Spanned<f64>, key: &str| -> Result<f64, ScenarioError> {
+        let x = *h.get_ref();
+        if x.is_finite() && x > 0.0 && x <= min_length * (1.0 + 1e-12) {
+            Ok(x.min(min_length))
+        } else {
+            Err(c.invalid(h, key, &height_reason))
+        }
+    };
+    let levels = match &r.level {
+        None => {
+            let gap = c.non_negative(
+                c.required(&r.gap, "contact.gap", "at-rest gap in m (≥ 0)", near)?,
+                "contact.gap",
+                "m",
+            )?;
+            let height = match &r.height {
+                Some(h) => check_height(h, "contact.height")?,
+                None => min_length,
+            };
+            vec![ContactLevel { height, gap }]
+        }
+        Some(levels) => {
+            for (k, v) in [("contact.gap", &r.gap), ("contact.height", &r.height)] {
+                if let Some(v) = v {
+                    return Err(c.invalid(
+                        v,
+                        k,
+                        "with [[contact.level]] tables, give `height` and `gap` in each level instead",
+                    ));
+                }
+            }
+            if levels.is_empty() {
+                return Err(c.missing("contact.level", "at least one [[contact.level]]", near));
+            }
+            let mut out = Vec::with_capacity(levels.len());
+            for (i, lv) in levels.iter().enumerate() {
+                let key = |k: &str| format!("contact.level[{}].{k}", i + 1);
+                let lnear = Some(lv.span().start);
+                let l = lv.get_ref();
+                let height = check_height(
+                    c.required(&l.height, &key("height"), "contact height in m", lnear)?,
+                    &key("height"),
+                )?;
+                let gap = c.non_negative(
+                    c.required(&l.gap, &key("gap"), "at-rest gap in m (≥ 0)", lnear)?,
+                    &key("gap"),
+                    "m",
+                )?;
+                if out.iter().any(|o: &ContactLevel| o.height == height) {
+                    return Err(c.invalid(
+                        l.height.as_ref().unwrap_or_else(|| unreachable!()),
+                        &key("height"),
+                        "two contact levels at the same height",
+                    ));
+                }
+                out.push(ContactLevel { height, gap });
+            }
+            out
+        }
+    };
+    Ok(ContactSpec { law, levels })
+}
+
+fn ground(
+    c: &Check,
+    raw: Option<&Spanned<RawGround>>,
+    base_dir: &Path,
+) -> Result<GroundMotion, ScenarioError> {
+    let raw = raw.ok_or_else(|| {
+        c.missing(
+            "ground_motion",
+            "a [ground_motion] table (kind = \"harmonic\" with `pga` and `period`, or kind = \"record\" with `file`)",
+            None,
+        )
+    })?;
+    let near = Some(raw.span().start);
+    let g = raw.get_ref();
+    let kind = c.required(
+        &g.kind,
+        "ground_motion.kind",
+        "\"harmonic\" or \"record\"",
+        near,
+    )?;
+    let forbid = |present: &[(&str, bool)], kind: &str| -> Result<(), ScenarioError> {
+        for (k, p) in present {
+            if *p {
+                return Err(ScenarioError::Invalid {
+                    at: c.ctx.at(near),
+                    key: format!("ground_motion.{k}"),
+                    value: "(given)".into(),
+                    reason: format!("not used with kind = \"{kind}\""),
+                });
+            }
+        }
+        Ok(())
+    };
+    match kind.get_ref().as_str() {
+        "harmonic" => {
+            forbid(
+                &[
+                    ("file", g.file.is_some()),
+                    ("units", g.units.is_some()),
+                    ("scale_to_pga", g.scale_to_pga.is_some()),
+                    ("dt", g.dt.is_some()),
+                ],
+                "harmonic",
+            )?;
+            let pga = c.positive(
+                c.required(
+                    &g.pga,
+                    "ground_motion.pga",
+                    "peak ground acceleration in g",
+                    near,
+                )?,
+                "ground_motion.pga",
+                "g",
+            )?;
+            let period = c.positive(
+                c.required(
+                    &g.period,
+                    "ground_motion.period",
+                    "ground period T_g in s",
+                    near,
+                )?,
+                "ground_motion.period",
+                "s",
+            )?;
+            Ok(GroundMotion::Harmonic(Harmonic::from_pga_g(pga, period)))
+        }
+        "record" => {
+            forbid(
+                &[("pga", g.pga.is_some()), ("period", g.period.is_some())],
+                "record",
+            )?;
+            let file = c.required(
+                &g.file,
+                "ground_motion.file",
+                "the record file (PEER .AT2, two columns `t a`, or one column with `dt`), relative to the scenario",
+                near,
+            )?;
+            let units = match g.units.as_ref() {
+                None => None,
+                Some(u) => match u.get_ref().as_str() {
+                    "g" => Some(AccelUnits::G),
+                    "m/s2" | "m/s^2" | "m/s²" => Some(AccelUnits::MetersPerSecond2),
+                    _ => {
+                        return Err(c.invalid(
+                            u,
+                            "ground_motion.units",
+                            "must be \"g\" or \"m/s2\"",
+                        ));
+                    }
+                },
+            };
+            let scale_to_pga = match &g.scale_to_pga {
+                Some(v) => Some(c.positive(v, "ground_motion.scale_to_pga", "g")?),
+                None => None,
+            };
+            let dt = match &g.dt {
+                Some(v) => Some(c.positive(v, "ground_motion.dt", "s")?),
+                None => None,
+            };
+            let path = base_dir.join(file.get_ref());
+            let opts = RecordOptions {
+                units,
+                dt,
+                scale_to_pga,
+            };
+            let record = Record::read(&path, &opts).map_err(|e| ScenarioError::Record {
+                at: c.ctx.at(Some(file.span().start)),
+                key: "ground_motion.file".into(),
+                source: e,
+            })?;
+            Ok(GroundMotion::Record(Arc::new(record)))
+        }
+        _ => Err(c.invalid(
+            kind,
+            "ground_motion.kind",
+            "must be \"harmonic\" or \"record\"",
+        )),
+    }
+}
+
+fn solver(
+    c: &Check,
+    raw: Option<&Spanned<RawSolver>>,
+) -> Result<(SolverSettings, f64), ScenarioError> {
+    let raw = raw.ok_or_else(|| {
+        c.missing(
+            "solver",
+            "a [solver] table with `dt` and `duration` (s)",
+            None,
+        )
+    })?;
+    let near = Some(raw.span().start);
+    let s = raw.get_ref();
+    let method = match s.method.as_ref() {
+        None => Method::Rk4,
+        Some(m) => match m.get_ref().as_str() {
+            "rk4" => Method::Rk4,
+            _ => return Err(c.invalid(m, "solver.method", "must be \"rk4\"")),
+        },
+    };
+    let dt_v = c.required(&s.dt, "solver.dt", "time step in s", near)?;
+    let dt = c.positive(dt_v, "solver.dt", "s")?;
+    let duration = c.positive(
+        c.required(&s.duration, "solver.duration", "simulated time in s", near)?,
+        "solver.duration",
+        "s",
+    )?;
+    if dt >= duration {
+        return Err(c.invalid(
+            dt_v,
+            "solver.dt",
+            &format!("must be smaller than solver.duration = {duration} s"),
+        ));
+    }
+    if duration / dt > 1e9 {
+        return Err(c.invalid(
+            dt_v,
+            "solver.dt",
+            &format!("more than 10⁹ steps over {duration} s: use a larger step"),
+        ));
+    }
+    let output_interval = match &s.output_interval {
+        None => (0.01f64).max(dt).min(duration),
+        Some(v) => {
+            let x = c.positive(v, "solver.output_interval", "s")?;
+            if x > duration || duration / x > 1e7 {
+                return Err(c.invalid(
+                    v,
+                    "solver.output_interval",
+                    &format!(
+                        "must be in ({:e}, {duration}] s (at most 10⁷ samples)",
+                        duration / 1e7
+                    ),
+                ));
+            }
+            x
+        }
+    };
+    Ok((
+        SolverSettings {
+            method,
+            dt,
+            duration,
+        },
+        output_interval,
+    ))
+}
+
+fn quoted(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The PGA of a ground motion in g (for messages and summaries).
+pub fn pga_in_g(g: &GroundMotion) -> f64 {
+    g.pga() / STANDARD_GRAVITY
+}
+
+/// The scenario file's directory-independent name, for messages.
+pub fn display_name(path: &Path) -> PathBuf {
+    path.to_path_buf()
+}
