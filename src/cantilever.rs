@@ -95,7 +95,7 @@ mod tests {
             4.694091132974175,
             7.854757438237613,
             10.995540734875467,
-            14.137168391046471,
+            14.13716839104647,
         ];
         for (i, &e) in expected.iter().enumerate() {
             let r = root(i + 1);
@@ -110,9 +110,13 @@ mod tests {
             let r = root(n);
             let asym = (2.0 * n as f64 - 1.0) * PI / 2.0;
             assert!((r - asym).abs() < 1e-3, "mode {n}");
-            // cos λ + sech λ = 0, residual scaled by the derivative magnitude (~1)
+            // cos λ + sech λ = 0; |d/dλ| ≈ 1, and cos of an argument rounded to ulp(λ) is
+            // itself uncertain by ≈ ε·λ, so that is the best attainable residual.
             let resid = r.cos() + 2.0 * (-r).exp() / (1.0 + (-2.0 * r).exp());
-            assert!(resid.abs() < 1e-14, "mode {n}: residual {resid}");
+            assert!(
+                resid.abs() < 4.0 * f64::EPSILON * r,
+                "mode {n}: residual {resid}"
+            );
         }
     }
 

@@ -18,11 +18,14 @@ pub fn time_history_figure(
     let f = &report.without_contact.history;
     let height = scenario.main_height();
     let titles = [0, 1].map(|i| {
+        let name = &report.structures[i].name;
+        let label = if *name == format!("structure {}", i + 1) {
+            format!("Structure {}", i + 1)
+        } else {
+            format!("Structure {} ({name})", i + 1)
+        };
         format!(
-            "Structure {} ({}): displacement at h = {} m, change {:+.1} %",
-            i + 1,
-            report.structures[i].name,
-            height,
+            "{label}: displacement at h = {height} m, change {:+.1} %",
             report.structures[i].change_percent
         )
     });

@@ -100,7 +100,7 @@ pub enum ScenarioError {
         /// The key.
         key: String,
         /// The reader's error.
-        source: crate::ground_motion::RecordError,
+        source: Box<crate::ground_motion::RecordError>,
     },
 }
 
@@ -314,8 +314,10 @@ impl Ctx<'_> {
     fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
         let at = self.at(e.span().map(|s| s.start));
         let msg = e.message().trim().to_string();
-        if let Some(rest) = msg.strip_prefix("unknown field `") {
-            if let Some(end) = rest.find('`') {
+        if let Some(rest) = msg.strip_prefix("unknown field `")
+            && let Some(end) = rest.find('`')
+        {
+            {
                 let key = rest[..end].to_string();
                 let (section, valid) = self.section_for(e.span().map(|s| s.start), &msg);
                 let best = valid
@@ -323,10 +325,10 @@ impl Ctx<'_> {
                     .map(|v| (strsim::jaro_winkler(&key, v), *v))
                     .max_by(|a, b| a.0.total_cmp(&b.0));
                 let mut hint = String::new();
-                if let Some((score, v)) = best {
-                    if score > 0.75 {
-                        hint.push_str(&format!("; did you mean `{v}`?"));
-                    }
+                if let Some((score, v)) = best
+                    && score > 0.75
+                {
+                    hint.push_str(&format!("; did you mean `{v}`?"));
                 }
                 hint.push_str(&format!(" (valid keys: {})", valid.join(", ")));
                 return ScenarioError::UnknownKey {
@@ -354,10 +356,11 @@ impl Ctx<'_> {
             })
             .unwrap_or_default();
         for (name, keys) in TABLES {
-            if !expected.is_empty() && expected.iter().all(|k| keys.contains(k)) {
-                if keys.len() == expected.len() {
-                    return (name.to_string(), keys.to_vec());
-                }
+            if !expected.is_empty()
+                && keys.len() == expected.len()
+                && expected.iter().all(|k| keys.contains(k))
+            {
+                return (name.to_string(), keys.to_vec());
             }
         }
         ("this table".to_string(), Vec::new())
@@ -881,7 +884,7 @@ fn ground(
             let record = Record::read(&path, &opts).map_err(|e| ScenarioError::Record {
                 at: c.ctx.at(Some(file.span().start)),
                 key: "ground_motion.file".into(),
-                source: e,
+                source: Box::new(e),
             })?;
             Ok(GroundMotion::Record(Arc::new(record)))
         }
