@@ -27,4 +27,6 @@ pub mod recorder;
 pub mod scenario;
 pub mod separation;
 pub mod simulate;
+pub mod sweep;
+pub mod sweep_plots;
 pub mod system;

@@ -62,6 +62,89 @@ enum Command {
         /// Scenario file (TOML); the bundled default if omitted.
         scenario: Option<PathBuf>,
     },
+    /// Run a parameter study: every case of a grid over scenario keys, in parallel, resumable.
+    ///
+    /// SWEEP.toml names a base scenario and one or more axes, e.g.
+    ///
+    ///   scenario = "paper-c.toml"            # relative to the sweep file
+    ///   [[axis]]
+    ///   key = "period_ratio"                 # T1/T2: varies structure 2's period
+    ///   values = [0.3, 0.5, 0.7]
+    ///   [[axis]]
+    ///   key = "ground_motion.pga"            # any scenario key by path
+    ///   from = 0.1
+    ///   to = 0.9
+    ///   steps = 9                            # add scale = "log" for log spacing
+    ///
+    /// Derived keys: period_ratio (T1/T2) and ground_period_ratio (T2/Tg, harmonic motion).
+    /// Scenario keys: structure.1.period, structure.2.mass, contact.gap, contact.stiffness,
+    /// ground_motion.pga, ground_motion.file (values = record files), solver.dt, … The grid is
+    /// the full product, first axis slowest.
+    ///
+    /// Writes DIR/results.csv (one row per case, in case order: case, the axis values,
+    /// status, peaks, change %, peak force, impacts, contact time, required separations) and
+    /// pictures in DIR/plots. Every finished case is journaled at once in DIR/journal.csv:
+    /// if the sweep is stopped (Ctrl-C, kill, a crash), run the same command again and only
+    /// the missing cases are computed. A case that fails (e.g. an unstable step) is recorded
+    /// with its reason and the sweep goes on.
+    #[command(verbatim_doc_comment)]
+    Sweep {
+        /// The sweep file (TOML).
+        sweep: PathBuf,
+        /// Output directory (created if missing) [default: out/<sweep file name>].
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Worker threads [default: the number of CPUs].
+        #[arg(short, long)]
+        jobs: Option<usize>,
+        /// Run only part K of N of the grid (e.g. 3/8; case i is in part i mod N + 1), for
+        /// spreading a study over machines, e.g. a Slurm array job with
+        /// --shard $((SLURM_ARRAY_TASK_ID+1))/$SLURM_ARRAY_TASK_COUNT. Each part writes
+        /// DIR/results-shard-K-of-N.csv; join them with `pounding merge`.
+        #[arg(long, value_name = "K/N")]
+        shard: Option<pounding::sweep::Shard>,
+        /// Do not draw the pictures.
+        #[arg(long)]
+        no_plot: bool,
+        /// Print the scenario of case N (TOML) and exit, e.g. to rerun it with `pounding run`.
+        #[arg(long, value_name = "N")]
+        case: Option<usize>,
+        /// Print only errors and warnings.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Join the parts of a sharded sweep into one results table, checking that every case is
+    /// there exactly once.
+    Merge {
+        /// The merged table to write.
+        out: PathBuf,
+        /// The parts (results-shard-K-of-N.csv files), or directories holding them.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+    },
+    /// Draw a sweep's pictures from its results table: heatmaps over two axes, line plots
+    /// over one.
+    ///
+    /// Without options: heatmaps of the change % of each structure, the peak force, the
+    /// number of impacts and the required separation over the first two numeric axes (one
+    /// picture per value of the other axes), and line plots over the first axis.
+    Plot {
+        /// The results table (results.csv of a sweep, or a merged table).
+        results: PathBuf,
+        /// Axis along x (an axis key, e.g. period_ratio).
+        #[arg(long)]
+        x: Option<String>,
+        /// Axis along y: draws heatmaps (without it, with --x: line plots over x).
+        #[arg(long, requires = "x")]
+        y: Option<String>,
+        /// Field to draw: change_percent_1, change_percent_2, peak_force, impacts,
+        /// contact_time, sep_time_history, sep_abs, sep_srss, sep_ddc, peak_displacement_1, …
+        #[arg(long)]
+        field: Option<String>,
+        /// Output directory [default: plots/ beside the results table].
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -117,6 +200,45 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Modes { scenario } => {
             let (sc, _) = load(scenario.as_deref())?;
             print_modes(&sc);
+            Ok(())
+        }
+        Command::Sweep {
+            sweep,
+            out,
+            jobs,
+            shard,
+            no_plot,
+            case,
+            quiet,
+        } => run_sweep(&sweep, out, jobs, shard, no_plot, case, quiet),
+        Command::Merge { out, parts } => {
+            let m = pounding::sweep::results::merge(&out, &parts)?;
+            println!(
+                "merged {} part(s): {} cases ({} failed) into {}",
+                m.parts.len(),
+                m.cases,
+                m.failed,
+                out.display()
+            );
+            Ok(())
+        }
+        Command::Plot {
+            results,
+            x,
+            y,
+            field,
+            out,
+        } => {
+            let table = pounding::sweep::results::Table::read(&results)?;
+            let dir =
+                out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
+            let req = pounding::sweep_plots::PlotRequest { x, y, field };
+            let files = pounding::sweep_plots::plot_table(&table, &req, &dir)?;
+            println!(
+                "wrote {} pictures (PNG and SVG) in {}",
+                pounding::sweep_plots::count_pictures(&files),
+                dir.display()
+            );
             Ok(())
         }
         Command::Separation { scenario } => {
@@ -282,4 +404,118 @@ fn print_separation(sc: &Scenario, r: &Report) {
             "too small, the structures pound"
         }
     );
+}
+
+fn run_sweep(
+    path: &Path,
+    out: Option<PathBuf>,
+    jobs: Option<usize>,
+    shard: Option<pounding::sweep::Shard>,
+    no_plot: bool,
+    case: Option<usize>,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    use pounding::sweep::{Shard, Sweep, run};
+    let sweep = Sweep::from_file(path)?;
+    if let Some(c) = case {
+        if c >= sweep.len() {
+            anyhow::bail!(
+                "--case {c}: the sweep has {} cases, numbered 0 to {}",
+                sweep.len(),
+                sweep.len() - 1
+            );
+        }
+        let text = sweep
+            .case_toml(c)
+            .map_err(|e| anyhow::anyhow!("case {c}: {e}"))?;
+        print!(
+            "# case {c} of {}: {}\n{text}",
+            path.display(),
+            sweep.label(c)
+        );
+        return Ok(());
+    }
+    let out = out.unwrap_or_else(|| {
+        Path::new("out").join(path.file_stem().unwrap_or(std::ffi::OsStr::new("sweep")))
+    });
+    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let shard = shard.unwrap_or(Shard::ALL);
+    let opts = run::RunOptions {
+        out_dir: out.clone(),
+        jobs,
+        shard,
+    };
+    let o = if quiet {
+        run::run(&sweep, &opts, &mut run::Silent)?
+    } else {
+        run::run(&sweep, &opts, &mut run::StderrProgress::new())?
+    };
+    if o.dropped > 0 {
+        eprintln!(
+            "warning: {} damaged line(s) in the journal were dropped (a kill during a write); their cases were recomputed",
+            o.dropped
+        );
+    }
+    if !quiet {
+        let part = if shard.is_all() {
+            String::new()
+        } else {
+            format!(" (part {shard} of the grid's {} cases)", sweep.len())
+        };
+        println!(
+            "{}: {} cases{part}: {} computed in {:.1} s with {jobs} thread(s){}, {} resumed, {} failed",
+            path.display(),
+            o.cases,
+            o.computed,
+            o.seconds,
+            if o.computed > 0 {
+                format!(
+                    " ({:.2} ms per case per thread)",
+                    o.seconds * 1e3 * jobs as f64 / o.computed as f64
+                )
+            } else {
+                String::new()
+            },
+            o.resumed,
+            o.failed
+        );
+        println!("wrote {}", o.results.display());
+    }
+    if let Some((c, status)) = &o.first_failure {
+        eprintln!(
+            "warning: {} of {} cases failed; the first, case {c} ({}): {status}",
+            o.failed,
+            o.cases,
+            sweep.label(*c)
+        );
+    }
+    if o.failed == o.cases && o.cases > 0 {
+        anyhow::bail!(
+            "every case failed (see the status column of {})",
+            o.results.display()
+        );
+    }
+    if !no_plot && shard.is_all() {
+        let table = pounding::sweep::results::Table::read(&o.results)?;
+        let dir = out.join("plots");
+        match pounding::sweep_plots::plot_table(&table, &Default::default(), &dir) {
+            Ok(files) => {
+                if !quiet {
+                    println!(
+                        "wrote {} pictures (PNG and SVG) in {}",
+                        pounding::sweep_plots::count_pictures(&files),
+                        dir.display()
+                    );
+                }
+            }
+            Err(e) => eprintln!("warning: no pictures: {e}"),
+        }
+    } else if !shard.is_all() && !quiet {
+        println!(
+            "when every part is done: pounding merge {}/results.csv {} (then pounding plot)",
+            out.display(),
+            out.display()
+        );
+    }
+    Ok(())
 }

@@ -273,9 +273,20 @@ impl Scenario {
 
     /// Validate scenario text. `file` names it in messages; `base_dir` resolves record files.
     pub fn from_toml(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
+        Scenario::from_toml_cached(text, file, base_dir, None)
+    }
+
+    /// As [`Scenario::from_toml`], but record files are taken from (and added to) `records`,
+    /// so that many scenarios naming the same record (a sweep) read it once and share it.
+    pub fn from_toml_cached(
+        text: &str,
+        file: &str,
+        base_dir: &Path,
+        records: Option<&RecordCache>,
+    ) -> Result<Scenario, ScenarioError> {
         let ctx = Ctx { text, file };
         let raw: RawScenario = toml::from_str(text).map_err(|e| ctx.toml_error(&e))?;
-        validate(raw, &ctx, base_dir)
+        validate(raw, &ctx, base_dir, records)
     }
 
     /// The assembled system with contact.
@@ -295,6 +306,45 @@ impl Scenario {
             .iter()
             .map(|l| l.height)
             .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// Records already read, shared between scenarios: keyed by the path and the reading options
+/// (units, dt, scale to PGA), so a record scaled differently is read separately.
+#[derive(Debug, Default)]
+pub struct RecordCache {
+    map: std::sync::Mutex<std::collections::HashMap<String, Arc<Record>>>,
+}
+
+impl RecordCache {
+    /// An empty cache.
+    pub fn new() -> RecordCache {
+        RecordCache::default()
+    }
+
+    fn get_or_read<E>(
+        &self,
+        path: &Path,
+        opts: &RecordOptions,
+        read: impl FnOnce() -> Result<Arc<Record>, E>,
+    ) -> Result<Arc<Record>, E> {
+        let key = format!(
+            "{}\u{0}{:?}\u{0}{:?}\u{0}{:?}",
+            path.display(),
+            opts.units,
+            opts.dt.map(f64::to_bits),
+            opts.scale_to_pga.map(f64::to_bits)
+        );
+        if let Some(r) = self.lock().get(&key) {
+            return Ok(r.clone());
+        }
+        // read outside the lock: other threads may read other records meanwhile
+        let r = read()?;
+        Ok(self.lock().entry(key).or_insert(r).clone())
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, std::collections::HashMap<String, Arc<Record>>> {
+        self.map.lock().unwrap_or_else(|p| p.into_inner())
     }
 }
 
@@ -438,7 +488,12 @@ impl Check<'_, '_> {
     }
 }
 
-fn validate(raw: RawScenario, ctx: &Ctx, base_dir: &Path) -> Result<Scenario, ScenarioError> {
+fn validate(
+    raw: RawScenario,
+    ctx: &Ctx,
+    base_dir: &Path,
+    records: Option<&RecordCache>,
+) -> Result<Scenario, ScenarioError> {
     let c = Check { ctx };
     let structures = {
         let list = c.required(
@@ -467,7 +522,7 @@ fn validate(raw: RawScenario, ctx: &Ctx, base_dir: &Path) -> Result<Scenario, Sc
     };
     let min_length = structures[0].length.min(structures[1].length);
     let contact = contact(&c, raw.contact.as_ref(), min_length)?;
-    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir)?;
+    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref())?;
     let scenario = Scenario {
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
@@ -780,6 +835,7 @@ fn ground(
     c: &Check,
     raw: Option<&Spanned<RawGround>>,
     base_dir: &Path,
+    records: Option<&RecordCache>,
 ) -> Result<GroundMotion, ScenarioError> {
     let raw = raw.ok_or_else(|| {
         c.missing(
@@ -881,12 +937,20 @@ fn ground(
                 dt,
                 scale_to_pga,
             };
-            let record = Record::read(&path, &opts).map_err(|e| ScenarioError::Record {
-                at: c.ctx.at(Some(file.span().start)),
-                key: "ground_motion.file".into(),
-                source: Box::new(e),
-            })?;
-            Ok(GroundMotion::Record(Arc::new(record)))
+            let read = || {
+                Record::read(&path, &opts)
+                    .map(Arc::new)
+                    .map_err(|e| ScenarioError::Record {
+                        at: c.ctx.at(Some(file.span().start)),
+                        key: "ground_motion.file".into(),
+                        source: Box::new(e),
+                    })
+            };
+            let record = match records {
+                None => read()?,
+                Some(cache) => cache.get_or_read(&path, &opts, read)?,
+            };
+            Ok(GroundMotion::Record(record))
         }
         _ => Err(c.invalid(
             kind,

@@ -24,7 +24,29 @@ fn rk4_gain(x: f64, y: f64) -> f64 {
 
 /// Largest s such that RK4 is stable for z = s·u along the unit direction u = (ux, uy) from 0.
 /// Scans outward, then bisects the first crossing of |R| = 1.
+///
+/// Memoised per thread (the last few directions): the scan costs ~50 µs, and scenarios and
+/// sweeps ask for the same damping ratio over and over (every mode, every case, each run).
 fn limit_along(ux: f64, uy: f64) -> f64 {
+    use std::cell::RefCell;
+    thread_local! {
+        static MEMO: RefCell<Vec<(u64, u64, f64)>> = const { RefCell::new(Vec::new()) };
+    }
+    let key = (ux.to_bits(), uy.to_bits());
+    if let Some(s) = MEMO.with_borrow(|m| m.iter().find(|e| (e.0, e.1) == key).map(|e| e.2)) {
+        return s;
+    }
+    let s = scan_limit_along(ux, uy);
+    MEMO.with_borrow_mut(|m| {
+        if m.len() >= 16 {
+            m.remove(0);
+        }
+        m.push((key.0, key.1, s));
+    });
+    s
+}
+
+fn scan_limit_along(ux: f64, uy: f64) -> f64 {
     let ds = 1e-3;
     let mut s = ds;
     while s < 4.0 {

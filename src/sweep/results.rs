@@ -1,0 +1,652 @@
+//! The results table of a sweep (`results.csv`), the journal that makes a sweep resumable,
+//! and merging the parts of a sharded sweep.
+//!
+//! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
+//! (`ok` or `failed: reason`), then [`FIELDS`] (SPEC §6 meanings, SI units). Rows are in
+//! `case` order. Numbers are written exactly as `summary.json` writes them (shortest form
+//! that reads back to the same `f64`), so a case's numbers are byte-identical to those of
+//! `pounding run` on the same scenario.
+//!
+//! The journal `journal.csv` (`journal-shard-K-of-N.csv` for a part) receives every finished
+//! row as soon as it is known, one `write` per row, in completion order. Its first line
+//! identifies the sweep (a hash of the sweep file and the base scenario, the part, the number
+//! of cases). A rerun reads it, drops a torn last line (a kill in the middle of a write) and
+//! runs only the cases not in it. `results.csv` is written from it, sorted, atomically.
+
+use std::collections::BTreeMap;
+use std::fs::{File, OpenOptions};
+use std::io::{Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use super::{Shard, Sweep, SweepError};
+use crate::simulate::Report;
+
+/// The result columns after `status`.
+pub const FIELDS: [&str; 13] = [
+    "peak_displacement_1",
+    "peak_displacement_2",
+    "peak_displacement_no_contact_1",
+    "peak_displacement_no_contact_2",
+    "change_percent_1",
+    "change_percent_2",
+    "peak_force",
+    "impacts",
+    "contact_time",
+    "sep_abs",
+    "sep_srss",
+    "sep_ddc",
+    "sep_time_history",
+];
+
+/// An `f64` as `summary.json` writes it: the shortest decimal that reads back to the same
+/// value (`NaN`/`inf` for non-finite values, which JSON cannot hold).
+pub fn fmt_f64(x: f64) -> String {
+    if x.is_finite() {
+        serde_json::to_string(&x).unwrap_or_else(|_| x.to_string())
+    } else {
+        x.to_string()
+    }
+}
+
+/// The [`FIELDS`] of a report, formatted.
+pub fn report_fields(r: &Report) -> [String; 13] {
+    let [a, b] = &r.structures;
+    let s = &r.separation;
+    [
+        fmt_f64(a.peak_displacement),
+        fmt_f64(b.peak_displacement),
+        fmt_f64(a.peak_displacement_no_contact),
+        fmt_f64(b.peak_displacement_no_contact),
+        fmt_f64(a.change_percent),
+        fmt_f64(b.change_percent),
+        fmt_f64(r.contact.peak_force),
+        r.contact.impacts.to_string(),
+        fmt_f64(r.contact.contact_time),
+        fmt_f64(s.abs),
+        fmt_f64(s.srss),
+        fmt_f64(s.ddc),
+        fmt_f64(s.time_history),
+    ]
+}
+
+/// A CSV field, quoted when needed (RFC 4180).
+pub fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// Split one CSV line (no line breaks inside fields) into fields; `None` if the quoting is
+/// broken.
+pub fn parse_csv_line(line: &str) -> Option<Vec<String>> {
+    let mut out = Vec::new();
+    let mut field = String::new();
+    let mut chars = line.chars().peekable();
+    let mut quoted = false;
+    let mut at_start = true;
+    while let Some(c) = chars.next() {
+        if quoted {
+            if c == '"' {
+                if chars.peek() == Some(&'"') {
+                    chars.next();
+                    field.push('"');
+                } else {
+                    quoted = false;
+                }
+            } else {
+                field.push(c);
+            }
+        } else if c == '"' && at_start {
+            quoted = true;
+            at_start = false;
+        } else if c == ',' {
+            out.push(std::mem::take(&mut field));
+            at_start = true;
+        } else {
+            field.push(c);
+            at_start = false;
+        }
+    }
+    if quoted {
+        return None;
+    }
+    out.push(field);
+    Some(out)
+}
+
+/// The header line of a sweep's results.
+pub fn header(sweep: &Sweep) -> String {
+    let mut cols = vec!["case".to_string()];
+    cols.extend(sweep.axes.iter().map(|a| csv_field(&a.key)));
+    cols.push("status".into());
+    cols.extend(FIELDS.iter().map(|f| f.to_string()));
+    cols.join(",")
+}
+
+/// One results row (without the line break). `outcome` is the fields, or the failure reason.
+pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; 13], String>) -> String {
+    let mut line = case.to_string();
+    for v in sweep.values(case) {
+        line.push(',');
+        line.push_str(&csv_field(&v.to_csv()));
+    }
+    match outcome {
+        Ok(fields) => {
+            line.push_str(",ok");
+            for f in fields {
+                line.push(',');
+                line.push_str(f);
+            }
+        }
+        Err(reason) => {
+            let reason: String = reason
+                .chars()
+                .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
+                .collect();
+            line.push(',');
+            line.push_str(&csv_field(&format!("failed: {reason}")));
+            line.push_str(&",".repeat(FIELDS.len()));
+        }
+    }
+    line
+}
+
+/// Checks a row read back: right number of fields, case in range, a known status, numbers
+/// where the status is `ok`. Returns the case and whether it failed.
+fn check_row(line: &str, columns: usize, cases: usize) -> Option<(usize, bool)> {
+    let f = parse_csv_line(line)?;
+    if f.len() != columns {
+        return None;
+    }
+    let case: usize = f[0].parse().ok()?;
+    if case >= cases {
+        return None;
+    }
+    let status = &f[columns - FIELDS.len() - 1];
+    let nums = &f[columns - FIELDS.len()..];
+    if status == "ok" {
+        if nums.iter().all(|x| x.parse::<f64>().is_ok()) {
+            Some((case, false))
+        } else {
+            None
+        }
+    } else if status.starts_with("failed: ") && nums.iter().all(String::is_empty) {
+        Some((case, true))
+    } else {
+        None
+    }
+}
+
+/// File names of a run's outputs in its directory.
+pub fn file_names(shard: Shard) -> (String, String) {
+    if shard.is_all() {
+        ("results.csv".into(), "journal.csv".into())
+    } else {
+        (
+            format!("results-shard-{}-of-{}.csv", shard.k, shard.n),
+            format!("journal-shard-{}-of-{}.csv", shard.k, shard.n),
+        )
+    }
+}
+
+/// The journal of finished rows, open for appending and locked against a second writer.
+#[derive(Debug)]
+pub struct Journal {
+    path: PathBuf,
+    file: File,
+    last_sync: Instant,
+    /// Rows already in the journal, by case: the line and whether the case failed.
+    pub rows: BTreeMap<usize, (String, bool)>,
+    /// Lines that were dropped on reading (torn or damaged).
+    pub dropped: usize,
+}
+
+impl Journal {
+    /// Open (or create) the journal of `sweep`'s part `shard` at `path`. Refuses a journal of
+    /// another sweep and a journal another process is writing.
+    pub fn open(path: &Path, sweep: &Sweep, shard: Shard) -> Result<Journal, SweepError> {
+        let io = |e: std::io::Error| SweepError::Write {
+            path: path.display().to_string(),
+            source: e,
+        };
+        let mut file = OpenOptions::new()
+            .read(true)
+            .append(true)
+            .create(true)
+            .open(path)
+            .map_err(io)?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: "another `pounding sweep` is writing this journal right now; wait for it or use another --out".into(),
+                });
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(io(e)),
+        }
+        let ident = format!(
+            "# pounding sweep journal v1; identity={:016x}; shard={shard}; cases={}",
+            sweep.identity(),
+            sweep.len()
+        );
+        let head = header(sweep);
+        let preamble = format!("{ident}\n{head}\n");
+        let mut text = String::new();
+        file.read_to_string(&mut text)
+            .map_err(|e| SweepError::Journal {
+                path: path.display().to_string(),
+                message: format!("cannot be read ({e}); remove it to start the sweep afresh"),
+            })?;
+        let mut rows = BTreeMap::new();
+        let mut dropped = 0;
+        if text.len() < preamble.len() && preamble.starts_with(&text) {
+            // new, or killed while writing the preamble
+            file.set_len(0).map_err(io)?;
+            file.write_all(preamble.as_bytes()).map_err(io)?;
+        } else {
+            let mut lines = text.split_inclusive('\n');
+            let first = lines.next().unwrap_or("").trim_end();
+            if first != ident {
+                let other = first
+                    .split("identity=")
+                    .nth(1)
+                    .and_then(|s| s.get(..16))
+                    .unwrap_or("unknown");
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "this directory holds results of a different sweep (identity {other}, this one {:016x}; \
+                         the sweep file, its base scenario or --shard changed). Use another --out, or delete \
+                         the directory's journal and results to start afresh",
+                        sweep.identity()
+                    ),
+                });
+            }
+            if lines.next().map(str::trim_end) != Some(head.as_str()) {
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message:
+                        "the header line is damaged; delete the file to start the sweep afresh"
+                            .into(),
+                });
+            }
+            let columns = 2 + sweep.axes.len() + FIELDS.len();
+            let mut good_end = preamble.len();
+            let mut pos = preamble.len();
+            for line in lines {
+                pos += line.len();
+                let Some(body) = line.strip_suffix('\n') else {
+                    // torn last line: never completed
+                    dropped += 1;
+                    break;
+                };
+                good_end = pos;
+                match check_row(body, columns, sweep.len()) {
+                    Some((case, failed)) if shard.contains(case) => {
+                        rows.entry(case).or_insert((body.to_string(), failed));
+                    }
+                    _ => dropped += 1,
+                }
+            }
+            if good_end < text.len() {
+                file.set_len(good_end as u64).map_err(io)?;
+                file.seek(SeekFrom::End(0)).map_err(io)?;
+            }
+        }
+        Ok(Journal {
+            path: path.to_path_buf(),
+            file,
+            last_sync: Instant::now(),
+            rows,
+            dropped,
+        })
+    }
+
+    /// Append a finished row (one write, so that a kill leaves at most a torn last line).
+    pub fn append(&mut self, case: usize, line: String, failed: bool) -> Result<(), SweepError> {
+        let mut buf = String::with_capacity(line.len() + 1);
+        buf.push_str(&line);
+        buf.push('\n');
+        let io = |e| SweepError::Write {
+            path: self.path.display().to_string(),
+            source: e,
+        };
+        self.file.write_all(buf.as_bytes()).map_err(io)?;
+        if self.last_sync.elapsed() > Duration::from_secs(5) {
+            self.file.sync_data().map_err(io)?;
+            self.last_sync = Instant::now();
+        }
+        self.rows.entry(case).or_insert((line, failed));
+        Ok(())
+    }
+
+    /// Flush to disk.
+    pub fn sync(&mut self) -> Result<(), SweepError> {
+        self.file.sync_data().map_err(|e| SweepError::Write {
+            path: self.path.display().to_string(),
+            source: e,
+        })
+    }
+}
+
+/// Write a results table: `header`, then the rows in case order, atomically.
+pub fn write_results<'a>(
+    path: &Path,
+    header: &str,
+    rows: impl Iterator<Item = &'a str>,
+) -> Result<(), SweepError> {
+    let mut out = String::with_capacity(1 << 16);
+    out.push_str(header);
+    out.push('\n');
+    for r in rows {
+        out.push_str(r);
+        out.push('\n');
+    }
+    crate::output::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
+        path: path.display().to_string(),
+        source: std::io::Error::other(e.to_string()),
+    })
+}
+
+/// A results table read from a CSV file.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// Where it was read from.
+    pub path: PathBuf,
+    /// The header line.
+    pub header: String,
+    /// Axis keys (the columns between `case` and `status`).
+    pub axes: Vec<String>,
+    /// Rows by case.
+    pub rows: BTreeMap<usize, TableRow>,
+}
+
+/// One row of a [`Table`].
+#[derive(Debug, Clone)]
+pub struct TableRow {
+    /// The line as read.
+    pub line: String,
+    /// Axis values as written.
+    pub values: Vec<String>,
+    /// `ok` or `failed: …`.
+    pub status: String,
+    /// [`FIELDS`] values (NaN for a failed case).
+    pub fields: [f64; 13],
+}
+
+impl Table {
+    /// Read a results CSV (`results.csv`, a part, or a merged table). Refuses duplicate cases.
+    pub fn read(path: &Path) -> Result<Table, SweepError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Read {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        let bad = |line: usize, msg: String| SweepError::Journal {
+            path: format!("{}:{line}", path.display()),
+            message: msg,
+        };
+        let mut lines = text.lines();
+        let header = lines
+            .next()
+            .ok_or_else(|| bad(1, "empty file: not a sweep results table".into()))?
+            .to_string();
+        let cols = parse_csv_line(&header).unwrap_or_default();
+        let n = cols.len();
+        let ok_shape = n >= 2 + FIELDS.len()
+            && cols[0] == "case"
+            && cols[n - FIELDS.len() - 1] == "status"
+            && cols[n - FIELDS.len()..]
+                .iter()
+                .zip(FIELDS)
+                .all(|(a, b)| a == b);
+        if !ok_shape {
+            return Err(bad(
+                1,
+                format!(
+                    "not a sweep results table: expected columns case, <axis keys>, status, {}",
+                    FIELDS.join(", ")
+                ),
+            ));
+        }
+        let axes = cols[1..n - FIELDS.len() - 1].to_vec();
+        let mut rows = BTreeMap::new();
+        for (i, line) in lines.enumerate() {
+            let lineno = i + 2;
+            if line.trim().is_empty() {
+                continue;
+            }
+            let f = parse_csv_line(line)
+                .filter(|f| f.len() == n)
+                .ok_or_else(|| bad(lineno, format!("expected {n} comma-separated fields")))?;
+            let case: usize = f[0]
+                .parse()
+                .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
+            let mut fields = [f64::NAN; 13];
+            for (k, x) in f[n - FIELDS.len()..].iter().enumerate() {
+                if !x.is_empty() {
+                    fields[k] = x.parse().map_err(|_| {
+                        bad(lineno, format!("`{}` = `{x}` is not a number", FIELDS[k]))
+                    })?;
+                }
+            }
+            let r = TableRow {
+                line: line.to_string(),
+                values: f[1..n - FIELDS.len() - 1].to_vec(),
+                status: f[n - FIELDS.len() - 1].clone(),
+                fields,
+            };
+            if rows.insert(case, r).is_some() {
+                return Err(bad(lineno, format!("case {case} appears twice")));
+            }
+        }
+        Ok(Table {
+            path: path.to_path_buf(),
+            header,
+            axes,
+            rows,
+        })
+    }
+
+    /// Index of a field in [`FIELDS`].
+    pub fn field_index(name: &str) -> Option<usize> {
+        FIELDS.iter().position(|f| *f == name)
+    }
+}
+
+/// What [`merge`] did.
+#[derive(Debug, Clone)]
+pub struct MergeSummary {
+    /// The parts read.
+    pub parts: Vec<PathBuf>,
+    /// Cases in the merged table.
+    pub cases: usize,
+    /// Of which failed.
+    pub failed: usize,
+}
+
+/// `results-shard-K-of-N.csv` → (K, N).
+fn shard_of(path: &Path) -> Option<(usize, usize)> {
+    let name = path.file_name()?.to_str()?;
+    let rest = name.strip_prefix("results-shard-")?.strip_suffix(".csv")?;
+    let (k, n) = rest.split_once("-of-")?;
+    Some((k.parse().ok()?, n.parse().ok()?))
+}
+
+/// Join the parts of a sharded sweep (files, or directories holding
+/// `results-shard-K-of-N.csv` files) into one table at `out`, checking that they belong to
+/// one sweep (same columns, consistent axis values), that no case appears twice and that
+/// none is missing (every part K of N present; cases 0 … n−1 with n the grid size).
+pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepError> {
+    let mut parts = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| SweepError::Read {
+                    path: p.display().to_string(),
+                    source: e,
+                })?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| shard_of(f).is_some())
+                .collect();
+            if found.is_empty() {
+                return Err(SweepError::Merge(format!(
+                    "{} holds no results-shard-K-of-N.csv file",
+                    p.display()
+                )));
+            }
+            found.sort();
+            parts.extend(found);
+        } else {
+            parts.push(p.clone());
+        }
+    }
+    if parts.is_empty() {
+        return Err(SweepError::Merge("no parts given".into()));
+    }
+    let tables = parts
+        .iter()
+        .map(|p| Table::read(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = &tables[0];
+    // parts named K-of-N: all of 1..N, once each
+    let named: Vec<(usize, usize)> = parts.iter().filter_map(|p| shard_of(p)).collect();
+    if named.len() == parts.len() {
+        let n = named[0].1;
+        if let Some(p) = named.iter().position(|s| s.1 != n) {
+            return Err(SweepError::Merge(format!(
+                "{} is a part of {} but {} is a part of {n}",
+                parts[p].display(),
+                named[p].1,
+                parts[0].display()
+            )));
+        }
+        let mut seen: Vec<Option<usize>> = vec![None; n + 1];
+        for (i, (k, _)) in named.iter().enumerate() {
+            if let Some(j) = seen[*k] {
+                return Err(SweepError::Merge(format!(
+                    "part {k} of {n} is given twice: {} and {}",
+                    parts[j].display(),
+                    parts[i].display()
+                )));
+            }
+            seen[*k] = Some(i);
+        }
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| seen[*k].is_none())
+            .map(|k| k.to_string())
+            .collect();
+        if !missing.is_empty() {
+            return Err(SweepError::Merge(format!(
+                "part(s) {} of {n} are missing (results-shard-K-of-{n}.csv)",
+                missing.join(", ")
+            )));
+        }
+    }
+    let mut rows: BTreeMap<usize, (&TableRow, usize)> = BTreeMap::new();
+    for (ti, t) in tables.iter().enumerate() {
+        if t.header != first.header {
+            return Err(SweepError::Merge(format!(
+                "{} and {} have different columns: not parts of one sweep",
+                first.path.display(),
+                t.path.display()
+            )));
+        }
+        for (case, r) in &t.rows {
+            if let Some((_, other)) = rows.insert(*case, (r, ti)) {
+                return Err(SweepError::Merge(format!(
+                    "case {case} is in both {} and {}",
+                    tables[other].path.display(),
+                    t.path.display()
+                )));
+            }
+        }
+    }
+    // the grid: the number of distinct values of each axis; the value of every axis must
+    // follow from the case number (first axis slowest)
+    let na = first.axes.len();
+    let mut distinct: Vec<Vec<&str>> = vec![Vec::new(); na];
+    for (r, _) in rows.values() {
+        for (j, v) in r.values.iter().enumerate() {
+            if !distinct[j].contains(&v.as_str()) {
+                distinct[j].push(v);
+            }
+        }
+    }
+    let sizes: Vec<usize> = distinct.iter().map(Vec::len).collect();
+    let total: usize = sizes.iter().product();
+    let mut at: Vec<Vec<Option<&str>>> = sizes.iter().map(|&n| vec![None; n]).collect();
+    for (case, (r, ti)) in &rows {
+        if *case >= total {
+            return Err(SweepError::Merge(format!(
+                "case {case} in {} is beyond the grid ({total} cases from the axis values): parts of different sweeps?",
+                tables[*ti].path.display()
+            )));
+        }
+        let mut rest = *case;
+        for j in (0..na).rev() {
+            let i = rest % sizes[j];
+            rest /= sizes[j];
+            let v = r.values[j].as_str();
+            match at[j][i] {
+                None => at[j][i] = Some(v),
+                Some(w) if w == v => {}
+                Some(w) => {
+                    return Err(SweepError::Merge(format!(
+                        "case {case} in {} has {} = {v} where the grid has {w}: parts of different sweeps?",
+                        tables[*ti].path.display(),
+                        first.axes[j]
+                    )));
+                }
+            }
+        }
+    }
+    let missing: Vec<usize> = (0..total).filter(|c| !rows.contains_key(c)).collect();
+    if !missing.is_empty() {
+        let list: Vec<String> = missing.iter().take(10).map(|c| c.to_string()).collect();
+        return Err(SweepError::Merge(format!(
+            "{} of {total} cases are missing (cases {}{}); rerun the parts that hold them",
+            missing.len(),
+            list.join(", "),
+            if missing.len() > 10 { ", …" } else { "" }
+        )));
+    }
+    write_results(
+        out,
+        &first.header,
+        rows.values().map(|(r, _)| r.line.as_str()),
+    )?;
+    Ok(MergeSummary {
+        parts,
+        cases: total,
+        failed: rows.values().filter(|(r, _)| r.status != "ok").count(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_round_trip() {
+        let fields = ["a", "b,c", "say \"hi\"", ""];
+        let line: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
+        let parsed = parse_csv_line(&line.join(",")).unwrap();
+        assert_eq!(parsed, fields);
+        assert!(parse_csv_line("\"open").is_none());
+    }
+
+    #[test]
+    fn numbers_as_json_writes_them() {
+        assert_eq!(fmt_f64(91490009.5168547), "91490009.5168547");
+        assert_eq!(fmt_f64(0.0), "0.0");
+        assert_eq!(fmt_f64(1e-7), "1e-7");
+        assert_eq!(fmt_f64(f64::NAN), "NaN");
+        for x in [0.1, 1.0 / 3.0, 2.808e10, 5e-324, 1.7976931348623157e308] {
+            assert_eq!(fmt_f64(x).parse::<f64>().unwrap(), x);
+        }
+    }
+}

@@ -1,0 +1,306 @@
+//! Running a sweep: the cases of one part, in parallel (rayon), each row journaled as soon as
+//! it is finished, then `results.csv` sorted and written atomically.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use rayon::prelude::*;
+
+use super::results::{self, Journal};
+use super::{Shard, Sweep, SweepError};
+use crate::simulate::simulate;
+
+/// How to run a sweep.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Output directory (created if missing).
+    pub out_dir: PathBuf,
+    /// Worker threads (≥ 1).
+    pub jobs: usize,
+    /// The part of the grid to run.
+    pub shard: Shard,
+}
+
+/// What a run did.
+#[derive(Debug, Clone)]
+pub struct RunOutcome {
+    /// The results table written (`results.csv`, or the part's file).
+    pub results: PathBuf,
+    /// Cases in this part.
+    pub cases: usize,
+    /// Cases found finished in the journal (not recomputed).
+    pub resumed: usize,
+    /// Cases computed now.
+    pub computed: usize,
+    /// Failed cases (from the journal and now).
+    pub failed: usize,
+    /// The first failed case and its status, if any.
+    pub first_failure: Option<(usize, String)>,
+    /// Journal lines dropped as torn or damaged (their cases were recomputed).
+    pub dropped: usize,
+    /// Wall-clock time of the computation, s.
+    pub seconds: f64,
+}
+
+/// Receives progress. Implementations must be cheap: they are called once per case.
+pub trait Progress {
+    /// `pending` cases are about to be computed; `resumed` were finished before.
+    fn start(&mut self, pending: usize, resumed: usize);
+    /// One more case finished.
+    fn advance(&mut self, failed: bool);
+    /// All done.
+    fn finish(&mut self);
+}
+
+/// Progress that shows nothing.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn start(&mut self, _: usize, _: usize) {}
+    fn advance(&mut self, _: bool) {}
+    fn finish(&mut self) {}
+}
+
+/// Progress on standard error: a bar with rate and ETA on a terminal, plain lines (every
+/// 10 s, and at the end) otherwise.
+pub struct StderrProgress {
+    bar: Option<indicatif::ProgressBar>,
+    total: usize,
+    done: usize,
+    failed: usize,
+    started: Instant,
+    last_line: Instant,
+}
+
+impl StderrProgress {
+    /// A bar when standard error is a terminal, plain lines otherwise.
+    pub fn new() -> StderrProgress {
+        StderrProgress {
+            bar: None,
+            total: 0,
+            done: 0,
+            failed: 0,
+            started: Instant::now(),
+            last_line: Instant::now(),
+        }
+    }
+
+    fn line(&self) {
+        let el = self.started.elapsed().as_secs_f64();
+        let eta = if self.done > 0 {
+            el / self.done as f64 * (self.total - self.done) as f64
+        } else {
+            f64::NAN
+        };
+        eprintln!(
+            "sweep: {}/{} cases ({:.0} %), {} failed, {:.0} s elapsed{}",
+            self.done,
+            self.total,
+            100.0 * self.done as f64 / self.total.max(1) as f64,
+            self.failed,
+            el,
+            if eta.is_finite() && self.done < self.total {
+                format!(", about {eta:.0} s left")
+            } else {
+                String::new()
+            }
+        );
+    }
+}
+
+impl Default for StderrProgress {
+    fn default() -> Self {
+        StderrProgress::new()
+    }
+}
+
+impl Progress for StderrProgress {
+    fn start(&mut self, pending: usize, resumed: usize) {
+        self.total = pending;
+        self.started = Instant::now();
+        self.last_line = Instant::now();
+        if resumed > 0 {
+            eprintln!("sweep: {resumed} cases already done (resuming), {pending} to run");
+        }
+        if std::io::stderr().is_terminal() && pending > 0 {
+            let bar = indicatif::ProgressBar::new(pending as u64);
+            let style = indicatif::ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {wide_bar} {pos}/{len} cases, {per_sec}, ETA {eta} {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+            bar.set_style(style);
+            bar.enable_steady_tick(Duration::from_millis(200));
+            self.bar = Some(bar);
+        } else if pending > 0 {
+            self.line();
+        }
+    }
+
+    fn advance(&mut self, failed: bool) {
+        self.done += 1;
+        if failed {
+            self.failed += 1;
+        }
+        match &self.bar {
+            Some(b) => {
+                b.inc(1);
+                if failed {
+                    b.set_message(format!("({} failed)", self.failed));
+                }
+            }
+            None => {
+                if self.last_line.elapsed() >= Duration::from_secs(10) {
+                    self.last_line = Instant::now();
+                    self.line();
+                }
+            }
+        }
+    }
+
+    fn finish(&mut self) {
+        match self.bar.take() {
+            Some(b) => b.finish_and_clear(),
+            None if self.total > 0 => self.line(),
+            None => {}
+        }
+    }
+}
+
+/// Compute one case: its row and whether it failed. A panic in the library is caught and
+/// recorded as a failure, so that one bad case cannot stop a sweep.
+pub fn compute_case(sweep: &Sweep, case: usize) -> (String, bool) {
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let sc = sweep.case_scenario(case)?;
+        let report = simulate(&sc).map_err(|e| e.to_string())?;
+        Ok(results::report_fields(&report))
+    }))
+    .unwrap_or_else(|p| {
+        let msg = p
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        Err(format!("internal error (please report): {msg}"))
+    });
+    let failed = outcome.is_err();
+    (results::row(sweep, case, &outcome), failed)
+}
+
+/// Run (or resume) part `opts.shard` of `sweep` into `opts.out_dir`.
+pub fn run(
+    sweep: &Sweep,
+    opts: &RunOptions,
+    progress: &mut dyn Progress,
+) -> Result<RunOutcome, SweepError> {
+    if opts.jobs == 0 {
+        return Err(SweepError::Usage("--jobs must be at least 1".into()));
+    }
+    std::fs::create_dir_all(&opts.out_dir).map_err(|e| SweepError::Write {
+        path: opts.out_dir.display().to_string(),
+        source: e,
+    })?;
+    let (results_name, journal_name) = results::file_names(opts.shard);
+    let mut journal = Journal::open(&opts.out_dir.join(&journal_name), sweep, opts.shard)?;
+    let resumed = journal.rows.len();
+    let pending: Vec<usize> = (0..sweep.len())
+        .filter(|&c| opts.shard.contains(c) && !journal.rows.contains_key(&c))
+        .collect();
+    let cases = resumed + pending.len();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs)
+        .build()
+        .map_err(|e| SweepError::Usage(format!("cannot start {} threads: {e}", opts.jobs)))?;
+
+    // Refuse a sweep none of whose cases is a valid scenario (a mistake in the base scenario
+    // or the axes), before computing anything. Usually the first case settles it.
+    if !pending.is_empty() && journal.rows.values().all(|(_, failed)| *failed) {
+        let any_valid = pool.install(|| {
+            pending
+                .par_iter()
+                .with_min_len(64)
+                .any(|&c| sweep.case_scenario(c).is_ok())
+        });
+        if !any_valid {
+            let c = pending[0];
+            let reason = sweep.case_scenario(c).err().unwrap_or_default();
+            return Err(SweepError::NoValidCase {
+                case: c,
+                label: sweep.label(c),
+                reason,
+                scenario: sweep.scenario_path.display().to_string(),
+                sweep: sweep.path.display().to_string(),
+            });
+        }
+    }
+
+    let started = Instant::now();
+    progress.start(pending.len(), resumed);
+    let stop = AtomicBool::new(false);
+    let mut write_error = None;
+    std::thread::scope(|s| {
+        let (tx, rx) = mpsc::sync_channel::<(usize, String, bool)>(4096);
+        let stop = &stop;
+        let pending = &pending;
+        let pool = &pool;
+        s.spawn(move || {
+            pool.install(|| {
+                pending.par_iter().for_each_with(tx, |tx, &case| {
+                    if stop.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let (line, failed) = compute_case(sweep, case);
+                    if tx.send((case, line, failed)).is_err() {
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                });
+            });
+        });
+        for (case, line, failed) in rx {
+            if write_error.is_none() {
+                match journal.append(case, line, failed) {
+                    Ok(()) => progress.advance(failed),
+                    Err(e) => {
+                        write_error = Some(e);
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                }
+            }
+        }
+    });
+    progress.finish();
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    journal.sync()?;
+    let seconds = started.elapsed().as_secs_f64();
+    let results_path = opts.out_dir.join(results_name);
+    results::write_results(
+        &results_path,
+        &results::header(sweep),
+        journal.rows.values().map(|(l, _)| l.as_str()),
+    )?;
+    let failed = journal.rows.values().filter(|(_, f)| *f).count();
+    let first_failure = journal
+        .rows
+        .iter()
+        .find(|(_, (_, f))| *f)
+        .map(|(c, (l, _))| {
+            let status = results::parse_csv_line(l)
+                .and_then(|f| f.get(1 + sweep.axes.len()).cloned())
+                .unwrap_or_default();
+            (*c, status)
+        });
+    Ok(RunOutcome {
+        results: results_path,
+        cases,
+        resumed,
+        computed: pending.len(),
+        failed,
+        first_failure,
+        dropped: journal.dropped,
+        seconds,
+    })
+}
