@@ -1286,7 +1286,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("s.toml:3:16") && e.contains("must be > 0"),
+            e.contains("s.toml:4:16") && e.contains("must be > 0"),
             "{e}"
         );
         let e = sweep("[[axis]]\nkey = \"structure.3.mass\"\nvalues = [1]\n")
@@ -1301,7 +1301,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("s.toml:4:1") && e.contains("unknown field `foo`"),
+            e.contains("s.toml:5:1") && e.contains("unknown field `foo`"),
             "{e}"
         );
         let e = sweep(

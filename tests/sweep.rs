@@ -1,0 +1,424 @@
+//! `pounding sweep`, `merge` and `plot` driven as a user would: through the binary.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const BIN: &str = env!("CARGO_BIN_EXE_pounding");
+const PAPER_C: &str = include_str!("../examples/paper-c.toml");
+
+fn base(duration: f64) -> String {
+    PAPER_C.replace("duration = 20.0", &format!("duration = {duration:?}"))
+}
+
+fn write(path: &Path, text: &str) -> PathBuf {
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    std::fs::write(path, text).unwrap();
+    path.to_path_buf()
+}
+
+fn pounding(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().unwrap()
+}
+
+fn ok(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "failed: {}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A sweep of `n1 × 3` cases over period ratio and PGA.
+fn study(dir: &Path, n1: usize, duration: f64) -> PathBuf {
+    write(&dir.join("base.toml"), &base(duration));
+    write(
+        &dir.join("study.toml"),
+        &format!(
+            "scenario = \"base.toml\"\n\
+             [[axis]]\nkey = \"period_ratio\"\nfrom = 0.4\nto = 1.0\nsteps = {n1}\n\
+             [[axis]]\nkey = \"ground_motion.pga\"\nvalues = [0.2, 0.5, 0.8]\n"
+        ),
+    )
+}
+
+fn data_rows(csv: &str) -> Vec<&str> {
+    csv.lines().skip(1).collect()
+}
+
+#[test]
+fn killed_sweep_resumes_without_losing_or_repeating_rows() {
+    let d = tempfile::tempdir().unwrap();
+    let sweep = study(d.path(), 20, 20.0);
+    let (full, cut) = (d.path().join("full"), d.path().join("cut"));
+    ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&full),
+        "--no-plot",
+        "-q",
+    ]));
+    let reference = std::fs::read_to_string(full.join("results.csv")).unwrap();
+    assert_eq!(data_rows(&reference).len(), 60);
+
+    // start, wait until some rows are journaled, kill -9
+    let mut child = Command::new(BIN)
+        .args([
+            "sweep",
+            s(&sweep),
+            "--out",
+            s(&cut),
+            "--no-plot",
+            "--jobs",
+            "1",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let journal = cut.join("journal.csv");
+    let t0 = Instant::now();
+    loop {
+        let rows = std::fs::read_to_string(&journal)
+            .map(|t| t.lines().count().saturating_sub(2))
+            .unwrap_or(0);
+        if rows >= 5 || t0.elapsed() > Duration::from_secs(60) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    assert!(
+        !cut.join("results.csv").exists(),
+        "killed too late to test resuming"
+    );
+    // a torn last line, as a kill in the middle of a write leaves
+    let mut j = std::fs::read_to_string(&journal).unwrap();
+    let before = j.lines().count() - 2;
+    assert!((5..60).contains(&before), "{before} rows before the kill");
+    j.push_str("59,1.0,0.8,ok,0.12");
+    std::fs::write(&journal, j).unwrap();
+
+    let out = ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&cut),
+        "--no-plot",
+    ]));
+    assert!(
+        out.contains(&format!("{} resumed", before)),
+        "expected {before} resumed: {out}"
+    );
+    let resumed = std::fs::read_to_string(cut.join("results.csv")).unwrap();
+    assert_eq!(
+        resumed, reference,
+        "resumed results differ from an uninterrupted run"
+    );
+    // the journal holds every case exactly once
+    let j = std::fs::read_to_string(&journal).unwrap();
+    let mut cases: Vec<usize> = j
+        .lines()
+        .skip(2)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    cases.sort();
+    assert_eq!(cases, (0..60).collect::<Vec<_>>());
+
+    // a rerun of a finished sweep computes nothing and rewrites the same table
+    let out = ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&cut),
+        "--no-plot",
+    ]));
+    assert!(
+        out.contains("0 computed") && out.contains("60 resumed"),
+        "{out}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(cut.join("results.csv")).unwrap(),
+        reference
+    );
+
+    // a different sweep into the same directory is refused
+    let other = std::fs::read_to_string(&sweep)
+        .unwrap()
+        .replace("0.8]", "0.9]");
+    write(&sweep, &other);
+    let out = pounding(&["sweep", s(&sweep), "--out", s(&cut), "--no-plot"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("different sweep") && err.contains("journal.csv"),
+        "{err}"
+    );
+}
+
+#[test]
+fn rows_are_identical_to_pounding_run() {
+    let d = tempfile::tempdir().unwrap();
+    let sweep = study(d.path(), 4, 6.0);
+    let out = d.path().join("o");
+    ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&out),
+        "--no-plot",
+        "-q",
+    ]));
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for case in [0usize, 7, 11] {
+        let row: Vec<&str> = data_rows(&csv)[case].split(',').collect();
+        assert_eq!(row[0], case.to_string());
+        let text = ok(&pounding(&[
+            "sweep",
+            s(&sweep),
+            "--case",
+            &case.to_string(),
+        ]));
+        let sc = write(&d.path().join(format!("case{case}.toml")), &text);
+        let run_dir = d.path().join(format!("run{case}"));
+        ok(&pounding(&[
+            "run",
+            s(&sc),
+            "--out",
+            s(&run_dir),
+            "--no-plot",
+            "-q",
+        ]));
+        // the numbers as summary.json writes them (raw text: serde_json's default parser is
+        // not correctly rounded, so going through f64 could hide or invent differences)
+        let json = std::fs::read_to_string(run_dir.join("summary.json")).unwrap();
+        let raw = |key: &str, nth: usize| -> String {
+            let pat = format!("\"{key}\": ");
+            let start = json.match_indices(&pat).nth(nth).unwrap().0 + pat.len();
+            json[start..]
+                .split(|c| c == ',' || c == '\n' || c == '}')
+                .next()
+                .unwrap()
+                .trim()
+                .to_string()
+        };
+        let expect = [
+            ("peak_displacement_1", raw("peak_displacement", 0)),
+            ("peak_displacement_2", raw("peak_displacement", 1)),
+            (
+                "peak_displacement_no_contact_1",
+                raw("peak_displacement_no_contact", 0),
+            ),
+            (
+                "peak_displacement_no_contact_2",
+                raw("peak_displacement_no_contact", 1),
+            ),
+            ("change_percent_1", raw("change_percent", 0)),
+            ("change_percent_2", raw("change_percent", 1)),
+            ("peak_force", raw("peak_force", 0)),
+            ("impacts", raw("impacts", 0)),
+            ("contact_time", raw("contact_time", 0)),
+            ("sep_abs", raw("abs", 0)),
+            ("sep_srss", raw("srss", 0)),
+            ("sep_ddc", raw("ddc", 0)),
+            ("sep_time_history", raw("time_history", 0)),
+        ];
+        for (col, v) in expect {
+            let i = header.iter().position(|h| *h == col).unwrap();
+            // byte-identical to the JSON text, hence the same f64
+            assert_eq!(row[i], v, "case {case}, {col}");
+        }
+        assert_eq!(row[3], "ok");
+    }
+}
+
+#[test]
+fn shards_merge_into_the_full_table() {
+    let d = tempfile::tempdir().unwrap();
+    let sweep = study(d.path(), 5, 3.0);
+    let (full, parts) = (d.path().join("full"), d.path().join("parts"));
+    ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&full),
+        "--no-plot",
+        "-q",
+    ]));
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        ok(&pounding(&[
+            "sweep",
+            s(&sweep),
+            "--out",
+            s(&parts),
+            "--shard",
+            &shard,
+            "-q",
+        ]));
+    }
+    let merged = d.path().join("merged.csv");
+    let out = ok(&pounding(&["merge", s(&merged), s(&parts)]));
+    assert!(out.contains("15 cases"), "{out}");
+    assert_eq!(
+        std::fs::read_to_string(&merged).unwrap(),
+        std::fs::read_to_string(full.join("results.csv")).unwrap()
+    );
+    // a part missing
+    let p1 = parts.join("results-shard-1-of-3.csv");
+    let p3 = parts.join("results-shard-3-of-3.csv");
+    let out = pounding(&["merge", s(&merged), s(&p1), s(&p3)]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("part(s) 2 of 3 are missing"));
+    // a part given twice
+    let out = pounding(&["merge", s(&merged), s(&p1), s(&p1)]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("given twice"));
+    // rows lost from a part (renamed so that names do not tell)
+    let t = std::fs::read_to_string(&p3).unwrap();
+    let cut: Vec<&str> = t.lines().take(3).collect();
+    let a = write(&d.path().join("a.csv"), &(cut.join("\n") + "\n"));
+    let b = d.path().join("b.csv");
+    std::fs::copy(&p1, &b).unwrap();
+    let c = d.path().join("c.csv");
+    std::fs::copy(parts.join("results-shard-2-of-3.csv"), &c).unwrap();
+    let out = pounding(&["merge", s(&merged), s(&a), s(&b), s(&c)]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("cases are missing"),
+        "{err}"
+    );
+    // duplicates across parts
+    let out = pounding(&["merge", s(&merged), s(&b), s(&b)]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("is in both"));
+    // plot from the merged table
+    let plots = d.path().join("plots");
+    let out = ok(&pounding(&[
+        "plot",
+        s(&merged),
+        "--x",
+        "period_ratio",
+        "--y",
+        "ground_motion.pga",
+        "--field",
+        "peak_force",
+        "--out",
+        s(&plots),
+    ]));
+    assert!(out.contains("wrote 1 pictures"), "{out}");
+    assert!(plots.join("heatmap_peak_force_T1_T2_PGA.png").exists());
+}
+
+#[test]
+fn failed_cases_are_recorded_and_the_sweep_goes_on() {
+    let d = tempfile::tempdir().unwrap();
+    write(&d.path().join("base.toml"), &base(2.0));
+    let sweep = write(
+        &d.path().join("s.toml"),
+        "scenario = \"base.toml\"\n[[axis]]\nkey = \"solver.dt\"\nvalues = [0.001, 0.05, 0.002]\n",
+    );
+    let out = d.path().join("o");
+    let r = pounding(&["sweep", s(&sweep), "--out", s(&out), "--no-plot"]);
+    ok(&r);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(err.contains("1 of 3 cases failed"), "{err}");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let rows = data_rows(&csv);
+    assert!(rows[0].contains(",ok,"));
+    assert!(
+        rows[1].starts_with("1,0.05,\"failed: `solver.dt` = 0.05:")
+            && rows[1].contains("stability limit"),
+        "{}",
+        rows[1]
+    );
+    assert!(rows[1].ends_with(",,,,,,,,,,,,,"));
+    assert!(rows[2].contains(",ok,"));
+}
+
+#[test]
+fn record_files_resolve_relative_to_the_sweep_file() {
+    let d = tempfile::tempdir().unwrap();
+    // base scenario and records in different directories from the sweep file
+    write(&d.path().join("base/base.toml"), &base(3.0));
+    let rec = |f: f64| {
+        (0..300)
+            .map(|i| {
+                let t = i as f64 * 0.01;
+                format!("{t} {}\n", (2.0 * std::f64::consts::PI * f * t).sin())
+            })
+            .collect::<String>()
+    };
+    write(&d.path().join("records/a.txt"), &rec(1.5));
+    write(&d.path().join("records/b.txt"), &rec(2.5));
+    let sweep = write(
+        &d.path().join("sweeps/s.toml"),
+        "scenario = \"../base/base.toml\"\n\
+         [[axis]]\nkey = \"ground_motion.file\"\nvalues = [\"../records/a.txt\", \"../records/b.txt\"]\n\
+         [[axis]]\nkey = \"ground_motion.pga\"\nvalues = [0.3, 0.6]\n",
+    );
+    let out = d.path().join("o");
+    ok(&pounding(&["sweep", s(&sweep), "--out", s(&out), "-q"]));
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let rows = data_rows(&csv);
+    assert_eq!(rows.len(), 4);
+    assert!(
+        rows[0].starts_with("0,../records/a.txt,0.3,ok,"),
+        "{}",
+        rows[0]
+    );
+    assert!(rows.iter().all(|r| r.contains(",ok,")), "{csv}");
+    // the PGA axis scales the record: the case scenario says so
+    let text = ok(&pounding(&["sweep", s(&sweep), "--case", "3"]));
+    assert!(text.contains("scale_to_pga = 0.6") && text.contains("kind = \"record\""));
+    assert!(!text.contains("\nperiod = 0.65"), "{text}");
+    // lines over the PGA, one line per record
+    assert!(out.join("plots/lines_PGA.png").exists());
+}
+
+#[test]
+fn mistakes_are_reported_with_file_key_and_range() {
+    let d = tempfile::tempdir().unwrap();
+    write(&d.path().join("base.toml"), &base(2.0));
+    let sweep = write(
+        &d.path().join("s.toml"),
+        "scenario = \"base.toml\"\n[[axis]]\nkey = \"ground_motion.pga\"\nfrom = 0.1\nto = 0.5\nsteps = 0\n",
+    );
+    let out = pounding(&["sweep", s(&sweep)]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("s.toml:6:9") && err.contains("axis[1].steps") && err.contains("from 1 to"),
+        "{err}"
+    );
+    // every case invalid: refused before anything is computed
+    write(
+        &d.path().join("base.toml"),
+        &base(2.0).replace("gap = 0.0127", "gap = -1.0"),
+    );
+    let sweep = write(
+        &d.path().join("s.toml"),
+        "scenario = \"base.toml\"\n[[axis]]\nkey = \"ground_motion.pga\"\nvalues = [0.1, 0.2]\n",
+    );
+    let o = d.path().join("o");
+    let out = pounding(&["sweep", s(&sweep), "--out", s(&o)]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no case of the sweep is a valid scenario")
+            && err.contains("`contact.gap` = -1"),
+        "{err}"
+    );
+    assert!(!o.join("results.csv").exists());
+    let out = pounding(&["sweep", s(&sweep), "--shard", "4/3"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1 ≤ K ≤ N"));
+}
