@@ -207,7 +207,7 @@ fn rows_are_identical_to_pounding_run() {
             let pat = format!("\"{key}\": ");
             let start = json.match_indices(&pat).nth(nth).unwrap().0 + pat.len();
             json[start..]
-                .split(|c| c == ',' || c == '\n' || c == '}')
+                .split([',', '\n', '}'])
                 .next()
                 .unwrap()
                 .trim()
