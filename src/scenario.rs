@@ -339,7 +339,26 @@ impl Ctx<'_> {
                 };
             }
         }
-        ScenarioError::Syntax { at, message: msg }
+        // name the key when the offending line is a `key = value` line
+        let message = match e.span().and_then(|sp| self.key_on_line(sp.start)) {
+            Some(key) => format!("`{key}`: {msg}"),
+            None => msg,
+        };
+        ScenarioError::Syntax { at, message }
+    }
+
+    /// The key of a `key = value` line containing byte `offset`.
+    fn key_on_line(&self, offset: usize) -> Option<String> {
+        let offset = offset.min(self.text.len());
+        let start = self.text.get(..offset)?.rfind('\n').map_or(0, |p| p + 1);
+        let line = self.text.get(start..)?.lines().next()?;
+        let (key, _) = line.split_once('=')?;
+        let key = key.trim();
+        let ok = !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.');
+        ok.then(|| key.to_string())
     }
 
     /// The table an unknown key sits in: from the expected-key list in serde's message.
@@ -368,7 +387,10 @@ impl Ctx<'_> {
 }
 
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;

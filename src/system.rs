@@ -236,7 +236,22 @@ impl System {
         a: &mut [f64],
         states: &mut [LevelState],
     ) -> Powers {
-        let (ag, vg) = self.ground.accel_velocity(t);
+        let ground = self.ground.accel_velocity(t);
+        self.acceleration_in(ground, q, v, onset_speed, a, states)
+    }
+
+    /// [`System::acceleration`] with the ground acceleration and velocity (m/s², m/s) already
+    /// evaluated, for integrators that reuse them across stages at the same time.
+    #[inline]
+    pub fn acceleration_in(
+        &self,
+        (ag, vg): (f64, f64),
+        q: &[f64],
+        v: &[f64],
+        onset_speed: &[f64],
+        a: &mut [f64],
+        states: &mut [LevelState],
+    ) -> Powers {
         let mut p = Powers::default();
         let n = self.len();
         let (q, v, a) = (&q[..n], &v[..n], &mut a[..n]);
