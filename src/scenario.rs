@@ -229,7 +229,14 @@ const TABLES: &[(&str, &[&str])] = &[
 ];
 
 /// Contact law names accepted by `[contact] law`.
-pub const CONTACT_LAWS: &[&str] = &["hertz", "linear", "kelvin", "hertzdamp", "jankowski"];
+pub const CONTACT_LAWS: &[&str] = &[
+    "hertz",
+    "linear",
+    "kelvin",
+    "hertzdamp",
+    "jankowski",
+    "stereomechanical",
+];
 
 // ---------------------------------------------------------------------------------------------
 // The checked scenario.
@@ -657,32 +664,60 @@ fn contact(
         "linear" | "kelvin" => "N/m",
         _ => "N/m^1.5",
     };
-    let stiffness = c.positive(
-        c.required(
-            &r.stiffness,
+    let impulsive = law_name == "stereomechanical";
+    let stiffness = match (&r.stiffness, impulsive) {
+        (Some(k), true) => {
+            return Err(c.invalid(
+                k,
+                "contact.stiffness",
+                "law `stereomechanical` is instantaneous and has no stiffness",
+            ));
+        }
+        (None, true) => 0.0,
+        (k, false) => c.positive(
+            c.required(
+                k,
+                "contact.stiffness",
+                &format!("contact stiffness in {stiffness_unit}"),
+                near,
+            )?,
             "contact.stiffness",
-            &format!("contact stiffness in {stiffness_unit}"),
-            near,
+            stiffness_unit,
         )?,
-        "contact.stiffness",
-        stiffness_unit,
-    )?;
-    let needs_e = matches!(law_name, "kelvin" | "hertzdamp" | "jankowski");
+    };
+    let needs_e = matches!(
+        law_name,
+        "kelvin" | "hertzdamp" | "jankowski" | "stereomechanical"
+    );
     let restitution = match (&r.restitution, needs_e) {
+        (Some(e), true) if impulsive => {
+            let x = *e.get_ref();
+            if x.is_finite() && (0.0..=1.0).contains(&x) {
+                x
+            } else {
+                return Err(c.invalid(
+                    e,
+                    "contact.restitution",
+                    "coefficient of restitution must be in [0, 1]",
+                ));
+            }
+        }
         (Some(e), true) => c.restitution(e, "contact.restitution")?,
         (None, true) => {
             return Err(c.missing(
                 "contact.restitution",
-                &format!("law `{law_name}` needs a coefficient of restitution in (0, 1]"),
+                &format!("law `{law_name}` needs a coefficient of restitution"),
                 near,
-            ))
+            ));
         }
         (Some(e), false) => {
             return Err(c.invalid(
                 e,
                 "contact.restitution",
-                &format!("law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski)"),
-            ))
+                &format!(
+                    "law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski, stereomechanical)"
+                ),
+            ));
         }
         (None, false) => 1.0,
     };
@@ -704,6 +739,7 @@ fn contact(
             stiffness,
             restitution,
         },
+        "stereomechanical" => ContactLaw::Stereomechanical { restitution },
         "hertzdamp" => {
             let model = match r.damping_model.as_ref().map(|m| m.get_ref().as_str()) {
                 None | Some("lankarani-nikravesh") => HertzDampModel::LankaraniNikravesh,

@@ -19,9 +19,19 @@ fn example(name: &str) -> String {
 fn run_default_writes_the_contract() {
     let dir = tempfile::tempdir().unwrap();
     let out = pounding(&["run", "--out", "res"], dir.path());
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8_lossy(&out.stdout);
-    for needle in ["T1/T2 = 0.7", "change [%]", "impacts", "required separation", "SRSS"] {
+    for needle in [
+        "T1/T2 = 0.7",
+        "change [%]",
+        "impacts",
+        "required separation",
+        "SRSS",
+    ] {
         assert!(stdout.contains(needle), "summary lacks {needle}:\n{stdout}");
     }
     let res = dir.path().join("res");
@@ -29,10 +39,19 @@ fn run_default_writes_the_contract() {
         serde_json::from_str(&std::fs::read_to_string(res.join("summary.json")).unwrap()).unwrap();
     for i in 0..2 {
         let s = &summary["structures"][i];
-        for key in ["name", "periods", "peak_displacement", "peak_displacement_no_contact", "change_percent"] {
+        for key in [
+            "name",
+            "periods",
+            "peak_displacement",
+            "peak_displacement_no_contact",
+            "change_percent",
+        ] {
             assert!(!s[key].is_null(), "structures[{i}].{key} missing");
         }
-        let (w, w0) = (s["peak_displacement"].as_f64().unwrap(), s["peak_displacement_no_contact"].as_f64().unwrap());
+        let (w, w0) = (
+            s["peak_displacement"].as_f64().unwrap(),
+            s["peak_displacement_no_contact"].as_f64().unwrap(),
+        );
         let change = s["change_percent"].as_f64().unwrap();
         assert!((change - 100.0 * (w - w0) / w0).abs() < 1e-9 * change.abs().max(1.0));
     }
@@ -40,14 +59,22 @@ fn run_default_writes_the_contract() {
         assert!(!summary["contact"][key].is_null(), "contact.{key} missing");
     }
     for key in ["abs", "srss", "ddc", "time_history"] {
-        assert!(summary["separation"][key].as_f64().unwrap() > 0.0, "separation.{key}");
+        assert!(
+            summary["separation"][key].as_f64().unwrap() > 0.0,
+            "separation.{key}"
+        );
     }
     let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
     let mut lines = history.lines();
     assert!(lines.next().unwrap().starts_with("t,w1,w2,force"));
     // 20 s every 0.01 s, both ends included
     assert_eq!(lines.clone().count(), 2001);
-    let last: Vec<f64> = lines.last().unwrap().split(',').map(|x| x.parse().unwrap()).collect();
+    let last: Vec<f64> = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
     assert!((last[0] - 20.0).abs() < 1e-9);
     for f in ["history.png", "history.svg", "impacts.csv"] {
         assert!(res.join(f).exists(), "{f} missing");
@@ -62,13 +89,21 @@ fn run_default_writes_the_contract() {
 #[test]
 fn bad_scenario_fails_cleanly_without_output() {
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(example("paper-c.toml")).unwrap().replacen("\nmass = 2.273e6", "\nmass = -1.0", 1);
+    let text = std::fs::read_to_string(example("paper-c.toml"))
+        .unwrap()
+        .replacen("\nmass = 2.273e6", "\nmass = -1.0", 1);
     std::fs::write(dir.path().join("bad.toml"), text).unwrap();
     let out = pounding(&["run", "bad.toml", "--out", "res"], dir.path());
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("bad.toml:") && err.contains("structure[1].mass") && err.contains("> 0"), "{err}");
-    assert!(!dir.path().join("res").exists(), "no output directory for a refused scenario");
+    assert!(
+        err.contains("bad.toml:") && err.contains("structure[1].mass") && err.contains("> 0"),
+        "{err}"
+    );
+    assert!(
+        !dir.path().join("res").exists(),
+        "no output directory for a refused scenario"
+    );
 }
 
 #[test]
@@ -82,7 +117,10 @@ fn diverging_run_leaves_no_summary() {
     let out = pounding(&["run", "stiff.toml", "--out", "res"], dir.path());
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("diverged") && err.contains("reduce dt"), "{err}");
+    assert!(
+        err.contains("diverged") && err.contains("reduce dt"),
+        "{err}"
+    );
     assert!(!dir.path().join("res").join("summary.json").exists());
 }
 

@@ -23,21 +23,31 @@ fn edit(from: &str, to: &str) -> String {
 /// Apply a textual edit to the bundled paper case, expect an error containing every `needle`.
 fn refused(from: &str, to: &str, needles: &[&str]) {
     let text = edit(from, to);
-    let err = parse(&text).expect_err(&format!("`{to}` must be refused")).to_string();
+    let err = parse(&text)
+        .expect_err(&format!("`{to}` must be refused"))
+        .to_string();
     for n in needles {
         assert!(err.contains(n), "message for `{to}` lacks `{n}`: {err}");
     }
-    assert!(err.starts_with("case.toml:"), "message must start with the file: {err}");
+    assert!(
+        err.starts_with("case.toml:"),
+        "message must start with the file: {err}"
+    );
 }
 
 #[test]
 fn bundled_examples_parse() {
     for f in ["paper-a.toml", "paper-b.toml", "paper-c.toml"] {
-        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(f);
+        let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(f);
         let sc = Scenario::from_file(&p).unwrap_or_else(|e| panic!("{f}: {e}"));
         assert_eq!(sc.structures[0].modes, 3);
         assert_eq!(sc.contact.levels.len(), 1);
-        assert_eq!(sc.contact.levels[0].height, 10.0, "height defaults to min(L1, L2)");
+        assert_eq!(
+            sc.contact.levels[0].height, 10.0,
+            "height defaults to min(L1, L2)"
+        );
     }
 }
 
@@ -58,62 +68,215 @@ fn parsed_values_are_si() {
 
 #[test]
 fn unknown_keys_are_named_with_a_suggestion() {
-    refused("period = 0.4203", "perod = 0.4203", &["unknown key `perod`", "[[structure]]", "did you mean `period`?", ":18:"]);
-    refused("stiffness = 2.808e10", "stifness = 2.808e10", &["`stifness`", "[contact]", "did you mean `stiffness`?"]);
-    refused("[solver]", "[solvr]", &["`solvr`", "did you mean `solver`?"]);
-    refused("dt = 0.001", "dt = 0.001\nsteps = 5", &["unknown key `steps`", "[solver]", "valid keys"]);
+    refused(
+        "period = 0.4203",
+        "perod = 0.4203",
+        &[
+            "unknown key `perod`",
+            "[[structure]]",
+            "did you mean `period`?",
+            ":18:",
+        ],
+    );
+    refused(
+        "stiffness = 2.808e10",
+        "stifness = 2.808e10",
+        &["`stifness`", "[contact]", "did you mean `stiffness`?"],
+    );
+    refused(
+        "[solver]",
+        "[solvr]",
+        &["`solvr`", "did you mean `solver`?"],
+    );
+    refused(
+        "dt = 0.001",
+        "dt = 0.001\nsteps = 5",
+        &["unknown key `steps`", "[solver]", "valid keys"],
+    );
 }
 
 #[test]
 fn missing_keys_are_named() {
-    refused("length = 10.0\n", "", &["missing key `structure[1].length`"]);
+    refused(
+        "length = 10.0\n",
+        "",
+        &["missing key `structure[1].length`"],
+    );
     refused("mass = 2.273e6\n", "", &["missing key `structure[1].mass`"]);
-    refused("modes = 3\n", "", &["missing key `structure[1].modes`", "1 to 500"]);
-    refused("period = 0.4203\n", "", &["`structure[1].period`", "bending_stiffness", "tip_stiffness"]);
-    refused("damping_ratio = 0.01\n", "", &["structure[1].damping_ratio"]);
+    refused(
+        "modes = 3\n",
+        "",
+        &["missing key `structure[1].modes`", "1 to 500"],
+    );
+    refused(
+        "period = 0.4203\n",
+        "",
+        &[
+            "`structure[1].period`",
+            "bending_stiffness",
+            "tip_stiffness",
+        ],
+    );
+    refused(
+        "damping_ratio = 0.01\n",
+        "",
+        &["structure[1].damping_ratio"],
+    );
     refused("gap = 0.0127\n", "", &["missing key `contact.gap`"]);
-    refused("stiffness = 2.808e10\n", "", &["missing key `contact.stiffness`"]);
+    refused(
+        "stiffness = 2.808e10\n",
+        "",
+        &["missing key `contact.stiffness`"],
+    );
     refused("pga = 0.6\n", "", &["missing key `ground_motion.pga`"]);
     refused("duration = 20.0\n", "", &["missing key `solver.duration`"]);
 }
 
 #[test]
 fn out_of_range_values_are_refused_with_the_range() {
-    refused("mass = 2.273e6", "mass = -5.0", &["`structure[1].mass` = -5", "> 0", "kg"]);
-    refused("mass = 2.273e6", "mass = 0.0", &["structure[1].mass", "> 0"]);
-    refused("length = 10.0", "length = -1.0", &["structure[1].length", "> 0", "m"]);
-    refused("period = 0.4203", "period = 0.0", &["structure[1].period", "> 0", "s"]);
-    refused("period = 0.4203", "bending_stiffness = -1e9", &["structure[1].bending_stiffness", "> 0"]);
-    refused("period = 0.4203", "tip_stiffness = 0.0", &["structure[1].tip_stiffness", "> 0"]);
-    refused("period = 0.4203", "period = 0.4203\ntip_stiffness = 1e9", &["exactly one of"]);
-    refused("modes = 3", "modes = 0", &["structure[1].modes", "1 to 500"]);
-    refused("modes = 3", "modes = 501", &["structure[1].modes", "1 to 500"]);
-    refused("damping_ratio = 0.01", "damping_ratio = 1.5", &["damping_ratio", "[0, 1)"]);
-    refused("damping_ratio = 0.01", "damping_ratio = [0.01, 0.02]", &["damping_ratio", "exactly 3"]);
-    refused("damping_ratio = 0.01", "damping_ratio = 0.01\nair_damping = 10.0", &["not both"]);
-    refused("damping_ratio = 0.01", "air_damping = -3.0", &["air_damping", "≥ 0"]);
-    refused("gap = 0.0127", "gap = -0.01", &["`contact.gap` = -0.01", "≥ 0"]);
-    refused("gap = 0.0127", "gap = 0.0127\nheight = 11.0", &["contact.height", "(0, 10]"]);
-    refused("gap = 0.0127", "gap = 0.0127\nheight = 0.0", &["contact.height", "(0, 10]"]);
-    refused("stiffness = 2.808e10", "stiffness = 0.0", &["contact.stiffness", "> 0"]);
-    refused("law = \"hertz\"", "law = \"hurtz\"", &["contact.law", "\"hertz\""]);
-    refused("law = \"hertz\"", "law = \"hertz\"\nrestitution = 0.5", &["contact.restitution", "no restitution"]);
-    refused("pga = 0.6", "pga = -0.6", &["ground_motion.pga", "> 0", "g"]);
-    refused("kind = \"harmonic\"", "kind = \"harmonik\"", &["ground_motion.kind", "\"record\""]);
+    refused(
+        "mass = 2.273e6",
+        "mass = -5.0",
+        &["`structure[1].mass` = -5", "> 0", "kg"],
+    );
+    refused(
+        "mass = 2.273e6",
+        "mass = 0.0",
+        &["structure[1].mass", "> 0"],
+    );
+    refused(
+        "length = 10.0",
+        "length = -1.0",
+        &["structure[1].length", "> 0", "m"],
+    );
+    refused(
+        "period = 0.4203",
+        "period = 0.0",
+        &["structure[1].period", "> 0", "s"],
+    );
+    refused(
+        "period = 0.4203",
+        "bending_stiffness = -1e9",
+        &["structure[1].bending_stiffness", "> 0"],
+    );
+    refused(
+        "period = 0.4203",
+        "tip_stiffness = 0.0",
+        &["structure[1].tip_stiffness", "> 0"],
+    );
+    refused(
+        "period = 0.4203",
+        "period = 0.4203\ntip_stiffness = 1e9",
+        &["exactly one of"],
+    );
+    refused(
+        "modes = 3",
+        "modes = 0",
+        &["structure[1].modes", "1 to 500"],
+    );
+    refused(
+        "modes = 3",
+        "modes = 501",
+        &["structure[1].modes", "1 to 500"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = 1.5",
+        &["damping_ratio", "[0, 1)"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = [0.01, 0.02]",
+        &["damping_ratio", "exactly 3"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = 0.01\nair_damping = 10.0",
+        &["not both"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "air_damping = -3.0",
+        &["air_damping", "≥ 0"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = -0.01",
+        &["`contact.gap` = -0.01", "≥ 0"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = 0.0127\nheight = 11.0",
+        &["contact.height", "(0, 10]"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = 0.0127\nheight = 0.0",
+        &["contact.height", "(0, 10]"],
+    );
+    refused(
+        "stiffness = 2.808e10",
+        "stiffness = 0.0",
+        &["contact.stiffness", "> 0"],
+    );
+    refused(
+        "law = \"hertz\"",
+        "law = \"hurtz\"",
+        &["contact.law", "\"hertz\""],
+    );
+    refused(
+        "law = \"hertz\"",
+        "law = \"hertz\"\nrestitution = 0.5",
+        &["contact.restitution", "no restitution"],
+    );
+    refused(
+        "pga = 0.6",
+        "pga = -0.6",
+        &["ground_motion.pga", "> 0", "g"],
+    );
+    refused(
+        "kind = \"harmonic\"",
+        "kind = \"harmonik\"",
+        &["ground_motion.kind", "\"record\""],
+    );
     refused("dt = 0.001", "dt = 0.0", &["`solver.dt` = 0", "> 0"]);
     refused("dt = 0.001", "dt = -0.001", &["solver.dt", "> 0"]);
-    refused("dt = 0.001", "dt = 30.0", &["solver.dt", "smaller than solver.duration"]);
-    refused("output_interval = 0.01", "output_interval = 0.0", &["solver.output_interval"]);
+    refused(
+        "dt = 0.001",
+        "dt = 30.0",
+        &["solver.dt", "smaller than solver.duration"],
+    );
+    refused(
+        "output_interval = 0.01",
+        "output_interval = 0.0",
+        &["solver.output_interval"],
+    );
     refused("method = \"rk4\"", "method = \"euler\"", &["solver.method"]);
-    refused("[[structure]]\nname = \"structure 2\"", "[[structur]]\nname = \"structure 2\"", &["unknown key `structur`"]);
+    refused(
+        "[[structure]]\nname = \"structure 2\"",
+        "[[structur]]\nname = \"structure 2\"",
+        &["unknown key `structur`"],
+    );
 }
 
 #[test]
 fn non_finite_numbers_are_refused() {
-    refused("pga = 0.6", "pga = nan", &["ground_motion.pga", "NaN", "finite"]);
-    refused("mass = 2.273e6", "mass = inf", &["structure[1].mass", "finite"]);
+    refused(
+        "pga = 0.6",
+        "pga = nan",
+        &["ground_motion.pga", "NaN", "finite"],
+    );
+    refused(
+        "mass = 2.273e6",
+        "mass = inf",
+        &["structure[1].mass", "finite"],
+    );
     refused("gap = 0.0127", "gap = +inf", &["contact.gap", "finite"]);
-    refused("duration = 20.0", "duration = nan", &["solver.duration", "finite"]);
+    refused(
+        "duration = 20.0",
+        "duration = nan",
+        &["solver.duration", "finite"],
+    );
 }
 
 #[test]
@@ -128,15 +291,22 @@ fn rk4_step_beyond_stability_gives_the_largest_stable_step() {
     // limit is a little above 2√2/ω₃ = 0.010782 s.
     let text = edit("dt = 0.001", "dt = 0.02");
     let err = parse(&text).unwrap_err().to_string();
-    assert!(err.contains("solver.dt") && err.contains("stability"), "{err}");
+    assert!(
+        err.contains("solver.dt") && err.contains("stability"),
+        "{err}"
+    );
     let largest: f64 = err
         .split("largest stable dt for this scenario is ")
         .nth(1)
         .and_then(|s| s.split_whitespace().next())
         .and_then(|s| s.parse().ok())
         .unwrap_or_else(|| panic!("no largest dt in: {err}"));
-    let w3 = (7.854757438237613f64 / 1.875104068711961).powi(2) * 2.0 * std::f64::consts::PI / 0.4203;
-    assert!(largest > 2.0 * 2f64.sqrt() / w3 && largest < 1.01 * 2.0 * 2f64.sqrt() / w3, "{largest}");
+    let w3 =
+        (7.854757438237613f64 / 1.875104068711961).powi(2) * 2.0 * std::f64::consts::PI / 0.4203;
+    assert!(
+        largest > 2.0 * 2f64.sqrt() / w3 && largest < 1.01 * 2.0 * 2f64.sqrt() / w3,
+        "{largest}"
+    );
     // and a step just inside it is accepted
     let ok = edit("dt = 0.001", &format!("dt = {}", 0.999 * largest));
     parse(&ok).unwrap();
@@ -164,8 +334,17 @@ fn contact_levels() {
     let sc = parse(&multi).unwrap();
     assert_eq!(sc.contact.levels.len(), 2);
     assert_eq!(sc.contact.levels[1].height, 6.0);
-    let both = BASE.replacen("gap = 0.0127\n", "gap = 0.0127\n[[contact.level]]\nheight = 10.0\ngap = 0.0127\n", 1);
-    assert!(parse(&both).unwrap_err().to_string().contains("in each level"));
+    let both = BASE.replacen(
+        "gap = 0.0127\n",
+        "gap = 0.0127\n[[contact.level]]\nheight = 10.0\ngap = 0.0127\n",
+        1,
+    );
+    assert!(
+        parse(&both)
+            .unwrap_err()
+            .to_string()
+            .contains("in each level")
+    );
     let dup = BASE.replacen(
         "gap = 0.0127\n",
         "[[contact.level]]\nheight = 10.0\ngap = 0.0127\n[[contact.level]]\nheight = 10.0\ngap = 0.02\n",
@@ -182,9 +361,13 @@ fn garbage_never_panics() {
     for _ in 0..2000 {
         let mut b = bytes.to_vec();
         for _ in 0..4 {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let i = (seed >> 33) as usize % b.len();
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let table = b"=[]\"0.-e\n#x9 ";
             b[i] = table[(seed >> 40) as usize % table.len()];
         }

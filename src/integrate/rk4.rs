@@ -196,6 +196,14 @@ pub(super) fn run<O: Observer>(
 
         // k1 of the next step = the state at the end of this one
         p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        if sys.apply_impulses(
+            &mut w.v,
+            &mut w.states,
+            &mut tally.impulse,
+            &mut tally.contact,
+        ) {
+            p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        }
         stats.evaluations += 4;
         stats.steps += 1;
         update_onsets(&mut w.onset, &w.prev_states, &w.states);
