@@ -25,9 +25,9 @@ pub const MAX_MODES: i64 = 500;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
     /// File name as given.
-    pub file: String,
+    pub file: Arc<str>,
     /// 1-based line and column, when known.
-    pub line_col: Option<(usize, usize)>,
+    pub line_col: Option<(u32, u32)>,
 }
 
 impl fmt::Display for Location {
@@ -280,7 +280,11 @@ impl Scenario {
 
     /// Validate scenario text. `file` names it in messages; `base_dir` resolves record files.
     pub fn from_toml(text: &str, file: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
-        let ctx = Ctx { text, file };
+        let ctx = Ctx {
+            text,
+            file,
+            name: Arc::from(file),
+        };
         let raw: RawScenario = toml::from_str(text).map_err(|e| ctx.toml_error(&e))?;
         validate(raw, &ctx, base_dir)
     }
@@ -308,12 +312,13 @@ impl Scenario {
 struct Ctx<'a> {
     text: &'a str,
     file: &'a str,
+    name: Arc<str>,
 }
 
 impl Ctx<'_> {
     fn at(&self, offset: Option<usize>) -> Location {
         Location {
-            file: self.file.to_string(),
+            file: self.name.clone(),
             line_col: offset.map(|o| line_col(self.text, o)),
         }
     }
@@ -393,7 +398,7 @@ impl Ctx<'_> {
     }
 }
 
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
+fn line_col(text: &str, offset: usize) -> (u32, u32) {
     let mut offset = offset.min(text.len());
     while !text.is_char_boundary(offset) {
         offset -= 1;
@@ -401,7 +406,10 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
-    (line, col)
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(col).unwrap_or(u32::MAX),
+    )
 }
 
 /// A validator for one key: checks the value against a range and reports with its location.
