@@ -38,6 +38,9 @@ fn built_laws_achieve_their_restitution() {
     }
 }
 
+/// A contact force written out from its formula: F(δ, δ̇, m*).
+type LawFormula = Box<dyn Fn(f64, f64, f64) -> f64>;
+
 /// An independent check of the damped Hertz-family laws: a point mass m* hitting a rigid wall at
 /// v, `m* δ̈ = −F(δ, δ̇)` with the law written out here from its published formula, integrated by a
 /// plain RK4 at t_c/200 000. The solver's two-cantilever impact must give the same rebound
@@ -75,7 +78,7 @@ fn solver_matches_independent_point_mass_impact() {
     }
     let v = 0.5;
     for e in [0.3, 0.5, 0.7, 0.9] {
-        let laws: [(TargetLaw, Box<dyn Fn(f64, f64, f64) -> f64>); 4] = [
+        let laws: [(TargetLaw, LawFormula); 4] = [
             (
                 TargetLaw::HertzDamp(HertzDampModel::LankaraniNikravesh),
                 Box::new(move |d: f64, dd, _| {
