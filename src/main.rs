@@ -80,7 +80,8 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // every error message of the library already embeds its cause
+            eprintln!("error: {e}");
             ExitCode::from(2)
         }
     }
