@@ -322,7 +322,7 @@ impl Observer for Recorder {
                     };
                     let t0 = self.last_t + theta * (s.t - self.last_t);
                     Open {
-                        start: if self.steps == 0 { s.t } else { t0 },
+                        start: if self.prev.is_none() { s.t } else { t0 },
                         impulse_at_start: s.tally.impulse[k],
                         peak_force: 0.0,
                         max_penetration: 0.0,
