@@ -62,8 +62,13 @@ pub fn time_history_figure(
         });
     }
     let force_title = format!(
-        "Contact force: {} impacts, peak {:.3} MN",
+        "Contact force: {} impacts, {} {:.3} MN",
         report.contact.impacts,
+        if h.force.len() > 1 {
+            "largest peak at one level"
+        } else {
+            "peak"
+        },
         report.contact.peak_force / 1e6
     );
     let fig = Figure {

@@ -24,6 +24,7 @@ pub mod modal;
 pub mod output;
 pub mod plot;
 pub mod recorder;
+pub mod restitution;
 pub mod scenario;
 pub mod separation;
 pub mod simulate;

@@ -955,6 +955,26 @@ fn layout_legend(
     (rows, false)
 }
 
+/// White background and the centred title; returns the picture size in pixels.
+fn start_picture<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    f: Fonts,
+    title_h: i32,
+) -> Result<(i32, i32), PlotError> {
+    root.fill(&WHITE).map_err(draw_err)?;
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    if !title.is_empty() {
+        let style = font(f.title)
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Center, VPos::Center));
+        root.draw_text(title, &style, (w / 2, title_h / 2))
+            .map_err(draw_err)?;
+    }
+    Ok((w, h))
+}
+
 impl Render for FigurePrep {
     fn render<DB: DrawingBackend>(
         &self,
@@ -962,18 +982,7 @@ impl Render for FigurePrep {
         bitmap: bool,
     ) -> Result<(), PlotError> {
         let f = self.fonts;
-        root.fill(&WHITE).map_err(draw_err)?;
-        let (w, h) = root.dim_in_pixel();
-        let (w, h) = (w as i32, h as i32);
-
-        // Title.
-        if !self.title.is_empty() {
-            let style = font(f.title)
-                .color(&BLACK)
-                .pos(Pos::new(HPos::Center, VPos::Center));
-            root.draw_text(&self.title, &style, (w / 2, self.title_h / 2))
-                .map_err(draw_err)?;
-        }
+        let (_, h) = start_picture(root, &self.title, f, self.title_h)?;
 
         // Panel areas.
         let mut breaks = Vec::with_capacity(self.panels.len() + 1);
@@ -1473,16 +1482,7 @@ impl Render for HeatPrep {
         _bitmap: bool,
     ) -> Result<(), PlotError> {
         let f = self.fonts;
-        root.fill(&WHITE).map_err(draw_err)?;
-        let (w, h) = root.dim_in_pixel();
-        let (w, h) = (w as i32, h as i32);
-        if !self.title.is_empty() {
-            let style = font(f.title)
-                .color(&BLACK)
-                .pos(Pos::new(HPos::Center, VPos::Center));
-            root.draw_text(&self.title, &style, (w / 2, self.title_h / 2))
-                .map_err(draw_err)?;
-        }
+        let (w, h) = start_picture(root, &self.title, f, self.title_h)?;
         let (_, body) = root.split_vertically(self.title_h.min(h));
         let (main, bar) = body.split_horizontally((w - self.cbar_w).max(1));
         let top_margin = (f.tick * 0.6) as u32;

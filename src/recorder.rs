@@ -210,10 +210,13 @@ impl Recorder {
         }
         self.impacts
             .sort_by(|a, b| a.start.total_cmp(&b.start).then(a.level.cmp(&b.level)));
-        let main = &self.levels[self.main];
+        let (peak, max_closing) = self
+            .levels
+            .get(self.main)
+            .map_or(([0.0; 2], 0.0), |m| ([m.peak_w1, m.peak_w2], m.max_closing));
         RunRecord {
-            peak: [main.peak_w1, main.peak_w2],
-            max_closing: main.max_closing,
+            peak,
+            max_closing,
             levels: self.levels,
             impacts: self.impacts,
             history: self.history,
@@ -310,14 +313,16 @@ impl Observer for Recorder {
             let prev = self.prev_delta[k];
             if st.delta > 0.0 {
                 let o = self.open[k].get_or_insert_with(|| {
-                    let theta = if prev.is_finite() && prev < 0.0 {
+                    // δ crossed 0 between the previous observation and this one (δ_prev = 0
+                    // exactly puts the start at the previous observation)
+                    let theta = if prev.is_finite() && prev <= 0.0 {
                         prev / (prev - st.delta)
                     } else {
                         1.0
                     };
                     let t0 = self.last_t + theta * (s.t - self.last_t);
                     Open {
-                        start: if self.steps == 0 { s.t } else { t0 },
+                        start: if self.prev.is_none() { s.t } else { t0 },
                         impulse_at_start: s.tally.impulse[k],
                         peak_force: 0.0,
                         max_penetration: 0.0,

@@ -25,9 +25,9 @@ pub const MAX_MODES: i64 = 500;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
     /// File name as given.
-    pub file: String,
+    pub file: Arc<str>,
     /// 1-based line and column, when known.
-    pub line_col: Option<(usize, usize)>,
+    pub line_col: Option<(u32, u32)>,
 }
 
 impl fmt::Display for Location {
@@ -229,7 +229,14 @@ const TABLES: &[(&str, &[&str])] = &[
 ];
 
 /// Contact law names accepted by `[contact] law`.
-pub const CONTACT_LAWS: &[&str] = &["hertz", "linear", "kelvin", "hertzdamp", "jankowski"];
+pub const CONTACT_LAWS: &[&str] = &[
+    "hertz",
+    "linear",
+    "kelvin",
+    "hertzdamp",
+    "jankowski",
+    "stereomechanical",
+];
 
 // ---------------------------------------------------------------------------------------------
 // The checked scenario.
@@ -284,7 +291,11 @@ impl Scenario {
         base_dir: &Path,
         records: Option<&RecordCache>,
     ) -> Result<Scenario, ScenarioError> {
-        let ctx = Ctx { text, file };
+        let ctx = Ctx {
+            text,
+            file,
+            name: Arc::from(file),
+        };
         let raw: RawScenario = toml::from_str(text).map_err(|e| ctx.toml_error(&e))?;
         validate(raw, &ctx, base_dir, records)
     }
@@ -351,12 +362,13 @@ impl RecordCache {
 struct Ctx<'a> {
     text: &'a str,
     file: &'a str,
+    name: Arc<str>,
 }
 
 impl Ctx<'_> {
     fn at(&self, offset: Option<usize>) -> Location {
         Location {
-            file: self.file.to_string(),
+            file: self.name.clone(),
             line_col: offset.map(|o| line_col(self.text, o)),
         }
     }
@@ -389,7 +401,26 @@ impl Ctx<'_> {
                 };
             }
         }
-        ScenarioError::Syntax { at, message: msg }
+        // name the key when the offending line is a `key = value` line
+        let message = match e.span().and_then(|sp| self.key_on_line(sp.start)) {
+            Some(key) => format!("`{key}`: {msg}"),
+            None => msg,
+        };
+        ScenarioError::Syntax { at, message }
+    }
+
+    /// The key of a `key = value` line containing byte `offset`.
+    fn key_on_line(&self, offset: usize) -> Option<String> {
+        let offset = offset.min(self.text.len());
+        let start = self.text.get(..offset)?.rfind('\n').map_or(0, |p| p + 1);
+        let line = self.text.get(start..)?.lines().next()?;
+        let (key, _) = line.split_once('=')?;
+        let key = key.trim();
+        let ok = !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.');
+        ok.then(|| key.to_string())
     }
 
     /// The table an unknown key sits in: from the expected-key list in serde's message.
@@ -417,12 +448,18 @@ impl Ctx<'_> {
     }
 }
 
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
+fn line_col(text: &str, offset: usize) -> (u32, u32) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
-    (line, col)
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(col).unwrap_or(u32::MAX),
+    )
 }
 
 /// A validator for one key: checks the value against a range and reports with its location.
@@ -690,32 +727,60 @@ fn contact(
         "linear" | "kelvin" => "N/m",
         _ => "N/m^1.5",
     };
-    let stiffness = c.positive(
-        c.required(
-            &r.stiffness,
+    let impulsive = law_name == "stereomechanical";
+    let stiffness = match (&r.stiffness, impulsive) {
+        (Some(k), true) => {
+            return Err(c.invalid(
+                k,
+                "contact.stiffness",
+                "law `stereomechanical` is instantaneous and has no stiffness",
+            ));
+        }
+        (None, true) => 0.0,
+        (k, false) => c.positive(
+            c.required(
+                k,
+                "contact.stiffness",
+                &format!("contact stiffness in {stiffness_unit}"),
+                near,
+            )?,
             "contact.stiffness",
-            &format!("contact stiffness in {stiffness_unit}"),
-            near,
+            stiffness_unit,
         )?,
-        "contact.stiffness",
-        stiffness_unit,
-    )?;
-    let needs_e = matches!(law_name, "kelvin" | "hertzdamp" | "jankowski");
+    };
+    let needs_e = matches!(
+        law_name,
+        "kelvin" | "hertzdamp" | "jankowski" | "stereomechanical"
+    );
     let restitution = match (&r.restitution, needs_e) {
+        (Some(e), true) if impulsive => {
+            let x = *e.get_ref();
+            if x.is_finite() && (0.0..=1.0).contains(&x) {
+                x
+            } else {
+                return Err(c.invalid(
+                    e,
+                    "contact.restitution",
+                    "coefficient of restitution must be in [0, 1]",
+                ));
+            }
+        }
         (Some(e), true) => c.restitution(e, "contact.restitution")?,
         (None, true) => {
             return Err(c.missing(
                 "contact.restitution",
-                &format!("law `{law_name}` needs a coefficient of restitution in (0, 1]"),
+                &format!("law `{law_name}` needs a coefficient of restitution"),
                 near,
-            ))
+            ));
         }
         (Some(e), false) => {
             return Err(c.invalid(
                 e,
                 "contact.restitution",
-                &format!("law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski)"),
-            ))
+                &format!(
+                    "law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski, stereomechanical)"
+                ),
+            ));
         }
         (None, false) => 1.0,
     };
@@ -737,6 +802,7 @@ fn contact(
             stiffness,
             restitution,
         },
+        "stereomechanical" => ContactLaw::Stereomechanical { restitution },
         "hertzdamp" => {
             let model = match r.damping_model.as_ref().map(|m| m.get_ref().as_str()) {
                 None | Some("lankarani-nikravesh") => HertzDampModel::LankaraniNikravesh,

@@ -236,7 +236,22 @@ impl System {
         a: &mut [f64],
         states: &mut [LevelState],
     ) -> Powers {
-        let (ag, vg) = self.ground.accel_velocity(t);
+        let ground = self.ground.accel_velocity(t);
+        self.acceleration_in(ground, q, v, onset_speed, a, states)
+    }
+
+    /// [`System::acceleration`] with the ground acceleration and velocity (m/s², m/s) already
+    /// evaluated, for integrators that reuse them across stages at the same time.
+    #[inline]
+    pub fn acceleration_in(
+        &self,
+        (ag, vg): (f64, f64),
+        q: &[f64],
+        v: &[f64],
+        onset_speed: &[f64],
+        a: &mut [f64],
+        states: &mut [LevelState],
+    ) -> Powers {
         let mut p = Powers::default();
         let n = self.len();
         let (q, v, a) = (&q[..n], &v[..n], &mut a[..n]);
@@ -270,6 +285,43 @@ impl System {
             };
         }
         p
+    }
+}
+
+impl System {
+    /// Stereomechanical impacts (SPEC §2.7, issue 3): at every level with an impulsive law where
+    /// the structures overlap (δ > 0) and still approach (δ̇ > 0), apply the impulse
+    /// `P = (1 + e) m* δ̇` as the velocity jump `v += c_k P`, which turns δ̇ into −e δ̇. Adds P to
+    /// `impulse[k]` and the kinetic energy lost, `½(1 − e²) m* δ̇²`, to `dissipated`. Returns
+    /// whether any impulse was applied (the caller then re-evaluates the state).
+    pub fn apply_impulses(
+        &self,
+        v: &mut [f64],
+        states: &mut [LevelState],
+        impulse: &mut [f64],
+        dissipated: &mut f64,
+    ) -> bool {
+        let mut any = false;
+        let n = self.len();
+        for (k, lv) in self.levels.iter().enumerate() {
+            let Some(e) = lv.force.impulsive() else {
+                continue;
+            };
+            let st = &mut states[k];
+            if st.delta > 0.0 && st.delta_dot > 0.0 {
+                let c = &self.coupling[k * n..(k + 1) * n];
+                let p = (1.0 + e) * lv.effective_mass * st.delta_dot;
+                for j in 0..n {
+                    v[j] += c[j] * p;
+                }
+                *dissipated +=
+                    0.5 * (1.0 - e * e) * lv.effective_mass * st.delta_dot * st.delta_dot;
+                impulse[k] += p;
+                st.delta_dot = -dot(c, v);
+                any = true;
+            }
+        }
+        any
     }
 }
 

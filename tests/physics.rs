@@ -257,6 +257,8 @@ fn hertz_impact_matches_analytic_solution() {
     let (rec, _) = run_system(&sys, &rk4(t_c / 4000.0, 2.0 * t_c), &init, &[10.0], 1e-3).unwrap();
     assert_eq!(rec.impacts.len(), 1, "one impact: {:?}", rec.impacts);
     let imp = rec.impacts[0];
+    // the bodies touch at t = 0 (gap 0, δ(0) = 0): the episode starts there, not a step later
+    assert!(imp.start.abs() < 1e-12, "start {}", imp.start);
     let rel = |a: f64, b: f64| (a - b).abs() / b;
     assert!(
         rel(imp.end - imp.start, t_c) < 5e-3,

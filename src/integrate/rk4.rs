@@ -146,8 +146,10 @@ pub(super) fn run<O: Observer>(
     let mut stats = Stats::default();
     let (steps, last) = step_plan(settings.dt, settings.duration);
 
-    // k1 of the first step, and the state at t = 0
-    let mut p1 = sys.acceleration(0.0, &w.q, &w.v, &w.onset, &mut w.a[0], &mut w.states);
+    // k1 of the first step, and the state at t = 0. The ground is evaluated twice per step:
+    // stages 2 and 3 share t + h/2, and stage 4's time is the next step's k1 time.
+    let mut ground_end = sys.ground.accel_velocity(0.0);
+    let mut p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, &mut w.a[0], &mut w.states);
     stats.evaluations += 1;
     update_onsets(&mut w.onset, &w.states.clone(), &w.states);
     observer.observe(
@@ -177,7 +179,8 @@ pub(super) fn run<O: Observer>(
             w.vs[j] = w.v[j] + 0.5 * h * a1[j];
             v2[j] = w.vs[j];
         }
-        let p2 = sys.acceleration(t + 0.5 * h, &w.qs, &w.vs, &w.onset, a2, &mut w.stage_states);
+        let ground_mid = sys.ground.accel_velocity(t + 0.5 * h);
+        let p2 = sys.acceleration_in(ground_mid, &w.qs, &w.vs, &w.onset, a2, &mut w.stage_states);
         store_forces(&w.stage_states, &mut w.stage_force[1]);
         // stage 3: y + h/2 k2
         for j in 0..n {
@@ -185,7 +188,7 @@ pub(super) fn run<O: Observer>(
             w.vs[j] = w.v[j] + 0.5 * h * a2[j];
             v3[j] = w.vs[j];
         }
-        let p3 = sys.acceleration(t + 0.5 * h, &w.qs, &w.vs, &w.onset, a3, &mut w.stage_states);
+        let p3 = sys.acceleration_in(ground_mid, &w.qs, &w.vs, &w.onset, a3, &mut w.stage_states);
         store_forces(&w.stage_states, &mut w.stage_force[2]);
         // stage 4: y + h k3
         for j in 0..n {
@@ -193,7 +196,13 @@ pub(super) fn run<O: Observer>(
             w.vs[j] = w.v[j] + h * a3[j];
             v4[j] = w.vs[j];
         }
-        let p4 = sys.acceleration(t + h, &w.qs, &w.vs, &w.onset, a4, &mut w.stage_states);
+        let t_end = if step + 1 == steps {
+            settings.duration
+        } else {
+            (step + 1) as f64 * settings.dt
+        };
+        ground_end = sys.ground.accel_velocity(t_end);
+        let p4 = sys.acceleration_in(ground_end, &w.qs, &w.vs, &w.onset, a4, &mut w.stage_states);
         store_forces(&w.stage_states, &mut w.stage_force[3]);
         // combine
         let h6 = h / 6.0;
@@ -208,12 +217,15 @@ pub(super) fn run<O: Observer>(
         }
 
         // k1 of the next step = the state at the end of this one
-        let t_end = if step + 1 == steps {
-            settings.duration
-        } else {
-            (step + 1) as f64 * settings.dt
-        };
-        p1 = sys.acceleration(t_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        if sys.apply_impulses(
+            &mut w.v,
+            &mut w.states,
+            &mut tally.impulse,
+            &mut tally.contact,
+        ) {
+            p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        }
         stats.evaluations += 4;
         stats.steps += 1;
         update_onsets(&mut w.onset, &w.prev_states, &w.states);

@@ -409,7 +409,7 @@ struct Ctx<'a> {
 impl Ctx<'_> {
     fn at(&self, offset: Option<usize>) -> Location {
         Location {
-            file: self.file.to_string(),
+            file: std::sync::Arc::from(self.file),
             line_col: offset.map(|o| line_col(self.text, o)),
         }
     }
@@ -422,12 +422,18 @@ impl Ctx<'_> {
     }
 }
 
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
+fn line_col(text: &str, offset: usize) -> (u32, u32) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
     let before = &text[..offset];
     let line = before.matches('\n').count() + 1;
     let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
-    (line, col)
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(col).unwrap_or(u32::MAX),
+    )
 }
 
 /// FNV-1a, 64 bit: the sweep's identity in its journal (not cryptographic; it only tells

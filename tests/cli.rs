@@ -1,0 +1,165 @@
+//! The binary end to end: outputs per SPEC §6, exit codes, and no partial output on failure.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn pounding(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("the binary runs")
+}
+
+fn example(name: &str) -> String {
+    format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn run_default_writes_the_contract() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["run", "--out", "res"], dir.path());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for needle in [
+        "T1/T2 = 0.7",
+        "change [%]",
+        "impacts",
+        "required separation",
+        "SRSS",
+    ] {
+        assert!(stdout.contains(needle), "summary lacks {needle}:\n{stdout}");
+    }
+    let res = dir.path().join("res");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(res.join("summary.json")).unwrap()).unwrap();
+    for i in 0..2 {
+        let s = &summary["structures"][i];
+        for key in [
+            "name",
+            "periods",
+            "peak_displacement",
+            "peak_displacement_no_contact",
+            "change_percent",
+        ] {
+            assert!(!s[key].is_null(), "structures[{i}].{key} missing");
+        }
+        let (w, w0) = (
+            s["peak_displacement"].as_f64().unwrap(),
+            s["peak_displacement_no_contact"].as_f64().unwrap(),
+        );
+        let change = s["change_percent"].as_f64().unwrap();
+        assert!((change - 100.0 * (w - w0) / w0).abs() < 1e-9 * change.abs().max(1.0));
+    }
+    for key in ["peak_force", "max_penetration", "impacts", "contact_time"] {
+        assert!(!summary["contact"][key].is_null(), "contact.{key} missing");
+    }
+    for key in ["abs", "srss", "ddc", "time_history"] {
+        assert!(
+            summary["separation"][key].as_f64().unwrap() > 0.0,
+            "separation.{key}"
+        );
+    }
+    let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    assert!(lines.next().unwrap().starts_with("t,w1,w2,force"));
+    // 20 s every 0.01 s, both ends included
+    assert_eq!(lines.clone().count(), 2001);
+    let last: Vec<f64> = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!((last[0] - 20.0).abs() < 1e-9);
+    for f in ["history.png", "history.svg", "impacts.csv"] {
+        assert!(res.join(f).exists(), "{f} missing");
+    }
+    // no temporary files left behind
+    for e in std::fs::read_dir(&res).unwrap() {
+        let name = e.unwrap().file_name().to_string_lossy().to_string();
+        assert!(!name.starts_with('.'), "leftover {name}");
+    }
+}
+
+#[test]
+fn bad_scenario_fails_cleanly_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("paper-c.toml"))
+        .unwrap()
+        .replacen("\nmass = 2.273e6", "\nmass = -1.0", 1);
+    std::fs::write(dir.path().join("bad.toml"), text).unwrap();
+    let out = pounding(&["run", "bad.toml", "--out", "res"], dir.path());
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml:") && err.contains("structure[1].mass") && err.contains("> 0"),
+        "{err}"
+    );
+    assert!(
+        !dir.path().join("res").exists(),
+        "no output directory for a refused scenario"
+    );
+}
+
+#[test]
+fn diverging_run_leaves_no_summary() {
+    // a contact so stiff that RK4 at dt = 1 ms blows up on the first impact
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("paper-c.toml"))
+        .unwrap()
+        .replacen("\nstiffness = 2.808e10", "\nstiffness = 1e17", 1);
+    std::fs::write(dir.path().join("stiff.toml"), text).unwrap();
+    let out = pounding(&["run", "stiff.toml", "--out", "res"], dir.path());
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("diverged") && err.contains("reduce dt"),
+        "{err}"
+    );
+    assert!(!dir.path().join("res").join("summary.json").exists());
+}
+
+#[test]
+fn missing_file_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["run", "nope.toml"], dir.path());
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("nope.toml"));
+}
+
+#[test]
+fn modes_lists_periods() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["modes", &example("paper-c.toml")], dir.path());
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    assert!(s.contains("0.420300") && s.contains("0.600429"), "{s}");
+    // first-mode effective mass of a cantilever: 4σ₁²/λ₁² = 61.3 %
+    assert!(s.contains("61.3"), "{s}");
+}
+
+#[test]
+fn separation_lists_every_rule() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["separation", &example("paper-c.toml")], dir.path());
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    for rule in ["time history", "ABS", "SRSS", "DDC", "ddc-paper"] {
+        assert!(s.contains(rule), "{rule} missing:\n{s}");
+    }
+}
+
+#[test]
+fn help_explains_each_command() {
+    let dir = tempfile::tempdir().unwrap();
+    for cmd in ["run", "modes", "separation"] {
+        let out = pounding(&[cmd, "--help"], dir.path());
+        assert!(out.status.success());
+        assert!(String::from_utf8_lossy(&out.stdout).contains("SCENARIO"));
+    }
+}

@@ -1,0 +1,378 @@
+//! Scenario validation: every bad input is refused with a message that names the file, the
+//! line, the key and the allowed range — never a panic.
+
+use std::path::Path;
+
+use pounding::scenario::{Scenario, ScenarioError};
+
+const BASE: &str = include_str!("../examples/paper-c.toml");
+
+fn parse(text: &str) -> Result<Scenario, ScenarioError> {
+    Scenario::from_toml(text, "case.toml", Path::new("examples"))
+}
+
+/// Replace the first line that starts with `from` (comments mention some values too).
+fn edit(from: &str, to: &str) -> String {
+    let at = BASE
+        .find(&format!("\n{from}"))
+        .unwrap_or_else(|| panic!("test edit `{from}` does not apply"))
+        + 1;
+    format!("{}{}{}", &BASE[..at], to, &BASE[at + from.len()..])
+}
+
+/// Apply a textual edit to the bundled paper case, expect an error containing every `needle`.
+fn refused(from: &str, to: &str, needles: &[&str]) {
+    let text = edit(from, to);
+    let err = parse(&text)
+        .expect_err(&format!("`{to}` must be refused"))
+        .to_string();
+    for n in needles {
+        assert!(err.contains(n), "message for `{to}` lacks `{n}`: {err}");
+    }
+    assert!(
+        err.starts_with("case.toml:"),
+        "message must start with the file: {err}"
+    );
+}
+
+#[test]
+fn bundled_examples_parse() {
+    for f in ["paper-a.toml", "paper-b.toml", "paper-c.toml"] {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(f);
+        let sc = Scenario::from_file(&p).unwrap_or_else(|e| panic!("{f}: {e}"));
+        assert_eq!(sc.structures[0].modes, 3);
+        assert_eq!(sc.contact.levels.len(), 1);
+        assert_eq!(
+            sc.contact.levels[0].height, 10.0,
+            "height defaults to min(L1, L2)"
+        );
+    }
+}
+
+#[test]
+fn parsed_values_are_si() {
+    let sc = parse(BASE).unwrap();
+    assert_eq!(sc.structures[0].length, 10.0);
+    assert_eq!(sc.structures[0].mass, 2.273e6);
+    assert_eq!(sc.contact.levels[0].gap, 0.0127);
+    // PGA in g → m/s² with standard gravity
+    assert!((sc.ground_motion.pga() - 0.6 * 9.80665).abs() < 1e-12);
+    assert_eq!(sc.solver.dt, 0.001);
+    assert_eq!(sc.output_interval, 0.01);
+    // integers are accepted where floats are expected
+    let sc = parse(&edit("length = 10.0", "length = 10")).unwrap();
+    assert_eq!(sc.structures[0].length, 10.0);
+}
+
+#[test]
+fn unknown_keys_are_named_with_a_suggestion() {
+    refused(
+        "period = 0.4203",
+        "perod = 0.4203",
+        &[
+            "unknown key `perod`",
+            "[[structure]]",
+            "did you mean `period`?",
+            ":18:",
+        ],
+    );
+    refused(
+        "stiffness = 2.808e10",
+        "stifness = 2.808e10",
+        &["`stifness`", "[contact]", "did you mean `stiffness`?"],
+    );
+    refused(
+        "[solver]",
+        "[solvr]",
+        &["`solvr`", "did you mean `solver`?"],
+    );
+    refused(
+        "dt = 0.001",
+        "dt = 0.001\nsteps = 5",
+        &["unknown key `steps`", "[solver]", "valid keys"],
+    );
+}
+
+#[test]
+fn missing_keys_are_named() {
+    refused(
+        "length = 10.0\n",
+        "",
+        &["missing key `structure[1].length`"],
+    );
+    refused("mass = 2.273e6\n", "", &["missing key `structure[1].mass`"]);
+    refused(
+        "modes = 3\n",
+        "",
+        &["missing key `structure[1].modes`", "1 to 500"],
+    );
+    refused(
+        "period = 0.4203\n",
+        "",
+        &[
+            "`structure[1].period`",
+            "bending_stiffness",
+            "tip_stiffness",
+        ],
+    );
+    refused(
+        "damping_ratio = 0.01\n",
+        "",
+        &["structure[1].damping_ratio"],
+    );
+    refused("gap = 0.0127\n", "", &["missing key `contact.gap`"]);
+    refused(
+        "stiffness = 2.808e10\n",
+        "",
+        &["missing key `contact.stiffness`"],
+    );
+    refused("pga = 0.6\n", "", &["missing key `ground_motion.pga`"]);
+    refused("duration = 20.0\n", "", &["missing key `solver.duration`"]);
+}
+
+#[test]
+fn out_of_range_values_are_refused_with_the_range() {
+    refused(
+        "mass = 2.273e6",
+        "mass = -5.0",
+        &["`structure[1].mass` = -5", "> 0", "kg"],
+    );
+    refused(
+        "mass = 2.273e6",
+        "mass = 0.0",
+        &["structure[1].mass", "> 0"],
+    );
+    refused(
+        "length = 10.0",
+        "length = -1.0",
+        &["structure[1].length", "> 0", "m"],
+    );
+    refused(
+        "period = 0.4203",
+        "period = 0.0",
+        &["structure[1].period", "> 0", "s"],
+    );
+    refused(
+        "period = 0.4203",
+        "bending_stiffness = -1e9",
+        &["structure[1].bending_stiffness", "> 0"],
+    );
+    refused(
+        "period = 0.4203",
+        "tip_stiffness = 0.0",
+        &["structure[1].tip_stiffness", "> 0"],
+    );
+    refused(
+        "period = 0.4203",
+        "period = 0.4203\ntip_stiffness = 1e9",
+        &["exactly one of"],
+    );
+    refused(
+        "modes = 3",
+        "modes = 0",
+        &["structure[1].modes", "1 to 500"],
+    );
+    refused(
+        "modes = 3",
+        "modes = 501",
+        &["structure[1].modes", "1 to 500"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = 1.5",
+        &["damping_ratio", "[0, 1)"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = [0.01, 0.02]",
+        &["damping_ratio", "exactly 3"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "damping_ratio = 0.01\nair_damping = 10.0",
+        &["not both"],
+    );
+    refused(
+        "damping_ratio = 0.01",
+        "air_damping = -3.0",
+        &["air_damping", "≥ 0"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = -0.01",
+        &["`contact.gap` = -0.01", "≥ 0"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = 0.0127\nheight = 11.0",
+        &["contact.height", "(0, 10]"],
+    );
+    refused(
+        "gap = 0.0127",
+        "gap = 0.0127\nheight = 0.0",
+        &["contact.height", "(0, 10]"],
+    );
+    refused(
+        "stiffness = 2.808e10",
+        "stiffness = 0.0",
+        &["contact.stiffness", "> 0"],
+    );
+    refused(
+        "law = \"hertz\"",
+        "law = \"hurtz\"",
+        &["contact.law", "\"hertz\""],
+    );
+    refused(
+        "law = \"hertz\"",
+        "law = \"hertz\"\nrestitution = 0.5",
+        &["contact.restitution", "no restitution"],
+    );
+    refused(
+        "pga = 0.6",
+        "pga = -0.6",
+        &["ground_motion.pga", "> 0", "g"],
+    );
+    refused(
+        "kind = \"harmonic\"",
+        "kind = \"harmonik\"",
+        &["ground_motion.kind", "\"record\""],
+    );
+    refused("dt = 0.001", "dt = 0.0", &["`solver.dt` = 0", "> 0"]);
+    refused("dt = 0.001", "dt = -0.001", &["solver.dt", "> 0"]);
+    refused(
+        "dt = 0.001",
+        "dt = 30.0",
+        &["solver.dt", "smaller than solver.duration"],
+    );
+    refused(
+        "output_interval = 0.01",
+        "output_interval = 0.0",
+        &["solver.output_interval"],
+    );
+    refused("method = \"rk4\"", "method = \"euler\"", &["solver.method"]);
+    refused(
+        "[[structure]]\nname = \"structure 2\"",
+        "[[structur]]\nname = \"structure 2\"",
+        &["unknown key `structur`"],
+    );
+}
+
+#[test]
+fn non_finite_numbers_are_refused() {
+    refused(
+        "pga = 0.6",
+        "pga = nan",
+        &["ground_motion.pga", "NaN", "finite"],
+    );
+    refused(
+        "mass = 2.273e6",
+        "mass = inf",
+        &["structure[1].mass", "finite"],
+    );
+    refused("gap = 0.0127", "gap = +inf", &["contact.gap", "finite"]);
+    refused(
+        "duration = 20.0",
+        "duration = nan",
+        &["solver.duration", "finite"],
+    );
+}
+
+#[test]
+fn type_errors_name_the_key() {
+    refused("mass = 2.273e6", "mass = \"heavy\"", &["`mass`", ":17:"]);
+    refused("modes = 3", "modes = 3.5", &["`modes`"]);
+}
+
+#[test]
+fn rk4_step_beyond_stability_gives_the_largest_stable_step() {
+    // mode 3 of structure 1: ω₃ = (7.8548/1.8751)² · 2π/0.4203 = 262.32 rad/s; with ζ = 0.01 the
+    // limit is a little above 2√2/ω₃ = 0.010782 s.
+    let text = edit("dt = 0.001", "dt = 0.02");
+    let err = parse(&text).unwrap_err().to_string();
+    assert!(
+        err.contains("solver.dt") && err.contains("stability"),
+        "{err}"
+    );
+    let largest: f64 = err
+        .split("largest stable dt for this scenario is ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no largest dt in: {err}"));
+    let w3 =
+        (7.854757438237613f64 / 1.875104068711961).powi(2) * 2.0 * std::f64::consts::PI / 0.4203;
+    assert!(
+        largest > 2.0 * 2f64.sqrt() / w3 && largest < 1.01 * 2.0 * 2f64.sqrt() / w3,
+        "{largest}"
+    );
+    // and a step just inside it is accepted
+    let ok = edit("dt = 0.001", &format!("dt = {}", 0.999 * largest));
+    parse(&ok).unwrap();
+}
+
+#[test]
+fn structure_count_must_be_two() {
+    let one = BASE
+        .split("[[structure]]\nname = \"structure 2\"")
+        .next()
+        .unwrap()
+        .to_string()
+        + &BASE[BASE.find("[contact]").unwrap()..];
+    let err = parse(&one).unwrap_err().to_string();
+    assert!(err.contains("exactly two"), "{err}");
+}
+
+#[test]
+fn contact_levels() {
+    let multi = BASE.replacen(
+        "gap = 0.0127\n",
+        "[[contact.level]]\nheight = 10.0\ngap = 0.0127\n[[contact.level]]\nheight = 6.0\ngap = 0.02\n",
+        1,
+    );
+    let sc = parse(&multi).unwrap();
+    assert_eq!(sc.contact.levels.len(), 2);
+    assert_eq!(sc.contact.levels[1].height, 6.0);
+    let both = BASE.replacen(
+        "gap = 0.0127\n",
+        "gap = 0.0127\n[[contact.level]]\nheight = 10.0\ngap = 0.0127\n",
+        1,
+    );
+    assert!(
+        parse(&both)
+            .unwrap_err()
+            .to_string()
+            .contains("in each level")
+    );
+    let dup = BASE.replacen(
+        "gap = 0.0127\n",
+        "[[contact.level]]\nheight = 10.0\ngap = 0.0127\n[[contact.level]]\nheight = 10.0\ngap = 0.02\n",
+        1,
+    );
+    assert!(parse(&dup).unwrap_err().to_string().contains("same height"));
+}
+
+#[test]
+fn garbage_never_panics() {
+    // a tiny LCG mutating the base text: no input may panic
+    let mut seed: u64 = 0x2545F4914F6CDD1D;
+    let bytes = BASE.as_bytes();
+    for _ in 0..2000 {
+        let mut b = bytes.to_vec();
+        for _ in 0..4 {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let i = (seed >> 33) as usize % b.len();
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let table = b"=[]\"0.-e\n#x9 ";
+            b[i] = table[(seed >> 40) as usize % table.len()];
+        }
+        if let Ok(text) = String::from_utf8(b) {
+            let _ = parse(&text);
+        }
+    }
+}
