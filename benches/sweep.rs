@@ -1,7 +1,7 @@
 //! Sweep throughput, and the speedup from 1 to 2 threads.
 //!
-//! CI-sized: 24 cases of the paper's case c (3 modes per structure, harmonic motion, RK4 with
-//! dt = 0.001 s) over 4 s each, run through the whole sweep machinery (case building and
+//! CI-sized: 48 cases of the paper's case c (3 modes per structure, harmonic motion, RK4 with
+//! dt = 0.001 s) over 5 s each, run through the whole sweep machinery (case building and
 //! validation, both simulations, journal, results table). Throughput is reported in cases/s;
 //! the speedup is the ratio of the two times. The full-size figure (10 000 cases of 20 s) is
 //! measured with `pounding sweep examples/bench-10k.toml` (see README, "Parameter sweeps").
@@ -14,11 +14,11 @@ use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_mai
 use pounding::sweep::run::{RunOptions, Silent, run};
 use pounding::sweep::{Shard, Sweep};
 
-const CASES: usize = 24;
+const CASES: usize = 48;
 
 fn setup(dir: &Path) -> Sweep {
     let base =
-        include_str!("../examples/paper-c.toml").replace("duration = 20.0", "duration = 4.0");
+        include_str!("../examples/paper-c.toml").replace("duration = 20.0", "duration = 5.0");
     std::fs::write(dir.join("base.toml"), base).unwrap();
     let sweep = format!(
         "scenario = \"base.toml\"\n[[axis]]\nkey = \"period_ratio\"\nfrom = 0.3\nto = 1.0\nsteps = {}\n\

@@ -122,10 +122,20 @@ fn show_value(key: &str, v: &str) -> String {
     s
 }
 
+/// An axis key as written in file names.
+fn file_key(key: &str) -> String {
+    match key {
+        "period_ratio" => "T1T2".into(),
+        "ground_period_ratio" => "T2Tg".into(),
+        "ground_motion.pga" => "PGA".into(),
+        k => sanitize(k),
+    }
+}
+
 fn sanitize(s: &str) -> String {
     s.chars()
         .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '=' {
                 c
             } else {
                 '_'
@@ -184,12 +194,12 @@ fn slice_text(table: &Table, other: &[usize], s: &[String]) -> (String, String) 
         .iter()
         .zip(s)
         .map(|(&j, v)| {
-            let v = show_value(&table.axes[j], v);
-            format!(
-                "_{}-{}",
-                sanitize(&axis_name_short(&table.axes[j])),
-                sanitize(&v)
-            )
+            let v = if table.axes[j] == "ground_motion.file" {
+                show_value(&table.axes[j], v)
+            } else {
+                v.clone()
+            };
+            format!("_{}={}", file_key(&table.axes[j]), sanitize(&v))
         })
         .collect::<String>();
     (title, stem)
@@ -302,9 +312,9 @@ pub fn plot_table(
                 };
                 let (xl, yl) = (axis_label(&table.axes[x]), axis_label(&table.axes[y]));
                 let stem = out_dir.join(format!(
-                    "heatmap_{field}_{}_{}{sstem}",
-                    sanitize(&axis_name_short(&table.axes[x])),
-                    sanitize(&axis_name_short(&table.axes[y]))
+                    "heatmap_{field}_{}-{}{sstem}",
+                    file_key(&table.axes[x]),
+                    file_key(&table.axes[y])
                 ));
                 let h = Heatmap {
                     title: &title,
@@ -422,7 +432,7 @@ pub fn plot_table(
             };
             let stem = out_dir.join(format!(
                 "lines_{}{sstem}{}",
-                sanitize(&axis_name_short(&table.axes[x])),
+                file_key(&table.axes[x]),
                 if fields.len() == 1 {
                     format!("_{}", fields[0])
                 } else {

@@ -316,7 +316,7 @@ fn shards_merge_into_the_full_table() {
         s(&plots),
     ]));
     assert!(out.contains("wrote 1 pictures"), "{out}");
-    assert!(plots.join("heatmap_peak_force_T1_T2_PGA.png").exists());
+    assert!(plots.join("heatmap_peak_force_T1T2-PGA.png").exists());
 }
 
 #[test]
