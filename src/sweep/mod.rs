@@ -641,6 +641,11 @@ impl Sweep {
         for j in idx {
             self.apply(&mut t, &self.axes[j], values[j])?;
         }
+        let title = match self.base.get("title").and_then(Value::as_str) {
+            Some(base) => format!("{base} — sweep case {case}: {}", self.label(case)),
+            None => format!("Sweep case {case}: {}", self.label(case)),
+        };
+        t.insert("title".into(), Value::String(title));
         toml::to_string(&t).map_err(|e| format!("cannot encode the case as TOML: {e}"))
     }
 
@@ -871,6 +876,7 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
                 ));
             }
             let mut out = Vec::new();
+            let mut seen = std::collections::HashSet::new();
             for v in list.get_ref() {
                 let at = Some(v.span().start);
                 let value = match (v.get_ref(), kind) {
@@ -913,7 +919,7 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
                     }
                 };
                 check_value(ctx, at, &name("values"), &value, ratio)?;
-                if out.contains(&value) {
+                if !seen.insert(value.to_csv()) {
                     return Err(ctx.invalid(
                         at,
                         &name("values"),
@@ -1006,7 +1012,8 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
                     AxisValue::Number(x)
                 };
                 check_value(ctx, Some(from.span().start), &name("from"), &value, ratio)?;
-                if out.contains(&value) {
+                // generated values are monotonic: a repeat can only be the previous value
+                if out.last() == Some(&value) {
                     return Err(ctx.invalid(
                         Some(steps.span().start),
                         &name("steps"),
@@ -1347,6 +1354,29 @@ mod tests {
                 "case {i}"
             );
         }
+    }
+
+    #[test]
+    fn integer_and_replacing_keys() {
+        let s = sweep(
+            "[[axis]]\nkey = \"structure.2.modes\"\nfrom = 1\nto = 5\nsteps = 3\n\
+             [[axis]]\nkey = \"structure[2].tip_stiffness\"\nvalues = [3e8]\n\
+             [[axis]]\nkey = \"structure.1.strain_rate_damping\"\nvalues = [0.001]\n",
+        )
+        .unwrap();
+        assert_eq!(s.axes[0].values[1], AxisValue::Integer(3));
+        assert_eq!(s.axes[1].key, "structure.2.tip_stiffness");
+        let sc = s.case_scenario(2).unwrap();
+        assert_eq!(sc.structures[1].modes, 5);
+        assert_eq!(sc.structures[1].stiffness, Stiffness::Tip(3e8));
+        assert!(matches!(
+            sc.structures[0].damping,
+            Damping::Physical { strain_rate, air } if strain_rate == 0.001 && air == 0.0
+        ));
+        let e = sweep("[[axis]]\nkey = \"structure.2.modes\"\nvalues = [2.5]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("whole numbers"), "{e}");
     }
 
     #[test]
