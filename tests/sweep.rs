@@ -422,3 +422,25 @@ fn mistakes_are_reported_with_file_key_and_range() {
     let out = pounding(&["sweep", s(&sweep), "--shard", "4/3"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("1 ≤ K ≤ N"));
 }
+
+#[test]
+fn example_sweeps_are_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    for (name, cases) in [
+        ("quick-sweep.toml", 21),
+        ("paper-study.toml", 4551),
+        ("bench-10k.toml", 10_000),
+        ("record-sweep.toml", 36),
+    ] {
+        let s = pounding::sweep::Sweep::from_file(&dir.join(name)).unwrap();
+        assert_eq!(s.len(), cases, "{name}");
+        for c in [0, cases / 2, cases - 1] {
+            s.case_scenario(c)
+                .unwrap_or_else(|e| panic!("{name} case {c}: {e}"));
+        }
+    }
+    // a scenario given where a sweep is expected
+    let out = pounding(&["sweep", s(&dir.join("paper-c.toml"))]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("looks like a scenario file"));
+}

@@ -475,9 +475,18 @@ impl Sweep {
     pub fn from_toml(text: &str, path: &Path) -> Result<Sweep, SweepError> {
         let file = path.display().to_string();
         let ctx = Ctx { text, file: &file };
-        let raw: RawSweep = toml::from_str(text).map_err(|e| SweepError::Syntax {
-            at: ctx.at(e.span().map(|s| s.start)),
-            message: e.message().trim().to_string(),
+        let raw: RawSweep = toml::from_str(text).map_err(|e| {
+            let mut message = e.message().trim().to_string();
+            if message.starts_with("unknown field") && text.contains("[[structure]]") {
+                message.push_str(
+                    " — this looks like a scenario file: `pounding run` runs it; a sweep file names one \
+                     with `scenario = \"…\"` and adds [[axis]] tables",
+                );
+            }
+            SweepError::Syntax {
+                at: ctx.at(e.span().map(|s| s.start)),
+                message,
+            }
         })?;
         let sweep_dir = path
             .parent()
