@@ -499,6 +499,16 @@ fn run_sweep(
         );
         println!("wrote {}", o.results.display());
     }
+    if let Some((c, w)) = &o.first_warning {
+        eprintln!(
+            "warning: {} of the {} cases computed now ran with warnings; the first, case {c} ({}): {w}\n\
+             (see it with: pounding sweep {} --case {c} > case.toml && pounding run case.toml)",
+            o.warned,
+            o.computed,
+            sweep.label(*c),
+            path.display()
+        );
+    }
     if let Some((c, status)) = &o.first_failure {
         eprintln!(
             "warning: {} of {} cases failed; the first, case {c} ({}): {status}",

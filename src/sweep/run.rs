@@ -41,6 +41,10 @@ pub struct RunOutcome {
     pub first_failure: Option<(usize, String)>,
     /// Journal lines dropped as torn or damaged (their cases were recomputed).
     pub dropped: usize,
+    /// Cases computed now whose run gave a warning (e.g. stiff contact for the step).
+    pub warned: usize,
+    /// The lowest such case and its first warning.
+    pub first_warning: Option<(usize, String)>,
     /// Wall-clock time of the computation, s.
     pub seconds: f64,
 }
@@ -169,12 +173,25 @@ impl Progress for StderrProgress {
     }
 }
 
-/// Compute one case: its row and whether it failed. A panic in the library is caught and
-/// recorded as a failure, so that one bad case cannot stop a sweep.
-pub fn compute_case(sweep: &Sweep, case: usize) -> (String, bool) {
+/// One computed case.
+#[derive(Debug, Clone)]
+pub struct CaseResult {
+    /// The results row (without line break).
+    pub line: String,
+    /// Did the case fail?
+    pub failed: bool,
+    /// The run's first warning (inaccurate contact resolution, energy drift), if any.
+    pub warning: Option<String>,
+}
+
+/// Compute one case. A panic in the library is caught and recorded as a failure, so that one
+/// bad case cannot stop a sweep.
+pub fn compute_case(sweep: &Sweep, case: usize) -> CaseResult {
+    let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
         let report = simulate(&sc).map_err(|e| e.to_string())?;
+        warning = report.warnings.first().cloned();
         Ok(results::report_fields(&report))
     }))
     .unwrap_or_else(|p| {
@@ -185,8 +202,11 @@ pub fn compute_case(sweep: &Sweep, case: usize) -> (String, bool) {
             .unwrap_or_default();
         Err(format!("internal error (please report): {msg}"))
     });
-    let failed = outcome.is_err();
-    (results::row(sweep, case, &outcome), failed)
+    CaseResult {
+        line: results::row(sweep, case, &outcome),
+        failed: outcome.is_err(),
+        warning,
+    }
 }
 
 /// Run (or resume) part `opts.shard` of `sweep` into `opts.out_dir`.
@@ -240,8 +260,10 @@ pub fn run(
     progress.start(pending.len(), resumed);
     let stop = AtomicBool::new(false);
     let mut write_error = None;
+    let mut warned = 0;
+    let mut first_warning: Option<(usize, String)> = None;
     std::thread::scope(|s| {
-        let (tx, rx) = mpsc::sync_channel::<(usize, String, bool)>(4096);
+        let (tx, rx) = mpsc::sync_channel::<(usize, CaseResult)>(4096);
         let stop = &stop;
         let pending = &pending;
         let pool = &pool;
@@ -251,17 +273,23 @@ pub fn run(
                     if stop.load(Ordering::Relaxed) {
                         return;
                     }
-                    let (line, failed) = compute_case(sweep, case);
-                    if tx.send((case, line, failed)).is_err() {
+                    let r = compute_case(sweep, case);
+                    if tx.send((case, r)).is_err() {
                         stop.store(true, Ordering::Relaxed);
                     }
                 });
             });
         });
-        for (case, line, failed) in rx {
+        for (case, r) in rx {
+            if let Some(w) = r.warning {
+                warned += 1;
+                if first_warning.as_ref().is_none_or(|(c, _)| case < *c) {
+                    first_warning = Some((case, w));
+                }
+            }
             if write_error.is_none() {
-                match journal.append(case, line, failed) {
-                    Ok(()) => progress.advance(failed),
+                match journal.append(case, r.line, r.failed) {
+                    Ok(()) => progress.advance(r.failed),
                     Err(e) => {
                         write_error = Some(e);
                         stop.store(true, Ordering::Relaxed);
@@ -301,6 +329,8 @@ pub fn run(
         failed,
         first_failure,
         dropped: journal.dropped,
+        warned,
+        first_warning,
         seconds,
     })
 }
