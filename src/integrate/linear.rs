@@ -660,15 +660,21 @@ mod tests {
         }
     }
 
-    /// Huge ωh and huge damping: finite, and → 0.
+    /// Huge ωh and huge damping: finite, and → 0; a hugely overdamped mode creeps with its
+    /// slow eigenvalue λ₁ = −ω/(ζ + √(ζ²−1)) ≈ −ω/(2ζ).
     #[test]
     fn propagator_never_overflows() {
-        for &(omega, zeta, h) in &[(1e7, 0.01, 10.0), (1e7, 1e4, 10.0), (1e3, 1e6, 1.0)] {
+        for &(omega, zeta, h) in &[(1e7, 0.01, 10.0), (1e7, 1e4, 10.0), (1e5, 3.0, 1.0)] {
             let p = propagator(omega, 2.0 * zeta * omega, h);
             for x in [p.p11, p.p12, p.p21, p.p22] {
                 assert!(x.is_finite() && x.abs() < 1e-3, "{p:?}");
             }
         }
+        let (omega, zeta, h) = (1e3, 1e6, 1.0);
+        let p = propagator(omega, 2.0 * zeta * omega, h);
+        let l1 = -omega / (zeta + (zeta * zeta - 1.0f64).sqrt());
+        assert!(close(p.p11, (l1 * h).exp(), 1e-9), "{p:?}");
+        assert!(p.p22.abs() < 1e-6 && p.p12.is_finite() && p.p21.is_finite());
     }
 
     /// Influence vectors: series and closed form agree where both are valid, and the closed form
