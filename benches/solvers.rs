@@ -59,16 +59,36 @@ fn cases() -> Vec<Case> {
         })
     };
     add("default/rk4 dt=1ms", scenario("rk4", 0.001, 3), 3);
-    add("default/exact-modal dt=1ms", scenario("exact-modal", 0.001, 3), 3);
-    add("default/exact-modal dt=5ms", scenario("exact-modal", 0.005, 3), 3);
+    add(
+        "default/exact-modal dt=1ms",
+        scenario("exact-modal", 0.001, 3),
+        3,
+    );
+    add(
+        "default/exact-modal dt=5ms",
+        scenario("exact-modal", 0.005, 3),
+        3,
+    );
     add("default/adaptive", scenario("adaptive", 0.001, 3), 3);
     add("default/adaptive dt=10ms", scenario("adaptive", 0.01, 3), 3);
     for modes in [50, 200] {
-        add(&format!("{modes} modes/exact-modal dt=1ms"), scenario("exact-modal", 0.001, modes), modes);
-        add(&format!("{modes} modes/adaptive"), scenario("adaptive", 0.001, modes), modes);
+        add(
+            &format!("{modes} modes/exact-modal dt=1ms"),
+            scenario("exact-modal", 0.001, modes),
+            modes,
+        );
+        add(
+            &format!("{modes} modes/adaptive"),
+            scenario("adaptive", 0.001, modes),
+            modes,
+        );
     }
     add("record/rk4 dt=1ms", recorded("rk4", 0.001), 3);
-    add("record/exact-modal dt=1ms", recorded("exact-modal", 0.001), 3);
+    add(
+        "record/exact-modal dt=1ms",
+        recorded("exact-modal", 0.001),
+        3,
+    );
     add("record/adaptive", recorded("adaptive", 0.001), 3);
     v
 }

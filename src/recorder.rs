@@ -313,9 +313,17 @@ impl Observer for Recorder {
             if refine {
                 let [a1, a1d, a2, a2d] = self.prev_w[k];
                 let up = |y0: f64, d0: f64, y1: f64, d1: f64| hermite_max(y0, d0, y1, d1, h).0;
-                l.peak_w1 = l.peak_w1.max(up(a1, a1d, w1, w1d)).max(up(-a1, -a1d, -w1, -w1d));
-                l.peak_w2 = l.peak_w2.max(up(a2, a2d, w2, w2d)).max(up(-a2, -a2d, -w2, -w2d));
-                l.max_closing = l.max_closing.max(up(a1 - a2, a1d - a2d, w1 - w2, w1d - w2d));
+                l.peak_w1 = l
+                    .peak_w1
+                    .max(up(a1, a1d, w1, w1d))
+                    .max(up(-a1, -a1d, -w1, -w1d));
+                l.peak_w2 = l
+                    .peak_w2
+                    .max(up(a2, a2d, w2, w2d))
+                    .max(up(-a2, -a2d, -w2, -w2d));
+                l.max_closing = l
+                    .max_closing
+                    .max(up(a1 - a2, a1d - a2d, w1 - w2, w1d - w2d));
             }
             self.prev_w[k] = [w1, w1d, w2, w2d];
             if k == self.main {

@@ -1,137 +1,214 @@
-//! `adaptive`: Dormand–Prince 5(4) in the interaction picture (a Lawson Runge–Kutta method).
+//! `adaptive`: exponential Lobatto collocation with error control and event location.
 //!
 //! Each mode's linear dynamics and the ground load are propagated exactly (see
-//! [`super::linear`]): the free flight `Φ(τ)y` is exact for any τ. The Runge–Kutta pair only
-//! integrates the contact coupling: with `N(y) = (0, Σ_k c_k F_k)` the stages are
+//! [`super::linear`]). Over a step of length h the contact force of every level is represented
+//! by the cubic through its values at the four Gauss–Lobatto nodes θ = 0, (1 ∓ 1/√5)/2, 1; the
+//! modal response to a cubic load is exact (precomputed influence of the loads (τ/h)^m, m ≤ 3,
+//! per mode and step size), so the penetrations at the nodes are an affine function of the nodal
+//! forces through small level×level matrices. The nodal forces are found by fixed-point
+//! iteration on the contact law (cost independent of the number of modes); the end state then
+//! costs one pass over the modes. This is collocation at Lobatto nodes (order 6 at step ends for
+//! smooth forces), exact without contact, and — unlike explicit Runge–Kutta or Lawson methods —
+//! its step is not limited by the highest mode: a mode far stiffer than the contact responds to
+//! the polynomial load exactly (quasi-statically), so the step is set by the contact alone and
+//! the cost grows linearly with the number of modes.
 //!
-//! `Y_i = Φ(c_i h) y_n + h Σ_{j<i} a_ij P((c_i − c_j)h) N(Y_j)`,
+//! Error control: the contact force's cubic component (its shifted-Legendre P₃ part) is what a
+//! quadratic load would miss; the end-state response to it is the error estimate of the
+//! lower-order solution (local extrapolation), in the max norm over every modal coordinate
+//! scaled by `atol_j + rtol·|y_j|` (atol per structure from the user's metres, see
+//! [`super::SolverSettings::atol`]); step sizes are quantised to `dt·2^(−k/4)` so the tables
+//! are computed once per size.
 //!
-//! so a step without contact forces has zero error and is as long as allowed (`dt`, the largest
-//! step), for any number of modes: the step size is set by the contact, not by the highest
-//! mode. Error control: the embedded 4th-order solution's difference, in the max norm over every
-//! modal coordinate scaled by `atol_j + rtol·|y_j|` (atol per structure from the user's metres,
-//! see [`super::SolverSettings::atol`]), Hairer's PI controller; step sizes are quantised to
-//! `dt·2^(−k/4)` so that the stage propagators are computed once per size and reused.
+//! Events: when a level's penetration δ changes sign inside an accepted step, the step is
+//! replaced by one ending where δ = 0 (cubic Hermite estimate from the nodes, then secant /
+//! Illinois on the step length until |δ| ≤ 1e-12 m), so no step straddles the kink of the contact
+//! law and an observation falls on every onset and release.
 //!
-//! Events: when a level's penetration δ changes sign over an accepted step, the step is
-//! replaced by one that ends where δ = 0 (root of δ at the end of a step of length s, found by
-//! the Illinois method starting from the cubic Hermite estimate; |δ| ≤ 1e-12 m), so no step
-//! straddles the kink of the contact law, and the observation falls on the event.
-//!
-//! Tallies: over steps without contact forces the exact work and dissipation of
-//! [`super::linear::mode_work`]; over steps with contact the stage powers combined with the
-//! 5th-order weights.
+//! Tallies: without contact forces, exact (see [`super::linear::mode_work`]); with contact,
+//! 4-point Lobatto quadrature (exact for degree-5 integrands) of the powers at the nodes.
 //!
 //! Steps split at the samples of a recorded motion.
 
-use super::linear::{GroundModes, Piece, Prop, hermite_max, mode_work, propagator};
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::{
+    GroundModes, Piece, Prop, TrigMoments, hermite, hermite_max, mode_work, propagator,
+};
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
 };
 use crate::system::{LevelState, System, dot};
 
-const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
-const A: [[f64; 6]; 7] = [
-    [0.0; 6],
-    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-    ],
-];
-const B: [f64; 7] = [
-    35.0 / 384.0,
-    0.0,
-    500.0 / 1113.0,
-    125.0 / 192.0,
-    -2187.0 / 6784.0,
-    11.0 / 84.0,
-    0.0,
-];
-const BHAT: [f64; 7] = [
-    5179.0 / 57600.0,
-    0.0,
-    7571.0 / 16695.0,
-    393.0 / 640.0,
-    -92097.0 / 339200.0,
-    187.0 / 2100.0,
-    1.0 / 40.0,
-];
 /// Event tolerance on δ, m.
 const EVENT_TOL: f64 = 1e-12;
 /// Quantisation of step sizes: h = dt·2^(−k/QUANT).
 const QUANT: f64 = 4.0;
 const MAX_K: usize = 240;
+/// Gauss–Lobatto weights on [0, 1] for the nodes below.
+const WEIGHTS: [f64; 4] = [1.0 / 12.0, 5.0 / 12.0, 5.0 / 12.0, 1.0 / 12.0];
 
-/// The distinct stage fractions c_i − c_j (j < i) and the index of each pair.
-struct Fractions {
-    values: Vec<f64>,
-    index: [[usize; 7]; 7],
+fn nodes() -> [f64; 4] {
+    let r = 1.0 / 5f64.sqrt();
+    [0.0, 0.5 * (1.0 - r), 0.5 * (1.0 + r), 1.0]
 }
 
-impl Fractions {
-    fn new() -> Fractions {
-        let mut values: Vec<f64> = Vec::new();
-        let mut index = [[0; 7]; 7];
-        for i in 1..7 {
-            for j in 0..i {
-                let f = C[i] - C[j];
-                let k = match values.iter().position(|&x| (x - f).abs() < 1e-15) {
-                    Some(k) => k,
-                    None => {
-                        values.push(f);
-                        values.len() - 1
-                    }
-                };
-                index[i][j] = k;
+/// Inverse of the Vandermonde matrix V_im = θ_i^m of the nodes: a = V⁻¹ F.
+fn vandermonde_inverse() -> [[f64; 4]; 4] {
+    let th = nodes();
+    let mut a = [[0.0; 8]; 4];
+    for i in 0..4 {
+        for m in 0..4 {
+            a[i][m] = th[i].powi(m as i32);
+        }
+        a[i][4 + i] = 1.0;
+    }
+    // Gauss–Jordan with partial pivoting (4×4, well conditioned)
+    for col in 0..4 {
+        let p = (col..4)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap_or(col);
+        a.swap(col, p);
+        let d = a[col][col];
+        for x in a[col].iter_mut() {
+            *x /= d;
+        }
+        for r in 0..4 {
+            if r != col {
+                let f = a[r][col];
+                let row = a[col];
+                for (x, y) in a[r].iter_mut().zip(row) {
+                    *x -= f * y;
+                }
             }
         }
-        Fractions { values, index }
     }
-}
-
-/// Propagators of every mode for every stage fraction of one step size: `[f·n + j]`.
-fn stage_props(sys: &System, fr: &Fractions, h: f64, out: &mut Vec<Prop>) {
-    let (omega, damp) = (sys.omega(), sys.damping_coefficients());
-    let n = sys.len();
-    out.clear();
-    for &f in &fr.values {
-        for j in 0..n {
-            out.push(propagator(omega[j], damp[j], f * h));
+    let mut inv = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            inv[i][j] = a[i][4 + j];
         }
     }
+    inv
 }
 
-/// Result of one Lawson step (into the work arrays).
-#[derive(Debug, Clone, Copy)]
-struct Trial {
-    err: f64,
-    /// Weighted stage powers: input, damping, contact (already × h).
-    input: f64,
-    damping: f64,
-    contact: f64,
+/// Exact response (η, η̇) at time s from rest of one mode under the loads (τ/h)^m, m = 0..3.
+fn monomial_influence(omega: f64, damp: f64, s: f64, h: f64, p: &Prop) -> [(f64, f64); 4] {
+    let w2 = omega * omega;
+    let mut out = [(0.0, 0.0); 4];
+    if s == 0.0 {
+        return out;
+    }
+    if s * (omega + damp) < 1.0 {
+        // Σ_r (m!/h^m) s^{r+m+1}/(r+m+1)! A^r e₂
+        for (m, o) in out.iter_mut().enumerate() {
+            let mut fact = 1.0; // m!/h^m · s^{m+1}/(m+1)!
+            for q in 1..=m {
+                fact *= q as f64 / h;
+            }
+            let mut c = fact;
+            for q in 1..=(m + 1) {
+                c *= s / q as f64;
+            }
+            let (mut x, mut y) = (0.0, 1.0);
+            let mut acc = (0.0, 0.0);
+            for r in 0..60 {
+                acc.0 += c * x;
+                acc.1 += c * y;
+                c *= s / (r + m + 2) as f64;
+                let (nx, ny) = (y, -w2 * x - damp * y);
+                x = nx;
+                y = ny;
+                if c * (x.abs() + y.abs()) < 1e-17 * (acc.0.abs() * w2.max(1.0) + acc.1.abs()) {
+                    break;
+                }
+            }
+            *o = acc;
+        }
+    } else {
+        for (m, o) in out.iter_mut().enumerate() {
+            // particular polynomial Σ u_r τ^r of the load τ^m/h^m
+            let mut u = [0.0; 6];
+            let cm = 1.0 / h.powi(m as i32);
+            for r in (0..=m).rev() {
+                let c = if r == m { cm } else { 0.0 };
+                u[r] =
+                    (c - damp * (r + 1) as f64 * u[r + 1] - ((r + 2) * (r + 1)) as f64 * u[r + 2])
+                        / w2;
+            }
+            let (mut e, mut d) = (0.0, 0.0);
+            for r in (0..=m).rev() {
+                e = e * s + u[r];
+            }
+            for r in (1..=m).rev() {
+                d = d * s + r as f64 * u[r];
+            }
+            let (a, b) = p.apply(u[0], u[1]);
+            *o = (e - a, d - b);
+        }
+    }
+    out
+}
+
+/// Everything that depends on the step length only.
+struct Table {
+    h: f64,
+    /// P(θ_i h) for nodes 1..3: `[(i−1)·n + j]`.
+    props: Vec<Prop>,
+    /// Influence of (τ/h)^m at node i = 1..3: `[((i−1)·4 + m)·n + j]`.
+    gam: Vec<(f64, f64)>,
+    /// `Σ_j c_kj c_lj Γ_{j,i,m}`: `[((k·L + l)·3 + (i−1))·4 + m]`.
+    mm: Vec<(f64, f64)>,
+}
+
+impl Table {
+    fn new() -> Table {
+        Table {
+            h: f64::NAN,
+            props: Vec::new(),
+            gam: Vec::new(),
+            mm: Vec::new(),
+        }
+    }
+
+    fn fill(&mut self, sys: &System, h: f64) {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let n = sys.len();
+        let nl = sys.levels.len();
+        let th = nodes();
+        self.h = h;
+        self.props.clear();
+        self.gam.clear();
+        self.gam.resize(12 * n, (0.0, 0.0));
+        for (i, &t) in th.iter().enumerate().skip(1) {
+            for j in 0..n {
+                let p = propagator(omega[j], damp[j], t * h);
+                self.props.push(p);
+                let g = monomial_influence(omega[j], damp[j], t * h, h, &p);
+                for (m, gm) in g.iter().enumerate() {
+                    self.gam[((i - 1) * 4 + m) * n + j] = *gm;
+                }
+            }
+        }
+        self.mm.clear();
+        self.mm.resize(nl * nl * 12, (0.0, 0.0));
+        for k in 0..nl {
+            for l in 0..nl {
+                let (ck, cl) = (sys.coupling(k), sys.coupling(l));
+                for im in 0..12 {
+                    let g = &self.gam[im * n..(im + 1) * n];
+                    let mut s = (0.0, 0.0);
+                    for j in 0..n {
+                        let w = ck[j] * cl[j];
+                        s.0 += w * g[j].0;
+                        s.1 += w * g[j].1;
+                    }
+                    self.mm[(k * nl + l) * 12 + im] = s;
+                }
+            }
+        }
+    }
 }
 
 struct Work {
@@ -141,36 +218,50 @@ struct Work {
     v: Vec<f64>,
     qn: Vec<f64>,
     vn: Vec<f64>,
-    /// Ground particular at the step start.
-    p0: Vec<(f64, f64)>,
+    /// Free-flight velocities at nodes 1 and 2.
+    vf: [Vec<f64>; 2],
     cpoly: Vec<[f64; 3]>,
-    /// Stage contact loads g_l[j] (7·n) and forces F_lk (7·nl).
-    g: Vec<f64>,
-    f: Vec<f64>,
-    /// Per-level impulse weights of the trial.
-    imp: Vec<f64>,
+    /// Free-flight δ, δ̇ at nodes 1..3 per level: `[k·3 + i − 1]`.
+    dfree: Vec<(f64, f64)>,
+    /// Nodal forces `[k·4 + i]`, their cubic's coefficients `[k·4 + m]`, and the nodal δ, δ̇.
+    fnode: Vec<f64>,
+    coef: Vec<f64>,
+    dnode: Vec<(f64, f64)>,
     aq: Vec<f64>,
     av: Vec<f64>,
-    dots: Vec<(f64, f64)>,
+    vinv: [[f64; 4]; 4],
+}
+
+/// Outcome of one trial step.
+#[derive(Debug, Clone, Copy)]
+struct Trial {
+    err: f64,
+    /// Contact forces were zero throughout: the step is exact.
+    free: bool,
+    input: f64,
+    damping: f64,
+    contact: f64,
 }
 
 #[allow(clippy::too_many_arguments)]
-fn lawson(
+fn step(
     sys: &System,
     gm: &GroundModes,
-    fr: &Fractions,
-    props: &[Prop],
+    tab: &Table,
     w: &mut Work,
     onset: &[f64],
-    f_start: &[LevelState],
+    start: &[LevelState],
     t: f64,
-    h: f64,
     piece: &Piece,
     rtol: f64,
+    imp: &mut [f64],
 ) -> Trial {
     let (n, nl) = (w.n, w.nl);
-    let tr0 = gm.trig(t);
+    let h = tab.h;
+    let th = nodes();
+    let trs = th.map(|x| gm.trig(t + x * h));
     let poly = matches!(piece, Piece::Poly { .. });
+    w.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
     for j in 0..n {
         let c = if poly {
             gm.poly_load(j, piece, t)
@@ -178,131 +269,175 @@ fn lawson(
             [0.0; 3]
         };
         w.cpoly[j] = c;
-        w.p0[j] = gm.particular(j, piece, &c, 0.0, &tr0);
-    }
-    // stage 1: the start state (FSAL forces)
-    for k in 0..nl {
-        w.f[k] = f_start[k].force;
-    }
-    fill_g(sys, w, 0);
-    let damp = sys.damping_coefficients();
-    let mut pw = [[0.0; 3]; 7];
-    {
-        let (ag, vg) = sys.ground.accel_velocity(t);
-        let (mut pi, mut pd) = (0.0, 0.0);
-        let (la, lv) = (sys.ground_load(), sys.air_load());
-        for j in 0..n {
-            pi += (la[j] * ag + lv[j] * vg) * w.v[j];
-            pd += damp[j] * w.v[j] * w.v[j];
-        }
-        let mut pc = 0.0;
-        for k in 0..nl {
-            pc += f_start[k].force * f_start[k].delta_dot;
-        }
-        pw[0] = [pi, pd, pc];
-    }
-    for s in 1..7 {
-        let ts = t + C[s] * h;
-        let tr = gm.trig(ts);
-        let tau = C[s] * h;
-        let ff = fr.index[s][0];
-        let (mut pi, mut pd) = (0.0, 0.0);
-        for d in w.dots.iter_mut() {
-            *d = (0.0, 0.0);
-        }
-        for j in 0..n {
-            let p = &props[ff * n + j];
-            let (e0, d0) = w.p0[j];
-            let (x0, y0) = p.apply(w.q[j] - e0, w.v[j] - d0);
-            let (e1, d1) = gm.particular(j, piece, &w.cpoly[j], tau, &tr);
-            let (mut x, mut y) = (x0 + e1, y0 + d1);
-            for l in 0..s {
-                let a = A[s][l];
-                let gl = w.g[l * n + j];
-                if a != 0.0 && gl != 0.0 {
-                    let pl = &props[fr.index[s][l] * n + j];
-                    let coef = h * a * gl;
-                    x += pl.p12 * coef;
-                    y += pl.p22 * coef;
-                }
-            }
+        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &trs[0]);
+        let (x0, y0) = (w.q[j] - e0, w.v[j] - d0);
+        for i in 1..4 {
+            let (e, d) = gm.particular(j, piece, &c, th[i] * h, &trs[i]);
+            let (x, y) = tab.props[(i - 1) * n + j].apply(x0, y0);
+            let (x, y) = (x + e, y + d);
             for k in 0..nl {
-                let c = sys.coupling(k)[j];
-                w.dots[k].0 += c * x;
-                w.dots[k].1 += c * y;
+                let ck = sys.coupling(k)[j];
+                w.dfree[k * 3 + i - 1].0 -= ck * x;
+                w.dfree[k * 3 + i - 1].1 -= ck * y;
             }
-            pi += gm.load(j, piece, &w.cpoly[j], tau, &tr) * y;
-            pd += damp[j] * y * y;
-            if s == 6 {
+            if i == 3 {
                 w.qn[j] = x;
                 w.vn[j] = y;
+            } else {
+                w.vf[i - 1][j] = y;
             }
         }
-        let mut pc = 0.0;
+    }
+    for (k, lv) in sys.levels.iter().enumerate() {
+        for i in 0..3 {
+            w.dfree[k * 3 + i].0 -= lv.gap;
+        }
+    }
+    // no contact force at the start, and the free flight stays clear (nodes, and the cubic
+    // Hermite between consecutive nodes): the free flight is the exact answer
+    let clear = start.iter().all(|s| s.force == 0.0 && s.delta <= 0.0)
+        && (0..nl).all(|k| {
+            let mut prev = (start[k].delta, start[k].delta_dot, 0.0);
+            (0..3).all(|i| {
+                let (d, dd) = w.dfree[k * 3 + i];
+                let (m, _) = hermite_max(prev.0, prev.1, d, dd, (th[i + 1] - prev.2) * h);
+                prev = (d, dd, th[i + 1]);
+                m < 0.0
+            })
+        });
+    if clear {
+        imp.iter_mut().for_each(|x| *x = 0.0);
+        return Trial {
+            err: 0.0,
+            free: true,
+            input: 0.0,
+            damping: 0.0,
+            contact: 0.0,
+        };
+    }
+    // fixed point on the nodal forces
+    for k in 0..nl {
+        for i in 0..4 {
+            w.fnode[k * 4 + i] = start[k].force;
+        }
+        w.dnode[k * 4] = (start[k].delta, start[k].delta_dot);
+    }
+    let mut converged = false;
+    for _ in 0..80 {
+        for k in 0..nl {
+            for m in 0..4 {
+                w.coef[k * 4 + m] = (0..4).map(|i| w.vinv[m][i] * w.fnode[k * 4 + i]).sum();
+            }
+        }
+        let mut change: f64 = 0.0;
+        let mut scale: f64 = 0.0;
         for (k, lv) in sys.levels.iter().enumerate() {
-            let delta = -w.dots[k].0 - lv.gap;
-            let dd = -w.dots[k].1;
-            let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
-            let f = lv.force.force(delta, dd, v0);
-            w.f[s * nl + k] = f;
-            pc += f * dd;
-        }
-        fill_g(sys, w, s);
-        pw[s] = [pi, pd, pc];
-    }
-    // error of the embedded pair: h Σ (b − b̂)_l P((1 − c_l)h) N_l, max norm
-    let mut err: f64 = 0.0;
-    let any = w.g.iter().any(|&x| x != 0.0);
-    if any {
-        for j in 0..n {
-            let (mut eq, mut ev) = (0.0, 0.0);
-            for l in 0..7 {
-                let e = B[l] - BHAT[l];
-                let gl = w.g[l * n + j];
-                if e != 0.0 && gl != 0.0 {
-                    let p = if l == 6 {
-                        Prop::IDENTITY
-                    } else {
-                        props[fr.index[6][l] * n + j]
-                    };
-                    eq += e * p.p12 * gl;
-                    ev += e * p.p22 * gl;
+            for i in 1..4 {
+                let (mut d, mut dd) = w.dfree[k * 3 + i - 1];
+                for l in 0..nl {
+                    let base = (k * nl + l) * 12 + (i - 1) * 4;
+                    for m in 0..4 {
+                        let a = w.coef[l * 4 + m];
+                        d -= a * tab.mm[base + m].0;
+                        dd -= a * tab.mm[base + m].1;
+                    }
                 }
+                w.dnode[k * 4 + i] = (d, dd);
+                let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+                let f = lv.force.force(d, dd, v0);
+                let old = w.fnode[k * 4 + i];
+                change = change.max((f - old).abs());
+                scale = scale.max(f.abs()).max(old.abs());
+                w.fnode[k * 4 + i] = f;
             }
-            let sq = w.aq[j] + rtol * w.q[j].abs().max(w.qn[j].abs());
-            let sv = w.av[j] + rtol * w.v[j].abs().max(w.vn[j].abs());
-            err = err.max((h * eq).abs() / sq).max((h * ev).abs() / sv);
+        }
+        if change <= 1e-14 * scale || !change.is_finite() {
+            converged = change.is_finite();
+            break;
         }
     }
-    let mut t_out = Trial {
+    if !converged {
+        return Trial {
+            err: f64::INFINITY,
+            free: false,
+            input: 0.0,
+            damping: 0.0,
+            contact: 0.0,
+        };
+    }
+    for k in 0..nl {
+        for m in 0..4 {
+            w.coef[k * 4 + m] = (0..4).map(|i| w.vinv[m][i] * w.fnode[k * 4 + i]).sum();
+        }
+    }
+    // end state, error estimate, nodal powers
+    let damp = sys.damping_coefficients();
+    let mut pw = [[0.0; 2]; 4];
+    let mut err: f64 = 0.0;
+    for j in 0..n {
+        // contact load of mode j as a cubic in θ: Σ_l c_lj a_lm
+        let mut g = [0.0; 4];
+        for l in 0..nl {
+            let c = sys.coupling(l)[j];
+            for (m, gm_) in g.iter_mut().enumerate() {
+                *gm_ += c * w.coef[l * 4 + m];
+            }
+        }
+        // error: response to the P₃ component (a₃/20)(20θ³ − 30θ² + 12θ − 1)
+        let e3 = g[3] / 20.0;
+        let pe = [-e3, 12.0 * e3, -30.0 * e3, 20.0 * e3];
+        let (mut x, mut y) = (w.qn[j], w.vn[j]);
+        let (mut ex, mut ey) = (0.0, 0.0);
+        for m in 0..4 {
+            let gam = tab.gam[(8 + m) * n + j];
+            x += g[m] * gam.0;
+            y += g[m] * gam.1;
+            ex += pe[m] * gam.0;
+            ey += pe[m] * gam.1;
+        }
+        // velocities at the interior nodes for the quadrature
+        for i in 1..3 {
+            let mut vi = w.vf[i - 1][j];
+            for m in 0..4 {
+                vi += g[m] * tab.gam[((i - 1) * 4 + m) * n + j].1;
+            }
+            let tau = th[i] * h;
+            pw[i][0] += gm.load(j, piece, &w.cpoly[j], tau, &trs[i]) * vi;
+            pw[i][1] += damp[j] * vi * vi;
+        }
+        pw[0][0] += gm.load(j, piece, &w.cpoly[j], 0.0, &trs[0]) * w.v[j];
+        pw[0][1] += damp[j] * w.v[j] * w.v[j];
+        pw[3][0] += gm.load(j, piece, &w.cpoly[j], h, &trs[3]) * y;
+        pw[3][1] += damp[j] * y * y;
+        let sq = w.aq[j] + rtol * w.q[j].abs().max(x.abs());
+        let sv = w.av[j] + rtol * w.v[j].abs().max(y.abs());
+        let e = (ex.abs() / sq).max(ey.abs() / sv);
+        w.qn[j] = x;
+        w.vn[j] = y;
+        if e.is_nan() {
+            err = f64::INFINITY;
+        } else if e > err {
+            err = e;
+        }
+    }
+    let mut tr = Trial {
         err,
+        free: false,
         input: 0.0,
         damping: 0.0,
         contact: 0.0,
     };
-    for l in 0..7 {
-        t_out.input += h * B[l] * pw[l][0];
-        t_out.damping += h * B[l] * pw[l][1];
-        t_out.contact += h * B[l] * pw[l][2];
-    }
-    for k in 0..nl {
-        w.imp[k] = (0..7).map(|l| h * B[l] * w.f[l * nl + k]).sum();
-    }
-    t_out
-}
-
-fn fill_g(sys: &System, w: &mut Work, s: usize) {
-    let (n, nl) = (w.n, w.nl);
-    let g = &mut w.g[s * n..(s + 1) * n];
-    g.iter_mut().for_each(|x| *x = 0.0);
-    for k in 0..nl {
-        let f = w.f[s * nl + k];
-        if f != 0.0 {
-            for (gj, c) in g.iter_mut().zip(sys.coupling(k)) {
-                *gj += c * f;
-            }
+    for i in 0..4 {
+        tr.input += h * WEIGHTS[i] * pw[i][0];
+        tr.damping += h * WEIGHTS[i] * pw[i][1];
+        for k in 0..nl {
+            tr.contact += h * WEIGHTS[i] * w.fnode[k * 4 + i] * w.dnode[k * 4 + i].1;
         }
     }
+    for k in 0..nl {
+        imp[k] = (0..4).map(|i| h * WEIGHTS[i] * w.fnode[k * 4 + i]).sum();
+    }
+    tr
 }
 
 pub(super) fn run<O: Observer>(
@@ -314,7 +449,6 @@ pub(super) fn run<O: Observer>(
     let n = sys.len();
     let nl = sys.levels.len();
     let gm = GroundModes::new(sys);
-    let fr = Fractions::new();
     let pick = |x: &Vec<f64>| {
         if x.len() == n {
             x.clone()
@@ -342,18 +476,20 @@ pub(super) fn run<O: Observer>(
         v: pick(&initial.v),
         qn: vec![0.0; n],
         vn: vec![0.0; n],
-        p0: vec![(0.0, 0.0); n],
+        vf: [vec![0.0; n], vec![0.0; n]],
         cpoly: vec![[0.0; 3]; n],
-        g: vec![0.0; 7 * n],
-        f: vec![0.0; 7 * nl],
-        imp: vec![0.0; nl],
+        dfree: vec![(0.0, 0.0); 3 * nl],
+        fnode: vec![0.0; 4 * nl],
+        coef: vec![0.0; 4 * nl],
+        dnode: vec![(0.0, 0.0); 4 * nl],
         aq,
         av,
-        dots: vec![(0.0, 0.0); nl],
+        vinv: vandermonde_inverse(),
     };
     let mut states = vec![LevelState::default(); nl];
     let mut prev_states = states.clone();
     let mut onset = vec![0.0; nl];
+    let mut imp = vec![0.0; nl];
     let mut tally = Tally {
         impulse: vec![0.0; nl],
         ..Tally::default()
@@ -389,111 +525,85 @@ pub(super) fn run<O: Observer>(
     let duration = settings.duration;
     let hmax = settings.dt;
     let rtol = settings.rtol;
-    let mut cache: Vec<Option<Vec<Prop>>> = (0..=MAX_K).map(|_| None).collect();
-    let mut scratch: Vec<Prop> = Vec::with_capacity(fr.values.len() * n);
-    let mut scratch_h = f64::NAN;
-    let mut k_step: usize = 0; // proposed h = hmax·2^(−k/4)
+    let mut cache: Vec<Option<Table>> = (0..=MAX_K).map(|_| None).collect();
+    let mut scratch = Table::new();
+    let mut k_step: usize = 0;
     let mut err_old: f64 = 1e-4;
-    let mut t = 0.0;
     let mut rejected_last = false;
+    let mut t = 0.0;
     while t < duration {
         let (piece, piece_end) = gm.piece_at(t);
         let limit = piece_end.min(duration) - t;
         let hq = hmax * (-(k_step as f64) / QUANT).exp2();
-        // clip at a breakpoint (snap when within a hair)
         let (h, quantised) = if hq >= limit * (1.0 - 1e-9) {
             (limit, false)
         } else {
             (hq, true)
         };
-        let props: &[Prop] = if quantised {
-            if cache[k_step].is_none() {
-                let mut v = Vec::with_capacity(fr.values.len() * n);
-                stage_props(sys, &fr, h, &mut v);
-                cache[k_step] = Some(v);
-            }
-            cache[k_step].as_deref().unwrap_or(&[])
+        let tab: &Table = if quantised {
+            cache[k_step].get_or_insert_with(|| {
+                let mut tb = Table::new();
+                tb.fill(sys, h);
+                tb
+            })
         } else {
-            if scratch_h != h {
-                stage_props(sys, &fr, h, &mut scratch);
-                scratch_h = h;
+            if scratch.h != h {
+                scratch.fill(sys, h);
             }
             &scratch
         };
-        // a step without contact forces (now, at the end, or on the cubic between) is exact
-        let free = if nl == 0 {
-            free_step(&gm, &fr, props, &mut w, t, h, &piece);
-            true
-        } else {
-            free_step_possible(sys, &gm, &fr, props, &mut w, &states, t, h, &piece)
-        };
-        let (trial, h_taken) = if free {
-            free_step(&gm, &fr, props, &mut w, t, h, &piece);
-            (
-                Trial {
-                    err: 0.0,
-                    input: f64::NAN,
-                    damping: 0.0,
-                    contact: 0.0,
-                },
+        let mut tr = step(
+            sys, &gm, tab, &mut w, &onset, &states, t, &piece, rtol, &mut imp,
+        );
+        stats.evaluations += 1;
+        if tr.err.is_nan() || tr.err > 1.0 {
+            stats.rejected += 1;
+            let fac = if tr.err.is_finite() {
+                (0.9 * tr.err.powf(-0.25)).clamp(0.2, 0.9)
+            } else {
+                0.3
+            };
+            k_step = quantise_down(hq * fac, hmax).max(k_step + 1);
+            rejected_last = true;
+            if k_step >= MAX_K {
+                return Err(SolveError::Diverged {
+                    t,
+                    contact_omega_dt: stats.max_contact_omega_dt,
+                });
+            }
+            continue;
+        }
+        let mut h_taken = h;
+        // a sign change of δ inside the step: end the step at the event instead
+        if !tr.free
+            && let Some((k, s_guess)) = first_crossing(&states, &w, nl)
+        {
+            let (tr2, s) = locate_event(
+                sys,
+                &gm,
+                &mut scratch,
+                &mut w,
+                &onset,
+                &states,
+                t,
                 h,
-            )
-        } else {
-            let tr = lawson(
-                sys, &gm, &fr, props, &mut w, &onset, &states, t, h, &piece, rtol,
+                &piece,
+                rtol,
+                k,
+                s_guess,
+                &mut imp,
+                &mut stats,
             );
-            stats.evaluations += 6;
-            if tr.err > 1.0 || !tr.err.is_finite() {
-                // reject: shrink, and do not grow on the next try
-                stats.rejected += 1;
-                let fac = if tr.err.is_finite() {
-                    (0.9 * tr.err.powf(-0.2)).clamp(0.2, 0.9)
-                } else {
-                    0.2
-                };
-                k_step = quantise_down(hq * fac, hmax).max(k_step + 1).min(MAX_K);
-                rejected_last = true;
-                if k_step == MAX_K && !tr.err.is_finite() {
-                    return Err(SolveError::Diverged {
-                        t,
-                        contact_omega_dt: stats.max_contact_omega_dt,
-                    });
-                }
-                continue;
-            }
-            // a sign change of δ over the step: end the step at the event instead
-            match first_crossing(sys, &states, &w) {
-                Some((k, s_guess)) => {
-                    let (tr2, s) = locate_event(
-                        sys,
-                        &gm,
-                        &fr,
-                        &mut w,
-                        &onset,
-                        &states,
-                        t,
-                        h,
-                        &piece,
-                        rtol,
-                        k,
-                        s_guess,
-                        &mut scratch,
-                        &mut scratch_h,
-                        &mut stats,
-                    );
-                    stats.events += 1;
-                    (tr2, s)
-                }
-                None => (tr, h),
-            }
-        };
+            tr = tr2;
+            h_taken = s;
+            stats.events += 1;
+        }
         // accept
-        if trial.input.is_nan() {
-            // exact tallies of a step without contact
+        if tr.free {
             let tm = match piece {
                 Piece::Harmonic => gm
                     .harmonic_omega()
-                    .map(|big| super::linear::TrigMoments::new(big, t, h_taken)),
+                    .map(|big| TrigMoments::new(big, t, h_taken)),
                 _ => None,
             };
             let (mut input, mut damping) = (0.0, 0.0);
@@ -519,11 +629,11 @@ pub(super) fn run<O: Observer>(
             tally.input += input;
             tally.damping += damping;
         } else {
-            tally.input += trial.input;
-            tally.damping += trial.damping;
-            tally.contact += trial.contact;
+            tally.input += tr.input;
+            tally.damping += tr.damping;
+            tally.contact += tr.contact;
             for k in 0..nl {
-                tally.impulse[k] += w.imp[k];
+                tally.impulse[k] += imp[k];
             }
         }
         std::mem::swap(&mut w.q, &mut w.qn);
@@ -559,18 +669,17 @@ pub(super) fn run<O: Observer>(
                 tally: &tally,
             },
         );
-        // next step size (PI controller, Hairer & Wanner II.4)
-        let err = trial.err.max(1e-10);
-        let mut fac = 0.9 * err.powf(-0.17) * err_old.powf(0.04);
-        fac = fac.clamp(0.2, 5.0);
-        if rejected_last {
-            fac = fac.min(1.0);
-        }
-        err_old = err.max(1e-4);
-        rejected_last = false;
-        if quantised || h_taken == hq {
+        // next step size (PI controller, Hairer & Wanner II.4, for the order-4 estimate)
+        if h_taken == h && quantised {
+            let err = tr.err.max(1e-10);
+            let mut fac = (0.9 * err.powf(-0.7 / 4.0) * err_old.powf(0.4 / 4.0)).clamp(0.2, 5.0);
+            if rejected_last {
+                fac = fac.min(1.0);
+            }
+            err_old = err.max(1e-4);
             k_step = quantise_down(hq * fac, hmax);
         }
+        rejected_last = false;
     }
     Ok(stats)
 }
@@ -582,136 +691,80 @@ fn quantise_down(h: f64, hmax: f64) -> usize {
     }
     let k = (QUANT * (hmax / h).log2()).ceil();
     if k.is_finite() {
-        (k as usize).min(MAX_K)
+        (k.max(0.0) as usize).min(MAX_K)
     } else {
         MAX_K
     }
 }
 
-/// Free flight over h into (qn, vn).
-fn free_step(
-    gm: &GroundModes,
-    fr: &Fractions,
-    props: &[Prop],
-    w: &mut Work,
-    t: f64,
-    h: f64,
-    piece: &Piece,
-) {
-    let n = w.n;
-    let ff = fr.index[6][0];
-    let (tr0, tr1) = (gm.trig(t), gm.trig(t + h));
-    let poly = matches!(piece, Piece::Poly { .. });
-    for j in 0..n {
-        let c = if poly {
-            gm.poly_load(j, piece, t)
-        } else {
-            [0.0; 3]
-        };
-        w.cpoly[j] = c;
-        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr0);
-        let (e1, d1) = gm.particular(j, piece, &c, h, &tr1);
-        let (x, y) = props[ff * n + j].apply(w.q[j] - e0, w.v[j] - d0);
-        w.qn[j] = x + e1;
-        w.vn[j] = y + d1;
-    }
-}
-
-/// True if no level is in contact at the start and the free flight keeps every δ negative
-/// (ends and cubic Hermite maximum); then (qn, vn) holds the free flight.
-#[allow(clippy::too_many_arguments)]
-fn free_step_possible(
-    sys: &System,
-    gm: &GroundModes,
-    fr: &Fractions,
-    props: &[Prop],
-    w: &mut Work,
-    states: &[LevelState],
-    t: f64,
-    h: f64,
-    piece: &Piece,
-) -> bool {
-    if states.iter().any(|s| s.force != 0.0 || s.delta > 0.0) {
-        return false;
-    }
-    free_step(gm, fr, props, w, t, h, piece);
-    for (k, lv) in sys.levels.iter().enumerate() {
-        let c = sys.coupling(k);
-        let d1 = -dot(c, &w.qn) - lv.gap;
-        let dd1 = -dot(c, &w.vn);
-        let (m, _) = hermite_max(states[k].delta, states[k].delta_dot, d1, dd1, h);
-        if m >= 0.0 {
-            return false;
-        }
-    }
-    true
-}
-
-/// The level whose δ changes sign first over the step (start: `states`, end: (qn, vn)) and the
-/// fraction of the step where the cubic Hermite of δ crosses 0.
-fn first_crossing(sys: &System, states: &[LevelState], w: &Work) -> Option<(usize, f64)> {
+/// The level whose δ changes sign first inside the step (nodes of the last trial), and the
+/// fraction of the step where the cubic Hermite between the bracketing nodes crosses 0.
+fn first_crossing(start: &[LevelState], w: &Work, nl: usize) -> Option<(usize, f64)> {
+    let th = nodes();
     let mut best: Option<(usize, f64)> = None;
-    for (k, lv) in sys.levels.iter().enumerate() {
-        let c = sys.coupling(k);
-        let d0 = states[k].delta;
-        let d1 = -dot(c, &w.qn) - lv.gap;
-        let crossing = (d0 < -EVENT_TOL && d1 > 0.0) || (d0 > EVENT_TOL && d1 <= 0.0);
-        if !crossing {
+    for k in 0..nl {
+        let d0 = start[k].delta;
+        if d0.abs() <= EVENT_TOL {
             continue;
         }
-        let dd0 = states[k].delta_dot;
-        let dd1 = -dot(c, &w.vn);
-        // root of the Hermite cubic by bisection on θ (bracket [0, 1])
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            let y = super::linear::hermite(d0, dd0, d1, dd1, 1.0, mid);
-            if (y > 0.0) == (d0 > 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
+        let mut prev = (d0, start[k].delta_dot);
+        for i in 1..4 {
+            let cur = w.dnode[k * 4 + i];
+            let crossing = (prev.0 < 0.0 && cur.0 > 0.0) || (prev.0 > 0.0 && cur.0 <= 0.0);
+            if crossing {
+                let span = th[i] - th[i - 1];
+                let (mut lo, mut hi) = (0.0, 1.0);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    let y = hermite(prev.0, prev.1 * span, cur.0, cur.1 * span, 1.0, mid);
+                    if (y > 0.0) == (prev.0 > 0.0) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let theta = th[i - 1] + span * 0.5 * (lo + hi);
+                if best.is_none_or(|b| theta < b.1) {
+                    best = Some((k, theta));
+                }
+                break;
             }
-        }
-        let th = 0.5 * (lo + hi);
-        if best.is_none_or(|b| th < b.1) {
-            best = Some((k, th));
+            prev = cur;
         }
     }
     best
 }
 
-/// Find s ∈ (0, h) with δ_k = 0 at the end of a Lawson step of length s (Illinois), and leave
-/// that step's result in (qn, vn). Returns the trial and s.
+/// Find s ∈ (0, h) with δ_k = 0 at the end of a step of length s (secant/Illinois on s from the
+/// Hermite estimate), leaving that step's result in the work arrays.
 #[allow(clippy::too_many_arguments)]
 fn locate_event(
     sys: &System,
     gm: &GroundModes,
-    fr: &Fractions,
+    scratch: &mut Table,
     w: &mut Work,
     onset: &[f64],
-    states: &[LevelState],
+    start: &[LevelState],
     t: f64,
     h: f64,
     piece: &Piece,
     rtol: f64,
     k: usize,
     theta: f64,
-    scratch: &mut Vec<Prop>,
-    scratch_h: &mut f64,
+    imp: &mut [f64],
     stats: &mut Stats,
 ) -> (Trial, f64) {
     let lv = &sys.levels[k];
     let d_at = |w: &Work| -dot(sys.coupling(k), &w.qn) - lv.gap;
-    let (mut a, mut fa) = (0.0, states[k].delta);
-    let (mut b, mut fb) = (h, d_at(w));
-    let mut s = (theta * h).clamp(1e-6 * h, h * (1.0 - 1e-6));
+    let (mut a, mut fa) = (0.0, start[k].delta);
+    let (mut b, mut fb) = (h, w.dnode[k * 4 + 3].0);
+    let mut s = (theta * h).clamp(1e-9 * h, h);
     let mut side = 0;
     let mut last = None;
     for _ in 0..40 {
-        stage_props(sys, fr, s, scratch);
-        *scratch_h = s;
-        let tr = lawson(sys, gm, fr, scratch, w, onset, states, t, s, piece, rtol);
-        stats.evaluations += 6;
+        scratch.fill(sys, s);
+        let tr = step(sys, gm, scratch, w, onset, start, t, piece, rtol, imp);
+        stats.evaluations += 1;
         let fs = d_at(w);
         last = Some((tr, s));
         if fs.abs() <= EVENT_TOL || (b - a) <= 1e-15 * (t + h) {
@@ -732,7 +785,11 @@ fn locate_event(
             }
             side = 1;
         }
-        s = (a * fb - b * fa) / (fb - fa);
+        s = if side == 0 || fb == fa {
+            0.5 * (a + b)
+        } else {
+            (a * fb - b * fa) / (fb - fa)
+        };
         if !(s > a && s < b) {
             s = 0.5 * (a + b);
         }
@@ -740,6 +797,7 @@ fn locate_event(
     last.unwrap_or((
         Trial {
             err: 0.0,
+            free: true,
             input: 0.0,
             damping: 0.0,
             contact: 0.0,

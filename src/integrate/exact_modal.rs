@@ -25,6 +25,9 @@
 //! the error of the contact scheme (the mismatch between the linearly interpolated load and the
 //! law along the computed motion).
 
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 use super::linear::{
     GroundModes, Influence, Piece, TrigMoments, hermite_max, influence, mode_work,
 };

@@ -16,6 +16,9 @@
 //!   from moments of η obtained from the equation of motion itself), so that the tallies of
 //!   [`super::Tally`] need no quadrature of fast oscillations.
 
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 use std::sync::Arc;
 
 use crate::ground_motion::{GroundMotion, Record};
