@@ -223,7 +223,13 @@ fn record_ramp_matches_closed_form() {
 /// The paper's case T1/T2 = 0.7 (SPEC §4 interpretation) over `duration` with `modes` modes.
 fn paper_system(modes: usize) -> System {
     let s1 = structure(10.0, 2.273e6, 0.4203, modes, Damping::Modal(vec![0.01]));
-    let s2 = structure(10.0, 2.273e6, 0.4203 / 0.7, modes, Damping::Modal(vec![0.01]));
+    let s2 = structure(
+        10.0,
+        2.273e6,
+        0.4203 / 0.7,
+        modes,
+        Damping::Modal(vec![0.01]),
+    );
     System::new(
         [s1.modal(), s2.modal()],
         &ContactLaw::Hertz {
@@ -366,7 +372,11 @@ fn energy_balance_is_small_at_default_tolerances() {
     let free = sys.without_contact();
     for method in [Method::Adaptive, Method::ExactModal] {
         let (r, _) = run(&free, &settings(method, 1e-3, 10.0));
-        assert!(r.energy.relative_error < 1e-10, "{method:?}: {:?}", r.energy);
+        assert!(
+            r.energy.relative_error < 1e-10,
+            "{method:?}: {:?}",
+            r.energy
+        );
     }
     // with no damping and no ground motion, exact-modal conserves modal + contact energy
     let s = structure(10.0, 2.273e6, 0.4203, 3, Damping::Modal(vec![0.0]));
@@ -380,7 +390,14 @@ fn energy_balance_is_small_at_default_tolerances() {
         GroundMotion::None,
     );
     let init = InitialState {
-        q: vec![-0.3 / sys.structures[0].shape(0, 10.0), 0.0, 0.0, 0.0, 0.0, 0.0],
+        q: vec![
+            -0.3 / sys.structures[0].shape(0, 10.0),
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
         v: vec![0.0; 6],
     };
     for method in [Method::Adaptive, Method::ExactModal] {
