@@ -311,19 +311,23 @@ impl Observer for Recorder {
             l.peak_w2 = l.peak_w2.max(w2.abs());
             l.max_closing = l.max_closing.max(w1 - w2);
             if refine {
+                // an interior extremum needs the slope to change sign (cheap test first)
                 let [a1, a1d, a2, a2d] = self.prev_w[k];
-                let up = |y0: f64, d0: f64, y1: f64, d1: f64| hermite_max(y0, d0, y1, d1, h).0;
-                l.peak_w1 = l
-                    .peak_w1
-                    .max(up(a1, a1d, w1, w1d))
-                    .max(up(-a1, -a1d, -w1, -w1d));
-                l.peak_w2 = l
-                    .peak_w2
-                    .max(up(a2, a2d, w2, w2d))
-                    .max(up(-a2, -a2d, -w2, -w2d));
-                l.max_closing = l
-                    .max_closing
-                    .max(up(a1 - a2, a1d - a2d, w1 - w2, w1d - w2d));
+                let ext = |y0: f64, d0: f64, y1: f64, d1: f64| {
+                    if d0 * d1 > 0.0 {
+                        0.0
+                    } else if d0 > 0.0 || d1 < 0.0 {
+                        hermite_max(y0, d0, y1, d1, h).0.abs()
+                    } else {
+                        hermite_max(-y0, -d0, -y1, -d1, h).0.abs()
+                    }
+                };
+                l.peak_w1 = l.peak_w1.max(ext(a1, a1d, w1, w1d));
+                l.peak_w2 = l.peak_w2.max(ext(a2, a2d, w2, w2d));
+                let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);
+                if c0d >= 0.0 && c1d <= 0.0 {
+                    l.max_closing = l.max_closing.max(hermite_max(c0, c0d, c1, c1d, h).0);
+                }
             }
             self.prev_w[k] = [w1, w1d, w2, w2d];
             if k == self.main {

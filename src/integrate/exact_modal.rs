@@ -33,7 +33,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{
-    GroundModes, Influence, Piece, TrigMoments, hermite_max, influence, mode_work,
+    GroundModes, Influence, Piece, Trig, TrigMoments, hermite_max, influence, mode_work,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -127,6 +127,10 @@ struct Run<'a, O: Observer> {
     prev_states: Vec<LevelState>,
     onset: Vec<f64>,
     fpred: Vec<f64>,
+    /// Harmonic motion: sin, cos at the last step end, and of Ωh/2 for the last h.
+    trig_end: Trig,
+    trig_start: Trig,
+    half: (f64, f64, f64),
     tally: Tally,
     stats: Stats,
 }
@@ -160,6 +164,13 @@ pub(super) fn run<O: Observer>(
         prev_states: vec![LevelState::default(); nl],
         onset: vec![0.0; nl],
         fpred: vec![0.0; nl],
+        trig_end: Trig {
+            t: f64::NAN,
+            s: 0.0,
+            c: 0.0,
+        },
+        trig_start: Trig::default(),
+        half: (f64::NAN, 0.0, 0.0),
         tally: Tally {
             impulse: vec![0.0; nl],
             ..Tally::default()
@@ -233,7 +244,12 @@ impl<O: Observer> Run<'_, O> {
     fn free_flight(&mut self, t0: f64, h: f64, piece: &Piece, idx: usize) {
         let gm = &self.gm;
         let data = &self.cache.entries[idx];
-        let (tr0, tr1) = (gm.trig(t0), gm.trig(t0 + h));
+        let tr0 = if self.trig_end.t == t0 {
+            self.trig_end
+        } else {
+            gm.trig(t0)
+        };
+        let tr1 = gm.trig(t0 + h);
         let poly = matches!(piece, Piece::Poly { .. });
         for j in 0..self.q.len() {
             let c = if poly {
@@ -339,11 +355,22 @@ impl<O: Observer> Run<'_, O> {
         let any_force =
             contact && (0..nl).any(|k| self.states[k].force != 0.0 || self.fpred[k] != 0.0);
         // state update and exact tallies, mode by mode
+        // (free_flight has just computed sin, cos at t0 + h into trig_end)
         let tm = match piece {
-            Piece::Harmonic => self
-                .gm
-                .harmonic_omega()
-                .map(|big| TrigMoments::new(big, t0, h)),
+            Piece::Harmonic => self.gm.harmonic_omega().map(|big| {
+                if self.half.0 != h {
+                    let (s, c) = (0.5 * big * h).sin_cos();
+                    self.half = (h, s, c);
+                }
+                let (tr0, tr1) = (self.trig_start, self.trig_end);
+                TrigMoments::from_ends(
+                    big,
+                    h,
+                    (tr0.s, tr0.c),
+                    (tr1.s, tr1.c),
+                    (self.half.1, self.half.2),
+                )
+            }),
             _ => None,
         };
         let n = self.q.len();

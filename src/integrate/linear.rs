@@ -179,14 +179,22 @@ pub struct GroundModes {
     g_im: Vec<f64>,
     resonant: Vec<bool>,
     record: Option<Arc<Record>>,
+    /// 1/ω², s².
+    inv_w2: Vec<f64>,
+    /// Harmonic load coefficients α, β (load = α sin Ωt + β cos Ωt), ω² − Ω², 2ζωΩ and
+    /// 1/((ω² − Ω²)² + (2ζωΩ)²) (0 at undamped resonance).
+    hcoef: Vec<[f64; 5]>,
 }
 
 /// Trigonometric values of the harmonic motion at one instant.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Trig {
-    t: f64,
-    s: f64,
-    c: f64,
+    /// Time, s.
+    pub t: f64,
+    /// sin Ωt.
+    pub s: f64,
+    /// cos Ωt.
+    pub c: f64,
 }
 
 impl GroundModes {
@@ -227,7 +235,26 @@ impl GroundModes {
                 }
             }
         }
+        let inv_w2: Vec<f64> = w2.iter().map(|x| 1.0 / x).collect();
+        let hcoef = (0..n)
+            .map(|j| match harmonic {
+                Some((big, pga)) => {
+                    let m = w2[j] - big * big;
+                    let nn = damp[j] * big;
+                    let det = m * m + nn * nn;
+                    let inv = if det > 1e-24 * w2[j] * w2[j] {
+                        1.0 / det
+                    } else {
+                        0.0
+                    };
+                    [-la[j] * pga, lv[j] * pga / big, m, nn, inv]
+                }
+                None => [0.0; 5],
+            })
+            .collect();
         GroundModes {
+            inv_w2,
+            hcoef,
             w2,
             omega,
             damp,
@@ -416,17 +443,28 @@ pub struct TrigMoments {
 impl TrigMoments {
     /// For Ω (rad/s) over [t0, t0 + h].
     pub fn new(big: f64, t0: f64, h: f64) -> TrigMoments {
-        let (s0, c0) = (big * t0).sin_cos();
-        let (s1, c1) = (big * (t0 + h)).sin_cos();
+        let e0 = (big * t0).sin_cos();
+        let e1 = (big * (t0 + h)).sin_cos();
+        TrigMoments::from_ends(big, h, e0, e1, (0.5 * big * h).sin_cos())
+    }
+
+    /// The same from (sin, cos) of Ωt₀, Ω(t₀ + h) and Ωh/2 (no further trigonometric calls).
+    pub fn from_ends(
+        big: f64,
+        h: f64,
+        (s0, c0): (f64, f64),
+        (s1, c1): (f64, f64),
+        (sh, ch): (f64, f64),
+    ) -> TrigMoments {
+        let sin_h = 2.0 * sh * ch;
         // sin 2Ωt₁ − sin 2Ωt₀ = 2 cos(Ω(t₀+t₁)) sin(Ωh)
-        let d2 = 2.0 * (big * (2.0 * t0 + h)).cos() * (big * h).sin();
+        let d2 = 2.0 * (c0 * c1 - s0 * s1) * sin_h;
         let ss = 0.5 * h - d2 / (4.0 * big);
         let cc = 0.5 * h + d2 / (4.0 * big);
         // sin²Ωt₁ − sin²Ωt₀ = sin(Ω(t₁+t₀)) sin(Ωh)
-        let sc = (big * (2.0 * t0 + h)).sin() * (big * h).sin() / (2.0 * big);
+        let sc = (s0 * c1 + c0 * s1) * sin_h / (2.0 * big);
         // cos Ωt₀ − cos Ωt₁ = 2 sin(Ω(t₀+t₁)/2) sin(Ωh/2)
-        let half = (big * (t0 + 0.5 * h)).sin_cos();
-        let sh = (0.5 * big * h).sin();
+        let half = (s0 * ch + c0 * sh, c0 * ch - s0 * sh);
         let s = 2.0 * half.0 * sh / big;
         let c = 2.0 * half.1 * sh / big;
         let ts = -h * c1 / big + c / big;
@@ -475,31 +513,39 @@ pub fn mode_work(
     g0: f64,
     g1: f64,
 ) -> ModeWork {
-    let (w2, d) = (gm.w2[j], gm.damp[j]);
+    let (w2, d, iw2) = (gm.w2[j], gm.damp[j], gm.inv_w2[j]);
     let (e0, v0) = y0;
     let (e1, v1) = y1;
     let slope = g1 / h;
     let de = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2 * (e1 * e1 - e0 * e0);
-    let (h2, h3) = (h * h, h * h * h);
+    let h2 = h * h;
     let mut input = 0.0;
-    // ∫ f dt of the total load, and of τ·f
-    let mut int_f = g0 * h + slope * h2 / 2.0;
-    let mut int_tf = g0 * h2 / 2.0 + slope * h3 / 3.0;
-    let mut harm = None;
+    // ∫ f dt of the total load
+    let mut int_f = h * (g0 + 0.5 * slope * h);
     if let Some(c) = ground {
-        int_f += c[0] * h + c[1] * h2 / 2.0 + c[2] * h3 / 3.0;
-        int_tf += c[0] * h2 / 2.0 + c[1] * h3 / 3.0 + c[2] * h2 * h2 / 4.0;
-    } else if let Some(tm) = tm {
-        let (al, be, big) = gm.harmonic_load(j);
-        int_f += al * tm.s + be * tm.c;
-        harm = Some((al, be, big, tm));
+        int_f += h * (c[0] + h * (0.5 * c[1] + h * c[2] / 3.0));
+        let i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
+        if c[1] != 0.0 || c[2] != 0.0 || slope != 0.0 {
+            let int_tf = h2 * (0.5 * (g0 + c[0]) + h * ((slope + c[1]) / 3.0 + 0.25 * h * c[2]));
+            let i1 = (int_tf - (h * v1 - (e1 - e0)) - d * (h * e1 - i0)) * iw2;
+            let ph = c[0] + h * (c[1] + h * c[2]);
+            input = ph * e1 - c[0] * e0 - c[1] * i0 - 2.0 * c[2] * i1;
+        } else {
+            input = c[0] * (e1 - e0);
+        }
+        let contact = (g0 + g1) * e1 - g0 * e0 - slope * i0;
+        return ModeWork {
+            input,
+            contact,
+            damping: input + contact - de,
+        };
     }
-    let i0 = (int_f - (v1 - v0) - d * (e1 - e0)) / w2;
-    if let Some(c) = ground {
-        let i1 = (int_tf - (h * v1 - (e1 - e0)) - d * (h * e1 - i0)) / w2;
-        let ph = c[0] + h * (c[1] + h * c[2]);
-        input = ph * e1 - c[0] * e0 - c[1] * i0 - 2.0 * c[2] * i1;
-    } else if let Some((al, be, big, tm)) = harm {
+    let i0;
+    if let Some(tm) = tm {
+        let [al, be, m, n, inv] = gm.hcoef[j];
+        let big = gm.harmonic.map_or(0.0, |x| x.0);
+        int_f += al * tm.s + be * tm.c;
+        i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
         // S = ∫ sin Ωt η, C = ∫ cos Ωt η from the equation of motion times sin, cos
         let int_sf = al * tm.ss + be * tm.sc + g0 * tm.s + slope * tm.ts;
         let int_cf = al * tm.sc + be * tm.cc + g0 * tm.c + slope * tm.tc;
@@ -507,19 +553,18 @@ pub fn mode_work(
         let dcv = tm.c1 * v1 - tm.c0 * v0;
         let dse = tm.s1 * e1 - tm.s0 * e0;
         let dce = tm.c1 * e1 - tm.c0 * e0;
-        let r1 = int_sf - dsv + big * dce - d * dse;
-        let r2 = int_cf - dcv - big * dse - d * dce;
-        let m = w2 - big * big;
-        let n = d * big;
-        let det = m * m + n * n;
-        if det > 1e-24 * w2 * w2 {
-            let s = (m * r1 + n * r2) / det;
-            let c = (m * r2 - n * r1) / det;
+        if inv > 0.0 {
+            let r1 = int_sf - dsv + big * dce - d * dse;
+            let r2 = int_cf - dcv - big * dse - d * dce;
+            let s = (m * r1 + n * r2) * inv;
+            let c = (m * r2 - n * r1) * inv;
             input = al * (dse - big * c) + be * (dce + big * s);
         } else {
             // undamped resonance: trapezoid (rare; the balance check will show its error)
             input = 0.5 * h * ((al * tm.s0 + be * tm.c0) * v0 + (al * tm.s1 + be * tm.c1) * v1);
         }
+    } else {
+        i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
     }
     let contact = (g0 + g1) * e1 - g0 * e0 - slope * i0;
     ModeWork {
