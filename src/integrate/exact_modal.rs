@@ -264,6 +264,8 @@ impl<O: Observer> Run<'_, O> {
             self.qb[j] = x + e1;
             self.vb[j] = y + d1;
         }
+        self.trig_start = tr0;
+        self.trig_end = tr1;
     }
 
     fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
