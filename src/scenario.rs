@@ -922,7 +922,7 @@ fn solver(
     let near = Some(raw.span().start);
     let s = raw.get_ref();
     let method = match s.method.as_ref() {
-        None => Method::Rk4,
+        None => Method::Adaptive,
         Some(m) => match Method::from_name(m.get_ref()) {
             Some(method) => method,
             None => {

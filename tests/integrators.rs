@@ -458,3 +458,49 @@ fn exact_tallies_match_rk4_quadrature() {
         }
     }
 }
+
+/// `[solver]` keys: method names, rtol/atol with defaults and ranges, and the default method.
+#[test]
+fn solver_keys_are_validated() {
+    use pounding::integrate::{DEFAULT_ATOL, DEFAULT_RTOL};
+    use pounding::scenario::Scenario;
+    let base = include_str!("../examples/paper-c.toml");
+    let parse =
+        |from: &str, to: &str| Scenario::from_toml(&base.replace(from, to), "t.toml", ".".as_ref());
+    let sc = parse("method = \"rk4\"", "method = \"exact-modal\"").unwrap();
+    assert_eq!(sc.solver.method, Method::ExactModal);
+    let sc = parse(
+        "method = \"rk4\"",
+        "method = \"adaptive\"\nrtol = 1e-9\natol = 1e-11",
+    )
+    .unwrap();
+    assert_eq!(
+        (sc.solver.method, sc.solver.rtol, sc.solver.atol),
+        (Method::Adaptive, 1e-9, 1e-11)
+    );
+    let sc = parse("method = \"rk4\"\n", "").unwrap();
+    assert_eq!(sc.solver.method, Method::Adaptive, "the default method");
+    assert_eq!(
+        (sc.solver.rtol, sc.solver.atol),
+        (DEFAULT_RTOL, DEFAULT_ATOL)
+    );
+    let e = parse("method = \"rk4\"", "method = \"rk45\"")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("solver.method") && e.contains("exact-modal"),
+        "{e}"
+    );
+    let e = parse("method = \"rk4\"", "method = \"adaptive\"\nrtol = 2.0")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("solver.rtol"), "{e}");
+    let e = parse("method = \"rk4\"", "method = \"adaptive\"\natol = -1.0")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("solver.atol"), "{e}");
+    let e = parse("method = \"rk4\"", "method = \"adaptive\"\nrtoll = 1e-6")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("rtol"), "suggests the right key: {e}");
+}
