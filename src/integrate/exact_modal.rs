@@ -33,7 +33,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{
-    GroundModes, Influence, Piece, Trig, TrigMoments, hermite_max, influence, mode_work,
+    GroundModes, HarmonicTally, Influence, Piece, StateSums, Trig, TrigMoments, hermite_max,
+    influence, mode_work,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -131,6 +132,9 @@ struct Run<'a, O: Observer> {
     trig_end: Trig,
     trig_start: Trig,
     half: (f64, f64, f64),
+    /// Fast exact tallies for harmonic motion, and the sums at the current state.
+    htally: Option<HarmonicTally>,
+    sums: StateSums,
     tally: Tally,
     stats: Stats,
 }
@@ -171,12 +175,20 @@ pub(super) fn run<O: Observer>(
         },
         trig_start: Trig::default(),
         half: (f64::NAN, 0.0, 0.0),
+        htally: None,
+        sums: StateSums::default(),
         tally: Tally {
             impulse: vec![0.0; nl],
             ..Tally::default()
         },
         stats: Stats::default(),
     };
+    r.htally = HarmonicTally::new(&r.gm);
+    if let Some(ht) = &r.htally {
+        for j in 0..n {
+            ht.add(&mut r.sums, j, r.gm.w2[j], r.q[j], r.v[j]);
+        }
+    }
     r.evaluate_states();
     let s0 = r.states.clone();
     update_onsets(&mut r.onset, &s0, &r.states);
@@ -377,38 +389,58 @@ impl<O: Observer> Run<'_, O> {
         };
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
-        for j in 0..n {
-            let (mut g0, mut g1) = (0.0, 0.0);
-            if any_force {
-                for k in 0..nl {
-                    let c = sys.coupling(k)[j];
-                    g0 += c * self.states[k].force;
-                    g1 += c * (self.fpred[k] - self.states[k].force);
+        let mut sums = StateSums::default();
+        let fast = !any_force && tm.is_some() && self.htally.is_some();
+        if let (true, Some(ht), Some(tm)) = (fast, &self.htally, &tm) {
+            // no contact load, harmonic motion: exact tallies from linear forms
+            for j in 0..n {
+                let (q1, v1) = (self.qb[j], self.vb[j]);
+                ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
+                self.q[j] = q1;
+                self.v[j] = v1;
+            }
+            input = ht.input(tm, &self.sums, &sums);
+            damping = input - (sums.energy - self.sums.energy);
+        } else {
+            for j in 0..n {
+                let (mut g0, mut g1) = (0.0, 0.0);
+                if any_force {
+                    for k in 0..nl {
+                        let c = sys.coupling(k)[j];
+                        g0 += c * self.states[k].force;
+                        g1 += c * (self.fpred[k] - self.states[k].force);
+                    }
+                }
+                let f = &data.infl[j];
+                let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                let ground = match piece {
+                    Piece::Harmonic => None,
+                    _ => Some(&self.cpoly[j]),
+                };
+                let w = mode_work(
+                    &self.gm,
+                    j,
+                    h,
+                    (self.q[j], self.v[j]),
+                    (q1, v1),
+                    ground,
+                    tm.as_ref(),
+                    g0,
+                    g1,
+                );
+                input += w.input;
+                damping += w.damping;
+                self.q[j] = q1;
+                self.v[j] = v1;
+            }
+            if let Some(ht) = &self.htally {
+                for j in 0..n {
+                    ht.add(&mut sums, j, self.gm.w2[j], self.q[j], self.v[j]);
                 }
             }
-            let f = &data.infl[j];
-            let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
-            let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
-            let ground = match piece {
-                Piece::Harmonic => None,
-                _ => Some(&self.cpoly[j]),
-            };
-            let w = mode_work(
-                &self.gm,
-                j,
-                h,
-                (self.q[j], self.v[j]),
-                (q1, v1),
-                ground,
-                tm.as_ref(),
-                g0,
-                g1,
-            );
-            input += w.input;
-            damping += w.damping;
-            self.q[j] = q1;
-            self.v[j] = v1;
         }
+        self.sums = sums;
         self.tally.input += input;
         self.tally.damping += damping;
         self.prev_states.copy_from_slice(&self.states);
