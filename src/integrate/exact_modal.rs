@@ -390,17 +390,47 @@ impl<O: Observer> Run<'_, O> {
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
         let mut sums = StateSums::default();
-        let fast = !any_force && tm.is_some() && self.htally.is_some();
-        if let (true, Some(ht), Some(tm)) = (fast, &self.htally, &tm) {
-            // no contact load, harmonic motion: exact tallies from linear forms
-            for j in 0..n {
-                let (q1, v1) = (self.qb[j], self.vb[j]);
-                ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
-                self.q[j] = q1;
-                self.v[j] = v1;
+        if let (Some(ht), Some(tm)) = (&self.htally, &tm) {
+            // harmonic motion: exact tallies from linear forms
+            let mut extra = 0.0;
+            let mut contact = 0.0;
+            if any_force {
+                for j in 0..n {
+                    let (mut g0, mut g1) = (0.0, 0.0);
+                    for k in 0..nl {
+                        let c = sys.coupling(k)[j];
+                        g0 += c * self.states[k].force;
+                        g1 += c * (self.fpred[k] - self.states[k].force);
+                    }
+                    let f = &data.infl[j];
+                    let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                    let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                    let (x, c) = ht.with_contact(
+                        &self.gm,
+                        j,
+                        tm,
+                        h,
+                        (self.q[j], self.v[j]),
+                        (q1, v1),
+                        g0,
+                        g1 / h,
+                    );
+                    extra += x;
+                    contact += c;
+                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
+                    self.q[j] = q1;
+                    self.v[j] = v1;
+                }
+            } else {
+                for j in 0..n {
+                    let (q1, v1) = (self.qb[j], self.vb[j]);
+                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
+                    self.q[j] = q1;
+                    self.v[j] = v1;
+                }
             }
-            input = ht.input(tm, &self.sums, &sums);
-            damping = input - (sums.energy - self.sums.energy);
+            input = ht.input(tm, &self.sums, &sums) + extra;
+            damping = input + contact - (sums.energy - self.sums.energy);
         } else {
             for j in 0..n {
                 let (mut g0, mut g1) = (0.0, 0.0);

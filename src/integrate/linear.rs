@@ -581,7 +581,7 @@ pub fn mode_work(
 /// `U = Σ κ1 η + κ3 η̇`, `V = Σ κ2 η + κ4 η̇`.
 #[derive(Debug, Clone)]
 pub struct HarmonicTally {
-    kappa: Vec<[f64; 4]>,
+    kappa: Vec<[f64; 6]>,
     k: [f64; 3],
 }
 
@@ -618,6 +618,8 @@ impl HarmonicTally {
                 b + big * (big * p1 - d * p2),
                 -big * p1,
                 -big * p2,
+                big * p1,
+                big * p2,
             ]);
         }
         Some(HarmonicTally { kappa, k })
@@ -630,6 +632,31 @@ impl HarmonicTally {
         sums.u += k[0] * e + k[2] * v;
         sums.v += k[1] * e + k[3] * v;
         sums.energy += 0.5 * (v * v + w2 * e * e);
+    }
+
+    /// Extra ground work of mode j over the step when it also carries the contact load
+    /// `g0 + slope·τ` (the load changes the mode's motion, hence the ground's work), and the
+    /// exact work of that contact load; `y0`, `y1` are the mode's end states.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn with_contact(
+        &self,
+        gm: &GroundModes,
+        j: usize,
+        tm: &TrigMoments,
+        h: f64,
+        y0: (f64, f64),
+        y1: (f64, f64),
+        g0: f64,
+        slope: f64,
+    ) -> (f64, f64) {
+        let k = &self.kappa[j];
+        let extra = k[4] * (g0 * tm.s + slope * tm.ts) + k[5] * (g0 * tm.c + slope * tm.tc);
+        let [a, b, ..] = gm.hcoef[j];
+        let int_f = a * tm.s + b * tm.c + h * (g0 + 0.5 * slope * h);
+        let i0 = (int_f - (y1.1 - y0.1) - gm.damp[j] * (y1.0 - y0.0)) * gm.inv_w2[j];
+        let contact = (g0 + slope * h) * y1.0 - g0 * y0.0 - slope * i0;
+        (extra, contact)
     }
 
     /// Ground work over the step [t₀, t₁] from the sums at both ends.
