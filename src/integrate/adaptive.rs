@@ -34,7 +34,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{
-    GroundModes, Piece, Prop, TrigMoments, hermite, hermite_max, mode_work, propagator,
+    GroundModes, HarmonicTally, Piece, Prop, StateSums, TrigMoments, hermite, hermite_max,
+    mode_work, propagator,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -525,6 +526,7 @@ pub(super) fn run<O: Observer>(
     let duration = settings.duration;
     let hmax = settings.dt;
     let rtol = settings.rtol;
+    let htally = HarmonicTally::new(&gm);
     let mut cache: Vec<Option<Table>> = (0..=MAX_K).map(|_| None).collect();
     let mut scratch = Table::new();
     let mut k_step: usize = 0;
@@ -607,24 +609,35 @@ pub(super) fn run<O: Observer>(
                 _ => None,
             };
             let (mut input, mut damping) = (0.0, 0.0);
-            for j in 0..n {
-                let ground = match piece {
-                    Piece::Harmonic => None,
-                    _ => Some(&w.cpoly[j]),
-                };
-                let m = mode_work(
-                    &gm,
-                    j,
-                    h_taken,
-                    (w.q[j], w.v[j]),
-                    (w.qn[j], w.vn[j]),
-                    ground,
-                    tm.as_ref(),
-                    0.0,
-                    0.0,
-                );
-                input += m.input;
-                damping += m.damping;
+            if let (Some(ht), Some(tm)) = (&htally, &tm) {
+                // harmonic motion: exact tallies from linear forms
+                let (mut s0, mut s1) = (StateSums::default(), StateSums::default());
+                for j in 0..n {
+                    ht.add(&mut s0, j, gm.w2[j], w.q[j], w.v[j]);
+                    ht.add(&mut s1, j, gm.w2[j], w.qn[j], w.vn[j]);
+                }
+                input = ht.input(tm, &s0, &s1);
+                damping = input - (s1.energy - s0.energy);
+            } else {
+                for j in 0..n {
+                    let ground = match piece {
+                        Piece::Harmonic => None,
+                        _ => Some(&w.cpoly[j]),
+                    };
+                    let m = mode_work(
+                        &gm,
+                        j,
+                        h_taken,
+                        (w.q[j], w.v[j]),
+                        (w.qn[j], w.vn[j]),
+                        ground,
+                        tm.as_ref(),
+                        0.0,
+                        0.0,
+                    );
+                    input += m.input;
+                    damping += m.damping;
+                }
             }
             tally.input += input;
             tally.damping += damping;
