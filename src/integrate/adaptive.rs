@@ -231,6 +231,8 @@ struct Work {
     aq: Vec<f64>,
     av: Vec<f64>,
     vinv: [[f64; 4]; 4],
+    /// Coupling rows transposed, mode-major: `[j·L + k]`.
+    cpl_t: Vec<f64>,
 }
 
 /// Outcome of one trial step.
@@ -242,6 +244,56 @@ struct Trial {
     input: f64,
     damping: f64,
     contact: f64,
+}
+
+/// Free flight (ground only) from the start state to the given nodes (1..=3): the state at the
+/// end node into (qn, vn), velocities at nodes 1, 2 into `vf`, and δ, δ̇ at the nodes.
+#[allow(clippy::too_many_arguments)]
+fn free_nodes(
+    sys: &System,
+    gm: &GroundModes,
+    tab: &Table,
+    w: &mut Work,
+    piece: &Piece,
+    poly: bool,
+    t: f64,
+    trs: &[super::linear::Trig; 4],
+    which: &[usize],
+) {
+    let (n, nl) = (w.n, w.nl);
+    let h = tab.h;
+    let th = nodes();
+    for j in 0..n {
+        let c = if poly {
+            gm.poly_load(j, piece, t)
+        } else {
+            [0.0; 3]
+        };
+        w.cpoly[j] = c;
+        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &trs[0]);
+        let (x0, y0) = (w.q[j] - e0, w.v[j] - d0);
+        for &i in which {
+            let (e, d) = gm.particular(j, piece, &c, th[i] * h, &trs[i]);
+            let (x, y) = tab.props[(i - 1) * n + j].apply(x0, y0);
+            let (x, y) = (x + e, y + d);
+            for k in 0..nl {
+                let ck = w.cpl_t[j * nl + k];
+                w.dfree[k * 3 + i - 1].0 -= ck * x;
+                w.dfree[k * 3 + i - 1].1 -= ck * y;
+            }
+            if i == 3 {
+                w.qn[j] = x;
+                w.vn[j] = y;
+            } else {
+                w.vf[i - 1][j] = y;
+            }
+        }
+    }
+    for (k, lv) in sys.levels.iter().enumerate() {
+        for &i in which {
+            w.dfree[k * 3 + i - 1].0 -= lv.gap;
+        }
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -263,40 +315,31 @@ fn step(
     let trs = th.map(|x| gm.trig(t + x * h));
     let poly = matches!(piece, Piece::Poly { .. });
     w.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
-    for j in 0..n {
-        let c = if poly {
-            gm.poly_load(j, piece, t)
-        } else {
-            [0.0; 3]
-        };
-        w.cpoly[j] = c;
-        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &trs[0]);
-        let (x0, y0) = (w.q[j] - e0, w.v[j] - d0);
-        for i in 1..4 {
-            let (e, d) = gm.particular(j, piece, &c, th[i] * h, &trs[i]);
-            let (x, y) = tab.props[(i - 1) * n + j].apply(x0, y0);
-            let (x, y) = (x + e, y + d);
-            for k in 0..nl {
-                let ck = sys.coupling(k)[j];
-                w.dfree[k * 3 + i - 1].0 -= ck * x;
-                w.dfree[k * 3 + i - 1].1 -= ck * y;
-            }
-            if i == 3 {
-                w.qn[j] = x;
-                w.vn[j] = y;
-            } else {
-                w.vf[i - 1][j] = y;
-            }
-        }
+    let quiet = start.iter().all(|s| s.force == 0.0 && s.delta <= 0.0);
+    // the end node first: if the free flight stays clear of contact from the start to the end
+    // (cubic Hermite through both), it is the exact answer and the interior nodes are not needed
+    free_nodes(sys, gm, tab, w, piece, poly, t, &trs, &[3]);
+    let clear_to_end = |w: &Work| {
+        (0..nl).all(|k| {
+            let (d, dd) = w.dfree[k * 3 + 2];
+            hermite_max(start[k].delta, start[k].delta_dot, d, dd, h).0 < 0.0
+        })
+    };
+    let free = Trial {
+        err: 0.0,
+        free: true,
+        input: 0.0,
+        damping: 0.0,
+        contact: 0.0,
+    };
+    if quiet && clear_to_end(w) {
+        imp.iter_mut().for_each(|x| *x = 0.0);
+        return free;
     }
-    for (k, lv) in sys.levels.iter().enumerate() {
-        for i in 0..3 {
-            w.dfree[k * 3 + i].0 -= lv.gap;
-        }
-    }
+    free_nodes(sys, gm, tab, w, piece, poly, t, &trs, &[1, 2]);
     // no contact force at the start, and the free flight stays clear (nodes, and the cubic
     // Hermite between consecutive nodes): the free flight is the exact answer
-    let clear = start.iter().all(|s| s.force == 0.0 && s.delta <= 0.0)
+    let clear = quiet
         && (0..nl).all(|k| {
             let mut prev = (start[k].delta, start[k].delta_dot, 0.0);
             (0..3).all(|i| {
@@ -308,13 +351,7 @@ fn step(
         });
     if clear {
         imp.iter_mut().for_each(|x| *x = 0.0);
-        return Trial {
-            err: 0.0,
-            free: true,
-            input: 0.0,
-            damping: 0.0,
-            contact: 0.0,
-        };
+        return free;
     }
     // fixed point on the nodal forces
     for k in 0..nl {
@@ -379,7 +416,7 @@ fn step(
         // contact load of mode j as a cubic in θ: Σ_l c_lj a_lm
         let mut g = [0.0; 4];
         for l in 0..nl {
-            let c = sys.coupling(l)[j];
+            let c = w.cpl_t[j * nl + l];
             for (m, gm_) in g.iter_mut().enumerate() {
                 *gm_ += c * w.coef[l * 4 + m];
             }
@@ -486,6 +523,9 @@ pub(super) fn run<O: Observer>(
         aq,
         av,
         vinv: vandermonde_inverse(),
+        cpl_t: (0..n)
+            .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
+            .collect(),
     };
     let mut states = vec![LevelState::default(); nl];
     let mut prev_states = states.clone();

@@ -128,6 +128,8 @@ struct Run<'a, O: Observer> {
     prev_states: Vec<LevelState>,
     onset: Vec<f64>,
     fpred: Vec<f64>,
+    /// Coupling rows transposed, mode-major: `[j·L + k]`.
+    cpl_t: Vec<f64>,
     /// Harmonic motion: sin, cos at the last step end, and of Ωh/2 for the last h.
     trig_end: Trig,
     trig_start: Trig,
@@ -168,6 +170,9 @@ pub(super) fn run<O: Observer>(
         prev_states: vec![LevelState::default(); nl],
         onset: vec![0.0; nl],
         fpred: vec![0.0; nl],
+        cpl_t: (0..n)
+            .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
+            .collect(),
         trig_end: Trig {
             t: f64::NAN,
             s: 0.0,
@@ -398,7 +403,7 @@ impl<O: Observer> Run<'_, O> {
                 for j in 0..n {
                     let (mut g0, mut g1) = (0.0, 0.0);
                     for k in 0..nl {
-                        let c = sys.coupling(k)[j];
+                        let c = self.cpl_t[j * nl + k];
                         g0 += c * self.states[k].force;
                         g1 += c * (self.fpred[k] - self.states[k].force);
                     }
@@ -436,7 +441,7 @@ impl<O: Observer> Run<'_, O> {
                 let (mut g0, mut g1) = (0.0, 0.0);
                 if any_force {
                     for k in 0..nl {
-                        let c = sys.coupling(k)[j];
+                        let c = self.cpl_t[j * nl + k];
                         g0 += c * self.states[k].force;
                         g1 += c * (self.fpred[k] - self.states[k].force);
                     }
