@@ -267,19 +267,32 @@ impl<O: Observer> Run<'_, O> {
             gm.trig(t0)
         };
         let tr1 = gm.trig(t0 + h);
-        let poly = matches!(piece, Piece::Poly { .. });
-        for j in 0..self.q.len() {
-            let c = if poly {
-                gm.poly_load(j, piece, t0)
-            } else {
-                [0.0; 3]
-            };
-            self.cpoly[j] = c;
-            let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr0);
-            let (e1, d1) = gm.particular(j, piece, &c, h, &tr1);
-            let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
-            self.qb[j] = x + e1;
-            self.vb[j] = y + d1;
+        if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
+            // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
+            let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
+            for j in 0..self.q.len() {
+                let (gr, gi) = (g_re[j], g_im[j]);
+                let (e0, d0) = (gr * s0 + gi * c0, big * (gr * c0 - gi * s0));
+                let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
+                let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
+                self.qb[j] = x + e1;
+                self.vb[j] = y + d1;
+            }
+        } else {
+            let poly = matches!(piece, Piece::Poly { .. });
+            for j in 0..self.q.len() {
+                let c = if poly {
+                    gm.poly_load(j, piece, t0)
+                } else {
+                    [0.0; 3]
+                };
+                self.cpoly[j] = c;
+                let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr0);
+                let (e1, d1) = gm.particular(j, piece, &c, h, &tr1);
+                let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
+                self.qb[j] = x + e1;
+                self.vb[j] = y + d1;
+            }
         }
         self.trig_start = tr0;
         self.trig_end = tr1;

@@ -384,6 +384,16 @@ impl GroundModes {
         }
     }
 
+    /// Harmonic motion without a mode at undamped resonance: Ω (rad/s) and the particular
+    /// solutions' coefficients (η_p = G_re sin Ωt + G_im cos Ωt); `None` otherwise.
+    pub fn harmonic_plain(&self) -> Option<(f64, &[f64], &[f64])> {
+        let (big, _) = self.harmonic?;
+        if self.resonant.iter().any(|&r| r) {
+            return None;
+        }
+        Some((big, &self.g_re, &self.g_im))
+    }
+
     /// Ω of a harmonic motion, rad/s.
     pub fn harmonic_omega(&self) -> Option<f64> {
         self.harmonic.map(|h| h.0)
