@@ -78,8 +78,18 @@ fn cases() -> Vec<Case> {
             modes,
         );
         add(
+            &format!("{modes} modes/exact-modal dt=5ms"),
+            scenario("exact-modal", 0.005, modes),
+            modes,
+        );
+        add(
             &format!("{modes} modes/adaptive"),
             scenario("adaptive", 0.001, modes),
+            modes,
+        );
+        add(
+            &format!("{modes} modes/adaptive dt=10ms"),
+            scenario("adaptive", 0.01, modes),
             modes,
         );
     }
