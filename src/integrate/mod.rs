@@ -5,10 +5,10 @@
 //! the energy flows (input work, structural damping, work into the contacts) and each level's
 //! impulse, so that energy balance and impulses are exact to the method's accuracy.
 //!
-//! Methods ([`Method`]): `rk4` (the paper's fixed step, [`rk4`]), `exact-modal` (exact modal
-//! propagation, second-order contact sub-steps, [`exact_modal`]) and `adaptive` (exponential
-//! Lobatto collocation with error control and event location, [`adaptive`]); the last two share
-//! the exact propagator and particular solutions of [`linear`].
+//! Methods ([`Method`]): `rk4` (the paper's fixed step, module `rk4`), `exact-modal` (exact
+//! modal propagation, second-order contact sub-steps, module `exact_modal`) and `adaptive`
+//! (exponential Lobatto collocation with error control and event location, module `adaptive`);
+//! the last two share the exact propagator and particular solutions of [`linear`].
 
 mod adaptive;
 mod exact_modal;
