@@ -17,6 +17,7 @@
 
 pub mod cantilever;
 pub mod contact;
+pub mod convergence;
 pub mod figures;
 pub mod ground_motion;
 pub mod integrate;

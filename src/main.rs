@@ -67,6 +67,16 @@ enum Command {
         #[arg(long, default_value_t = 0.5)]
         speed: f64,
     },
+    /// Convergence study: the run with pounding for 1, 2, 3, 5, 10, 20, 50 modes and for a ladder
+    /// of steps (dt × 4 … ⅛; rtol 1e-4 … 1e-10 for `adaptive`), each with its change relative to
+    /// the finest, and a recommendation (fewest modes, largest step within the tolerance).
+    Convergence {
+        /// Scenario file (TOML); the bundled default if omitted.
+        scenario: Option<PathBuf>,
+        /// Largest acceptable relative change of the peaks and peak force vs the finest run.
+        #[arg(long, default_value_t = 0.01)]
+        tolerance: f64,
+    },
     /// Required separation by every rule (ABS, SRSS, DDC, DDC as printed in the paper) and the
     /// exact time-history value, side by side.
     Separation {
@@ -259,6 +269,27 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             print_laws(speed)
         }
+        Command::Convergence {
+            scenario,
+            tolerance,
+        } => {
+            if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+                anyhow::bail!(
+                    "--tolerance must be in (0, 1) (a relative change, e.g. 0.01 for 1 %)"
+                );
+            }
+            let (sc, name) = load(scenario.as_deref())?;
+            println!(
+                "{}
+  scenario: {name}",
+                sc.title
+            );
+            let table = pounding::convergence::convergence(&sc, tolerance, |what| {
+                eprintln!("  running {what} …")
+            });
+            print_convergence(&table);
+            Ok(())
+        }
         Command::Separation { scenario } => {
             let (sc, _) = load(scenario.as_deref())?;
             let report = simulate(&sc)?;
@@ -374,6 +405,59 @@ fn print_modes(sc: &Scenario) {
     println!(
         "φ(h) at the contact height h = {h} m, times √M (dimensionless; ±2 at a free tip). Γ = m∫φ dx is the\n\
          participation factor (η̈ + … = −Γ a_g); mass % = Γ²/M, the share of the mass each mode moves."
+    );
+}
+
+fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
+    let print_rows = |title: &str, rows: &[pounding::convergence::Row]| {
+        println!();
+        println!("  {title}");
+        println!(
+            "  {:>6} {:>12} {:>10} {:>8} {:>11} {:>11} {:>13} {:>8} {:>9} {:>9} {:>9}",
+            "modes",
+            "method",
+            "dt [s]",
+            "rtol",
+            "peak w1 [m]",
+            "peak w2 [m]",
+            "peak F [N]",
+            "impacts",
+            "Δw1 [%]",
+            "Δw2 [%]",
+            "ΔF [%]"
+        );
+        for r in rows {
+            let rtol = r.rtol.map_or("-".to_string(), |x| format!("{x:.0e}"));
+            if let Some(f) = &r.failure {
+                println!(
+                    "  {:>6} {:>12} {:>10.2e} {:>8}  {f}",
+                    r.modes, r.method, r.dt, rtol
+                );
+                continue;
+            }
+            println!(
+                "  {:>6} {:>12} {:>10.2e} {:>8} {:>11.5} {:>11.5} {:>13.5e} {:>8} {:>9.3} {:>9.3} {:>9.3}",
+                r.modes,
+                r.method,
+                r.dt,
+                rtol,
+                r.peak_w1,
+                r.peak_w2,
+                r.peak_force,
+                r.impacts,
+                100.0 * r.change[0],
+                100.0 * r.change[1],
+                100.0 * r.change[2]
+            );
+        }
+    };
+    print_rows("modes (change vs the most modes):", &t.modes);
+    print_rows("step / tolerance (change vs the finest):", &t.steps);
+    println!();
+    println!(
+        "  recommendation (tolerance {} %): {}",
+        100.0 * t.tolerance,
+        t.recommendation
     );
 }
 

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::integrate::Method;
 use crate::scenario::Scenario;
 use crate::simulate::Report;
 
@@ -76,6 +77,19 @@ struct SolverInfo {
     output_interval: f64,
     steps: usize,
     max_contact_omega_dt: f64,
+    /// Relative and absolute (m) tolerances: only for `adaptive`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rtol: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    atol: Option<f64>,
+    /// What `dt` means for this method.
+    dt_meaning: &'static str,
+    /// Steps rejected by error control, and contact events located (`adaptive`).
+    rejected_steps: usize,
+    events: usize,
+    /// Relative energy-balance errors of the runs with and without contact.
+    energy_relative_error: f64,
+    energy_relative_error_no_contact: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -88,6 +102,7 @@ struct Summary<'a> {
 
 /// The summary as JSON text (SPEC §6 fields plus levels, energy, impacts, warnings, solver).
 pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, String> {
+    let adaptive = scenario.solver.method == Method::Adaptive;
     let s = Summary {
         report,
         contact_law: scenario.contact.law.name(),
@@ -98,6 +113,17 @@ pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, Stri
             output_interval: scenario.output_interval,
             steps: report.stats.steps,
             max_contact_omega_dt: report.stats.max_contact_omega_dt,
+            rtol: adaptive.then_some(scenario.solver.rtol),
+            atol: adaptive.then_some(scenario.solver.atol),
+            dt_meaning: match scenario.solver.method {
+                Method::Rk4 => "fixed step",
+                Method::ExactModal => "base step (contact sub-steps below it)",
+                Method::Adaptive => "largest step",
+            },
+            rejected_steps: report.stats.rejected,
+            events: report.stats.events,
+            energy_relative_error: report.energy.relative_error,
+            energy_relative_error_no_contact: report.energy_no_contact.relative_error,
         },
     };
     serde_json::to_string_pretty(&s).map_err(|e| e.to_string())

@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use crate::integrate::linear::hermite_max;
 use crate::integrate::{Observer, StepView};
 use crate::system::System;
 
@@ -122,6 +123,9 @@ pub struct Recorder {
     impacts: Vec<Impact>,
     prev: Option<Sample>,
     prev_delta: Vec<f64>,
+    prev_delta_dot: Vec<f64>,
+    /// (w₁, ẇ₁, w₂, ẇ₂) at every tracked height at the previous observation.
+    prev_w: Vec<[f64; 4]>,
     interval: f64,
     next_sample: usize,
     history: History,
@@ -177,6 +181,8 @@ impl Recorder {
             impacts: Vec::with_capacity(64),
             prev: None,
             prev_delta: vec![f64::NEG_INFINITY; nl],
+            prev_delta_dot: vec![0.0; nl],
+            prev_w: vec![[0.0; 4]; heights.len()],
             interval,
             next_sample: 0,
             history: History {
@@ -293,24 +299,59 @@ impl Observer for Recorder {
             w: [0.0; 2],
             wdot: [0.0; 2],
         };
+        // Peaks: at the observation, and inside the interval since the previous one from the
+        // cubic Hermite interpolant of (w, ẇ) at both ends (O(h⁴), so peaks do not depend on
+        // where the steps happen to fall).
+        let h = s.t - self.last_t;
+        let refine = self.prev.is_some() && h > 0.0;
         for k in 0..self.heights.len() {
             let w1 = crate::system::dot(&self.phi1[k], &q[..n1]);
             let w2 = crate::system::dot(&self.phi2[k], &q[n1..]);
+            let w1d = crate::system::dot(&self.phi1[k], &s.v[..n1]);
+            let w2d = crate::system::dot(&self.phi2[k], &s.v[n1..]);
             let l = &mut self.levels[k];
             l.peak_w1 = l.peak_w1.max(w1.abs());
             l.peak_w2 = l.peak_w2.max(w2.abs());
             l.max_closing = l.max_closing.max(w1 - w2);
+            if refine {
+                // an interior extremum needs the slope to change sign (cheap test first)
+                let [a1, a1d, a2, a2d] = self.prev_w[k];
+                let ext = |y0: f64, d0: f64, y1: f64, d1: f64| {
+                    if d0 * d1 > 0.0 {
+                        0.0
+                    } else if d0 > 0.0 || d1 < 0.0 {
+                        hermite_max(y0, d0, y1, d1, h).0.abs()
+                    } else {
+                        hermite_max(-y0, -d0, -y1, -d1, h).0.abs()
+                    }
+                };
+                l.peak_w1 = l.peak_w1.max(ext(a1, a1d, w1, w1d));
+                l.peak_w2 = l.peak_w2.max(ext(a2, a2d, w2, w2d));
+                let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);
+                if c0d >= 0.0 && c1d <= 0.0 {
+                    l.max_closing = l.max_closing.max(hermite_max(c0, c0d, c1, c1d, h).0);
+                }
+            }
+            self.prev_w[k] = [w1, w1d, w2, w2d];
             if k == self.main {
                 main_sample.w = [w1, w2];
-                main_sample.wdot = [
-                    crate::system::dot(&self.phi1[k], &s.v[..n1]),
-                    crate::system::dot(&self.phi2[k], &s.v[n1..]),
-                ];
+                main_sample.wdot = [w1d, w2d];
             }
         }
         // contact episodes
         for (k, st) in s.levels.iter().enumerate() {
             let prev = self.prev_delta[k];
+            // largest penetration inside the interval (Hermite), and the force there: at an
+            // interior maximum δ̇ = 0, so every law gives its elastic force — the peak force for
+            // elastic laws, a lower bound for damped ones.
+            let (mut inner_delta, mut inner_force) = (f64::NEG_INFINITY, 0.0);
+            if refine && (prev > 0.0 || st.delta > 0.0) {
+                let (m, th) = hermite_max(prev, self.prev_delta_dot[k], st.delta, st.delta_dot, h);
+                if th > 0.0 && th < 1.0 && m > 0.0 {
+                    inner_delta = m;
+                    inner_force = system.levels[k].force.force(m, 0.0, 1.0);
+                }
+            }
             if st.delta > 0.0 {
                 let o = self.open[k].get_or_insert_with(|| {
                     // δ crossed 0 between the previous observation and this one (δ_prev = 0
@@ -329,9 +370,11 @@ impl Observer for Recorder {
                         approach_speed: st.delta_dot,
                     }
                 });
-                o.peak_force = o.peak_force.max(st.force);
-                o.max_penetration = o.max_penetration.max(st.delta);
-            } else if let Some(o) = self.open[k].take() {
+                o.peak_force = o.peak_force.max(st.force).max(inner_force);
+                o.max_penetration = o.max_penetration.max(st.delta).max(inner_delta);
+            } else if let Some(mut o) = self.open[k].take() {
+                o.peak_force = o.peak_force.max(inner_force);
+                o.max_penetration = o.max_penetration.max(inner_delta);
                 let theta = if prev > 0.0 {
                     prev / (prev - st.delta)
                 } else {
@@ -341,9 +384,10 @@ impl Observer for Recorder {
                 self.close(k, o, end, s.tally.impulse[k]);
             }
             let l = &mut self.levels[k];
-            l.peak_force = l.peak_force.max(st.force);
-            l.max_penetration = l.max_penetration.max(st.delta);
+            l.peak_force = l.peak_force.max(st.force).max(inner_force);
+            l.max_penetration = l.max_penetration.max(st.delta).max(inner_delta);
             self.prev_delta[k] = st.delta;
+            self.prev_delta_dot[k] = st.delta_dot;
         }
         self.last_impulse.copy_from_slice(&s.tally.impulse);
         self.sample(s, &main_sample);

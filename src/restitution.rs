@@ -88,11 +88,7 @@ pub fn isolated_impact(
     );
     let m_star = sys.levels[0].effective_mass;
     let t_c = duration_estimate(law, m_star, v);
-    let settings = SolverSettings {
-        method: Method::Rk4,
-        dt: t_c / 4000.0,
-        duration: 3.0 * t_c,
-    };
+    let settings = SolverSettings::new(Method::Rk4, t_c / 4000.0, 3.0 * t_c);
     let phi = [
         sys.structures[0].shape(0, 10.0),
         sys.structures[1].shape(0, 10.0),

@@ -14,7 +14,7 @@ use crate::contact::{ContactLaw, HertzDampModel};
 use crate::ground_motion::{
     AccelUnits, GroundMotion, Harmonic, Record, RecordOptions, STANDARD_GRAVITY,
 };
-use crate::integrate::{Method, SolverSettings};
+use crate::integrate::{DEFAULT_ATOL, DEFAULT_RTOL, Method, SolverSettings};
 use crate::modal::{Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
@@ -177,6 +177,8 @@ struct RawSolver {
     dt: Option<Spanned<f64>>,
     duration: Option<Spanned<f64>>,
     output_interval: Option<Spanned<f64>>,
+    rtol: Option<Spanned<f64>>,
+    atol: Option<Spanned<f64>>,
 }
 
 /// Valid keys of each table, for suggestions.
@@ -225,7 +227,17 @@ const TABLES: &[(&str, &[&str])] = &[
             "dt",
         ],
     ),
-    ("[solver]", &["method", "dt", "duration", "output_interval"]),
+    (
+        "[solver]",
+        &[
+            "method",
+            "dt",
+            "duration",
+            "output_interval",
+            "rtol",
+            "atol",
+        ],
+    ),
 ];
 
 /// Contact law names accepted by `[contact] law`.
@@ -1040,11 +1052,42 @@ fn solver(
     let near = Some(raw.span().start);
     let s = raw.get_ref();
     let method = match s.method.as_ref() {
-        None => Method::Rk4,
-        Some(m) => match m.get_ref().as_str() {
-            "rk4" => Method::Rk4,
-            _ => return Err(c.invalid(m, "solver.method", "must be \"rk4\"")),
+        None => Method::Adaptive,
+        Some(m) => match Method::from_name(m.get_ref()) {
+            Some(method) => method,
+            None => {
+                let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+                return Err(c.invalid(
+                    m,
+                    "solver.method",
+                    &format!("must be one of {}", quoted(&names)),
+                ));
+            }
         },
+    };
+    let rtol = match &s.rtol {
+        None => DEFAULT_RTOL,
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x.is_finite() && (1e-14..=0.1).contains(&x)) {
+                return Err(c.invalid(v, "solver.rtol", "must be in [1e-14, 0.1]"));
+            }
+            x
+        }
+    };
+    let atol = match &s.atol {
+        None => DEFAULT_ATOL,
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x.is_finite() && (1e-16..=1.0).contains(&x)) {
+                return Err(c.invalid(
+                    v,
+                    "solver.atol",
+                    "must be in [1e-16, 1] m (an error in a structure's top displacement)",
+                ));
+            }
+            x
+        }
     };
     let dt_v = c.required(&s.dt, "solver.dt", "time step in s", near)?;
     let dt = c.positive(dt_v, "solver.dt", "s")?;
@@ -1089,6 +1132,8 @@ fn solver(
             method,
             dt,
             duration,
+            rtol,
+            atol,
         },
         output_interval,
     ))

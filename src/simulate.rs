@@ -190,7 +190,7 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
     let separation = Separations::new(&peaks, without.max_closing);
 
     let mut warnings = Vec::new();
-    if stats.max_contact_omega_dt > 0.5 {
+    if scenario.solver.method == crate::integrate::Method::Rk4 && stats.max_contact_omega_dt > 0.5 {
         warnings.push(format!(
             "the contact is stiff for this step: ω_c·dt reached {:.2} (accurate below ≈0.5, unstable above ≈2.8); \
              peak forces may be inaccurate — reduce solver.dt",

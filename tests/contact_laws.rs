@@ -229,11 +229,7 @@ fn forces_are_never_negative() {
         );
         let phi = sys.structures[0].shape(0, 10.0);
         let mut min = MinForce(0.0);
-        let settings = SolverSettings {
-            method: Method::Rk4,
-            dt: 1e-6,
-            duration: 0.1,
-        };
+        let settings = SolverSettings::new(Method::Rk4, 1e-6, 0.1);
         integrate(
             &sys,
             &settings,

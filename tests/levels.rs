@@ -78,11 +78,7 @@ fn two_levels_conserve_energy() {
         hits: [0; 2],
         was: [false; 2],
     };
-    let settings = SolverSettings {
-        method: Method::Rk4,
-        dt: 2e-5,
-        duration: 5.0,
-    };
+    let settings = SolverSettings::new(Method::Rk4, 2e-5, 5.0);
     integrate(
         &sys,
         &settings,
@@ -113,11 +109,7 @@ fn two_levels_mirror() {
     let (mut vl, mut vr) = (vec![0.0; n], vec![0.0; n]);
     vl[0] = 0.3 / left.structures[0].shape(0, 10.0); // a moves towards b
     vr[n - na] = -0.3 / right.structures[1].shape(0, 10.0); // mirrored: a (now right) moves left
-    let s = SolverSettings {
-        method: Method::Rk4,
-        dt: 5e-5,
-        duration: 3.0,
-    };
+    let s = SolverSettings::new(Method::Rk4, 5e-5, 3.0);
     let (ra, _) = run_system(
         &left,
         &s,

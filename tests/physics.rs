@@ -23,11 +23,7 @@ fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping
 }
 
 fn rk4(dt: f64, duration: f64) -> SolverSettings {
-    SolverSettings {
-        method: Method::Rk4,
-        dt,
-        duration,
-    }
+    SolverSettings::new(Method::Rk4, dt, duration)
 }
 
 /// Collects a closure's view of every step.

@@ -146,11 +146,7 @@ fn constant_ground_acceleration_step_response() {
             - (-z * w * t).exp() * ((wd * t).cos() + z / (1.0 - z * z).sqrt() * (wd * t).sin()))
     };
     let mut obs = Worst(exact, 0.0);
-    let settings = SolverSettings {
-        method: Method::Rk4,
-        dt: 5e-4,
-        duration: 9.0,
-    };
+    let settings = SolverSettings::new(Method::Rk4, 5e-4, 9.0);
     integrate(&sys, &settings, &InitialState::default(), &mut obs).unwrap();
     assert!(obs.1 < 1e-9 * stat.abs(), "error {:e} of {stat}", obs.1);
 }

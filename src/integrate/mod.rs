@@ -4,9 +4,18 @@
 //! nothing of files or of what is kept. Alongside the state it integrates, with the same order,
 //! the energy flows (input work, structural damping, work into the contacts) and each level's
 //! impulse, so that energy balance and impulses are exact to the method's accuracy.
+//!
+//! Methods ([`Method`]): `rk4` (the paper's fixed step, module `rk4`), `exact-modal` (exact
+//! modal propagation, second-order contact sub-steps, module `exact_modal`) and `adaptive`
+//! (exponential Lobatto collocation with error control and event location, module `adaptive`);
+//! the last two share the exact propagator and particular solutions of [`linear`].
 
+mod adaptive;
+mod exact_modal;
+pub mod linear;
 mod rk4;
 
+pub use exact_modal::SUBSTEP_ALPHA;
 pub use rk4::{rk4_max_stable_dt, rk4_stability_limit};
 
 use crate::system::{LevelState, System};
@@ -16,6 +25,14 @@ use crate::system::{LevelState, System};
 pub enum Method {
     /// Classical fixed-step fourth-order Runge–Kutta: the paper's method.
     Rk4,
+    /// Dormand–Prince 5(4) in the interaction picture (each mode's linear dynamics and the
+    /// ground load propagated exactly, the pair integrating only the contact coupling), with
+    /// error control (rtol, atol) and contact onset/release located so that no step straddles
+    /// the kink of the contact law.
+    Adaptive,
+    /// Exact modal propagation over each step (ground load integrated exactly), contact load
+    /// by a trapezoidal predictor–corrector (second order) with dyadic sub-steps in contact.
+    ExactModal,
 }
 
 impl Method {
@@ -23,19 +40,55 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4 => "rk4",
+            Method::Adaptive => "adaptive",
+            Method::ExactModal => "exact-modal",
         }
     }
+
+    /// Every method, in the order of [`Method::name`]s offered to users.
+    pub const ALL: [Method; 3] = [Method::Rk4, Method::Adaptive, Method::ExactModal];
+
+    /// The method called `name` in scenario files.
+    pub fn from_name(name: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == name)
+    }
 }
+
+/// Default relative tolerance of the adaptive method.
+pub const DEFAULT_RTOL: f64 = 1e-8;
+/// Default absolute tolerance of the adaptive method, m (displacement at a structure's top;
+/// see [`SolverSettings::atol`]).
+pub const DEFAULT_ATOL: f64 = 1e-10;
 
 /// Solver settings, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
     /// Method.
     pub method: Method,
-    /// Time step, s.
+    /// Time step, s: the fixed step of `rk4`; the base step of `exact-modal`; the largest step
+    /// (and so the largest spacing of observations) of `adaptive`.
     pub dt: f64,
     /// Simulated duration, s.
     pub duration: f64,
+    /// Relative tolerance of `adaptive` (ignored by the fixed-step methods).
+    pub rtol: f64,
+    /// Absolute tolerance of `adaptive`, m: an error of this size in a structure's top
+    /// displacement. Turned into modal units per structure i as `atol·√M_i/2` (since
+    /// |φ(L)| = 2/√(M), SPEC §2.3) for η, and that times ω₁ of the structure for η̇.
+    pub atol: f64,
+}
+
+impl SolverSettings {
+    /// Settings with the default tolerances.
+    pub fn new(method: Method, dt: f64, duration: f64) -> SolverSettings {
+        SolverSettings {
+            method,
+            dt,
+            duration,
+            rtol: DEFAULT_RTOL,
+            atol: DEFAULT_ATOL,
+        }
+    }
 }
 
 /// Initial modal state (default: at rest relative to the ground, SPEC §2.8).
@@ -91,6 +144,10 @@ pub struct Stats {
     /// Largest `ω_c·dt` met in contact, where `ω_c = √(k_t/m*)` is the contact's tangent
     /// frequency: above ≈2.8 an explicit step is locally unstable, above ≈0.5 inaccurate.
     pub max_contact_omega_dt: f64,
+    /// Steps rejected by error control (`adaptive`).
+    pub rejected: usize,
+    /// Contact onsets and releases located as events (`adaptive`).
+    pub events: usize,
 }
 
 /// Why an integration could not be carried out.
@@ -153,6 +210,8 @@ impl SolverSettings {
                 }
                 Ok(())
             }
+            // both propagate every mode's linear dynamics exactly: stable for any step
+            Method::Adaptive | Method::ExactModal => Ok(()),
         }
     }
 }
@@ -167,6 +226,8 @@ pub fn integrate<O: Observer>(
     settings.check_stability(system)?;
     match settings.method {
         Method::Rk4 => rk4::run(system, settings, initial, observer),
+        Method::Adaptive => adaptive::run(system, settings, initial, observer),
+        Method::ExactModal => exact_modal::run(system, settings, initial, observer),
     }
 }
 

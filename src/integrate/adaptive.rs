@@ -1,0 +1,860 @@
+//! `adaptive`: exponential Lobatto collocation with error control and event location.
+//!
+//! Each mode's linear dynamics and the ground load are propagated exactly (see
+//! [`super::linear`]). Over a step of length h the contact force of every level is represented
+//! by the cubic through its values at the four Gauss–Lobatto nodes θ = 0, (1 ∓ 1/√5)/2, 1; the
+//! modal response to a cubic load is exact (precomputed influence of the loads (τ/h)^m, m ≤ 3,
+//! per mode and step size), so the penetrations at the nodes are an affine function of the nodal
+//! forces through small level×level matrices. The nodal forces are found by fixed-point
+//! iteration on the contact law (cost independent of the number of modes); the end state then
+//! costs one pass over the modes. This is collocation at Lobatto nodes (order 6 at step ends for
+//! smooth forces), exact without contact, and — unlike explicit Runge–Kutta or Lawson methods —
+//! its step is not limited by the highest mode: a mode far stiffer than the contact responds to
+//! the polynomial load exactly (quasi-statically), so the step is set by the contact alone and
+//! the cost grows linearly with the number of modes.
+//!
+//! Error control: the contact force's cubic component (its shifted-Legendre P₃ part) is what a
+//! quadratic load would miss; the end-state response to it is the error estimate of the
+//! lower-order solution (local extrapolation), in the max norm over every modal coordinate
+//! scaled by `atol_j + rtol·|y_j|` (atol per structure from the user's metres, see
+//! [`super::SolverSettings::atol`]); step sizes are quantised to `dt·2^(−k/4)` so the tables
+//! are computed once per size.
+//!
+//! Events: when a level's penetration δ changes sign inside an accepted step, the step is
+//! replaced by one ending where δ = 0 (cubic Hermite estimate from the nodes, then secant /
+//! Illinois on the step length until |δ| ≤ 1e-12 m), so no step straddles the kink of the contact
+//! law and an observation falls on every onset and release.
+//!
+//! Tallies: without contact forces, exact (see [`super::linear::mode_work`]); with contact,
+//! 4-point Lobatto quadrature (exact for degree-5 integrands) of the powers at the nodes.
+//!
+//! Steps split at the samples of a recorded motion.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::{
+    GroundModes, HarmonicTally, Piece, Prop, StateSums, TrigMoments, hermite, hermite_max,
+    mode_work, propagator,
+};
+use super::{
+    InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
+};
+use crate::system::{LevelState, System, dot};
+
+/// Event tolerance on δ, m.
+const EVENT_TOL: f64 = 1e-12;
+/// Quantisation of step sizes: h = dt·2^(−k/QUANT).
+const QUANT: f64 = 4.0;
+const MAX_K: usize = 240;
+/// Gauss–Lobatto weights on [0, 1] for the nodes below.
+const WEIGHTS: [f64; 4] = [1.0 / 12.0, 5.0 / 12.0, 5.0 / 12.0, 1.0 / 12.0];
+
+fn nodes() -> [f64; 4] {
+    let r = 1.0 / 5f64.sqrt();
+    [0.0, 0.5 * (1.0 - r), 0.5 * (1.0 + r), 1.0]
+}
+
+/// Inverse of the Vandermonde matrix V_im = θ_i^m of the nodes: a = V⁻¹ F.
+fn vandermonde_inverse() -> [[f64; 4]; 4] {
+    let th = nodes();
+    let mut a = [[0.0; 8]; 4];
+    for i in 0..4 {
+        for m in 0..4 {
+            a[i][m] = th[i].powi(m as i32);
+        }
+        a[i][4 + i] = 1.0;
+    }
+    // Gauss–Jordan with partial pivoting (4×4, well conditioned)
+    for col in 0..4 {
+        let p = (col..4)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap_or(col);
+        a.swap(col, p);
+        let d = a[col][col];
+        for x in a[col].iter_mut() {
+            *x /= d;
+        }
+        for r in 0..4 {
+            if r != col {
+                let f = a[r][col];
+                let row = a[col];
+                for (x, y) in a[r].iter_mut().zip(row) {
+                    *x -= f * y;
+                }
+            }
+        }
+    }
+    let mut inv = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            inv[i][j] = a[i][4 + j];
+        }
+    }
+    inv
+}
+
+/// Exact response (η, η̇) at time s from rest of one mode under the loads (τ/h)^m, m = 0..3.
+fn monomial_influence(omega: f64, damp: f64, s: f64, h: f64, p: &Prop) -> [(f64, f64); 4] {
+    let w2 = omega * omega;
+    let mut out = [(0.0, 0.0); 4];
+    if s == 0.0 {
+        return out;
+    }
+    if s * (omega + damp) < 1.0 {
+        // Σ_r (m!/h^m) s^{r+m+1}/(r+m+1)! A^r e₂
+        for (m, o) in out.iter_mut().enumerate() {
+            let mut fact = 1.0; // m!/h^m · s^{m+1}/(m+1)!
+            for q in 1..=m {
+                fact *= q as f64 / h;
+            }
+            let mut c = fact;
+            for q in 1..=(m + 1) {
+                c *= s / q as f64;
+            }
+            let (mut x, mut y) = (0.0, 1.0);
+            let mut acc = (0.0, 0.0);
+            for r in 0..60 {
+                acc.0 += c * x;
+                acc.1 += c * y;
+                c *= s / (r + m + 2) as f64;
+                let (nx, ny) = (y, -w2 * x - damp * y);
+                x = nx;
+                y = ny;
+                if c * (x.abs() + y.abs()) < 1e-17 * (acc.0.abs() * w2.max(1.0) + acc.1.abs()) {
+                    break;
+                }
+            }
+            *o = acc;
+        }
+    } else {
+        for (m, o) in out.iter_mut().enumerate() {
+            // particular polynomial Σ u_r τ^r of the load τ^m/h^m
+            let mut u = [0.0; 6];
+            let cm = 1.0 / h.powi(m as i32);
+            for r in (0..=m).rev() {
+                let c = if r == m { cm } else { 0.0 };
+                u[r] =
+                    (c - damp * (r + 1) as f64 * u[r + 1] - ((r + 2) * (r + 1)) as f64 * u[r + 2])
+                        / w2;
+            }
+            let (mut e, mut d) = (0.0, 0.0);
+            for r in (0..=m).rev() {
+                e = e * s + u[r];
+            }
+            for r in (1..=m).rev() {
+                d = d * s + r as f64 * u[r];
+            }
+            let (a, b) = p.apply(u[0], u[1]);
+            *o = (e - a, d - b);
+        }
+    }
+    out
+}
+
+/// Everything that depends on the step length only.
+struct Table {
+    h: f64,
+    /// P(θ_i h) for nodes 1..3: `[(i−1)·n + j]`.
+    props: Vec<Prop>,
+    /// Influence of (τ/h)^m at node i = 1..3: `[((i−1)·4 + m)·n + j]`.
+    gam: Vec<(f64, f64)>,
+    /// `Σ_j c_kj c_lj Γ_{j,i,m}`: `[((k·L + l)·3 + (i−1))·4 + m]`.
+    mm: Vec<(f64, f64)>,
+}
+
+impl Table {
+    fn new() -> Table {
+        Table {
+            h: f64::NAN,
+            props: Vec::new(),
+            gam: Vec::new(),
+            mm: Vec::new(),
+        }
+    }
+
+    fn fill(&mut self, sys: &System, h: f64) {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let n = sys.len();
+        let nl = sys.levels.len();
+        let th = nodes();
+        self.h = h;
+        self.props.clear();
+        self.gam.clear();
+        self.gam.resize(12 * n, (0.0, 0.0));
+        for (i, &t) in th.iter().enumerate().skip(1) {
+            for j in 0..n {
+                let p = propagator(omega[j], damp[j], t * h);
+                self.props.push(p);
+                let g = monomial_influence(omega[j], damp[j], t * h, h, &p);
+                for (m, gm) in g.iter().enumerate() {
+                    self.gam[((i - 1) * 4 + m) * n + j] = *gm;
+                }
+            }
+        }
+        self.mm.clear();
+        self.mm.resize(nl * nl * 12, (0.0, 0.0));
+        for k in 0..nl {
+            for l in 0..nl {
+                let (ck, cl) = (sys.coupling(k), sys.coupling(l));
+                for im in 0..12 {
+                    let g = &self.gam[im * n..(im + 1) * n];
+                    let mut s = (0.0, 0.0);
+                    for j in 0..n {
+                        let w = ck[j] * cl[j];
+                        s.0 += w * g[j].0;
+                        s.1 += w * g[j].1;
+                    }
+                    self.mm[(k * nl + l) * 12 + im] = s;
+                }
+            }
+        }
+    }
+}
+
+struct Work {
+    n: usize,
+    nl: usize,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    qn: Vec<f64>,
+    vn: Vec<f64>,
+    /// Free-flight velocities at nodes 1 and 2.
+    vf: [Vec<f64>; 2],
+    cpoly: Vec<[f64; 3]>,
+    /// Free-flight δ, δ̇ at nodes 1..3 per level: `[k·3 + i − 1]`.
+    dfree: Vec<(f64, f64)>,
+    /// Nodal forces `[k·4 + i]`, their cubic's coefficients `[k·4 + m]`, and the nodal δ, δ̇.
+    fnode: Vec<f64>,
+    coef: Vec<f64>,
+    dnode: Vec<(f64, f64)>,
+    aq: Vec<f64>,
+    av: Vec<f64>,
+    vinv: [[f64; 4]; 4],
+    /// Coupling rows transposed, mode-major: `[j·L + k]`.
+    cpl_t: Vec<f64>,
+}
+
+/// Outcome of one trial step.
+#[derive(Debug, Clone, Copy)]
+struct Trial {
+    err: f64,
+    /// Contact forces were zero throughout: the step is exact.
+    free: bool,
+    input: f64,
+    damping: f64,
+    contact: f64,
+}
+
+/// Free flight (ground only) from the start state to the given nodes (1..=3): the state at the
+/// end node into (qn, vn), velocities at nodes 1, 2 into `vf`, and δ, δ̇ at the nodes.
+#[allow(clippy::too_many_arguments)]
+fn free_nodes(
+    sys: &System,
+    gm: &GroundModes,
+    tab: &Table,
+    w: &mut Work,
+    piece: &Piece,
+    poly: bool,
+    t: f64,
+    trs: &[super::linear::Trig; 4],
+    which: &[usize],
+) {
+    let (n, nl) = (w.n, w.nl);
+    let h = tab.h;
+    let th = nodes();
+    for j in 0..n {
+        let c = if poly {
+            gm.poly_load(j, piece, t)
+        } else {
+            [0.0; 3]
+        };
+        w.cpoly[j] = c;
+        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &trs[0]);
+        let (x0, y0) = (w.q[j] - e0, w.v[j] - d0);
+        for &i in which {
+            let (e, d) = gm.particular(j, piece, &c, th[i] * h, &trs[i]);
+            let (x, y) = tab.props[(i - 1) * n + j].apply(x0, y0);
+            let (x, y) = (x + e, y + d);
+            for k in 0..nl {
+                let ck = w.cpl_t[j * nl + k];
+                w.dfree[k * 3 + i - 1].0 -= ck * x;
+                w.dfree[k * 3 + i - 1].1 -= ck * y;
+            }
+            if i == 3 {
+                w.qn[j] = x;
+                w.vn[j] = y;
+            } else {
+                w.vf[i - 1][j] = y;
+            }
+        }
+    }
+    for (k, lv) in sys.levels.iter().enumerate() {
+        for &i in which {
+            w.dfree[k * 3 + i - 1].0 -= lv.gap;
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn step(
+    sys: &System,
+    gm: &GroundModes,
+    tab: &Table,
+    w: &mut Work,
+    onset: &[f64],
+    start: &[LevelState],
+    t: f64,
+    piece: &Piece,
+    rtol: f64,
+    imp: &mut [f64],
+) -> Trial {
+    let (n, nl) = (w.n, w.nl);
+    let h = tab.h;
+    let th = nodes();
+    let trs = th.map(|x| gm.trig(t + x * h));
+    let poly = matches!(piece, Piece::Poly { .. });
+    w.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
+    let quiet = start.iter().all(|s| s.force == 0.0 && s.delta <= 0.0);
+    // the end node first: if the free flight stays clear of contact from the start to the end
+    // (cubic Hermite through both), it is the exact answer and the interior nodes are not needed
+    free_nodes(sys, gm, tab, w, piece, poly, t, &trs, &[3]);
+    let clear_to_end = |w: &Work| {
+        (0..nl).all(|k| {
+            let (d, dd) = w.dfree[k * 3 + 2];
+            hermite_max(start[k].delta, start[k].delta_dot, d, dd, h).0 < 0.0
+        })
+    };
+    let free = Trial {
+        err: 0.0,
+        free: true,
+        input: 0.0,
+        damping: 0.0,
+        contact: 0.0,
+    };
+    if quiet && clear_to_end(w) {
+        imp.iter_mut().for_each(|x| *x = 0.0);
+        return free;
+    }
+    free_nodes(sys, gm, tab, w, piece, poly, t, &trs, &[1, 2]);
+    // no contact force at the start, and the free flight stays clear (nodes, and the cubic
+    // Hermite between consecutive nodes): the free flight is the exact answer
+    let clear = quiet
+        && (0..nl).all(|k| {
+            let mut prev = (start[k].delta, start[k].delta_dot, 0.0);
+            (0..3).all(|i| {
+                let (d, dd) = w.dfree[k * 3 + i];
+                let (m, _) = hermite_max(prev.0, prev.1, d, dd, (th[i + 1] - prev.2) * h);
+                prev = (d, dd, th[i + 1]);
+                m < 0.0
+            })
+        });
+    if clear {
+        imp.iter_mut().for_each(|x| *x = 0.0);
+        return free;
+    }
+    // fixed point on the nodal forces
+    for k in 0..nl {
+        for i in 0..4 {
+            w.fnode[k * 4 + i] = start[k].force;
+        }
+        w.dnode[k * 4] = (start[k].delta, start[k].delta_dot);
+    }
+    let mut converged = false;
+    for _ in 0..80 {
+        for k in 0..nl {
+            for m in 0..4 {
+                w.coef[k * 4 + m] = (0..4).map(|i| w.vinv[m][i] * w.fnode[k * 4 + i]).sum();
+            }
+        }
+        let mut change: f64 = 0.0;
+        let mut scale: f64 = 0.0;
+        for (k, lv) in sys.levels.iter().enumerate() {
+            for i in 1..4 {
+                let (mut d, mut dd) = w.dfree[k * 3 + i - 1];
+                for l in 0..nl {
+                    let base = (k * nl + l) * 12 + (i - 1) * 4;
+                    for m in 0..4 {
+                        let a = w.coef[l * 4 + m];
+                        d -= a * tab.mm[base + m].0;
+                        dd -= a * tab.mm[base + m].1;
+                    }
+                }
+                w.dnode[k * 4 + i] = (d, dd);
+                let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+                let f = lv.force.force(d, dd, v0);
+                let old = w.fnode[k * 4 + i];
+                change = change.max((f - old).abs());
+                scale = scale.max(f.abs()).max(old.abs());
+                w.fnode[k * 4 + i] = f;
+            }
+        }
+        if change <= 1e-14 * scale || !change.is_finite() {
+            converged = change.is_finite();
+            break;
+        }
+    }
+    if !converged {
+        return Trial {
+            err: f64::INFINITY,
+            free: false,
+            input: 0.0,
+            damping: 0.0,
+            contact: 0.0,
+        };
+    }
+    for k in 0..nl {
+        for m in 0..4 {
+            w.coef[k * 4 + m] = (0..4).map(|i| w.vinv[m][i] * w.fnode[k * 4 + i]).sum();
+        }
+    }
+    // end state, error estimate, nodal powers
+    let damp = sys.damping_coefficients();
+    let mut pw = [[0.0; 2]; 4];
+    let mut err: f64 = 0.0;
+    for j in 0..n {
+        // contact load of mode j as a cubic in θ: Σ_l c_lj a_lm
+        let mut g = [0.0; 4];
+        for l in 0..nl {
+            let c = w.cpl_t[j * nl + l];
+            for (m, gm_) in g.iter_mut().enumerate() {
+                *gm_ += c * w.coef[l * 4 + m];
+            }
+        }
+        // error: response to the P₃ component (a₃/20)(20θ³ − 30θ² + 12θ − 1)
+        let e3 = g[3] / 20.0;
+        let pe = [-e3, 12.0 * e3, -30.0 * e3, 20.0 * e3];
+        let (mut x, mut y) = (w.qn[j], w.vn[j]);
+        let (mut ex, mut ey) = (0.0, 0.0);
+        for m in 0..4 {
+            let gam = tab.gam[(8 + m) * n + j];
+            x += g[m] * gam.0;
+            y += g[m] * gam.1;
+            ex += pe[m] * gam.0;
+            ey += pe[m] * gam.1;
+        }
+        // velocities at the interior nodes for the quadrature
+        for i in 1..3 {
+            let mut vi = w.vf[i - 1][j];
+            for m in 0..4 {
+                vi += g[m] * tab.gam[((i - 1) * 4 + m) * n + j].1;
+            }
+            let tau = th[i] * h;
+            pw[i][0] += gm.load(j, piece, &w.cpoly[j], tau, &trs[i]) * vi;
+            pw[i][1] += damp[j] * vi * vi;
+        }
+        pw[0][0] += gm.load(j, piece, &w.cpoly[j], 0.0, &trs[0]) * w.v[j];
+        pw[0][1] += damp[j] * w.v[j] * w.v[j];
+        pw[3][0] += gm.load(j, piece, &w.cpoly[j], h, &trs[3]) * y;
+        pw[3][1] += damp[j] * y * y;
+        let sq = w.aq[j] + rtol * w.q[j].abs().max(x.abs());
+        let sv = w.av[j] + rtol * w.v[j].abs().max(y.abs());
+        let e = (ex.abs() / sq).max(ey.abs() / sv);
+        w.qn[j] = x;
+        w.vn[j] = y;
+        if e.is_nan() {
+            err = f64::INFINITY;
+        } else if e > err {
+            err = e;
+        }
+    }
+    let mut tr = Trial {
+        err,
+        free: false,
+        input: 0.0,
+        damping: 0.0,
+        contact: 0.0,
+    };
+    for i in 0..4 {
+        tr.input += h * WEIGHTS[i] * pw[i][0];
+        tr.damping += h * WEIGHTS[i] * pw[i][1];
+        for k in 0..nl {
+            tr.contact += h * WEIGHTS[i] * w.fnode[k * 4 + i] * w.dnode[k * 4 + i].1;
+        }
+    }
+    for k in 0..nl {
+        imp[k] = (0..4).map(|i| h * WEIGHTS[i] * w.fnode[k * 4 + i]).sum();
+    }
+    tr
+}
+
+pub(super) fn run<O: Observer>(
+    sys: &System,
+    settings: &SolverSettings,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<Stats, SolveError> {
+    let n = sys.len();
+    let nl = sys.levels.len();
+    let gm = GroundModes::new(sys);
+    let pick = |x: &Vec<f64>| {
+        if x.len() == n {
+            x.clone()
+        } else {
+            vec![0.0; n]
+        }
+    };
+    // absolute tolerances in modal units (SolverSettings::atol)
+    let mut aq = vec![0.0; n];
+    let mut av = vec![0.0; n];
+    let n1 = sys.n1();
+    for (i, s) in sys.structures.iter().enumerate() {
+        let scale = settings.atol * (s.mass_per_length * s.length).sqrt() / 2.0;
+        let w1 = s.omega.first().copied().unwrap_or(1.0);
+        let range = if i == 0 { 0..n1 } else { n1..n };
+        for j in range {
+            aq[j] = scale;
+            av[j] = scale * w1;
+        }
+    }
+    let mut w = Work {
+        n,
+        nl,
+        q: pick(&initial.q),
+        v: pick(&initial.v),
+        qn: vec![0.0; n],
+        vn: vec![0.0; n],
+        vf: [vec![0.0; n], vec![0.0; n]],
+        cpoly: vec![[0.0; 3]; n],
+        dfree: vec![(0.0, 0.0); 3 * nl],
+        fnode: vec![0.0; 4 * nl],
+        coef: vec![0.0; 4 * nl],
+        dnode: vec![(0.0, 0.0); 4 * nl],
+        aq,
+        av,
+        vinv: vandermonde_inverse(),
+        cpl_t: (0..n)
+            .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
+            .collect(),
+    };
+    let mut states = vec![LevelState::default(); nl];
+    let mut prev_states = states.clone();
+    let mut onset = vec![0.0; nl];
+    let mut imp = vec![0.0; nl];
+    let mut tally = Tally {
+        impulse: vec![0.0; nl],
+        ..Tally::default()
+    };
+    let mut stats = Stats::default();
+    let eval_states = |q: &[f64], v: &[f64], onset: &[f64], states: &mut [LevelState]| {
+        for (k, lv) in sys.levels.iter().enumerate() {
+            let c = sys.coupling(k);
+            let delta = -dot(c, q) - lv.gap;
+            let dd = -dot(c, v);
+            let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+            states[k] = LevelState {
+                delta,
+                delta_dot: dd,
+                force: lv.force.force(delta, dd, v0),
+            };
+        }
+    };
+    eval_states(&w.q, &w.v, &onset, &mut states);
+    let s0 = states.clone();
+    update_onsets(&mut onset, &s0, &states);
+    observer.observe(
+        sys,
+        &StepView {
+            t: 0.0,
+            q: &w.q,
+            v: &w.v,
+            levels: &states,
+            tally: &tally,
+        },
+    );
+
+    let duration = settings.duration;
+    let hmax = settings.dt;
+    let rtol = settings.rtol;
+    let htally = HarmonicTally::new(&gm);
+    let mut cache: Vec<Option<Table>> = (0..=MAX_K).map(|_| None).collect();
+    let mut scratch = Table::new();
+    let mut k_step: usize = 0;
+    let mut err_old: f64 = 1e-4;
+    let mut rejected_last = false;
+    let mut t = 0.0;
+    while t < duration {
+        let (piece, piece_end) = gm.piece_at(t);
+        let limit = piece_end.min(duration) - t;
+        let hq = hmax * (-(k_step as f64) / QUANT).exp2();
+        let (h, quantised) = if hq >= limit * (1.0 - 1e-9) {
+            (limit, false)
+        } else {
+            (hq, true)
+        };
+        let tab: &Table = if quantised {
+            cache[k_step].get_or_insert_with(|| {
+                let mut tb = Table::new();
+                tb.fill(sys, h);
+                tb
+            })
+        } else {
+            if scratch.h != h {
+                scratch.fill(sys, h);
+            }
+            &scratch
+        };
+        let mut tr = step(
+            sys, &gm, tab, &mut w, &onset, &states, t, &piece, rtol, &mut imp,
+        );
+        stats.evaluations += 1;
+        if tr.err.is_nan() || tr.err > 1.0 {
+            stats.rejected += 1;
+            let fac = if tr.err.is_finite() {
+                (0.9 * tr.err.powf(-0.25)).clamp(0.2, 0.9)
+            } else {
+                0.3
+            };
+            k_step = quantise_down(hq * fac, hmax).max(k_step + 1);
+            rejected_last = true;
+            if k_step >= MAX_K {
+                return Err(SolveError::Diverged {
+                    t,
+                    contact_omega_dt: stats.max_contact_omega_dt,
+                });
+            }
+            continue;
+        }
+        let mut h_taken = h;
+        // a sign change of δ inside the step: end the step at the event instead
+        if !tr.free
+            && let Some((k, s_guess)) = first_crossing(&states, &w, nl)
+        {
+            let (tr2, s) = locate_event(
+                sys,
+                &gm,
+                &mut scratch,
+                &mut w,
+                &onset,
+                &states,
+                t,
+                h,
+                &piece,
+                rtol,
+                k,
+                s_guess,
+                &mut imp,
+                &mut stats,
+            );
+            tr = tr2;
+            h_taken = s;
+            stats.events += 1;
+        }
+        // accept
+        if tr.free {
+            let tm = match piece {
+                Piece::Harmonic => gm
+                    .harmonic_omega()
+                    .map(|big| TrigMoments::new(big, t, h_taken)),
+                _ => None,
+            };
+            let (mut input, mut damping) = (0.0, 0.0);
+            if let (Some(ht), Some(tm)) = (&htally, &tm) {
+                // harmonic motion: exact tallies from linear forms
+                let (mut s0, mut s1) = (StateSums::default(), StateSums::default());
+                for j in 0..n {
+                    ht.add(&mut s0, j, gm.w2[j], w.q[j], w.v[j]);
+                    ht.add(&mut s1, j, gm.w2[j], w.qn[j], w.vn[j]);
+                }
+                input = ht.input(tm, &s0, &s1);
+                damping = input - (s1.energy - s0.energy);
+            } else {
+                for j in 0..n {
+                    let ground = match piece {
+                        Piece::Harmonic => None,
+                        _ => Some(&w.cpoly[j]),
+                    };
+                    let m = mode_work(
+                        &gm,
+                        j,
+                        h_taken,
+                        (w.q[j], w.v[j]),
+                        (w.qn[j], w.vn[j]),
+                        ground,
+                        tm.as_ref(),
+                        0.0,
+                        0.0,
+                    );
+                    input += m.input;
+                    damping += m.damping;
+                }
+            }
+            tally.input += input;
+            tally.damping += damping;
+        } else {
+            tally.input += tr.input;
+            tally.damping += tr.damping;
+            tally.contact += tr.contact;
+            for k in 0..nl {
+                tally.impulse[k] += imp[k];
+            }
+        }
+        std::mem::swap(&mut w.q, &mut w.qn);
+        std::mem::swap(&mut w.v, &mut w.vn);
+        t = if h_taken == limit {
+            t + limit
+        } else {
+            t + h_taken
+        };
+        prev_states.copy_from_slice(&states);
+        eval_states(&w.q, &w.v, &onset, &mut states);
+        update_onsets(&mut onset, &prev_states, &states);
+        for (lv, st) in sys.levels.iter().zip(&states) {
+            if st.delta > 0.0 {
+                let wc = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
+                stats.max_contact_omega_dt = stats.max_contact_omega_dt.max(wc * h_taken);
+            }
+        }
+        stats.steps += 1;
+        if !(w.q.iter().sum::<f64>().is_finite() && w.v.iter().sum::<f64>().is_finite()) {
+            return Err(SolveError::Diverged {
+                t,
+                contact_omega_dt: stats.max_contact_omega_dt,
+            });
+        }
+        observer.observe(
+            sys,
+            &StepView {
+                t,
+                q: &w.q,
+                v: &w.v,
+                levels: &states,
+                tally: &tally,
+            },
+        );
+        // next step size (PI controller, Hairer & Wanner II.4, for the order-4 estimate)
+        if h_taken == h && quantised {
+            let err = tr.err.max(1e-10);
+            let mut fac = (0.9 * err.powf(-0.7 / 4.0) * err_old.powf(0.4 / 4.0)).clamp(0.2, 5.0);
+            if rejected_last {
+                fac = fac.min(1.0);
+            }
+            err_old = err.max(1e-4);
+            k_step = quantise_down(hq * fac, hmax);
+        }
+        rejected_last = false;
+    }
+    Ok(stats)
+}
+
+/// Smallest k with hmax·2^(−k/4) ≤ h.
+fn quantise_down(h: f64, hmax: f64) -> usize {
+    if h >= hmax {
+        return 0;
+    }
+    let k = (QUANT * (hmax / h).log2()).ceil();
+    if k.is_finite() {
+        (k.max(0.0) as usize).min(MAX_K)
+    } else {
+        MAX_K
+    }
+}
+
+/// The level whose δ changes sign first inside the step (nodes of the last trial), and the
+/// fraction of the step where the cubic Hermite between the bracketing nodes crosses 0.
+fn first_crossing(start: &[LevelState], w: &Work, nl: usize) -> Option<(usize, f64)> {
+    let th = nodes();
+    let mut best: Option<(usize, f64)> = None;
+    for k in 0..nl {
+        let d0 = start[k].delta;
+        if d0.abs() <= EVENT_TOL {
+            continue;
+        }
+        let mut prev = (d0, start[k].delta_dot);
+        for i in 1..4 {
+            let cur = w.dnode[k * 4 + i];
+            let crossing = (prev.0 < 0.0 && cur.0 > 0.0) || (prev.0 > 0.0 && cur.0 <= 0.0);
+            if crossing {
+                let span = th[i] - th[i - 1];
+                let (mut lo, mut hi) = (0.0, 1.0);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    let y = hermite(prev.0, prev.1 * span, cur.0, cur.1 * span, 1.0, mid);
+                    if (y > 0.0) == (prev.0 > 0.0) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let theta = th[i - 1] + span * 0.5 * (lo + hi);
+                if best.is_none_or(|b| theta < b.1) {
+                    best = Some((k, theta));
+                }
+                break;
+            }
+            prev = cur;
+        }
+    }
+    best
+}
+
+/// Find s ∈ (0, h) with δ_k = 0 at the end of a step of length s (secant/Illinois on s from the
+/// Hermite estimate), leaving that step's result in the work arrays.
+#[allow(clippy::too_many_arguments)]
+fn locate_event(
+    sys: &System,
+    gm: &GroundModes,
+    scratch: &mut Table,
+    w: &mut Work,
+    onset: &[f64],
+    start: &[LevelState],
+    t: f64,
+    h: f64,
+    piece: &Piece,
+    rtol: f64,
+    k: usize,
+    theta: f64,
+    imp: &mut [f64],
+    stats: &mut Stats,
+) -> (Trial, f64) {
+    let lv = &sys.levels[k];
+    let d_at = |w: &Work| -dot(sys.coupling(k), &w.qn) - lv.gap;
+    let (mut a, mut fa) = (0.0, start[k].delta);
+    let (mut b, mut fb) = (h, w.dnode[k * 4 + 3].0);
+    let mut s = (theta * h).clamp(1e-9 * h, h);
+    let mut side = 0;
+    let mut last = None;
+    for _ in 0..40 {
+        scratch.fill(sys, s);
+        let tr = step(sys, gm, scratch, w, onset, start, t, piece, rtol, imp);
+        stats.evaluations += 1;
+        let fs = d_at(w);
+        last = Some((tr, s));
+        if fs.abs() <= EVENT_TOL || (b - a) <= 1e-15 * (t + h) {
+            break;
+        }
+        if (fs > 0.0) == (fa > 0.0) {
+            a = s;
+            fa = fs;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = s;
+            fb = fs;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+        s = if side == 0 || fb == fa {
+            0.5 * (a + b)
+        } else {
+            (a * fb - b * fa) / (fb - fa)
+        };
+        if !(s > a && s < b) {
+            s = 0.5 * (a + b);
+        }
+    }
+    last.unwrap_or((
+        Trial {
+            err: 0.0,
+            free: true,
+            input: 0.0,
+            damping: 0.0,
+            contact: 0.0,
+        },
+        h,
+    ))
+}

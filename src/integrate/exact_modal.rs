@@ -1,0 +1,531 @@
+//! `exact-modal`: every mode's linear dynamics and the ground load propagated exactly over each
+//! step (SPEC §2.4; see [`super::linear`]), the contact load `Σ_k c_kj F_k(t)` treated as an
+//! extra load that is linear in time over a sub-step, from the law's force at the sub-step start
+//! to a predicted force at its end (trapezoidal predictor–corrector, PECE):
+//!
+//! 1. predict the end state with the contact force held at F₀, evaluate the law there: F₁*;
+//! 2. correct: the end state under the load varying linearly from F₀ to F₁* (exact for that load);
+//! 3. evaluate the law at the corrected state: F₁ starts the next sub-step.
+//!
+//! The scheme is second order in the sub-step (the load's linear interpolation has an O(h²)
+//! error and the predicted F₁* an O(h²) error); with no contact it is exact for any step and any
+//! number of modes. While a level is in contact, or may come into contact within the base step
+//! (end state or cubic Hermite bound of δ positive), the base step `dt` is cut into 2^m equal
+//! sub-steps, m ≥ 2, with `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the tangent
+//! stiffness at the largest penetration predicted without contact forces (an upper bound) and
+//! D(h) the level's displacement under a unit force held for h. For a point mass D = h²/(2m*)
+//! and the rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much stiffer than the contact add
+//! only their static flexibility, so the sub-step does not shrink as modes are added. Where the
+//! rule gives m = 2 the sub-step is proportional to dt: halving dt halves every sub-step and
+//! the error falls by 4 — the regime where the order is observed.
+//!
+//! Steps split at the samples of a recorded motion (its load is a different polynomial on each
+//! interval): each record interval is cut into equal steps ≤ dt.
+//!
+//! Tallies: the work of the ground load and the dissipation are computed exactly for the
+//! propagated solution (moments of η from the equation of motion, see
+//! [`super::linear::mode_work`]); the work into the contacts, `∫F(δ)δ̇ dt` with the law's force,
+//! by Simpson's rule on the cubic Hermite interpolant of δ, so that the energy balance measures
+//! the error of the contact scheme (the mismatch between the linearly interpolated load and the
+//! law along the computed motion).
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::{
+    GroundModes, HarmonicTally, Influence, Piece, StateSums, Trig, TrigMoments, hermite_max,
+    influence, mode_work,
+};
+use super::{
+    InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
+};
+use crate::system::{LevelState, System, dot};
+
+/// Largest `ω_c·h_sub` of a contact sub-step of `exact-modal` (ω_c = √(k_t/m*), rad/s).
+pub const SUBSTEP_ALPHA: f64 = 0.1;
+/// Every base step in (or near) contact is cut into at least 2^2 sub-steps.
+const MIN_LEVEL: i32 = 2;
+/// At most 2^30 sub-steps per base step.
+const MAX_LEVEL: i32 = 30;
+const CACHE: usize = 16;
+
+/// Everything that depends on the step length only.
+struct StepData {
+    h: f64,
+    infl: Vec<Influence>,
+    /// `M0[k·L + l] = Σ_j c_kj c_lj Γ0_j` (η and η̇ components): the response of level k's
+    /// displacement to a unit constant force at level l, for the predictor.
+    m0: Vec<(f64, f64)>,
+}
+
+impl StepData {
+    fn new(sys: &System, h: f64) -> StepData {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let infl: Vec<Influence> = (0..sys.len())
+            .map(|j| influence(omega[j], damp[j], h))
+            .collect();
+        let nl = sys.levels.len();
+        let mut m0 = vec![(0.0, 0.0); nl * nl];
+        for k in 0..nl {
+            for l in 0..nl {
+                let (ck, cl) = (sys.coupling(k), sys.coupling(l));
+                let mut s = (0.0, 0.0);
+                for (j, f) in infl.iter().enumerate() {
+                    let w = ck[j] * cl[j];
+                    s.0 += w * f.g0.0;
+                    s.1 += w * f.g0.1;
+                }
+                m0[k * nl + l] = s;
+            }
+        }
+        StepData { h, infl, m0 }
+    }
+}
+
+/// A few step lengths' data, replaced round-robin.
+pub(super) struct StepCache {
+    entries: Vec<StepData>,
+    next: usize,
+}
+
+impl StepCache {
+    fn new() -> StepCache {
+        StepCache {
+            entries: Vec::with_capacity(CACHE),
+            next: 0,
+        }
+    }
+
+    fn index(&mut self, sys: &System, h: f64) -> usize {
+        if let Some(i) = self.entries.iter().position(|e| e.h == h) {
+            return i;
+        }
+        let d = StepData::new(sys, h);
+        if self.entries.len() < CACHE {
+            self.entries.push(d);
+            self.entries.len() - 1
+        } else {
+            let i = self.next;
+            self.entries[i] = d;
+            self.next = (i + 1) % CACHE;
+            i
+        }
+    }
+}
+
+struct Run<'a, O: Observer> {
+    sys: &'a System,
+    gm: GroundModes,
+    obs: &'a mut O,
+    cache: StepCache,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    qb: Vec<f64>,
+    vb: Vec<f64>,
+    /// Ground load polynomial of each mode over the current step (records).
+    cpoly: Vec<[f64; 3]>,
+    states: Vec<LevelState>,
+    prev_states: Vec<LevelState>,
+    onset: Vec<f64>,
+    fpred: Vec<f64>,
+    /// Coupling rows transposed, mode-major: `[j·L + k]`.
+    cpl_t: Vec<f64>,
+    /// Harmonic motion: sin, cos at the last step end, and of Ωh/2 for the last h.
+    trig_end: Trig,
+    trig_start: Trig,
+    half: (f64, f64, f64),
+    /// Fast exact tallies for harmonic motion, and the sums at the current state.
+    htally: Option<HarmonicTally>,
+    sums: StateSums,
+    tally: Tally,
+    stats: Stats,
+}
+
+pub(super) fn run<O: Observer>(
+    sys: &System,
+    settings: &SolverSettings,
+    initial: &InitialState,
+    observer: &mut O,
+) -> Result<Stats, SolveError> {
+    let n = sys.len();
+    let nl = sys.levels.len();
+    let pick = |x: &Vec<f64>| {
+        if x.len() == n {
+            x.clone()
+        } else {
+            vec![0.0; n]
+        }
+    };
+    let mut r = Run {
+        sys,
+        gm: GroundModes::new(sys),
+        obs: observer,
+        cache: StepCache::new(),
+        q: pick(&initial.q),
+        v: pick(&initial.v),
+        qb: vec![0.0; n],
+        vb: vec![0.0; n],
+        cpoly: vec![[0.0; 3]; n],
+        states: vec![LevelState::default(); nl],
+        prev_states: vec![LevelState::default(); nl],
+        onset: vec![0.0; nl],
+        fpred: vec![0.0; nl],
+        cpl_t: (0..n)
+            .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
+            .collect(),
+        trig_end: Trig {
+            t: f64::NAN,
+            s: 0.0,
+            c: 0.0,
+        },
+        trig_start: Trig::default(),
+        half: (f64::NAN, 0.0, 0.0),
+        htally: None,
+        sums: StateSums::default(),
+        tally: Tally {
+            impulse: vec![0.0; nl],
+            ..Tally::default()
+        },
+        stats: Stats::default(),
+    };
+    r.htally = HarmonicTally::new(&r.gm);
+    if let Some(ht) = &r.htally {
+        for j in 0..n {
+            ht.add(&mut r.sums, j, r.gm.w2[j], r.q[j], r.v[j]);
+        }
+    }
+    r.evaluate_states();
+    let s0 = r.states.clone();
+    update_onsets(&mut r.onset, &s0, &r.states);
+    r.observe(0.0);
+
+    let duration = settings.duration;
+    let dt = settings.dt;
+    let mut t = 0.0;
+    while t < duration {
+        let (piece, piece_end) = r.gm.piece_at(t);
+        let seg_end = piece_end.min(duration);
+        let len = seg_end - t;
+        let steps = ((len / dt) - 1e-9).ceil().max(1.0);
+        let hh = len / steps;
+        let steps = steps as usize;
+        for i in 0..steps {
+            let ts = t + i as f64 * hh;
+            let te = if i + 1 == steps {
+                seg_end
+            } else {
+                t + (i + 1) as f64 * hh
+            };
+            r.base_step(ts, te - ts, &piece)?;
+        }
+        t = seg_end;
+    }
+    Ok(r.stats)
+}
+
+impl<O: Observer> Run<'_, O> {
+    fn observe(&mut self, t: f64) {
+        self.obs.observe(
+            self.sys,
+            &StepView {
+                t,
+                q: &self.q,
+                v: &self.v,
+                levels: &self.states,
+                tally: &self.tally,
+            },
+        );
+    }
+
+    /// δ, δ̇ and the law's force at the current state.
+    fn evaluate_states(&mut self) {
+        let sys = self.sys;
+        for (k, lv) in sys.levels.iter().enumerate() {
+            let c = sys.coupling(k);
+            let delta = -dot(c, &self.q) - lv.gap;
+            let delta_dot = -dot(c, &self.v);
+            let v0 = if self.onset[k] > 0.0 {
+                self.onset[k]
+            } else {
+                delta_dot
+            };
+            self.states[k] = LevelState {
+                delta,
+                delta_dot,
+                force: lv.force.force(delta, delta_dot, v0),
+            };
+        }
+    }
+
+    /// Ground-only free flight from the current state over [t0, t0 + h] into (qb, vb).
+    fn free_flight(&mut self, t0: f64, h: f64, piece: &Piece, idx: usize) {
+        let gm = &self.gm;
+        let data = &self.cache.entries[idx];
+        let tr0 = if self.trig_end.t == t0 {
+            self.trig_end
+        } else {
+            gm.trig(t0)
+        };
+        let tr1 = gm.trig(t0 + h);
+        if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
+            // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
+            let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
+            for j in 0..self.q.len() {
+                let (gr, gi) = (g_re[j], g_im[j]);
+                let (e0, d0) = (gr * s0 + gi * c0, big * (gr * c0 - gi * s0));
+                let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
+                let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
+                self.qb[j] = x + e1;
+                self.vb[j] = y + d1;
+            }
+        } else {
+            let poly = matches!(piece, Piece::Poly { .. });
+            for j in 0..self.q.len() {
+                let c = if poly {
+                    gm.poly_load(j, piece, t0)
+                } else {
+                    [0.0; 3]
+                };
+                self.cpoly[j] = c;
+                let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr0);
+                let (e1, d1) = gm.particular(j, piece, &c, h, &tr1);
+                let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
+                self.qb[j] = x + e1;
+                self.vb[j] = y + d1;
+            }
+        }
+        self.trig_start = tr0;
+        self.trig_end = tr1;
+    }
+
+    fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
+        let sys = self.sys;
+        let idx = self.cache.index(sys, hh);
+        self.free_flight(t0, hh, piece, idx);
+        // Could any level touch within this step? (in contact now, or the free flight's δ, or
+        // the cubic through its ends, goes positive)
+        let mut delta_est = f64::NEG_INFINITY;
+        for (k, lv) in sys.levels.iter().enumerate() {
+            let st = self.states[k];
+            let c = sys.coupling(k);
+            let d1 = -dot(c, &self.qb) - lv.gap;
+            let dd1 = -dot(c, &self.vb);
+            let (m, _) = hermite_max(st.delta, st.delta_dot, d1, dd1, hh);
+            let m = if st.force > 0.0 { m.max(st.delta) } else { m };
+            delta_est = delta_est.max(m);
+        }
+        if delta_est < 0.0 || sys.levels.is_empty() {
+            return self.finish_step(t0, hh, piece, idx, false);
+        }
+        // contact: 2^m sub-steps, m ≥ 2, with k_t·D(h) ≤ α²/2 at the largest predicted
+        // penetration, where D(h) = Σ_j c_j² Γ0_j(h) is the level's displacement under a unit
+        // force held for h (h²/(2m*) for a point mass, so this is ω_c h ≤ α; modes much stiffer
+        // than the contact add only their static flexibility, so the sub-step does not shrink
+        // as modes are added)
+        let nl = sys.levels.len();
+        let mut level = MIN_LEVEL;
+        let mut idx = self.cache.index(sys, hh / (1u64 << level) as f64);
+        while level < MAX_LEVEL {
+            let data = &self.cache.entries[idx];
+            let worst = sys
+                .levels
+                .iter()
+                .enumerate()
+                .map(|(k, lv)| {
+                    lv.force.tangent_stiffness(delta_est.max(0.0)) * data.m0[k * nl + k].0
+                })
+                .fold(0.0, f64::max);
+            if worst <= 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA {
+                break;
+            }
+            level += 1;
+            idx = self.cache.index(sys, hh / (1u64 << level) as f64);
+        }
+        let m = 1usize << level;
+        let hs = hh / m as f64;
+        for i in 0..m {
+            let ts = t0 + i as f64 * hs;
+            self.free_flight(ts, hs, piece, idx);
+            self.finish_step(ts, hs, piece, idx, true)?;
+        }
+        Ok(())
+    }
+
+    /// Complete a (sub-)step whose free flight is in (qb, vb): with `contact`, the predictor–
+    /// corrector for the contact load; then the state, tallies, observation.
+    fn finish_step(
+        &mut self,
+        t0: f64,
+        h: f64,
+        piece: &Piece,
+        idx: usize,
+        contact: bool,
+    ) -> Result<(), SolveError> {
+        let sys = self.sys;
+        let nl = sys.levels.len();
+        let data = &self.cache.entries[idx];
+        // predicted end force F₁* (load held at F₀ over the step)
+        if contact {
+            for (k, lv) in sys.levels.iter().enumerate() {
+                let c = sys.coupling(k);
+                let (mut d, mut dd) = (-dot(c, &self.qb) - lv.gap, -dot(c, &self.vb));
+                for l in 0..nl {
+                    let f0 = self.states[l].force;
+                    d -= f0 * data.m0[k * nl + l].0;
+                    dd -= f0 * data.m0[k * nl + l].1;
+                }
+                let v0 = if self.onset[k] > 0.0 {
+                    self.onset[k]
+                } else {
+                    dd
+                };
+                self.fpred[k] = lv.force.force(d, dd, v0);
+            }
+        } else {
+            self.fpred.iter_mut().for_each(|f| *f = 0.0);
+        }
+        let any_force =
+            contact && (0..nl).any(|k| self.states[k].force != 0.0 || self.fpred[k] != 0.0);
+        // state update and exact tallies, mode by mode
+        // (free_flight has just computed sin, cos at t0 + h into trig_end)
+        let tm = match piece {
+            Piece::Harmonic => self.gm.harmonic_omega().map(|big| {
+                if self.half.0 != h {
+                    let (s, c) = (0.5 * big * h).sin_cos();
+                    self.half = (h, s, c);
+                }
+                let (tr0, tr1) = (self.trig_start, self.trig_end);
+                TrigMoments::from_ends(
+                    big,
+                    h,
+                    (tr0.s, tr0.c),
+                    (tr1.s, tr1.c),
+                    (self.half.1, self.half.2),
+                )
+            }),
+            _ => None,
+        };
+        let n = self.q.len();
+        let (mut input, mut damping) = (0.0, 0.0);
+        let mut sums = StateSums::default();
+        if let (Some(ht), Some(tm)) = (&self.htally, &tm) {
+            // harmonic motion: exact tallies from linear forms
+            let mut extra = 0.0;
+            let mut contact = 0.0;
+            if any_force {
+                for j in 0..n {
+                    let (mut g0, mut g1) = (0.0, 0.0);
+                    for k in 0..nl {
+                        let c = self.cpl_t[j * nl + k];
+                        g0 += c * self.states[k].force;
+                        g1 += c * (self.fpred[k] - self.states[k].force);
+                    }
+                    let f = &data.infl[j];
+                    let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                    let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                    let (x, c) = ht.with_contact(
+                        &self.gm,
+                        j,
+                        tm,
+                        h,
+                        (self.q[j], self.v[j]),
+                        (q1, v1),
+                        g0,
+                        g1 / h,
+                    );
+                    extra += x;
+                    contact += c;
+                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
+                    self.q[j] = q1;
+                    self.v[j] = v1;
+                }
+            } else {
+                for j in 0..n {
+                    let (q1, v1) = (self.qb[j], self.vb[j]);
+                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
+                    self.q[j] = q1;
+                    self.v[j] = v1;
+                }
+            }
+            input = ht.input(tm, &self.sums, &sums) + extra;
+            damping = input + contact - (sums.energy - self.sums.energy);
+        } else {
+            for j in 0..n {
+                let (mut g0, mut g1) = (0.0, 0.0);
+                if any_force {
+                    for k in 0..nl {
+                        let c = self.cpl_t[j * nl + k];
+                        g0 += c * self.states[k].force;
+                        g1 += c * (self.fpred[k] - self.states[k].force);
+                    }
+                }
+                let f = &data.infl[j];
+                let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                let ground = match piece {
+                    Piece::Harmonic => None,
+                    _ => Some(&self.cpoly[j]),
+                };
+                let w = mode_work(
+                    &self.gm,
+                    j,
+                    h,
+                    (self.q[j], self.v[j]),
+                    (q1, v1),
+                    ground,
+                    tm.as_ref(),
+                    g0,
+                    g1,
+                );
+                input += w.input;
+                damping += w.damping;
+                self.q[j] = q1;
+                self.v[j] = v1;
+            }
+            if let Some(ht) = &self.htally {
+                for j in 0..n {
+                    ht.add(&mut sums, j, self.gm.w2[j], self.q[j], self.v[j]);
+                }
+            }
+        }
+        self.sums = sums;
+        self.tally.input += input;
+        self.tally.damping += damping;
+        self.prev_states.copy_from_slice(&self.states);
+        self.evaluate_states();
+        // work into the contacts with the law's force (Simpson on the Hermite interpolant of δ)
+        for k in 0..nl {
+            let (a, b) = (self.prev_states[k], self.states[k]);
+            if a.delta > 0.0 || b.delta > 0.0 || any_force {
+                let dm = 0.5 * (a.delta + b.delta) + h * (a.delta_dot - b.delta_dot) / 8.0;
+                let ddm = 1.5 * (b.delta - a.delta) / h - 0.25 * (a.delta_dot + b.delta_dot);
+                let lv = &sys.levels[k];
+                let v0 = if self.onset[k] > 0.0 {
+                    self.onset[k]
+                } else {
+                    ddm
+                };
+                let fm = lv.force.force(dm, ddm, v0);
+                self.tally.contact +=
+                    h / 6.0 * (a.force * a.delta_dot + 4.0 * fm * ddm + b.force * b.delta_dot);
+                self.tally.impulse[k] += 0.5 * h * (a.force + self.fpred[k]);
+                if b.delta > 0.0 {
+                    let kt = lv.force.tangent_stiffness(b.delta);
+                    let wc = (kt / lv.effective_mass).sqrt();
+                    self.stats.max_contact_omega_dt = self.stats.max_contact_omega_dt.max(wc * h);
+                }
+            }
+        }
+        update_onsets(&mut self.onset, &self.prev_states, &self.states);
+        self.stats.steps += 1;
+        self.stats.evaluations += 1;
+        if !(self.q.iter().sum::<f64>().is_finite() && self.v.iter().sum::<f64>().is_finite()) {
+            return Err(SolveError::Diverged {
+                t: t0 + h,
+                contact_omega_dt: self.stats.max_contact_omega_dt,
+            });
+        }
+        self.observe(t0 + h);
+        Ok(())
+    }
+}
