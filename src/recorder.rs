@@ -364,7 +364,9 @@ impl Observer for Recorder {
                     let t0 = self.last_t + theta * (s.t - self.last_t);
                     Open {
                         start: if self.prev.is_none() { s.t } else { t0 },
-                        impulse_at_start: s.tally.impulse[k],
+                        // the tally at the previous observation: the onset step's impulse
+                        // (and a stereomechanical jump at its end) belongs to this episode
+                        impulse_at_start: self.last_impulse[k],
                         peak_force: 0.0,
                         max_penetration: 0.0,
                         approach_speed: st.delta_dot,
@@ -382,6 +384,17 @@ impl Observer for Recorder {
                 };
                 let end = self.last_t + theta * (s.t - self.last_t);
                 self.close(k, o, end, s.tally.impulse[k]);
+            } else if s.tally.impulse[k] > self.last_impulse[k] {
+                // an impulse without observed penetration: an instantaneous (stereomechanical)
+                // impact located exactly at δ = 0, or a grazing contact between observations
+                let o = Open {
+                    start: s.t,
+                    impulse_at_start: self.last_impulse[k],
+                    peak_force: st.force.max(inner_force),
+                    max_penetration: st.delta.max(inner_delta).max(0.0),
+                    approach_speed: self.prev_delta_dot[k],
+                };
+                self.close(k, o, s.t, s.tally.impulse[k]);
             }
             let l = &mut self.levels[k];
             l.peak_force = l.peak_force.max(st.force).max(inner_force);

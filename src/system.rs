@@ -15,6 +15,10 @@ use crate::contact::{ContactForce, ContactLaw};
 use crate::ground_motion::GroundMotion;
 use crate::modal::ModalModel;
 
+/// Penetration (m) from which an impulsive contact counts as touching: integrators that locate
+/// the onset of contact land on δ = 0 only to round-off.
+pub const IMPACT_TOUCH_TOLERANCE: f64 = 1e-12;
+
 /// One contact level: where, at which gap, and with what law.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactLevel {
@@ -290,7 +294,7 @@ impl System {
 
 impl System {
     /// Stereomechanical impacts (SPEC §2.7, issue 3): at every level with an impulsive law where
-    /// the structures overlap (δ > 0) and still approach (δ̇ > 0), apply the impulse
+    /// the structures touch or overlap (δ ≥ −1e-12 m) and still approach (δ̇ > 0), apply the impulse
     /// `P = (1 + e) m* δ̇` as the velocity jump `v += c_k P`, which turns δ̇ into −e δ̇. Adds P to
     /// `impulse[k]` and the kinetic energy lost, `½(1 − e²) m* δ̇²`, to `dissipated`. Returns
     /// whether any impulse was applied (the caller then re-evaluates the state).
@@ -308,7 +312,8 @@ impl System {
                 continue;
             };
             let st = &mut states[k];
-            if st.delta > 0.0 && st.delta_dot > 0.0 {
+            // δ ≥ −1e-12 m: methods that locate the contact onset land on δ = 0 to round-off
+            if st.delta >= -IMPACT_TOUCH_TOLERANCE && st.delta_dot > 0.0 {
                 let c = &self.coupling[k * n..(k + 1) * n];
                 let p = (1.0 + e) * lv.effective_mass * st.delta_dot;
                 for j in 0..n {

@@ -699,6 +699,16 @@ pub(super) fn run<O: Observer>(
         prev_states.copy_from_slice(&states);
         eval_states(&w.q, &w.v, &onset, &mut states);
         update_onsets(&mut onset, &prev_states, &states);
+        // stereomechanical impacts: velocity jumps at the step end (the onset is located, so
+        // this is the instant of contact)
+        if sys.apply_impulses(
+            &mut w.v,
+            &mut states,
+            &mut tally.impulse,
+            &mut tally.contact,
+        ) {
+            eval_states(&w.q, &w.v, &onset, &mut states);
+        }
         for (lv, st) in sys.levels.iter().zip(&states) {
             if st.delta > 0.0 {
                 let wc = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();

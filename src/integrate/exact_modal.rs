@@ -517,6 +517,23 @@ impl<O: Observer> Run<'_, O> {
             }
         }
         update_onsets(&mut self.onset, &self.prev_states, &self.states);
+        // stereomechanical impacts: velocity jumps at the step end; the exact harmonic tallies
+        // take the next step's start sums from the state, so re-derive them after a jump
+        if sys.apply_impulses(
+            &mut self.v,
+            &mut self.states,
+            &mut self.tally.impulse,
+            &mut self.tally.contact,
+        ) {
+            self.evaluate_states();
+            if let Some(ht) = &self.htally {
+                let mut sums = StateSums::default();
+                for j in 0..n {
+                    ht.add(&mut sums, j, self.gm.w2[j], self.q[j], self.v[j]);
+                }
+                self.sums = sums;
+            }
+        }
         self.stats.steps += 1;
         self.stats.evaluations += 1;
         if !(self.q.iter().sum::<f64>().is_finite() && self.v.iter().sum::<f64>().is_finite()) {
