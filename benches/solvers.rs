@@ -69,6 +69,11 @@ fn cases() -> Vec<Case> {
         scenario("exact-modal", 0.005, 3),
         3,
     );
+    add(
+        "default/exact-modal dt=10ms",
+        scenario("exact-modal", 0.01, 3),
+        3,
+    );
     add("default/adaptive", scenario("adaptive", 0.001, 3), 3);
     add("default/adaptive dt=10ms", scenario("adaptive", 0.01, 3), 3);
     for modes in [50, 200] {

@@ -80,6 +80,9 @@ pub struct System {
     load_a: Vec<f64>,
     load_v: Vec<f64>,
     coupling: Vec<f64>,
+    /// Whether any level's law is impulsive (stereomechanical): the step-end hook is skipped
+    /// otherwise.
+    impulsive: bool,
 }
 
 impl System {
@@ -125,8 +128,10 @@ impl System {
                 force: law.resolve(m_star),
             });
         }
+        let impulsive = assembled.iter().any(|l| l.force.impulsive().is_some());
         System {
             structures,
+            impulsive,
             levels: assembled,
             ground,
             n1,
@@ -144,6 +149,7 @@ impl System {
         let mut s = self.clone();
         s.levels.clear();
         s.coupling.clear();
+        s.impulsive = false;
         s
     }
 
@@ -298,6 +304,7 @@ impl System {
     /// `P = (1 + e) m* δ̇` as the velocity jump `v += c_k P`, which turns δ̇ into −e δ̇. Adds P to
     /// `impulse[k]` and the kinetic energy lost, `½(1 − e²) m* δ̇²`, to `dissipated`. Returns
     /// whether any impulse was applied (the caller then re-evaluates the state).
+    #[inline]
     pub fn apply_impulses(
         &self,
         v: &mut [f64],
@@ -305,6 +312,9 @@ impl System {
         impulse: &mut [f64],
         dissipated: &mut f64,
     ) -> bool {
+        if !self.impulsive {
+            return false;
+        }
         let mut any = false;
         let n = self.len();
         for (k, lv) in self.levels.iter().enumerate() {
