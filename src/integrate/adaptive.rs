@@ -487,13 +487,7 @@ pub(super) fn run<O: Observer>(
     let n = sys.len();
     let nl = sys.levels.len();
     let gm = GroundModes::new(sys);
-    let pick = |x: &Vec<f64>| {
-        if x.len() == n {
-            x.clone()
-        } else {
-            vec![0.0; n]
-        }
-    };
+    let (q0, v0) = initial.resolved(n);
     // absolute tolerances in modal units (SolverSettings::atol)
     let mut aq = vec![0.0; n];
     let mut av = vec![0.0; n];
@@ -510,8 +504,8 @@ pub(super) fn run<O: Observer>(
     let mut w = Work {
         n,
         nl,
-        q: pick(&initial.q),
-        v: pick(&initial.v),
+        q: q0,
+        v: v0,
         qn: vec![0.0; n],
         vn: vec![0.0; n],
         vf: [vec![0.0; n], vec![0.0; n]],

@@ -149,20 +149,14 @@ pub(super) fn run<O: Observer>(
 ) -> Result<Stats, SolveError> {
     let n = sys.len();
     let nl = sys.levels.len();
-    let pick = |x: &Vec<f64>| {
-        if x.len() == n {
-            x.clone()
-        } else {
-            vec![0.0; n]
-        }
-    };
+    let (q0, v0) = initial.resolved(n);
     let mut r = Run {
         sys,
         gm: GroundModes::new(sys),
         obs: observer,
         cache: StepCache::new(),
-        q: pick(&initial.q),
-        v: pick(&initial.v),
+        q: q0,
+        v: v0,
         qb: vec![0.0; n],
         vb: vec![0.0; n],
         cpoly: vec![[0.0; 3]; n],

@@ -100,6 +100,21 @@ pub struct InitialState {
     pub v: Vec<f64>,
 }
 
+impl InitialState {
+    /// Modal displacements and velocities for a system of `n` coordinates: the given vectors,
+    /// or zeros where a vector is empty (or of another length).
+    pub fn resolved(&self, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let pick = |x: &Vec<f64>| {
+            if x.len() == n {
+                x.clone()
+            } else {
+                vec![0.0; n]
+            }
+        };
+        (pick(&self.q), pick(&self.v))
+    }
+}
+
 /// Cumulative quantities integrated alongside the state.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Tally {

@@ -118,17 +118,10 @@ pub(super) fn run<O: Observer>(
     let n = sys.len();
     let nl = sys.levels.len();
     let zeros = || vec![0.0; n];
+    let (q0, v0) = initial.resolved(n);
     let mut w = Work {
-        q: if initial.q.len() == n {
-            initial.q.clone()
-        } else {
-            zeros()
-        },
-        v: if initial.v.len() == n {
-            initial.v.clone()
-        } else {
-            zeros()
-        },
+        q: q0,
+        v: v0,
         qs: zeros(),
         vs: zeros(),
         a: [zeros(), zeros(), zeros(), zeros()],
