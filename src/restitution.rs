@@ -12,7 +12,7 @@ use crate::integrate::{
     InitialState, Method, Observer, SolveError, SolverSettings, StepView, integrate,
 };
 use crate::modal::{Damping, Stiffness, Structure};
-use crate::simulate::run_system;
+use crate::recorder::Recorder;
 use crate::system::{ContactLevel, System};
 
 /// What an isolated impact gave.
@@ -54,10 +54,17 @@ struct Tip {
     energy: f64,
 }
 
-impl Observer for Tip {
+/// The recorder (impact events, energy balance) and the tip probe, fed by one integration.
+struct Probe {
+    recorder: Recorder,
+    tip: Tip,
+}
+
+impl Observer for Probe {
     fn observe(&mut self, sys: &System, s: &StepView) {
-        self.relative_velocity = self.phi[0] * s.v[0] - self.phi[1] * s.v[1];
-        self.energy = sys.modal_energy(s.q, s.v);
+        self.recorder.observe(sys, s);
+        self.tip.relative_velocity = self.tip.phi[0] * s.v[0] - self.tip.phi[1] * s.v[1];
+        self.tip.energy = sys.modal_energy(s.q, s.v);
     }
 }
 
@@ -97,13 +104,16 @@ pub fn isolated_impact(
         q: vec![0.0, 0.0],
         v: vec![v / phi[0], 0.0],
     };
-    let (rec, _) = run_system(&sys, &settings, &init, &[10.0], settings.duration)?;
-    let mut tip = Tip {
-        phi,
-        relative_velocity: 0.0,
-        energy: 0.0,
+    let mut probe = Probe {
+        recorder: Recorder::new(&sys, &[10.0], settings.duration, settings.duration),
+        tip: Tip {
+            phi,
+            relative_velocity: 0.0,
+            energy: 0.0,
+        },
     };
-    integrate(&sys, &settings, &init, &mut tip)?;
+    integrate(&sys, &settings, &init, &mut probe)?;
+    let (rec, tip) = (probe.recorder.finish(), probe.tip);
     let e0 = 0.5 * (v / phi[0]).powi(2);
     let (duration, peak_force) = rec
         .impacts

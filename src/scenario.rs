@@ -4,16 +4,14 @@
 //! Every error names the file, the line and column, the key and the allowed range.
 
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::{ContactLaw, HertzDampModel};
-use crate::ground_motion::{
-    AccelUnits, GroundMotion, Harmonic, Record, RecordOptions, STANDARD_GRAVITY,
-};
+use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
 use crate::integrate::{DEFAULT_ATOL, DEFAULT_RTOL, Method, SolverSettings};
 use crate::modal::{Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
@@ -393,7 +391,7 @@ impl Ctx<'_> {
         {
             {
                 let key = rest[..end].to_string();
-                let (section, valid) = self.section_for(e.span().map(|s| s.start), &msg);
+                let (section, valid) = self.section_for(&msg);
                 let best = valid
                     .iter()
                     .map(|v| (strsim::jaro_winkler(&key, v), *v))
@@ -436,7 +434,7 @@ impl Ctx<'_> {
     }
 
     /// The table an unknown key sits in: from the expected-key list in serde's message.
-    fn section_for(&self, _offset: Option<usize>, msg: &str) -> (String, Vec<&'static str>) {
+    fn section_for(&self, msg: &str) -> (String, Vec<&'static str>) {
         let expected: Vec<&str> = msg
             .split("expected one of ")
             .nth(1)
@@ -1145,14 +1143,4 @@ fn quoted(names: &[&str]) -> String {
         .map(|n| format!("\"{n}\""))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// The PGA of a ground motion in g (for messages and summaries).
-pub fn pga_in_g(g: &GroundMotion) -> f64 {
-    g.pga() / STANDARD_GRAVITY
-}
-
-/// The scenario file's directory-independent name, for messages.
-pub fn display_name(path: &Path) -> PathBuf {
-    path.to_path_buf()
 }

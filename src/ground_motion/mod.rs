@@ -72,11 +72,6 @@ impl GroundMotion {
             GroundMotion::Record(r) => r.pga(),
         }
     }
-
-    /// True for motions whose acceleration is piecewise linear in time (records, none).
-    pub fn is_piecewise_linear(&self) -> bool {
-        !matches!(self, GroundMotion::Harmonic(_))
-    }
 }
 
 #[cfg(test)]

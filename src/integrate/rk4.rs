@@ -144,7 +144,8 @@ pub(super) fn run<O: Observer>(
     let mut ground_end = sys.ground.accel_velocity(0.0);
     let mut p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, &mut w.a[0], &mut w.states);
     stats.evaluations += 1;
-    update_onsets(&mut w.onset, &w.states.clone(), &w.states);
+    w.prev_states.copy_from_slice(&w.states);
+    update_onsets(&mut w.onset, &w.prev_states, &w.states);
     observer.observe(
         sys,
         &StepView {
