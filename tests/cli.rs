@@ -163,3 +163,26 @@ fn help_explains_each_command() {
         assert!(String::from_utf8_lossy(&out.stdout).contains("SCENARIO"));
     }
 }
+
+/// Output piped into a reader that stops early (`pounding laws | head -1`) ends the program
+/// quietly instead of panicking on the closed pipe.
+#[test]
+fn closed_stdout_does_not_panic() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .arg("laws")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(first.contains("target e"));
+    // the reader is dropped here: later writes hit a closed pipe
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+}
