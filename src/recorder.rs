@@ -136,7 +136,9 @@ pub struct Recorder {
     energy_peak: f64,
     last_t: f64,
     steps: usize,
-    final_energy: EnergyBalance,
+    /// Modal and contact energy and the tallies (input, damping, contact) at the last
+    /// observation, J.
+    last_energy: [f64; 5],
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -198,7 +200,7 @@ impl Recorder {
             energy_peak: 0.0,
             last_t: 0.0,
             steps: 0,
-            final_energy: EnergyBalance::default(),
+            last_energy: [0.0; 5],
         }
     }
 
@@ -216,6 +218,18 @@ impl Recorder {
         }
         self.impacts
             .sort_by(|a, b| a.start.total_cmp(&b.start).then(a.level.cmp(&b.level)));
+        let [modal, stored, input, damping, contact] = self.last_energy;
+        let modal_change = modal - self.modal_initial;
+        let residual = input - modal_change - damping - contact;
+        let scale = self.energy_peak.max(input.abs()).max(f64::MIN_POSITIVE);
+        let energy = EnergyBalance {
+            input,
+            modal_change,
+            contact_stored: stored,
+            damping_dissipated: damping,
+            contact_dissipated: contact - (stored - self.stored_initial),
+            relative_error: residual.abs() / scale,
+        };
         let (peak, max_closing) = self
             .levels
             .get(self.main)
@@ -226,7 +240,7 @@ impl Recorder {
             levels: self.levels,
             impacts: self.impacts,
             history: self.history,
-            energy: self.final_energy,
+            energy,
             steps: self.steps,
         }
     }
@@ -345,7 +359,12 @@ impl Observer for Recorder {
             // interior maximum δ̇ = 0, so every law gives its elastic force — the peak force for
             // elastic laws, a lower bound for damped ones.
             let (mut inner_delta, mut inner_force) = (f64::NEG_INFINITY, 0.0);
-            if refine && (prev > 0.0 || st.delta > 0.0) {
+            // (an interior maximum needs δ̇ to go from ≥ 0 to ≤ 0: cheap test first)
+            if refine
+                && (prev > 0.0 || st.delta > 0.0)
+                && self.prev_delta_dot[k] >= 0.0
+                && st.delta_dot <= 0.0
+            {
                 let (m, th) = hermite_max(prev, self.prev_delta_dot[k], st.delta, st.delta_dot, h);
                 if th > 0.0 && th < 1.0 && m > 0.0 {
                     inner_delta = m;
@@ -412,20 +431,14 @@ impl Observer for Recorder {
             self.stored_initial = stored;
         }
         self.energy_peak = self.energy_peak.max(modal + stored);
-        let modal_change = modal - self.modal_initial;
-        let residual = s.tally.input - modal_change - s.tally.damping - s.tally.contact;
-        let scale = self
-            .energy_peak
-            .max(s.tally.input.abs())
-            .max(f64::MIN_POSITIVE);
-        self.final_energy = EnergyBalance {
-            input: s.tally.input,
-            modal_change,
-            contact_stored: stored,
-            damping_dissipated: s.tally.damping,
-            contact_dissipated: s.tally.contact - (stored - self.stored_initial),
-            relative_error: residual.abs() / scale,
-        };
+        // the balance itself is formed once, in `finish`, from the last observation
+        self.last_energy = [
+            modal,
+            stored,
+            s.tally.input,
+            s.tally.damping,
+            s.tally.contact,
+        ];
         if self.prev.is_some() {
             self.steps += 1;
         }

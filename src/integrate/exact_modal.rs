@@ -10,14 +10,17 @@
 //! The scheme is second order in the sub-step (the load's linear interpolation has an O(h²)
 //! error and the predicted F₁* an O(h²) error); with no contact it is exact for any step and any
 //! number of modes. While a level is in contact, or may come into contact within the base step
-//! (end state or cubic Hermite bound of δ positive), the base step `dt` is cut into 2^m equal
-//! sub-steps, m ≥ 2, with `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the tangent
-//! stiffness at the largest penetration predicted without contact forces (an upper bound) and
-//! D(h) the level's displacement under a unit force held for h. For a point mass D = h²/(2m*)
-//! and the rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much stiffer than the contact add
-//! only their static flexibility, so the sub-step does not shrink as modes are added. Where the
-//! rule gives m = 2 the sub-step is proportional to dt: halving dt halves every sub-step and
-//! the error falls by 4 — the regime where the order is observed.
+//! (end state or cubic Hermite bound of δ positive), the base step `dt` is walked in dyadic
+//! sub-steps dt/2^m, m ≥ 2, each with `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the
+//! tangent stiffness at the penetration bound of the sub-step's own free flight (no contact
+//! force: an upper bound) and D(h) the level's displacement under a unit force held for h. For
+//! a point mass D = h²/(2m*) and the rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much
+//! stiffer than the contact add only their static flexibility, so the sub-step does not shrink
+//! as modes are added. The sub-steps follow the stiffness through an impact (refined when the
+//! rule fails, coarsened by one level when aligned and well inside it), so the free flight up to
+//! an onset is not cut as finely as the impact. Where the rule gives m = 2 the sub-step is
+//! proportional to dt: halving dt halves every sub-step and the error falls by 4 — the regime
+//! where the order is observed.
 //!
 //! Steps split at the samples of a recorded motion (its load is a different polynomial on each
 //! interval): each record interval is cut into equal steps ≤ dt.
@@ -48,6 +51,9 @@ const MIN_LEVEL: i32 = 2;
 /// At most 2^30 sub-steps per base step.
 const MAX_LEVEL: i32 = 30;
 const CACHE: usize = 16;
+/// sin Ωt, cos Ωt are evaluated directly every this many base steps and advanced by rotations
+/// in between (the rotations' rounding errors, about one ulp each, cannot accumulate).
+const SYNC_EVERY: u32 = 16;
 
 /// Everything that depends on the step length only.
 struct StepData {
@@ -56,10 +62,14 @@ struct StepData {
     /// `M0[k·L + l] = Σ_j c_kj c_lj Γ0_j` (η and η̇ components): the response of level k's
     /// displacement to a unit constant force at level l, for the predictor.
     m0: Vec<(f64, f64)>,
+    /// Harmonic motion: (sin Ωh, cos Ωh), to advance sin Ωt, cos Ωt over the step by a
+    /// rotation instead of a libm call, and (sin Ωh/2, cos Ωh/2) for [`TrigMoments`].
+    rot: (f64, f64),
+    half: (f64, f64),
 }
 
 impl StepData {
-    fn new(sys: &System, h: f64) -> StepData {
+    fn new(sys: &System, big: Option<f64>, h: f64) -> StepData {
         let (omega, damp) = (sys.omega(), sys.damping_coefficients());
         let infl: Vec<Influence> = (0..sys.len())
             .map(|j| influence(omega[j], damp[j], h))
@@ -78,7 +88,16 @@ impl StepData {
                 m0[k * nl + l] = s;
             }
         }
-        StepData { h, infl, m0 }
+        let (rot, half) = big.map_or(((0.0, 1.0), (0.0, 1.0)), |big| {
+            ((big * h).sin_cos(), (0.5 * big * h).sin_cos())
+        });
+        StepData {
+            h,
+            infl,
+            m0,
+            rot,
+            half,
+        }
     }
 }
 
@@ -96,11 +115,11 @@ impl StepCache {
         }
     }
 
-    fn index(&mut self, sys: &System, h: f64) -> usize {
+    fn index(&mut self, sys: &System, big: Option<f64>, h: f64) -> usize {
         if let Some(i) = self.entries.iter().position(|e| e.h == h) {
             return i;
         }
-        let d = StepData::new(sys, h);
+        let d = StepData::new(sys, big, h);
         if self.entries.len() < CACHE {
             self.entries.push(d);
             self.entries.len() - 1
@@ -128,12 +147,22 @@ struct Run<'a, O: Observer> {
     prev_states: Vec<LevelState>,
     onset: Vec<f64>,
     fpred: Vec<f64>,
+    /// δ, δ̇ of every level at the end of the free flight in (qb, vb), from [`Self::contact_bound`].
+    free_end: Vec<(f64, f64)>,
+    /// max over contact sub-steps of `k_t h²/m*` (its square root is reported).
+    max_contact_w2h2: f64,
+    /// 1/m* of every level, 1/kg.
+    inv_mstar: Vec<f64>,
     /// Coupling rows transposed, mode-major: `[j·L + k]`.
     cpl_t: Vec<f64>,
-    /// Harmonic motion: sin, cos at the last step end, and of Ωh/2 for the last h.
-    trig_end: Trig,
+    /// Harmonic motion: Ω (rad/s); sin Ωt, cos Ωt at the current state, and at both ends of
+    /// the (sub-)step whose free flight is in (qb, vb).
+    big: Option<f64>,
+    trig_now: Trig,
     trig_start: Trig,
-    half: (f64, f64, f64),
+    trig_end: Trig,
+    /// Base steps since sin, cos were last evaluated directly (not by rotation).
+    since_sync: u32,
     /// Fast exact tallies for harmonic motion, and the sums at the current state.
     htally: Option<HarmonicTally>,
     sums: StateSums,
@@ -164,16 +193,17 @@ pub(super) fn run<O: Observer>(
         prev_states: vec![LevelState::default(); nl],
         onset: vec![0.0; nl],
         fpred: vec![0.0; nl],
+        free_end: vec![(0.0, 0.0); nl],
+        max_contact_w2h2: 0.0,
+        inv_mstar: sys.levels.iter().map(|l| 1.0 / l.effective_mass).collect(),
         cpl_t: (0..n)
             .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
             .collect(),
-        trig_end: Trig {
-            t: f64::NAN,
-            s: 0.0,
-            c: 0.0,
-        },
+        big: None,
+        trig_now: Trig::default(),
         trig_start: Trig::default(),
-        half: (f64::NAN, 0.0, 0.0),
+        trig_end: Trig::default(),
+        since_sync: 0,
         htally: None,
         sums: StateSums::default(),
         tally: Tally {
@@ -183,6 +213,8 @@ pub(super) fn run<O: Observer>(
         stats: Stats::default(),
     };
     r.htally = HarmonicTally::new(&r.gm);
+    r.big = r.gm.harmonic_omega();
+    r.trig_now = r.gm.trig(0.0);
     if let Some(ht) = &r.htally {
         for j in 0..n {
             ht.add(&mut r.sums, j, r.gm.w2[j], r.q[j], r.v[j]);
@@ -214,6 +246,7 @@ pub(super) fn run<O: Observer>(
         }
         t = seg_end;
     }
+    r.stats.max_contact_omega_dt = r.max_contact_w2h2.sqrt();
     Ok(r.stats)
 }
 
@@ -255,12 +288,15 @@ impl<O: Observer> Run<'_, O> {
     fn free_flight(&mut self, t0: f64, h: f64, piece: &Piece, idx: usize) {
         let gm = &self.gm;
         let data = &self.cache.entries[idx];
-        let tr0 = if self.trig_end.t == t0 {
-            self.trig_end
-        } else {
-            gm.trig(t0)
+        // sin, cos at the step end by rotating those at its start (one ulp per step; re-synced
+        // every SYNC_EVERY base steps)
+        let tr0 = self.trig_now;
+        let (sh, ch) = data.rot;
+        let tr1 = Trig {
+            t: t0 + h,
+            s: tr0.s * ch + tr0.c * sh,
+            c: tr0.c * ch - tr0.s * sh,
         };
-        let tr1 = gm.trig(t0 + h);
         if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
             // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
             let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
@@ -292,55 +328,82 @@ impl<O: Observer> Run<'_, O> {
         self.trig_end = tr1;
     }
 
-    fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
+    /// Upper bound of the penetration over a (sub-)step of length h whose free flight is in
+    /// (qb, vb) (max over the levels of the cubic Hermite bound of δ, or the current δ while in
+    /// force; negative: no level can touch), and the largest `k_t·D(h)` of the levels at their
+    /// bound (`D(h) = Σ_j c_j² Γ0_j(h)`, the level's displacement under a unit force held for h:
+    /// h²/(2m*) for a point mass, so `k_t·D(h) ≤ α²/2` is `ω_c h ≤ α`; modes much stiffer than
+    /// the contact add only their static flexibility, so the sub-step does not shrink as modes
+    /// are added).
+    fn contact_bound(&mut self, h: f64, idx: usize) -> (f64, f64) {
         let sys = self.sys;
-        let idx = self.cache.index(sys, hh);
-        self.free_flight(t0, hh, piece, idx);
-        // Could any level touch within this step? (in contact now, or the free flight's δ, or
-        // the cubic through its ends, goes positive)
-        let mut delta_est = f64::NEG_INFINITY;
+        let nl = sys.levels.len();
+        let data = &self.cache.entries[idx];
+        let (mut bound, mut worst) = (f64::NEG_INFINITY, 0.0f64);
         for (k, lv) in sys.levels.iter().enumerate() {
             let st = self.states[k];
             let c = sys.coupling(k);
             let d1 = -dot(c, &self.qb) - lv.gap;
             let dd1 = -dot(c, &self.vb);
-            let (m, _) = hermite_max(st.delta, st.delta_dot, d1, dd1, hh);
-            let m = if st.force > 0.0 { m.max(st.delta) } else { m };
-            delta_est = delta_est.max(m);
+            self.free_end[k] = (d1, dd1);
+            // while in force the sub-step is short against the impact and the larger end
+            // value bounds k_t well enough (k_t ∝ √δ for Hertz); otherwise the cubic decides
+            // whether the level can touch at all
+            let m = if st.force > 0.0 {
+                st.delta.max(d1)
+            } else {
+                hermite_max(st.delta, st.delta_dot, d1, dd1, h).0
+            };
+            bound = bound.max(m);
+            if m > 0.0 {
+                worst = worst.max(lv.force.tangent_stiffness(m) * data.m0[k * nl + k].0);
+            }
         }
-        if delta_est < 0.0 || sys.levels.is_empty() {
+        (bound, worst)
+    }
+
+    fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
+        let sys = self.sys;
+        if self.since_sync == 0 {
+            self.trig_now = self.gm.trig(t0);
+        }
+        self.since_sync = (self.since_sync + 1) % SYNC_EVERY;
+        let idx = self.cache.index(sys, self.big, hh);
+        self.free_flight(t0, hh, piece, idx);
+        // Could any level touch within this step? (in contact now, or the free flight's δ, or
+        // the cubic through its ends, goes positive)
+        if sys.levels.is_empty() || self.contact_bound(hh, idx).0 < 0.0 {
             return self.finish_step(t0, hh, piece, idx, false);
         }
-        // contact: 2^m sub-steps, m ≥ 2, with k_t·D(h) ≤ α²/2 at the largest predicted
-        // penetration, where D(h) = Σ_j c_j² Γ0_j(h) is the level's displacement under a unit
-        // force held for h (h²/(2m*) for a point mass, so this is ω_c h ≤ α; modes much stiffer
-        // than the contact add only their static flexibility, so the sub-step does not shrink
-        // as modes are added)
-        let nl = sys.levels.len();
+        // Contact: walk the step in dyadic sub-steps hh/2^m, m ≥ MIN_LEVEL, each as long as
+        // `k_t·D(h) ≤ α²/2` allows at the penetration bound of its own free flight (so the
+        // sub-steps follow the contact stiffness through the impact, and the free flight up to
+        // the onset is not cut finer than needed). A sub-step starts at a multiple of its own
+        // length, so the walk ends exactly at t0 + hh; it is refined when the rule fails and
+        // coarsened by one level when aligned and the last sub-step had room to spare.
+        const FULL: u64 = 1 << MAX_LEVEL;
+        let limit = 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA;
+        let mut pos: u64 = 0;
         let mut level = MIN_LEVEL;
-        let mut idx = self.cache.index(sys, hh / (1u64 << level) as f64);
-        while level < MAX_LEVEL {
-            let data = &self.cache.entries[idx];
-            let worst = sys
-                .levels
-                .iter()
-                .enumerate()
-                .map(|(k, lv)| {
-                    lv.force.tangent_stiffness(delta_est.max(0.0)) * data.m0[k * nl + k].0
-                })
-                .fold(0.0, f64::max);
-            if worst <= 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA {
-                break;
+        while pos < FULL {
+            let h = hh / (1u64 << level) as f64;
+            let ts = t0 + hh * (pos as f64 / FULL as f64);
+            let idx = self.cache.index(sys, self.big, h);
+            self.free_flight(ts, h, piece, idx);
+            let (bound, worst) = self.contact_bound(h, idx);
+            if worst > limit && level < MAX_LEVEL {
+                level += 1;
+                continue;
             }
-            level += 1;
-            idx = self.cache.index(sys, hh / (1u64 << level) as f64);
-        }
-        let m = 1usize << level;
-        let hs = hh / m as f64;
-        for i in 0..m {
-            let ts = t0 + i as f64 * hs;
-            self.free_flight(ts, hs, piece, idx);
-            self.finish_step(ts, hs, piece, idx, true)?;
+            self.finish_step(ts, h, piece, idx, bound >= 0.0)?;
+            pos += FULL >> level;
+            // doubling h multiplies k_t·D by about 4
+            if level > MIN_LEVEL
+                && 4.0 * worst <= 0.5 * limit
+                && pos.is_multiple_of(FULL >> (level - 1))
+            {
+                level -= 1;
+            }
         }
         Ok(())
     }
@@ -361,8 +424,7 @@ impl<O: Observer> Run<'_, O> {
         // predicted end force F₁* (load held at F₀ over the step)
         if contact {
             for (k, lv) in sys.levels.iter().enumerate() {
-                let c = sys.coupling(k);
-                let (mut d, mut dd) = (-dot(c, &self.qb) - lv.gap, -dot(c, &self.vb));
+                let (mut d, mut dd) = self.free_end[k];
                 for l in 0..nl {
                     let f0 = self.states[l].force;
                     d -= f0 * data.m0[k * nl + l].0;
@@ -383,22 +445,13 @@ impl<O: Observer> Run<'_, O> {
         // state update and exact tallies, mode by mode
         // (free_flight has just computed sin, cos at t0 + h into trig_end)
         let tm = match piece {
-            Piece::Harmonic => self.gm.harmonic_omega().map(|big| {
-                if self.half.0 != h {
-                    let (s, c) = (0.5 * big * h).sin_cos();
-                    self.half = (h, s, c);
-                }
+            Piece::Harmonic => self.big.map(|big| {
                 let (tr0, tr1) = (self.trig_start, self.trig_end);
-                TrigMoments::from_ends(
-                    big,
-                    h,
-                    (tr0.s, tr0.c),
-                    (tr1.s, tr1.c),
-                    (self.half.1, self.half.2),
-                )
+                TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (tr1.s, tr1.c), data.half)
             }),
             _ => None,
         };
+        self.trig_now = self.trig_end;
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
         let mut sums = StateSums::default();
@@ -505,8 +558,8 @@ impl<O: Observer> Run<'_, O> {
                 self.tally.impulse[k] += 0.5 * h * (a.force + self.fpred[k]);
                 if b.delta > 0.0 {
                     let kt = lv.force.tangent_stiffness(b.delta);
-                    let wc = (kt / lv.effective_mass).sqrt();
-                    self.stats.max_contact_omega_dt = self.stats.max_contact_omega_dt.max(wc * h);
+                    self.max_contact_w2h2 =
+                        self.max_contact_w2h2.max(kt * self.inv_mstar[k] * h * h);
                 }
             }
         }
@@ -530,10 +583,16 @@ impl<O: Observer> Run<'_, O> {
         }
         self.stats.steps += 1;
         self.stats.evaluations += 1;
-        if !(self.q.iter().sum::<f64>().is_finite() && self.v.iter().sum::<f64>().is_finite()) {
+        // (the modal energy is finite exactly when every η, η̇ is)
+        let finite = if self.htally.is_some() {
+            self.sums.energy.is_finite()
+        } else {
+            self.q.iter().chain(&self.v).all(|x| x.is_finite())
+        };
+        if !finite {
             return Err(SolveError::Diverged {
                 t: t0 + h,
-                contact_omega_dt: self.stats.max_contact_omega_dt,
+                contact_omega_dt: self.max_contact_w2h2.sqrt(),
             });
         }
         self.observe(t0 + h);
