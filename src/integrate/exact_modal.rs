@@ -36,8 +36,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{
-    GroundModes, HarmonicTally, Influence, Piece, StateSums, Trig, TrigMoments, hermite_max,
-    influence, mode_work,
+    ContactForms, GroundModes, HarmonicTally, Influence, LevelStep, Piece, StateSums, Trig,
+    TrigMoments, hermite_max, influence, mode_work,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -62,6 +62,8 @@ struct StepData {
     /// `M0[k·L + l] = Σ_j c_kj c_lj Γ0_j` (η and η̇ components): the response of level k's
     /// displacement to a unit constant force at level l, for the predictor.
     m0: Vec<(f64, f64)>,
+    /// 1/h, 1/s.
+    inv_h: f64,
     /// Harmonic motion: (sin Ωh, cos Ωh), to advance sin Ωt, cos Ωt over the step by a
     /// rotation instead of a libm call, and (sin Ωh/2, cos Ωh/2) for [`TrigMoments`].
     rot: (f64, f64),
@@ -95,6 +97,7 @@ impl StepData {
             h,
             infl,
             m0,
+            inv_h: 1.0 / h,
             rot,
             half,
         }
@@ -161,10 +164,16 @@ struct Run<'a, O: Observer> {
     trig_now: Trig,
     trig_start: Trig,
     trig_end: Trig,
+    /// Cache entries of the sub-steps hh/2^m of the base step length `level_hh`.
+    level_hh: f64,
+    level_idx: [usize; MAX_LEVEL as usize + 1],
     /// Base steps since sin, cos were last evaluated directly (not by rotation).
     since_sync: u32,
     /// Fast exact tallies for harmonic motion, and the sums at the current state.
     htally: Option<HarmonicTally>,
+    /// The harmonic contact tallies regrouped by level, and their per-step sums.
+    forms: Option<ContactForms>,
+    lsteps: Vec<LevelStep>,
     sums: StateSums,
     tally: Tally,
     stats: Stats,
@@ -204,7 +213,11 @@ pub(super) fn run<O: Observer>(
         trig_start: Trig::default(),
         trig_end: Trig::default(),
         since_sync: 0,
+        level_hh: f64::NAN,
+        level_idx: [usize::MAX; MAX_LEVEL as usize + 1],
         htally: None,
+        forms: None,
+        lsteps: vec![LevelStep::default(); nl],
         sums: StateSums::default(),
         tally: Tally {
             impulse: vec![0.0; nl],
@@ -213,6 +226,10 @@ pub(super) fn run<O: Observer>(
         stats: Stats::default(),
     };
     r.htally = HarmonicTally::new(&r.gm);
+    r.forms = r
+        .htally
+        .as_ref()
+        .map(|ht| ContactForms::new(ht, &r.gm, &r.cpl_t, nl));
     r.big = r.gm.harmonic_omega();
     r.trig_now = r.gm.trig(0.0);
     if let Some(ht) = &r.htally {
@@ -300,13 +317,15 @@ impl<O: Observer> Run<'_, O> {
         if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
             // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
             let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
-            for j in 0..self.q.len() {
-                let (gr, gi) = (g_re[j], g_im[j]);
+            let now = self.q.iter().zip(&self.v);
+            let end = self.qb.iter_mut().zip(self.vb.iter_mut());
+            let consts = data.infl.iter().zip(g_re.iter().zip(g_im));
+            for (((q, v), (qb, vb)), (f, (&gr, &gi))) in now.zip(end).zip(consts) {
                 let (e0, d0) = (gr * s0 + gi * c0, big * (gr * c0 - gi * s0));
                 let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
-                let (x, y) = data.infl[j].p.apply(self.q[j] - e0, self.v[j] - d0);
-                self.qb[j] = x + e1;
-                self.vb[j] = y + d1;
+                let (x, y) = f.p.apply(q - e0, v - d0);
+                *qb = x + e1;
+                *vb = y + d1;
             }
         } else {
             let poly = matches!(piece, Piece::Poly { .. });
@@ -362,6 +381,22 @@ impl<O: Observer> Run<'_, O> {
         (bound, worst)
     }
 
+    /// The cache entry of the sub-step `h = hh/2^level`, remembered per level for the current
+    /// base step length (no search through the cache on every sub-step).
+    fn level_index(&mut self, hh: f64, level: i32, h: f64) -> usize {
+        if self.level_hh != hh {
+            self.level_hh = hh;
+            self.level_idx = [usize::MAX; MAX_LEVEL as usize + 1];
+        }
+        let i = self.level_idx[level as usize];
+        if self.cache.entries.get(i).is_some_and(|e| e.h == h) {
+            return i;
+        }
+        let i = self.cache.index(self.sys, self.big, h);
+        self.level_idx[level as usize] = i;
+        i
+    }
+
     fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
         let sys = self.sys;
         if self.since_sync == 0 {
@@ -388,7 +423,7 @@ impl<O: Observer> Run<'_, O> {
         while pos < FULL {
             let h = hh / (1u64 << level) as f64;
             let ts = t0 + hh * (pos as f64 / FULL as f64);
-            let idx = self.cache.index(sys, self.big, h);
+            let idx = self.level_index(hh, level, h);
             self.free_flight(ts, h, piece, idx);
             let (bound, worst) = self.contact_bound(h, idx);
             if worst > limit && level < MAX_LEVEL {
@@ -459,33 +494,43 @@ impl<O: Observer> Run<'_, O> {
             // harmonic motion: exact tallies from linear forms
             let mut extra = 0.0;
             let mut contact = 0.0;
-            if any_force {
+            if let (true, Some(forms)) = (any_force, &self.forms) {
+                for (ls, (st, fp)) in self
+                    .lsteps
+                    .iter_mut()
+                    .zip(self.states.iter().zip(&self.fpred))
+                {
+                    *ls = LevelStep {
+                        f0: st.force,
+                        df: fp - st.force,
+                        ..LevelStep::default()
+                    };
+                }
                 for j in 0..n {
                     let (mut g0, mut g1) = (0.0, 0.0);
                     for k in 0..nl {
                         let c = self.cpl_t[j * nl + k];
-                        g0 += c * self.states[k].force;
-                        g1 += c * (self.fpred[k] - self.states[k].force);
+                        g0 += c * self.lsteps[k].f0;
+                        g1 += c * self.lsteps[k].df;
                     }
                     let f = &data.infl[j];
+                    let (q0, v0) = (self.q[j], self.v[j]);
                     let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
                     let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
-                    let (x, c) = ht.with_contact(
-                        &self.gm,
-                        j,
-                        tm,
-                        h,
-                        (self.q[j], self.v[j]),
-                        (q1, v1),
-                        g0,
-                        g1 / h,
-                    );
-                    extra += x;
-                    contact += c;
+                    for k in 0..nl {
+                        let c = self.cpl_t[j * nl + k];
+                        let (wv, wd) = forms.weights[j * nl + k];
+                        let ls = &mut self.lsteps[k];
+                        ls.cq0 += c * q0;
+                        ls.cq1 += c * q1;
+                        ls.sv += wv * (v1 - v0);
+                        ls.se += wd * (q1 - q0);
+                    }
                     ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
                     self.q[j] = q1;
                     self.v[j] = v1;
                 }
+                (extra, contact) = forms.tallies(tm, h, &self.lsteps);
             } else {
                 for j in 0..n {
                     let (q1, v1) = (self.qb[j], self.vb[j]);
@@ -538,14 +583,17 @@ impl<O: Observer> Run<'_, O> {
         self.sums = sums;
         self.tally.input += input;
         self.tally.damping += damping;
-        self.prev_states.copy_from_slice(&self.states);
+        for (p, st) in self.prev_states.iter_mut().zip(&self.states) {
+            *p = *st;
+        }
         self.evaluate_states();
+        let inv_h = self.cache.entries[idx].inv_h;
         // work into the contacts with the law's force (Simpson on the Hermite interpolant of δ)
         for k in 0..nl {
             let (a, b) = (self.prev_states[k], self.states[k]);
             if a.delta > 0.0 || b.delta > 0.0 || any_force {
                 let dm = 0.5 * (a.delta + b.delta) + h * (a.delta_dot - b.delta_dot) / 8.0;
-                let ddm = 1.5 * (b.delta - a.delta) / h - 0.25 * (a.delta_dot + b.delta_dot);
+                let ddm = 1.5 * (b.delta - a.delta) * inv_h - 0.25 * (a.delta_dot + b.delta_dot);
                 let lv = &sys.levels[k];
                 let v0 = if self.onset[k] > 0.0 {
                     self.onset[k]

@@ -467,18 +467,19 @@ impl TrigMoments {
         (sh, ch): (f64, f64),
     ) -> TrigMoments {
         let sin_h = 2.0 * sh * ch;
+        let ib = 1.0 / big;
         // sin 2Ωt₁ − sin 2Ωt₀ = 2 cos(Ω(t₀+t₁)) sin(Ωh)
-        let d2 = 2.0 * (c0 * c1 - s0 * s1) * sin_h;
-        let ss = 0.5 * h - d2 / (4.0 * big);
-        let cc = 0.5 * h + d2 / (4.0 * big);
+        let d2 = 0.5 * (c0 * c1 - s0 * s1) * sin_h * ib;
+        let ss = 0.5 * h - d2;
+        let cc = 0.5 * h + d2;
         // sin²Ωt₁ − sin²Ωt₀ = sin(Ω(t₁+t₀)) sin(Ωh)
-        let sc = (s0 * c1 + c0 * s1) * sin_h / (2.0 * big);
+        let sc = 0.5 * (s0 * c1 + c0 * s1) * sin_h * ib;
         // cos Ωt₀ − cos Ωt₁ = 2 sin(Ω(t₀+t₁)/2) sin(Ωh/2)
         let half = (s0 * ch + c0 * sh, c0 * ch - s0 * sh);
-        let s = 2.0 * half.0 * sh / big;
-        let c = 2.0 * half.1 * sh / big;
-        let ts = -h * c1 / big + c / big;
-        let tc = h * s1 / big - s / big;
+        let s = 2.0 * half.0 * sh * ib;
+        let c = 2.0 * half.1 * sh * ib;
+        let ts = (c - h * c1) * ib;
+        let tc = (h * s1 - s) * ib;
         TrigMoments {
             ss,
             sc,
@@ -678,6 +679,96 @@ impl HarmonicTally {
     }
 }
 
+/// Per-level sums of one (sub-)step for [`ContactForms::tallies`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LevelStep {
+    /// Contact force at the step start F₀, N.
+    pub f0: f64,
+    /// Change of the (linearly varying) contact force over the step, N.
+    pub df: f64,
+    /// `c_k·η` at the start and at the end.
+    pub cq0: f64,
+    /// See `cq0`.
+    pub cq1: f64,
+    /// `Σ_j (c_kj/ω_j²) Δη̇_j` over the step.
+    pub sv: f64,
+    /// `Σ_j (c_kj 2ζ_jω_j/ω_j²) Δη_j` over the step.
+    pub se: f64,
+}
+
+/// [`HarmonicTally::with_contact`] summed over the modes and regrouped by contact level: the
+/// mode sums of the constants are taken once, so a step with contact costs two multiply–adds
+/// per mode and level (the `sv`, `se` sums of [`LevelStep`]) instead of the per-mode formula.
+#[derive(Debug, Clone)]
+pub struct ContactForms {
+    nl: usize,
+    /// Per level: `Σ_j c_kj κ4_j`, `Σ_j c_kj κ5_j`, `Σ_j c_kj α_j/ω_j²`, `Σ_j c_kj β_j/ω_j²`.
+    level: Vec<[f64; 4]>,
+    /// `W_kl = Σ_j c_kj c_lj/ω_j²`.
+    w: Vec<f64>,
+    /// `(c_kj/ω_j², c_kj 2ζ_jω_j/ω_j²)` at `[j·L + k]`.
+    pub weights: Vec<(f64, f64)>,
+}
+
+impl ContactForms {
+    /// From the coupling rows transposed, mode-major (`cpl_t[j·L + k] = c_kj`), L levels.
+    pub fn new(ht: &HarmonicTally, gm: &GroundModes, cpl_t: &[f64], nl: usize) -> ContactForms {
+        let n = gm.len();
+        let mut level = vec![[0.0; 4]; nl];
+        let mut w = vec![0.0; nl * nl];
+        let mut weights = vec![(0.0, 0.0); n * nl];
+        for j in 0..n {
+            let (k4, k5) = (ht.kappa[j][4], ht.kappa[j][5]);
+            let [a, b, ..] = gm.hcoef[j];
+            let iw2 = gm.inv_w2[j];
+            for k in 0..nl {
+                let c = cpl_t[j * nl + k];
+                level[k][0] += c * k4;
+                level[k][1] += c * k5;
+                level[k][2] += c * a * iw2;
+                level[k][3] += c * b * iw2;
+                for l in 0..nl {
+                    w[k * nl + l] += c * cpl_t[j * nl + l] * iw2;
+                }
+                weights[j * nl + k] = (c * iw2, c * gm.damp[j] * iw2);
+            }
+        }
+        ContactForms {
+            nl,
+            level,
+            w,
+            weights,
+        }
+    }
+
+    /// The extra ground work and the work of the contact load over the step (the sums over
+    /// the modes of [`HarmonicTally::with_contact`]), J.
+    pub fn tallies(&self, tm: &TrigMoments, h: f64, steps: &[LevelStep]) -> (f64, f64) {
+        let nl = self.nl;
+        let (mut extra, mut contact) = (0.0, 0.0);
+        for k in 0..nl {
+            let st = &steps[k];
+            let [k4, k5, a, b] = self.level[k];
+            let r = st.df / h;
+            extra += st.f0 * (k4 * tm.s + k5 * tm.c) + r * (k4 * tm.ts + k5 * tm.tc);
+            // Σ_j c_kj ∫η dt over the step, from the equation of motion
+            let mut load = 0.0;
+            for l in 0..nl {
+                load += (st_f(steps, l) * h) * self.w[k * nl + l];
+            }
+            let i0 = a * tm.s + b * tm.c + load - st.sv - st.se;
+            contact += (st.f0 + st.df) * st.cq1 - st.f0 * st.cq0 - r * i0;
+        }
+        (extra, contact)
+    }
+}
+
+/// `F₀ + ΔF/2` of level l: the mean of its linearly varying force over the step.
+#[inline(always)]
+fn st_f(steps: &[LevelStep], l: usize) -> f64 {
+    steps[l].f0 + 0.5 * steps[l].df
+}
+
 /// Cubic Hermite interpolant on [0, h] of values y0, y1 with derivatives d0, d1, at θ = τ/h.
 #[inline]
 pub fn hermite(y0: f64, d0: f64, y1: f64, d1: f64, h: f64, th: f64) -> f64 {
@@ -726,6 +817,85 @@ pub fn hermite_max(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`ContactForms::tallies`] is the sum over the modes of [`HarmonicTally::with_contact`]
+    /// (an algebraic regrouping: it must hold for any states and loads), with two levels so that
+    /// the level cross terms count.
+    #[test]
+    fn contact_forms_regroup_the_per_mode_tallies() {
+        use crate::contact::ContactLaw;
+        use crate::ground_motion::Harmonic;
+        use crate::modal::{Damping, Stiffness, Structure};
+        use crate::system::ContactLevel;
+        let st = |period: f64, zeta: f64| Structure {
+            name: "s".into(),
+            length: 10.0,
+            mass: 2.0e6,
+            stiffness: Stiffness::Period(period),
+            modes: 4,
+            damping: Damping::Modal(vec![zeta]),
+        };
+        let sys = System::new(
+            [st(0.42, 0.02).modal(), st(0.6, 0.05).modal()],
+            &ContactLaw::Hertz { stiffness: 2.8e10 },
+            &[
+                ContactLevel {
+                    height: 6.0,
+                    gap: 0.01,
+                },
+                ContactLevel {
+                    height: 10.0,
+                    gap: 0.02,
+                },
+            ],
+            GroundMotion::Harmonic(Harmonic::from_pga_g(0.5, 0.7)),
+        );
+        let gm = GroundModes::new(&sys);
+        let ht = HarmonicTally::new(&gm).expect("damped");
+        let (n, nl) = (sys.len(), 2);
+        let cpl_t: Vec<f64> = (0..n)
+            .flat_map(|j| (0..nl).map(move |k| (j, k)))
+            .map(|(j, k)| sys.coupling(k)[j])
+            .collect();
+        let forms = ContactForms::new(&ht, &gm, &cpl_t, nl);
+        let (t0, h) = (1.234, 3.0e-4);
+        let big = gm.harmonic_omega().unwrap();
+        let tm = TrigMoments::new(big, t0, h);
+        let f0 = [3.0e6, 1.0e7];
+        let f1 = [5.0e6, 4.0e6];
+        let mut steps = [LevelStep::default(); 2];
+        let (mut extra, mut contact) = (0.0, 0.0);
+        for k in 0..nl {
+            steps[k].f0 = f0[k];
+            steps[k].df = f1[k] - f0[k];
+        }
+        for j in 0..n {
+            let x = j as f64;
+            let y0 = (1e-3 * (x + 1.0).sin(), 2e-2 * (x * 0.7).cos());
+            let y1 = (1e-3 * (x + 1.3).sin(), 2e-2 * (x * 0.9).cos());
+            let (mut g0, mut g1) = (0.0, 0.0);
+            for k in 0..nl {
+                let c = cpl_t[j * nl + k];
+                g0 += c * f0[k];
+                g1 += c * (f1[k] - f0[k]);
+                let (wv, wd) = forms.weights[j * nl + k];
+                steps[k].cq0 += c * y0.0;
+                steps[k].cq1 += c * y1.0;
+                steps[k].sv += wv * (y1.1 - y0.1);
+                steps[k].se += wd * (y1.0 - y0.0);
+            }
+            let (e, c) = ht.with_contact(&gm, j, &tm, h, y0, y1, g0, g1 / h);
+            extra += e;
+            contact += c;
+        }
+        let (e, c) = forms.tallies(&tm, h, &steps);
+        assert!((e - extra).abs() <= 1e-11 * extra.abs(), "{e} vs {extra}");
+        assert!(
+            (c - contact).abs() <= 1e-11 * contact.abs(),
+            "{c} vs {contact}"
+        );
+        assert!(extra != 0.0 && contact != 0.0);
+    }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * (a.abs().max(b.abs()).max(1e-300))
