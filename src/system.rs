@@ -189,6 +189,7 @@ impl System {
     }
 
     /// Coupling row of level k: `s_i φ_ij(h_k)`, kg^(−1/2).
+    #[inline]
     pub fn coupling(&self, k: usize) -> &[f64] {
         let n = self.len();
         &self.coupling[k * n..(k + 1) * n]
@@ -343,7 +344,24 @@ impl System {
 /// Dot product.
 #[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    // four partial sums for long rows: the additions of one chain would wait on each other
+    if a.len() < 8 {
+        return a.iter().zip(b).map(|(x, y)| x * y).sum();
+    }
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for i in 0..4 {
+            acc[i] += x[i] * y[i];
+        }
+    }
+    for (i, (x, y)) in ra.iter().zip(rb).enumerate() {
+        acc[i] += x * y;
+    }
+    (acc[0] + acc[2]) + (acc[1] + acc[3])
 }
 
 #[cfg(test)]

@@ -506,29 +506,33 @@ impl<O: Observer> Run<'_, O> {
                         ..LevelStep::default()
                     };
                 }
-                for j in 0..n {
+                let rows = self
+                    .cpl_t
+                    .chunks_exact(nl)
+                    .zip(forms.weights.chunks_exact(nl));
+                let modes = self.q.iter_mut().zip(self.v.iter_mut());
+                let free = self.qb.iter().zip(&self.vb);
+                let consts = data.infl.iter().zip(&self.gm.w2);
+                for (j, (((row, wrow), (q, v)), (free, (f, &w2)))) in
+                    rows.zip(modes).zip(free.zip(consts)).enumerate()
+                {
                     let (mut g0, mut g1) = (0.0, 0.0);
-                    for k in 0..nl {
-                        let c = self.cpl_t[j * nl + k];
-                        g0 += c * self.lsteps[k].f0;
-                        g1 += c * self.lsteps[k].df;
+                    for (c, ls) in row.iter().zip(&self.lsteps) {
+                        g0 += c * ls.f0;
+                        g1 += c * ls.df;
                     }
-                    let f = &data.infl[j];
-                    let (q0, v0) = (self.q[j], self.v[j]);
-                    let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
-                    let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
-                    for k in 0..nl {
-                        let c = self.cpl_t[j * nl + k];
-                        let (wv, wd) = forms.weights[j * nl + k];
-                        let ls = &mut self.lsteps[k];
+                    let (q0, v0) = (*q, *v);
+                    let q1 = free.0 + g0 * f.g0.0 + g1 * f.g1.0;
+                    let v1 = free.1 + g0 * f.g0.1 + g1 * f.g1.1;
+                    for ((c, (wv, wd)), ls) in row.iter().zip(wrow).zip(self.lsteps.iter_mut()) {
                         ls.cq0 += c * q0;
                         ls.cq1 += c * q1;
                         ls.sv += wv * (v1 - v0);
                         ls.se += wd * (q1 - q0);
                     }
-                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
-                    self.q[j] = q1;
-                    self.v[j] = v1;
+                    ht.add(&mut sums, j, w2, q1, v1);
+                    *q = q1;
+                    *v = v1;
                 }
                 (extra, contact) = forms.tallies(tm, h, &self.lsteps);
             } else {

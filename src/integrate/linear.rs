@@ -386,6 +386,7 @@ impl GroundModes {
 
     /// Harmonic motion without a mode at undamped resonance: Ω (rad/s) and the particular
     /// solutions' coefficients (η_p = G_re sin Ωt + G_im cos Ωt); `None` otherwise.
+    #[inline]
     pub fn harmonic_plain(&self) -> Option<(f64, &[f64], &[f64])> {
         let (big, _) = self.harmonic?;
         if self.resonant.iter().any(|&r| r) {
