@@ -121,16 +121,21 @@ fn main() {
         });
     }
     c.final_summary();
-    // summary table: best of a few runs (both runs: with and without contact)
+    // summary table: best of 20 runs (both runs: with and without contact)
     println!();
     println!(
         "{:<32} {:>10} {:>10} {:>10} {:>14}",
         "case", "ms/run", "runs/s", "steps", "ns/step/mode"
     );
-    for case in &cases {
+    // the table follows criterion's name filter (the first argument that is not an option)
+    let filter = std::env::args()
+        .skip(1)
+        .find(|a| !a.starts_with('-'))
+        .unwrap_or_default();
+    for case in cases.iter().filter(|c| c.name.contains(&filter)) {
         let mut best = f64::INFINITY;
         let mut steps = 0;
-        for _ in 0..5 {
+        for _ in 0..20 {
             let t0 = Instant::now();
             let r = simulate(black_box(&case.scenario)).expect("runs");
             best = best.min(t0.elapsed().as_secs_f64());

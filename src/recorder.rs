@@ -112,9 +112,8 @@ struct Open {
 /// The recorder. Build with [`Recorder::new`], pass to an integrator, then [`Recorder::finish`].
 #[derive(Debug)]
 pub struct Recorder {
-    /// Heights whose displacements are tracked: the contact levels' (for the no-contact run,
-    /// the same heights are passed in, so that both runs report the same places).
-    heights: Vec<f64>,
+    /// Index of the main (highest) tracked height. Heights tracked: the contact levels' (for the
+    /// no-contact run the same heights are passed in, so that both runs report the same places).
     main: usize,
     /// φ of structure 1 and 2 at each tracked height: rows of n₁ and n₂.
     phi1: Vec<Vec<f64>>,
@@ -165,7 +164,6 @@ impl Recorder {
         let samples = (duration / interval + 1e-9).floor() as usize + 1;
         let nl = system.levels.len();
         Recorder {
-            heights: heights.to_vec(),
             main,
             phi1,
             phi2,
@@ -311,6 +309,19 @@ impl Recorder {
     }
 }
 
+/// `(φ·η, φ·η̇)` in one pass.
+#[inline(always)]
+fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
+    let n = phi.len().min(q.len()).min(v.len());
+    let (phi, q, v) = (&phi[..n], &q[..n], &v[..n]);
+    let (mut w, mut wd) = (0.0, 0.0);
+    for j in 0..n {
+        w += phi[j] * q[j];
+        wd += phi[j] * v[j];
+    }
+    (w, wd)
+}
+
 impl Observer for Recorder {
     fn observe(&mut self, system: &System, s: &StepView) {
         let (n1, q) = (system.n1(), s.q);
@@ -325,18 +336,18 @@ impl Observer for Recorder {
         // where the steps happen to fall).
         let h = s.t - self.last_t;
         let refine = self.prev.is_some() && h > 0.0;
-        for k in 0..self.heights.len() {
-            let w1 = crate::system::dot(&self.phi1[k], &q[..n1]);
-            let w2 = crate::system::dot(&self.phi2[k], &q[n1..]);
-            let w1d = crate::system::dot(&self.phi1[k], &s.v[..n1]);
-            let w2d = crate::system::dot(&self.phi2[k], &s.v[n1..]);
-            let l = &mut self.levels[k];
+        let (q1, q2) = q.split_at(n1);
+        let (v1, v2) = s.v.split_at(n1);
+        let tracks = self.phi1.iter().zip(&self.phi2).zip(&mut self.prev_w);
+        for (k, (((phi1, phi2), prev_w), l)) in tracks.zip(&mut self.levels).enumerate() {
+            let (w1, w1d) = project(phi1, q1, v1);
+            let (w2, w2d) = project(phi2, q2, v2);
             l.peak_w1 = l.peak_w1.max(w1.abs());
             l.peak_w2 = l.peak_w2.max(w2.abs());
             l.max_closing = l.max_closing.max(w1 - w2);
             if refine {
                 // an interior extremum needs the slope to change sign (cheap test first)
-                let [a1, a1d, a2, a2d] = self.prev_w[k];
+                let [a1, a1d, a2, a2d] = *prev_w;
                 let ext = |y0: f64, d0: f64, y1: f64, d1: f64| {
                     if d0 * d1 > 0.0 {
                         0.0
@@ -346,14 +357,18 @@ impl Observer for Recorder {
                         hermite_max(-y0, -d0, -y1, -d1, h).0.abs()
                     }
                 };
-                l.peak_w1 = l.peak_w1.max(ext(a1, a1d, w1, w1d));
-                l.peak_w2 = l.peak_w2.max(ext(a2, a2d, w2, w2d));
+                if a1d * w1d <= 0.0 {
+                    l.peak_w1 = l.peak_w1.max(ext(a1, a1d, w1, w1d));
+                }
+                if a2d * w2d <= 0.0 {
+                    l.peak_w2 = l.peak_w2.max(ext(a2, a2d, w2, w2d));
+                }
                 let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);
                 if c0d >= 0.0 && c1d <= 0.0 {
                     l.max_closing = l.max_closing.max(hermite_max(c0, c0d, c1, c1d, h).0);
                 }
             }
-            self.prev_w[k] = [w1, w1d, w2, w2d];
+            *prev_w = [w1, w1d, w2, w2d];
             if k == self.main {
                 main_sample.w = [w1, w2];
                 main_sample.wdot = [w1d, w2d];

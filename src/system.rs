@@ -300,6 +300,12 @@ impl System {
 }
 
 impl System {
+    /// Whether any level's law is impulsive (stereomechanical).
+    #[inline(always)]
+    pub fn has_impulsive(&self) -> bool {
+        self.impulsive
+    }
+
     /// Stereomechanical impacts (SPEC §2.7, issue 3): at every level with an impulsive law where
     /// the structures touch or overlap (δ ≥ −1e-12 m) and still approach (δ̇ > 0), apply the impulse
     /// `P = (1 + e) m* δ̇` as the velocity jump `v += c_k P`, which turns δ̇ into −e δ̇. Adds P to
@@ -345,11 +351,15 @@ impl System {
 #[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     // four partial sums for long rows: the additions of one chain would wait on each other
-    if a.len() < 8 {
-        return a.iter().zip(b).map(|(x, y)| x * y).sum();
-    }
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
+    if n < 8 {
+        let mut s = 0.0;
+        for i in 0..n {
+            s += a[i] * b[i];
+        }
+        return s;
+    }
     let mut acc = [0.0; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
     let (ra, rb) = (ca.remainder(), cb.remainder());

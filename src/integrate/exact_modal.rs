@@ -317,15 +317,18 @@ impl<O: Observer> Run<'_, O> {
         if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
             // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
             let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
-            let now = self.q.iter().zip(&self.v);
-            let end = self.qb.iter_mut().zip(self.vb.iter_mut());
-            let consts = data.infl.iter().zip(g_re.iter().zip(g_im));
-            for (((q, v), (qb, vb)), (f, (&gr, &gi))) in now.zip(end).zip(consts) {
+            // (slices cut to n once: the indexing below needs no bounds checks)
+            let n = self.q.len();
+            let (q, v, infl) = (&self.q[..n], &self.v[..n], &data.infl[..n]);
+            let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
+            let (qb, vb) = (&mut self.qb[..n], &mut self.vb[..n]);
+            for j in 0..n {
+                let (gr, gi) = (g_re[j], g_im[j]);
                 let (e0, d0) = (gr * s0 + gi * c0, big * (gr * c0 - gi * s0));
                 let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
-                let (x, y) = f.p.apply(q - e0, v - d0);
-                *qb = x + e1;
-                *vb = y + d1;
+                let (x, y) = infl[j].p.apply(q[j] - e0, v[j] - d0);
+                qb[j] = x + e1;
+                vb[j] = y + d1;
             }
         } else {
             let poly = matches!(piece, Piece::Poly { .. });
@@ -506,41 +509,69 @@ impl<O: Observer> Run<'_, O> {
                         ..LevelStep::default()
                     };
                 }
-                let rows = self
-                    .cpl_t
-                    .chunks_exact(nl)
-                    .zip(forms.weights.chunks_exact(nl));
-                let modes = self.q.iter_mut().zip(self.v.iter_mut());
-                let free = self.qb.iter().zip(&self.vb);
-                let consts = data.infl.iter().zip(&self.gm.w2);
-                for (j, (((row, wrow), (q, v)), (free, (f, &w2)))) in
-                    rows.zip(modes).zip(free.zip(consts)).enumerate()
-                {
-                    let (mut g0, mut g1) = (0.0, 0.0);
-                    for (c, ls) in row.iter().zip(&self.lsteps) {
-                        g0 += c * ls.f0;
-                        g1 += c * ls.df;
+                if nl == 1 {
+                    // one level (the common case): no inner loops; the slices are cut to n
+                    // once so that the indexing below needs no bounds checks
+                    let (c, wts, infl) = (&self.cpl_t[..n], &forms.weights[..n], &data.infl[..n]);
+                    let (qb, vb, w2) = (&self.qb[..n], &self.vb[..n], &self.gm.w2[..n]);
+                    let (q, v) = (&mut self.q[..n], &mut self.v[..n]);
+                    let LevelStep { f0, df, .. } = self.lsteps[0];
+                    let (mut cq0, mut cq1, mut sv, mut se) = (0.0, 0.0, 0.0, 0.0);
+                    for j in 0..n {
+                        let (g0, g1) = (c[j] * f0, c[j] * df);
+                        let f = &infl[j];
+                        let (q0, v0) = (q[j], v[j]);
+                        let q1 = qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                        let v1 = vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                        cq0 += c[j] * q0;
+                        cq1 += c[j] * q1;
+                        sv += wts[j].0 * (v1 - v0);
+                        se += wts[j].1 * (q1 - q0);
+                        ht.add(&mut sums, j, w2[j], q1, v1);
+                        q[j] = q1;
+                        v[j] = v1;
                     }
-                    let (q0, v0) = (*q, *v);
-                    let q1 = free.0 + g0 * f.g0.0 + g1 * f.g1.0;
-                    let v1 = free.1 + g0 * f.g0.1 + g1 * f.g1.1;
-                    for ((c, (wv, wd)), ls) in row.iter().zip(wrow).zip(self.lsteps.iter_mut()) {
-                        ls.cq0 += c * q0;
-                        ls.cq1 += c * q1;
-                        ls.sv += wv * (v1 - v0);
-                        ls.se += wd * (q1 - q0);
+                    let ls = &mut self.lsteps[0];
+                    (ls.cq0, ls.cq1, ls.sv, ls.se) = (cq0, cq1, sv, se);
+                } else {
+                    let rows = self
+                        .cpl_t
+                        .chunks_exact(nl)
+                        .zip(forms.weights.chunks_exact(nl));
+                    let modes = self.q.iter_mut().zip(self.v.iter_mut());
+                    let free = self.qb.iter().zip(&self.vb);
+                    let consts = data.infl.iter().zip(&self.gm.w2);
+                    for (j, (((row, wrow), (q, v)), (free, (f, &w2)))) in
+                        rows.zip(modes).zip(free.zip(consts)).enumerate()
+                    {
+                        let (mut g0, mut g1) = (0.0, 0.0);
+                        for (c, ls) in row.iter().zip(&self.lsteps) {
+                            g0 += c * ls.f0;
+                            g1 += c * ls.df;
+                        }
+                        let (q0, v0) = (*q, *v);
+                        let q1 = free.0 + g0 * f.g0.0 + g1 * f.g1.0;
+                        let v1 = free.1 + g0 * f.g0.1 + g1 * f.g1.1;
+                        let per_level = row.iter().zip(wrow).zip(self.lsteps.iter_mut());
+                        for ((c, (wv, wd)), ls) in per_level {
+                            ls.cq0 += c * q0;
+                            ls.cq1 += c * q1;
+                            ls.sv += wv * (v1 - v0);
+                            ls.se += wd * (q1 - q0);
+                        }
+                        ht.add(&mut sums, j, w2, q1, v1);
+                        *q = q1;
+                        *v = v1;
                     }
-                    ht.add(&mut sums, j, w2, q1, v1);
-                    *q = q1;
-                    *v = v1;
                 }
                 (extra, contact) = forms.tallies(tm, h, &self.lsteps);
             } else {
+                let (qb, vb, w2) = (&self.qb[..n], &self.vb[..n], &self.gm.w2[..n]);
+                let (q, v) = (&mut self.q[..n], &mut self.v[..n]);
                 for j in 0..n {
-                    let (q1, v1) = (self.qb[j], self.vb[j]);
-                    ht.add(&mut sums, j, self.gm.w2[j], q1, v1);
-                    self.q[j] = q1;
-                    self.v[j] = v1;
+                    ht.add(&mut sums, j, w2[j], qb[j], vb[j]);
+                    q[j] = qb[j];
+                    v[j] = vb[j];
                 }
             }
             input = ht.input(tm, &self.sums, &sums) + extra;
@@ -618,12 +649,14 @@ impl<O: Observer> Run<'_, O> {
         update_onsets(&mut self.onset, &self.prev_states, &self.states);
         // stereomechanical impacts: velocity jumps at the step end; the exact harmonic tallies
         // take the next step's start sums from the state, so re-derive them after a jump
-        if sys.apply_impulses(
-            &mut self.v,
-            &mut self.states,
-            &mut self.tally.impulse,
-            &mut self.tally.contact,
-        ) {
+        if sys.has_impulsive()
+            && sys.apply_impulses(
+                &mut self.v,
+                &mut self.states,
+                &mut self.tally.impulse,
+                &mut self.tally.contact,
+            )
+        {
             self.evaluate_states();
             if let Some(ht) = &self.htally {
                 let mut sums = StateSums::default();
