@@ -167,6 +167,10 @@ struct Run<'a, O: Observer> {
     /// Cache entries of the sub-steps hh/2^m of the base step length `level_hh`.
     level_hh: f64,
     level_idx: [usize; MAX_LEVEL as usize + 1],
+    /// Harmonic motion: every mode's particular solution (η_p, η̇_p) at `trig_now` and at
+    /// `trig_end` (swapped when a step is taken).
+    part_now: Vec<(f64, f64)>,
+    part_end: Vec<(f64, f64)>,
     /// Base steps since sin, cos were last evaluated directly (not by rotation).
     since_sync: u32,
     /// Fast exact tallies for harmonic motion, and the sums at the current state.
@@ -213,6 +217,8 @@ pub(super) fn run<O: Observer>(
         trig_start: Trig::default(),
         trig_end: Trig::default(),
         since_sync: 0,
+        part_now: vec![(0.0, 0.0); n],
+        part_end: vec![(0.0, 0.0); n],
         level_hh: f64::NAN,
         level_idx: [usize::MAX; MAX_LEVEL as usize + 1],
         htally: None,
@@ -232,6 +238,7 @@ pub(super) fn run<O: Observer>(
         .map(|ht| ContactForms::new(ht, &r.gm, &r.cpl_t, nl));
     r.big = r.gm.harmonic_omega();
     r.trig_now = r.gm.trig(0.0);
+    r.sync_particular();
     if let Some(ht) = &r.htally {
         for j in 0..n {
             ht.add(&mut r.sums, j, r.gm.w2[j], r.q[j], r.v[j]);
@@ -281,6 +288,16 @@ impl<O: Observer> Run<'_, O> {
         );
     }
 
+    /// The harmonic particular solution (η_p, η̇_p) of every mode at `trig_now`.
+    fn sync_particular(&mut self) {
+        if let Some((big, g_re, g_im)) = self.gm.harmonic_plain() {
+            let (s, c) = (self.trig_now.s, self.trig_now.c);
+            for ((p, gr), gi) in self.part_now.iter_mut().zip(g_re).zip(g_im) {
+                *p = (gr * s + gi * c, big * (gr * c - gi * s));
+            }
+        }
+    }
+
     /// δ, δ̇ and the law's force at the current state.
     fn evaluate_states(&mut self) {
         let sys = self.sys;
@@ -316,16 +333,19 @@ impl<O: Observer> Run<'_, O> {
         };
         if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
             // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
-            let (s0, c0, s1, c1) = (tr0.s, tr0.c, tr1.s, tr1.c);
-            // (slices cut to n once: the indexing below needs no bounds checks)
+            let (s1, c1) = (tr1.s, tr1.c);
+            // (slices cut to n once: the indexing below needs no bounds checks; the particular
+            // solution at the start is the one kept from the previous step's end)
             let n = self.q.len();
             let (q, v, infl) = (&self.q[..n], &self.v[..n], &data.infl[..n]);
             let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
+            let (p0, p1) = (&self.part_now[..n], &mut self.part_end[..n]);
             let (qb, vb) = (&mut self.qb[..n], &mut self.vb[..n]);
             for j in 0..n {
                 let (gr, gi) = (g_re[j], g_im[j]);
-                let (e0, d0) = (gr * s0 + gi * c0, big * (gr * c0 - gi * s0));
+                let (e0, d0) = p0[j];
                 let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
+                p1[j] = (e1, d1);
                 let (x, y) = infl[j].p.apply(q[j] - e0, v[j] - d0);
                 qb[j] = x + e1;
                 vb[j] = y + d1;
@@ -404,6 +424,7 @@ impl<O: Observer> Run<'_, O> {
         let sys = self.sys;
         if self.since_sync == 0 {
             self.trig_now = self.gm.trig(t0);
+            self.sync_particular();
         }
         self.since_sync = (self.since_sync + 1) % SYNC_EVERY;
         let idx = self.cache.index(sys, self.big, hh);
@@ -490,6 +511,7 @@ impl<O: Observer> Run<'_, O> {
             _ => None,
         };
         self.trig_now = self.trig_end;
+        std::mem::swap(&mut self.part_now, &mut self.part_end);
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
         let mut sums = StateSums::default();

@@ -744,6 +744,7 @@ impl ContactForms {
 
     /// The extra ground work and the work of the contact load over the step (the sums over
     /// the modes of [`HarmonicTally::with_contact`]), J.
+    #[inline]
     pub fn tallies(&self, tm: &TrigMoments, h: f64, steps: &[LevelStep]) -> (f64, f64) {
         let nl = self.nl;
         let (mut extra, mut contact) = (0.0, 0.0);
