@@ -45,7 +45,7 @@ use super::{
 use crate::system::{LevelState, System, dot};
 
 /// Largest `ω_c·h_sub` of a contact sub-step of `exact-modal` (ω_c = √(k_t/m*), rad/s).
-pub const SUBSTEP_ALPHA: f64 = 0.1;
+pub const SUBSTEP_ALPHA: f64 = 0.08;
 /// Every base step in (or near) contact is cut into at least 2^2 sub-steps.
 const MIN_LEVEL: i32 = 2;
 /// At most 2^30 sub-steps per base step.
