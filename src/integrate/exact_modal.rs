@@ -301,21 +301,27 @@ impl<O: Observer> Run<'_, O> {
     /// δ, δ̇ and the law's force at the current state.
     fn evaluate_states(&mut self) {
         let sys = self.sys;
-        for (k, lv) in sys.levels.iter().enumerate() {
+        for k in 0..sys.levels.len() {
             let c = sys.coupling(k);
-            let delta = -dot(c, &self.q) - lv.gap;
-            let delta_dot = -dot(c, &self.v);
-            let v0 = if self.onset[k] > 0.0 {
-                self.onset[k]
-            } else {
-                delta_dot
-            };
-            self.states[k] = LevelState {
-                delta,
-                delta_dot,
-                force: lv.force.force(delta, delta_dot, v0),
-            };
+            self.set_state(k, dot(c, &self.q), dot(c, &self.v));
         }
+    }
+
+    /// Level k's δ, δ̇ and force from its projections `c_k·η`, `c_k·η̇`.
+    #[inline]
+    fn set_state(&mut self, k: usize, cq: f64, cv: f64) {
+        let lv = &self.sys.levels[k];
+        let (delta, delta_dot) = (-cq - lv.gap, -cv);
+        let v0 = if self.onset[k] > 0.0 {
+            self.onset[k]
+        } else {
+            delta_dot
+        };
+        self.states[k] = LevelState {
+            delta,
+            delta_dot,
+            force: lv.force.force(delta, delta_dot, v0),
+        };
     }
 
     /// Ground-only free flight from the current state over [t0, t0 + h] into (qb, vb).
@@ -515,6 +521,8 @@ impl<O: Observer> Run<'_, O> {
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
         let mut sums = StateSums::default();
+        // the one level's projections of the new state, when the corrector formed them
+        let mut projected = None;
         if let (Some(ht), Some(tm)) = (&self.htally, &tm) {
             // harmonic motion: exact tallies from linear forms
             let mut extra = 0.0;
@@ -539,6 +547,7 @@ impl<O: Observer> Run<'_, O> {
                     let (q, v) = (&mut self.q[..n], &mut self.v[..n]);
                     let LevelStep { f0, df, .. } = self.lsteps[0];
                     let (mut cq0, mut cq1, mut sv, mut se) = (0.0, 0.0, 0.0, 0.0);
+                    let mut cv1 = 0.0;
                     for j in 0..n {
                         let (g0, g1) = (c[j] * f0, c[j] * df);
                         let f = &infl[j];
@@ -547,6 +556,7 @@ impl<O: Observer> Run<'_, O> {
                         let v1 = vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
                         cq0 += c[j] * q0;
                         cq1 += c[j] * q1;
+                        cv1 += c[j] * v1;
                         sv += wts[j].0 * (v1 - v0);
                         se += wts[j].1 * (q1 - q0);
                         ht.add(&mut sums, j, w2[j], q1, v1);
@@ -555,6 +565,7 @@ impl<O: Observer> Run<'_, O> {
                     }
                     let ls = &mut self.lsteps[0];
                     (ls.cq0, ls.cq1, ls.sv, ls.se) = (cq0, cq1, sv, se);
+                    projected = Some((cq1, cv1));
                 } else {
                     let rows = self
                         .cpl_t
@@ -643,7 +654,10 @@ impl<O: Observer> Run<'_, O> {
         for (p, st) in self.prev_states.iter_mut().zip(&self.states) {
             *p = *st;
         }
-        self.evaluate_states();
+        match projected {
+            Some((cq, cv)) => self.set_state(0, cq, cv),
+            None => self.evaluate_states(),
+        }
         let inv_h = self.cache.entries[idx].inv_h;
         // work into the contacts with the law's force (Simpson on the Hermite interpolant of δ)
         for k in 0..nl {
