@@ -46,6 +46,8 @@ use crate::system::{LevelState, System, dot};
 
 /// Largest `ω_c·h_sub` of a contact sub-step of `exact-modal` (ω_c = √(k_t/m*), rad/s).
 pub const SUBSTEP_ALPHA: f64 = 0.08;
+/// `(α/α_onset)²`: sub-steps in which a level may come into contact keep `ω_c·h ≤ α/4`.
+const ONSET_WEIGHT: f64 = 16.0;
 /// Every base step in (or near) contact is cut into at least 2^2 sub-steps.
 const MIN_LEVEL: i32 = 2;
 /// At most 2^30 sub-steps per base step.
@@ -404,7 +406,12 @@ impl<O: Observer> Run<'_, O> {
             };
             bound = bound.max(m);
             if m > 0.0 {
-                worst = worst.max(lv.force.tangent_stiffness(m) * data.m0[k * nl + k].0);
+                let w = lv.force.tangent_stiffness(m) * data.m0[k * nl + k].0;
+                // a sub-step in which the level may start touching: the force grows from zero
+                // like (t − t_on)^{3/2} (Hertz), which a linear load over the sub-step fits
+                // worst, so the rule is ω_c·h ≤ α/4 there
+                let w = if st.force > 0.0 { w } else { w * ONSET_WEIGHT };
+                worst = worst.max(w);
             }
         }
         (bound, worst)
