@@ -18,7 +18,10 @@
 //! stiffer than the contact add only their static flexibility, so the sub-step does not shrink
 //! as modes are added. The sub-steps follow the stiffness through an impact (refined when the
 //! rule fails, coarsened by one level when aligned and well inside it), so the free flight up to
-//! an onset is not cut as finely as the impact. Where the rule gives m = 2 the sub-step is
+//! an onset is not cut as finely as the impact. A sub-step in which a level may start touching
+//! (no force at its start) keeps `ω_c·h_sub ≤ α/4`: the force grows from zero like
+//! (t − t_on)^{3/2} there, which a linear load fits worst (on the paper case this costs 0.4 %
+//! more sub-steps and cuts the energy-balance error by 4). Where the rule gives m = 2 the sub-step is
 //! proportional to dt: halving dt halves every sub-step and the error falls by 4 — the regime
 //! where the order is observed.
 //!
