@@ -40,7 +40,7 @@
 
 use super::linear::{
     ContactForms, GroundModes, HarmonicTally, Influence, LevelStep, Piece, StateSums, Trig,
-    TrigMoments, hermite_max, influence, mode_work,
+    TrigMoments, hermite_max, influence, mode_work, poly_coefficients,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -358,6 +358,36 @@ impl<O: Observer> Run<'_, O> {
                 let (e1, d1) = (gr * s1 + gi * c1, big * (gr * c1 - gi * s1));
                 p1[j] = (e1, d1);
                 let (x, y) = infl[j].p.apply(q[j] - e0, v[j] - d0);
+                qb[j] = x + e1;
+                vb[j] = y + d1;
+            }
+        } else if let Piece::Poly {
+            t0: start,
+            a0,
+            a1,
+            v0,
+        } = *piece
+        {
+            // a recorded motion: a_g linear, v_g quadratic over the piece; each mode's load is
+            // c0 + c1τ + c2τ² from t0 on, its particular solution A + Bτ + Cτ² (slices cut to n
+            // once: no bounds checks below)
+            let tau = t0 - start;
+            let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
+            let n = self.q.len();
+            let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
+            let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
+            let (q, v, infl) = (&self.q[..n], &self.v[..n], &data.infl[..n]);
+            let (qb, vb, cpoly) = (&mut self.qb[..n], &mut self.vb[..n], &mut self.cpoly[..n]);
+            for j in 0..n {
+                let c = [
+                    la[j] * ag + lv[j] * vg,
+                    la[j] * a1 + lv[j] * ag,
+                    0.5 * lv[j] * a1,
+                ];
+                cpoly[j] = c;
+                let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
+                let (e1, d1) = (pa + h * (pb + h * pc), pb + 2.0 * h * pc);
+                let (x, y) = infl[j].p.apply(q[j] - pa, v[j] - pb);
                 qb[j] = x + e1;
                 vb[j] = y + d1;
             }

@@ -180,7 +180,7 @@ pub struct GroundModes {
     resonant: Vec<bool>,
     record: Option<Arc<Record>>,
     /// 1/ω², s².
-    inv_w2: Vec<f64>,
+    pub(crate) inv_w2: Vec<f64>,
     /// Harmonic load coefficients α, β (load = α sin Ωt + β cos Ωt), ω² − Ω², 2ζωΩ and
     /// 1/((ω² − Ω²)² + (2ζωΩ)²) (0 at undamped resonance).
     hcoef: Vec<[f64; 5]>,
@@ -427,11 +427,17 @@ impl GroundModes {
 /// Particular solution `A + Bτ + Cτ²` of `η̈ + dη̇ + ω²η = c0 + c1τ + c2τ²` and its derivative at τ.
 #[inline(always)]
 pub fn poly_particular(w2: f64, d: f64, c: &[f64; 3], tau: f64) -> (f64, f64) {
-    let inv = 1.0 / w2;
-    let cc = c[2] * inv;
-    let b = (c[1] - 2.0 * d * cc) * inv;
-    let a = (c[0] - d * b - 2.0 * cc) * inv;
+    let (a, b, cc) = poly_coefficients(1.0 / w2, d, c);
     (a + tau * (b + tau * cc), b + 2.0 * tau * cc)
+}
+
+/// The coefficients (A, B, C) of [`poly_particular`] from 1/ω² (s²), d and the load `c`.
+#[inline(always)]
+pub fn poly_coefficients(inv_w2: f64, d: f64, c: &[f64; 3]) -> (f64, f64, f64) {
+    let cc = c[2] * inv_w2;
+    let b = (c[1] - 2.0 * d * cc) * inv_w2;
+    let a = (c[0] - d * b - 2.0 * cc) * inv_w2;
+    (a, b, cc)
 }
 
 /// Integrals over one step [t0, t0 + h] of the harmonic functions, shared by all modes.
