@@ -383,6 +383,12 @@ fn record_files_resolve_relative_to_the_sweep_file() {
     assert!(!text.contains("\nperiod = 0.65"), "{text}");
     // lines over the PGA, one line per record
     assert!(out.join("plots/lines_PGA.png").exists());
+    // an edited record is a different sweep: its results must not resume into the old rows
+    write(&d.path().join("records/b.txt"), &rec(3.0));
+    let again = pounding(&["sweep", s(&sweep), "--out", s(&out), "-q"]);
+    assert!(!again.status.success());
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(err.contains("different sweep"), "{err}");
 }
 
 #[test]

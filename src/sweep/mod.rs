@@ -572,7 +572,35 @@ impl Sweep {
                 format!("the grid has {cases} cases; at most {MAX_CASES} are allowed"),
             ));
         }
-        let identity = fnv1a(&[b"pounding-sweep-1", text.as_bytes(), base_text.as_bytes()]);
+        // the identity covers what the cases read: the sweep file, the base scenario and the
+        // bytes of every record file (an edited record must not resume into old rows)
+        let mut files: Vec<PathBuf> = Vec::new();
+        if let Some(Value::Table(g)) = base.get("ground_motion")
+            && let Some(Value::String(f)) = g.get("file")
+        {
+            files.push(PathBuf::from(f));
+        }
+        for a in &axes {
+            if let Target::Key {
+                kind: Kind::File, ..
+            } = a.target
+            {
+                for v in &a.values {
+                    if let AxisValue::Text(f) = v {
+                        files.push(absolute(&sweep_dir.join(f)));
+                    }
+                }
+            }
+        }
+        // (a missing file fails its cases' validation; here it only counts as empty)
+        let contents: Vec<Vec<u8>> = files
+            .iter()
+            .map(|f| std::fs::read(f).unwrap_or_default())
+            .collect();
+        let mut parts: Vec<&[u8]> =
+            vec![b"pounding-sweep-2", text.as_bytes(), base_text.as_bytes()];
+        parts.extend(contents.iter().map(|c| c.as_slice()));
+        let identity = fnv1a(&parts);
         Ok(Sweep {
             path: path.to_path_buf(),
             scenario_path,
@@ -595,7 +623,7 @@ impl Sweep {
         self.len() == 0
     }
 
-    /// Hash of the sweep file's and the base scenario's text.
+    /// Hash of the sweep file's and the base scenario's text and of every record file's bytes.
     pub fn identity(&self) -> u64 {
         self.identity
     }
