@@ -303,7 +303,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Separation { scenario } => {
             let (sc, _) = load(scenario.as_deref())?;
-            let report = simulate(&sc)?;
+            let report = pounding::simulate::separation(&sc)?;
             print_separation(&sc, &report);
             Ok(())
         }
@@ -472,18 +472,17 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
     );
 }
 
-fn print_separation(sc: &Scenario, r: &Report) {
+fn print_separation(sc: &Scenario, r: &pounding::simulate::SeparationReport) {
     let s = &r.separation;
-    let [a, b] = &r.structures;
     println!("{}", sc.title);
     println!(
         "  peaks without pounding at h = {} m: w1 = {:.5} m, w2 = {:.5} m; T1/T2 = {:.4}, ζ1 = {}, ζ2 = {}, ρ12 (CQC) = {:.5}",
         sc.main_height(),
-        a.peak_displacement_no_contact,
-        b.peak_displacement_no_contact,
-        a.periods[0] / b.periods[0],
-        a.damping_ratios[0],
-        b.damping_ratios[0],
+        r.peaks_no_contact[0],
+        r.peaks_no_contact[1],
+        r.periods[0] / r.periods[1],
+        r.damping_ratios[0],
+        r.damping_ratios[1],
         s.rho
     );
     println!();

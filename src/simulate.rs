@@ -120,6 +120,54 @@ fn change_percent(with: f64, without: f64) -> f64 {
     }
 }
 
+/// The separation rules (SPEC §3) from the run without contact.
+fn separations(system: &System, without: &RunRecord) -> Separations {
+    let [m1, m2] = &system.structures;
+    let peaks = PeakPair {
+        w1: without.peak[0],
+        w2: without.peak[1],
+        zeta1: m1.zeta[0],
+        zeta2: m2.zeta[0],
+        period_ratio: m2.omega[0] / m1.omega[0],
+    };
+    Separations::new(&peaks, without.max_closing)
+}
+
+/// What the separation rules need, from the run without contact only (half the work of
+/// [`simulate`], whose `separation` and no-contact peaks it equals).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeparationReport {
+    /// Peak |w₁|, |w₂| without contact at the main contact height, m.
+    pub peaks_no_contact: [f64; 2],
+    /// First-mode periods of structures 1 and 2, s.
+    pub periods: [f64; 2],
+    /// First-mode damping ratios of structures 1 and 2.
+    pub damping_ratios: [f64; 2],
+    /// The required gap by every rule.
+    pub separation: Separations,
+}
+
+/// Run a scenario without contact and evaluate the separation rules (`pounding separation`).
+pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
+    let system = scenario.system();
+    let free = system.without_contact();
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    let (without, _) = run_system(
+        &free,
+        &scenario.solver,
+        &InitialState::default(),
+        &heights,
+        scenario.output_interval,
+    )?;
+    let [m1, m2] = &system.structures;
+    Ok(SeparationReport {
+        peaks_no_contact: without.peak,
+        periods: [m1.periods()[0], m2.periods()[0]],
+        damping_ratios: [m1.zeta[0], m2.zeta[0]],
+        separation: separations(&system, &without),
+    })
+}
+
 /// Run a scenario with and without contact and compare.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
     let system = scenario.system();
@@ -179,15 +227,7 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
         impacts: levels.iter().map(|l| l.impacts).sum(),
         contact_time: levels.iter().map(|l| l.contact_time).sum(),
     };
-    let [m1, m2] = &system.structures;
-    let peaks = PeakPair {
-        w1: without.peak[0],
-        w2: without.peak[1],
-        zeta1: m1.zeta[0],
-        zeta2: m2.zeta[0],
-        period_ratio: m2.omega[0] / m1.omega[0],
-    };
-    let separation = Separations::new(&peaks, without.max_closing);
+    let separation = separations(&system, &without);
 
     let mut warnings = Vec::new();
     if scenario.solver.method == crate::integrate::Method::Rk4 && stats.max_contact_omega_dt > 0.5 {

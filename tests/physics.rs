@@ -357,4 +357,15 @@ fn paper_case_c_qualitative() {
     assert!(r.contact.impacts > 0);
     // the peak force never exceeds k_h δ_max^1.5
     assert!(r.contact.peak_force <= 2.808e10 * r.contact.max_penetration.powf(1.5) * (1.0 + 1e-12));
+    // `pounding separation` runs only the case without contact: the same gaps and peaks
+    let s = pounding::simulate::separation(&sc).unwrap();
+    assert_eq!(s.separation, r.separation);
+    assert_eq!(
+        s.peaks_no_contact,
+        [
+            r.structures[0].peak_displacement_no_contact,
+            r.structures[1].peak_displacement_no_contact
+        ]
+    );
+    assert_eq!(s.periods[0], r.structures[0].periods[0]);
 }
