@@ -40,7 +40,7 @@
 
 use super::linear::{
     ContactForms, GroundModes, HarmonicTally, Influence, LevelStep, Piece, StateSums, Trig,
-    TrigMoments, hermite_max, influence, mode_work, poly_coefficients,
+    TrigMoments, hermite_max, influence, mode_work, poly_coefficients, poly_mode_work,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -649,6 +649,45 @@ impl<O: Observer> Run<'_, O> {
             }
             input = ht.input(tm, &self.sums, &sums) + extra;
             damping = input + contact - (sums.energy - self.sums.energy);
+        } else if matches!(piece, Piece::Poly { .. }) && self.htally.is_none() {
+            // a recorded motion: the corrector and the exact tallies in one slice-indexed pass
+            let inv_h = data.inv_h;
+            let (w2, damp, iw2) = (&self.gm.w2[..n], &self.gm.damp[..n], &self.gm.inv_w2[..n]);
+            let (qb, vb, cpoly, infl) = (
+                &self.qb[..n],
+                &self.vb[..n],
+                &self.cpoly[..n],
+                &data.infl[..n],
+            );
+            let (q, v) = (&mut self.q[..n], &mut self.v[..n]);
+            let cpl = &self.cpl_t[..n * nl];
+            for j in 0..n {
+                let (mut g0, mut g1) = (0.0, 0.0);
+                if any_force {
+                    for k in 0..nl {
+                        let c = cpl[j * nl + k];
+                        g0 += c * self.states[k].force;
+                        g1 += c * (self.fpred[k] - self.states[k].force);
+                    }
+                }
+                let f = &infl[j];
+                let q1 = qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
+                let v1 = vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
+                let w = poly_mode_work(
+                    (w2[j], damp[j], iw2[j]),
+                    h,
+                    inv_h,
+                    (q[j], v[j]),
+                    (q1, v1),
+                    &cpoly[j],
+                    g0,
+                    g1,
+                );
+                input += w.input;
+                damping += w.damping;
+                q[j] = q1;
+                v[j] = v1;
+            }
         } else {
             for j in 0..n {
                 let (mut g0, mut g1) = (0.0, 0.0);

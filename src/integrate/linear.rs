@@ -515,6 +515,42 @@ pub struct ModeWork {
     pub damping: f64,
 }
 
+/// [`mode_work`] under a recorded motion: the ground load `c0 + c1τ + c2τ²`; the mode's ω², 2ζω
+/// and 1/ω² in `mode`; `inv_h` = 1/h.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn poly_mode_work(
+    (w2, d, iw2): (f64, f64, f64),
+    h: f64,
+    inv_h: f64,
+    (e0, v0): (f64, f64),
+    (e1, v1): (f64, f64),
+    c: &[f64; 3],
+    g0: f64,
+    g1: f64,
+) -> ModeWork {
+    const THIRD: f64 = 1.0 / 3.0;
+    let slope = g1 * inv_h;
+    let de = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2 * (e1 * e1 - e0 * e0);
+    // ∫ f dt of the total load, and ∫η dt from the equation of motion
+    let int_f = h * (g0 + 0.5 * slope * h) + h * (c[0] + h * (0.5 * c[1] + h * c[2] * THIRD));
+    let i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
+    let input = if c[1] != 0.0 || c[2] != 0.0 || slope != 0.0 {
+        let int_tf = h * h * (0.5 * (g0 + c[0]) + h * ((slope + c[1]) * THIRD + 0.25 * h * c[2]));
+        let i1 = (int_tf - (h * v1 - (e1 - e0)) - d * (h * e1 - i0)) * iw2;
+        let ph = c[0] + h * (c[1] + h * c[2]);
+        ph * e1 - c[0] * e0 - c[1] * i0 - 2.0 * c[2] * i1
+    } else {
+        c[0] * (e1 - e0)
+    };
+    let contact = (g0 + g1) * e1 - g0 * e0 - slope * i0;
+    ModeWork {
+        input,
+        contact,
+        damping: input + contact - de,
+    }
+}
+
 /// Exact work over a step of length h of one mode whose load is the ground load plus a contact
 /// load linear in τ (`g0 + g1 τ/h`), given the exact end states y0 = (η0, v0), y1 = (η1, v1).
 /// `ground` is the polynomial ground load (records) or `None` for harmonic (then `tm` is used).
@@ -532,32 +568,16 @@ pub fn mode_work(
     g1: f64,
 ) -> ModeWork {
     let (w2, d, iw2) = (gm.w2[j], gm.damp[j], gm.inv_w2[j]);
+    if let Some(c) = ground {
+        return poly_mode_work((w2, d, iw2), h, 1.0 / h, y0, y1, c, g0, g1);
+    }
     let (e0, v0) = y0;
     let (e1, v1) = y1;
     let slope = g1 / h;
     let de = 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2 * (e1 * e1 - e0 * e0);
-    let h2 = h * h;
     let mut input = 0.0;
     // ∫ f dt of the total load
     let mut int_f = h * (g0 + 0.5 * slope * h);
-    if let Some(c) = ground {
-        int_f += h * (c[0] + h * (0.5 * c[1] + h * c[2] / 3.0));
-        let i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
-        if c[1] != 0.0 || c[2] != 0.0 || slope != 0.0 {
-            let int_tf = h2 * (0.5 * (g0 + c[0]) + h * ((slope + c[1]) / 3.0 + 0.25 * h * c[2]));
-            let i1 = (int_tf - (h * v1 - (e1 - e0)) - d * (h * e1 - i0)) * iw2;
-            let ph = c[0] + h * (c[1] + h * c[2]);
-            input = ph * e1 - c[0] * e0 - c[1] * i0 - 2.0 * c[2] * i1;
-        } else {
-            input = c[0] * (e1 - e0);
-        }
-        let contact = (g0 + g1) * e1 - g0 * e0 - slope * i0;
-        return ModeWork {
-            input,
-            contact,
-            damping: input + contact - de,
-        };
-    }
     let i0;
     if let Some(tm) = tm {
         let [al, be, m, n, inv] = gm.hcoef[j];
