@@ -381,12 +381,9 @@ impl Observer for Recorder {
             // interior maximum δ̇ = 0, so every law gives its elastic force — the peak force for
             // elastic laws, a lower bound for damped ones.
             let (mut inner_delta, mut inner_force) = (f64::NEG_INFINITY, 0.0);
-            // (an interior maximum needs δ̇ to go from ≥ 0 to ≤ 0: cheap test first)
-            if refine
-                && (prev > 0.0 || st.delta > 0.0)
-                && self.prev_delta_dot[k] >= 0.0
-                && st.delta_dot <= 0.0
-            {
+            // (an interior maximum needs δ̇ to go from ≥ 0 to ≤ 0: cheap test first; δ may be
+            // negative at both ends and positive in between: a grazing contact)
+            if refine && self.prev_delta_dot[k] >= 0.0 && st.delta_dot <= 0.0 {
                 let (m, th) = hermite_max(prev, self.prev_delta_dot[k], st.delta, st.delta_dot, h);
                 if th > 0.0 && th < 1.0 && m > 0.0 {
                     inner_delta = m;
@@ -425,9 +422,13 @@ impl Observer for Recorder {
                 };
                 let end = self.last_t + theta * (s.t - self.last_t);
                 self.close(k, o, end, s.tally.impulse[k]);
-            } else if s.tally.impulse[k] > self.last_impulse[k] {
+            } else if s.tally.impulse[k] > self.last_impulse[k]
+                && (system.levels[k].force.impulsive().is_some() || inner_delta > 0.0)
+            {
                 // an impulse without observed penetration: an instantaneous (stereomechanical)
                 // impact located exactly at δ = 0, or a grazing contact between observations
+                // (δ > 0 inside the interval). A force law's impulse over an interval where δ
+                // stays ≤ 0 is round-off (a step ending on a located onset), not an impact.
                 let o = Open {
                     start: s.t,
                     impulse_at_start: self.last_impulse[k],
@@ -471,5 +472,83 @@ impl Observer for Recorder {
         }
         self.last_t = s.t;
         self.prev = Some(main_sample);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::ContactLaw;
+    use crate::ground_motion::GroundMotion;
+    use crate::integrate::Tally;
+    use crate::modal::{Damping, Stiffness, Structure};
+    use crate::system::{ContactLevel, LevelState};
+
+    fn system(law: ContactLaw) -> System {
+        let st = |period: f64| Structure {
+            name: "s".into(),
+            length: 10.0,
+            mass: 2.0e6,
+            stiffness: Stiffness::Period(period),
+            modes: 2,
+            damping: Damping::Modal(vec![0.02]),
+        };
+        System::new(
+            [st(0.4).modal(), st(0.6).modal()],
+            &law,
+            &[ContactLevel {
+                height: 10.0,
+                gap: 0.01,
+            }],
+            GroundMotion::None,
+        )
+    }
+
+    /// Observes δ at t = 0, 1e-3, 2e-3 s with the given impulse tallies; returns the impacts.
+    fn episodes(sys: &System, deltas: [(f64, f64); 3], impulses: [f64; 3]) -> Vec<Impact> {
+        let mut rec = Recorder::new(sys, &[10.0], 0.01, 0.002);
+        let (q, v) = (vec![0.0; 4], vec![0.0; 4]);
+        for i in 0..3 {
+            let (delta, delta_dot) = deltas[i];
+            let levels = [LevelState {
+                delta,
+                delta_dot,
+                force: 0.0,
+            }];
+            let tally = Tally {
+                impulse: vec![impulses[i]],
+                ..Tally::default()
+            };
+            let view = StepView {
+                t: i as f64 * 1e-3,
+                q: &q,
+                v: &v,
+                levels: &levels,
+                tally: &tally,
+            };
+            rec.observe(sys, &view);
+        }
+        rec.finish().impacts
+    }
+
+    /// A force law's round-off impulse over an interval where δ stays ≤ 0 (a step that ends on a
+    /// located onset) is no impact; a grazing contact between observations (δ > 0 inside the
+    /// interval) and a stereomechanical impulse at δ = 0 are.
+    #[test]
+    fn impulses_without_penetration() {
+        let hertz = system(ContactLaw::Hertz { stiffness: 2.8e10 });
+        // approaching, reaching δ = −1e-15 at the second observation: round-off impulse
+        let onset = [(-2e-3, 1.0), (-1e-15, 1.0), (-1e-3, -1.0)];
+        assert!(episodes(&hertz, onset, [0.0, 1e-12, 1e-12]).is_empty());
+        // δ < 0 at both ends but the cubic through (δ, δ̇) rises above 0 in between
+        let grazing = [(-2e-3, 1.0), (-2e-4, 1.0), (-1e-4, -1.0)];
+        let found = episodes(&hertz, grazing, [0.0, 0.0, 5.0]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].max_penetration > 0.0 && found[0].impulse == 5.0);
+        // an instantaneous impact: an impulse with δ ≤ 0 throughout
+        let stereo = system(ContactLaw::Stereomechanical { restitution: 0.6 });
+        let found = episodes(&stereo, onset, [0.0, 80.0, 80.0]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].impulse, 80.0);
     }
 }
