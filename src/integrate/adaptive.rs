@@ -287,6 +287,42 @@ fn free_nodes(
     let (n, nl) = (w.n, w.nl);
     let h = tab.h;
     let th = nodes();
+    if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
+        // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt (slices cut to
+        // n once: no bounds checks in the mode loop)
+        let (q, v, g_re, g_im) = (&w.q[..n], &w.v[..n], &g_re[..n], &g_im[..n]);
+        let (props, cpl) = (&tab.props[..3 * n], &w.cpl_t[..n * nl]);
+        let part = |gr: f64, gi: f64, tr: &super::linear::Trig| {
+            (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+        };
+        for j in 0..n {
+            let (gr, gi) = (g_re[j], g_im[j]);
+            let (e0, d0) = part(gr, gi, &trs[0]);
+            let (x0, y0) = (q[j] - e0, v[j] - d0);
+            for &i in which {
+                let (e, d) = part(gr, gi, &trs[i]);
+                let (x, y) = props[(i - 1) * n + j].apply(x0, y0);
+                let (x, y) = (x + e, y + d);
+                for k in 0..nl {
+                    let ck = cpl[j * nl + k];
+                    w.dfree[k * 3 + i - 1].0 -= ck * x;
+                    w.dfree[k * 3 + i - 1].1 -= ck * y;
+                }
+                if i == 3 {
+                    w.qn[j] = x;
+                    w.vn[j] = y;
+                } else {
+                    w.vf[i - 1][j] = y;
+                }
+            }
+        }
+        for (k, lv) in sys.levels.iter().enumerate() {
+            for &i in which {
+                w.dfree[k * 3 + i - 1].0 -= lv.gap;
+            }
+        }
+        return;
+    }
     for j in 0..n {
         let c = if poly {
             gm.poly_load(j, piece, t)
