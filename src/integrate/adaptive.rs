@@ -287,71 +287,84 @@ fn free_nodes(
     let (n, nl) = (w.n, w.nl);
     let h = tab.h;
     let th = nodes();
-    if let (Piece::Harmonic, Some((big, g_re, g_im))) = (piece, gm.harmonic_plain()) {
-        // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt (slices cut to
-        // n once: no bounds checks in the mode loop)
-        let (q, v, g_re, g_im) = (&w.q[..n], &w.v[..n], &g_re[..n], &g_im[..n]);
-        let (props, cpl) = (&tab.props[..3 * n], &w.cpl_t[..n * nl]);
-        let part = |gr: f64, gi: f64, tr: &super::linear::Trig| {
-            (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
-        };
-        for j in 0..n {
-            let (gr, gi) = (g_re[j], g_im[j]);
-            let (e0, d0) = part(gr, gi, &trs[0]);
-            let (x0, y0) = (q[j] - e0, v[j] - d0);
-            for &i in which {
-                let (e, d) = part(gr, gi, &trs[i]);
-                let (x, y) = props[(i - 1) * n + j].apply(x0, y0);
-                let (x, y) = (x + e, y + d);
-                for k in 0..nl {
-                    let ck = cpl[j * nl + k];
-                    w.dfree[k * 3 + i - 1].0 -= ck * x;
-                    w.dfree[k * 3 + i - 1].1 -= ck * y;
-                }
-                if i == 3 {
-                    w.qn[j] = x;
-                    w.vn[j] = y;
+    let mut nodes_out = NodesOut {
+        dfree: &mut w.dfree,
+        qn: &mut w.qn,
+        vn: &mut w.vn,
+        vf: &mut w.vf,
+    };
+    let (q, v, cpl) = (&w.q[..n], &w.v[..n], &w.cpl_t[..n * nl]);
+    match (piece, gm.harmonic_plain()) {
+        (Piece::Harmonic, Some((big, g_re, g_im))) => {
+            // harmonic motion: the particular solution is G_re sin Ωt + G_im cos Ωt
+            let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
+            propagate(tab, q, v, cpl, which, &mut nodes_out, |j, i| {
+                let (gr, gi, tr) = (g_re[j], g_im[j], &trs[i]);
+                (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+            });
+        }
+        _ => {
+            for (j, c) in w.cpoly.iter_mut().enumerate() {
+                *c = if poly {
+                    gm.poly_load(j, piece, t)
                 } else {
-                    w.vf[i - 1][j] = y;
-                }
+                    [0.0; 3]
+                };
             }
-        }
-        for (k, lv) in sys.levels.iter().enumerate() {
-            for &i in which {
-                w.dfree[k * 3 + i - 1].0 -= lv.gap;
-            }
-        }
-        return;
-    }
-    for j in 0..n {
-        let c = if poly {
-            gm.poly_load(j, piece, t)
-        } else {
-            [0.0; 3]
-        };
-        w.cpoly[j] = c;
-        let (e0, d0) = gm.particular(j, piece, &c, 0.0, &trs[0]);
-        let (x0, y0) = (w.q[j] - e0, w.v[j] - d0);
-        for &i in which {
-            let (e, d) = gm.particular(j, piece, &c, th[i] * h, &trs[i]);
-            let (x, y) = tab.props[(i - 1) * n + j].apply(x0, y0);
-            let (x, y) = (x + e, y + d);
-            for k in 0..nl {
-                let ck = w.cpl_t[j * nl + k];
-                w.dfree[k * 3 + i - 1].0 -= ck * x;
-                w.dfree[k * 3 + i - 1].1 -= ck * y;
-            }
-            if i == 3 {
-                w.qn[j] = x;
-                w.vn[j] = y;
-            } else {
-                w.vf[i - 1][j] = y;
-            }
+            let cpoly = &w.cpoly[..n];
+            propagate(tab, q, v, cpl, which, &mut nodes_out, |j, i| {
+                gm.particular(j, piece, &cpoly[j], th[i] * h, &trs[i])
+            });
         }
     }
     for (k, lv) in sys.levels.iter().enumerate() {
         for &i in which {
             w.dfree[k * 3 + i - 1].0 -= lv.gap;
+        }
+    }
+}
+
+/// Where [`propagate`] writes: δ, δ̇ sums per level and node, the end state, node velocities.
+struct NodesOut<'a> {
+    dfree: &'a mut [(f64, f64)],
+    qn: &'a mut [f64],
+    vn: &'a mut [f64],
+    vf: &'a mut [Vec<f64>; 2],
+}
+
+/// The mode loop of [`free_nodes`], generic over the particular solution `part(j, node)` so that
+/// harmonic and polynomial loads each get a loop without a branch per mode (slices cut to n
+/// once: no bounds checks inside).
+fn propagate(
+    tab: &Table,
+    q: &[f64],
+    v: &[f64],
+    cpl: &[f64],
+    which: &[usize],
+    out: &mut NodesOut,
+    part: impl Fn(usize, usize) -> (f64, f64),
+) {
+    let n = q.len();
+    let nl = cpl.len() / n.max(1);
+    let (v, props) = (&v[..n], &tab.props[..3 * n]);
+    for j in 0..n {
+        let (e0, d0) = part(j, 0);
+        let (x0, y0) = (q[j] - e0, v[j] - d0);
+        for &i in which {
+            let (e, d) = part(j, i);
+            let (x, y) = props[(i - 1) * n + j].apply(x0, y0);
+            let (x, y) = (x + e, y + d);
+            for k in 0..nl {
+                let ck = cpl[j * nl + k];
+                out.dfree[k * 3 + i - 1].0 -= ck * x;
+                out.dfree[k * 3 + i - 1].1 -= ck * y;
+            }
+            if i == 3 {
+                out.qn[j] = x;
+                out.vn[j] = y;
+            } else {
+                out.vf[i - 1][j] = y;
+            }
         }
     }
 }
