@@ -392,13 +392,9 @@ impl<O: Observer> Run<'_, O> {
                 vb[j] = y + d1;
             }
         } else {
-            let poly = matches!(piece, Piece::Poly { .. });
+            // no ground load, or harmonic motion with a mode at undamped resonance
             for j in 0..self.q.len() {
-                let c = if poly {
-                    gm.poly_load(j, piece, t0)
-                } else {
-                    [0.0; 3]
-                };
+                let c = [0.0; 3];
                 self.cpoly[j] = c;
                 let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr0);
                 let (e1, d1) = gm.particular(j, piece, &c, h, &tr1);
@@ -560,6 +556,7 @@ impl<O: Observer> Run<'_, O> {
         std::mem::swap(&mut self.part_now, &mut self.part_end);
         let n = self.q.len();
         let (mut input, mut damping) = (0.0, 0.0);
+        // (the modal sums of the harmonic tallies; only that branch uses them)
         let mut sums = StateSums::default();
         // the one level's projections of the new state, when the corrector formed them
         let mut projected = None;
@@ -649,7 +646,7 @@ impl<O: Observer> Run<'_, O> {
             }
             input = ht.input(tm, &self.sums, &sums) + extra;
             damping = input + contact - (sums.energy - self.sums.energy);
-        } else if matches!(piece, Piece::Poly { .. }) && self.htally.is_none() {
+        } else if matches!(piece, Piece::Poly { .. }) {
             // a recorded motion: the corrector and the exact tallies in one slice-indexed pass
             let inv_h = data.inv_h;
             let (w2, damp, iw2) = (&self.gm.w2[..n], &self.gm.damp[..n], &self.gm.inv_w2[..n]);
@@ -720,11 +717,6 @@ impl<O: Observer> Run<'_, O> {
                 damping += w.damping;
                 self.q[j] = q1;
                 self.v[j] = v1;
-            }
-            if let Some(ht) = &self.htally {
-                for j in 0..n {
-                    ht.add(&mut sums, j, self.gm.w2[j], self.q[j], self.v[j]);
-                }
             }
         }
         self.sums = sums;
