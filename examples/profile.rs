@@ -1,0 +1,50 @@
+//! Runs `simulate` on a scenario N times, for profilers and instruction counts (wall time on a
+//! shared machine drifts; `valgrind --tool=callgrind` counts do not):
+//!
+//! ```text
+//! cargo build --release --example profile
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+//!     target/release/examples/profile examples/paper-c.toml exact-modal 0.01 10
+//! ```
+//!
+//! Arguments: scenario file, method (replaces `method = "rk4"`), dt (replaces `dt = 0.001`),
+//! repetitions. Prints the best wall time, the steps and the peaks of the last run.
+
+use std::time::Instant;
+
+use pounding::scenario::Scenario;
+use pounding::simulate::simulate;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args.get(1).map_or("examples/paper-c.toml", |s| s.as_str());
+    let method = args.get(2).map_or("exact-modal", |s| s.as_str());
+    let dt: f64 = args.get(3).map_or(Ok(0.01), |s| s.parse())?;
+    let reps: usize = args.get(4).map_or(Ok(100), |s| s.parse())?;
+    let text = std::fs::read_to_string(path)?
+        .replace("method = \"rk4\"", &format!("method = \"{method}\""))
+        .replace("dt = 0.001", &format!("dt = {dt}"));
+    let dir = std::path::Path::new(path)
+        .parent()
+        .unwrap_or(std::path::Path::new("."));
+    let scenario = Scenario::from_toml(&text, path, dir)?;
+    let mut best = f64::INFINITY;
+    let mut last = None;
+    for _ in 0..reps.max(1) {
+        let t0 = Instant::now();
+        last = Some(simulate(&scenario)?);
+        best = best.min(t0.elapsed().as_secs_f64());
+    }
+    if let Some(r) = last {
+        println!(
+            "best {:.3} ms; steps {} + {}; peaks {:.6} {:.6} m; peak force {:.6e} N",
+            best * 1e3,
+            r.with_contact.steps,
+            r.without_contact.steps,
+            r.with_contact.peak[0],
+            r.with_contact.peak[1],
+            r.contact.peak_force
+        );
+    }
+    Ok(())
+}
