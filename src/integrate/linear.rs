@@ -674,7 +674,8 @@ impl HarmonicTally {
 
     /// Extra ground work of mode j over the step when it also carries the contact load
     /// `g0 + slope·τ` (the load changes the mode's motion, hence the ground's work), and the
-    /// exact work of that contact load; `y0`, `y1` are the mode's end states.
+    /// exact work of that contact load; `y0`, `y1` are the mode's end states. The per-mode form:
+    /// `exact-modal` uses its sum regrouped by level, [`ContactForms`], tested against it.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn with_contact(
