@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use crate::integrate::linear::hermite_max;
-use crate::integrate::{Observer, StepView};
+use crate::integrate::{Observer, StepView, onset_speed};
 use crate::system::System;
 
 /// One contact episode at one level: from the first instant of penetration to separation.
@@ -407,7 +407,17 @@ impl Observer for Recorder {
                         impulse_at_start: self.last_impulse[k],
                         peak_force: 0.0,
                         max_penetration: 0.0,
-                        approach_speed: st.delta_dot,
+                        // δ̇ where δ crosses 0 (at a located onset: the previous
+                        // observation), the same v₀ the integrators give the damped laws
+                        approach_speed: if prev.is_finite() {
+                            onset_speed(
+                                (prev, self.prev_delta_dot[k]),
+                                (st.delta, st.delta_dot),
+                                s.t - self.last_t,
+                            )
+                        } else {
+                            st.delta_dot
+                        },
                     }
                 });
                 o.peak_force = o.peak_force.max(st.force).max(inner_force);

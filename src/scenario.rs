@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use crate::contact::{ContactLaw, HertzDampModel};
 use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
-use crate::integrate::{DEFAULT_ATOL, DEFAULT_RTOL, Method, SolverSettings};
+use crate::integrate::{ATOL_PER_RTOL, DEFAULT_RTOL, Method, SolverSettings};
 use crate::modal::{Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
@@ -1074,7 +1074,7 @@ fn solver(
         }
     };
     let atol = match &s.atol {
-        None => DEFAULT_ATOL,
+        None => rtol * ATOL_PER_RTOL,
         Some(v) => {
             let x = *v.get_ref();
             if !(x.is_finite() && (1e-16..=1.0).contains(&x)) {

@@ -251,7 +251,7 @@ pub(super) fn run<O: Observer>(
     }
     r.evaluate_states();
     let s0 = r.states.clone();
-    update_onsets(&mut r.onset, &s0, &r.states);
+    update_onsets(&mut r.onset, &s0, &r.states, 0.0);
     r.observe(0.0);
 
     let duration = settings.duration;
@@ -753,7 +753,7 @@ impl<O: Observer> Run<'_, O> {
                 }
             }
         }
-        update_onsets(&mut self.onset, &self.prev_states, &self.states);
+        update_onsets(&mut self.onset, &self.prev_states, &self.states, h);
         // stereomechanical impacts: velocity jumps at the step end; the exact harmonic tallies
         // take the next step's start sums from the state, so re-derive them after a jump
         if sys.has_impulsive()

@@ -145,7 +145,7 @@ pub(super) fn run<O: Observer>(
     let mut p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, &mut w.a[0], &mut w.states);
     stats.evaluations += 1;
     w.prev_states.copy_from_slice(&w.states);
-    update_onsets(&mut w.onset, &w.prev_states, &w.states);
+    update_onsets(&mut w.onset, &w.prev_states, &w.states, 0.0);
     observer.observe(
         sys,
         &StepView {
@@ -222,7 +222,7 @@ pub(super) fn run<O: Observer>(
         }
         stats.evaluations += 4;
         stats.steps += 1;
-        update_onsets(&mut w.onset, &w.prev_states, &w.states);
+        update_onsets(&mut w.onset, &w.prev_states, &w.states, h);
         for (lv, st) in sys.levels.iter().zip(&w.states) {
             if st.delta > 0.0 {
                 let omega_c = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
