@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use crate::contact::{ContactLaw, HertzDampModel};
 use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
-use crate::integrate::{ATOL_PER_RTOL, DEFAULT_RTOL, Method, SolverSettings};
+use crate::integrate::{ATOL_PER_RTOL, Method, SolverSettings};
 use crate::modal::{Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
@@ -1064,7 +1064,7 @@ fn solver(
         },
     };
     let rtol = match &s.rtol {
-        None => DEFAULT_RTOL,
+        None => method.default_rtol(),
         Some(v) => {
             let x = *v.get_ref();
             if !(x.is_finite() && (1e-14..=0.1).contains(&x)) {

@@ -48,6 +48,16 @@ impl Method {
     /// Every method, in the order of [`Method::name`]s offered to users.
     pub const ALL: [Method; 3] = [Method::Rk4, Method::Adaptive, Method::ExactModal];
 
+    /// Relative tolerance used when a scenario gives none: [`DEFAULT_RTOL`] for `adaptive`,
+    /// [`EXACT_MODAL_DEFAULT_RTOL`] for `exact-modal` (a second-order scheme: its default buys
+    /// the speed it exists for); `rk4` has no tolerance (it reports [`DEFAULT_RTOL`]).
+    pub fn default_rtol(self) -> f64 {
+        match self {
+            Method::Rk4 | Method::Adaptive => DEFAULT_RTOL,
+            Method::ExactModal => EXACT_MODAL_DEFAULT_RTOL,
+        }
+    }
+
     /// The method called `name` in scenario files.
     pub fn from_name(name: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name)
@@ -59,6 +69,8 @@ impl Method {
 /// N/m^1.5, issue 9) rtol = 1e-8 leaves the peak force 2.4 % from the converged one and 1e-10
 /// 0.15 %, while on the paper's case 1e-10 costs 1.25× what 1e-8 does.
 pub const DEFAULT_RTOL: f64 = 1e-10;
+/// Default relative tolerance of `exact-modal`'s contact sub-steps.
+pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 1e-10;
 /// Absolute tolerance that goes with a relative one when `atol` is not given, m per unit of
 /// rtol: `atol = rtol × 1 cm` at a structure's top. Scaling it with rtol keeps rtol the one
 /// knob: with a fixed atol, rtol below ~1e-9 would change nothing (the modal amplitudes times
@@ -87,7 +99,7 @@ pub struct SolverSettings {
 }
 
 impl SolverSettings {
-    /// Settings with the default tolerances.
+    /// Settings with the method's default tolerances ([`Method::default_rtol`]).
     pub fn new(method: Method, dt: f64, duration: f64) -> SolverSettings {
         SolverSettings {
             method,
@@ -96,6 +108,7 @@ impl SolverSettings {
             rtol: DEFAULT_RTOL,
             atol: DEFAULT_ATOL,
         }
+        .with_rtol(method.default_rtol())
     }
 
     /// The same settings at relative tolerance `rtol`, with the absolute tolerance that goes
