@@ -314,6 +314,24 @@ impl ContactForce {
             ContactForce::Impulsive { .. } => 0.0,
         }
     }
+
+    /// Tangent damping ∂F/∂δ̇ at penetration δ (m), rate δ̇ (m/s) and onset speed v₀ (m/s), N·s/m:
+    /// `c` (Kelvin), `χ k δ^{3/2}/v₀` (damped Hertz), `c₀ δ^{1/4}` while approaching
+    /// (Jankowski), 0 for the elastic and impulsive laws (and where the no-tension clamp acts,
+    /// the clamp itself being ignored). With [`ContactForce::tangent_stiffness`] it linearises
+    /// the law, e.g. to check an explicit step's stability in contact.
+    #[inline]
+    pub fn tangent_damping(&self, delta: f64, delta_dot: f64, v0: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            ContactForce::Kelvin { c, .. } => c,
+            ContactForce::HertzDamp { k, chi } if v0 > 0.0 => chi * k * delta * delta.sqrt() / v0,
+            ContactForce::Jankowski { c0, .. } if delta_dot > 0.0 => c0 * delta.sqrt().sqrt(),
+            _ => 0.0,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -69,7 +69,9 @@ enum Command {
     },
     /// Convergence study: the run with pounding for 1, 2, 3, 5, 10, 20, 50 modes and for a ladder
     /// of steps (dt × 4 … ⅛; rtol 1e-4 … 1e-10 for `adaptive`), each with its change relative to
-    /// the finest, and a recommendation (fewest modes, largest step within the tolerance).
+    /// the finest, and a recommendation (fewest modes, largest step within the tolerance) that
+    /// `pounding run` accepts — or "NOT CONVERGED" and what to try, when even the two finest runs
+    /// of a ladder differ by more than the tolerance.
     Convergence {
         /// Scenario file (TOML); the bundled default if omitted.
         scenario: Option<PathBuf>,
@@ -441,8 +443,12 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
             let rtol = r.rtol.map_or("-".to_string(), |x| format!("{x:.0e}"));
             if let Some(f) = &r.failure {
                 println!(
-                    "  {:>6} {:>12} {:>10.2e} {:>8}  {f}",
-                    r.modes, r.method, r.dt, rtol
+                    "  {:>6} {:>12} {:>10.2e} {:>8}  FAILED: {}",
+                    r.modes,
+                    r.method,
+                    r.dt,
+                    rtol,
+                    first_sentence(f)
                 );
                 continue;
             }
@@ -465,11 +471,29 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
     print_rows("modes (change vs the most modes):", &t.modes);
     print_rows("step / tolerance (change vs the finest):", &t.steps);
     println!();
-    println!(
-        "  recommendation (tolerance {} %): {}",
-        100.0 * t.tolerance,
-        t.recommendation
-    );
+    if t.converged {
+        println!(
+            "  recommendation (tolerance {} %): {}",
+            100.0 * t.tolerance,
+            t.recommendation
+        );
+    } else {
+        println!(
+            "  *** NOT CONVERGED within {} %: nothing is recommended ***",
+            100.0 * t.tolerance
+        );
+    }
+    for n in &t.notes {
+        println!("    {n}");
+    }
+}
+
+/// A failure message up to its first sentence (the table has one line per run).
+fn first_sentence(text: &str) -> String {
+    match text.find(". ") {
+        Some(i) => format!("{} …", &text[..=i]),
+        None => text.to_string(),
+    }
 }
 
 fn print_separation(sc: &Scenario, r: &pounding::simulate::SeparationReport) {

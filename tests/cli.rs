@@ -106,22 +106,65 @@ fn bad_scenario_fails_cleanly_without_output() {
     );
 }
 
+/// Issue 9's stiff case (k_h = 2.808e13 N/m^1.5, T1 = 0.3 s, T2 = 0.6 s, 0.5 g at Tg = 0.8 s) as
+/// a scenario file.
+fn stiff_scenario(method: &str, dt: f64) -> String {
+    std::fs::read_to_string(example("paper-c.toml"))
+        .unwrap()
+        .replacen("period = 0.4203", "period = 0.3", 1)
+        .replacen("period = 0.6004285714285714", "period = 0.6", 1)
+        .replacen("\nstiffness = 2.808e10", "\nstiffness = 2.808e13", 1)
+        .replacen("pga = 0.6\nperiod = 0.65", "pga = 0.5\nperiod = 0.8", 1)
+        .replacen("method = \"rk4\"", &format!("method = \"{method}\""), 1)
+        .replacen("dt = 0.001", &format!("dt = {dt:?}"), 1)
+        .replacen("duration = 20.0", "duration = 6.0", 1)
+}
+
+/// A contact that makes RK4's step unstable (its first impact has ω_c·dt ≈ 3.0 > 2√2 at 1 ms:
+/// see `tests/integrators.rs`) is refused: exit status non-zero, the reason and a smaller step
+/// on stderr, and no output written — not even the directory. The same contact is also too
+/// stiff for the step once the paper's case pounds with k_h = 1e17 (formerly a divergence).
 #[test]
-fn diverging_run_leaves_no_summary() {
-    // a contact so stiff that RK4 at dt = 1 ms blows up on the first impact
+fn too_stiff_contact_is_refused_without_output() {
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(example("paper-c.toml"))
+    let paper = std::fs::read_to_string(example("paper-c.toml"))
         .unwrap()
         .replacen("\nstiffness = 2.808e10", "\nstiffness = 1e17", 1);
-    std::fs::write(dir.path().join("stiff.toml"), text).unwrap();
-    let out = pounding(&["run", "stiff.toml", "--out", "res"], dir.path());
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    for (name, text) in [
+        ("stiff.toml", stiff_scenario("rk4", 1e-3)),
+        ("very-stiff.toml", paper),
+    ] {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        let out = pounding(&["run", name, "--out", "res"], dir.path());
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("rk4 refused at t = ")
+                && err.contains("contact level 1")
+                && err.contains("stability limit 2.8")
+                && err.contains("Largest stable step, estimated: dt ≈ ")
+                && err.contains("Reduce solver.dt"),
+            "{name}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "{name}: no summary printed");
+        assert!(
+            !dir.path().join("res").exists(),
+            "{name}: no output directory for a refused run"
+        );
+    }
+    // the methods whose steps follow the contact run the same case and write the contract
+    std::fs::write(
+        dir.path().join("em.toml"),
+        stiff_scenario("exact-modal", 1e-3),
+    )
+    .unwrap();
+    let out = pounding(&["run", "em.toml", "--out", "res", "--no-plot"], dir.path());
     assert!(
-        err.contains("diverged") && err.contains("reduce dt"),
-        "{err}"
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
-    assert!(!dir.path().join("res").join("summary.json").exists());
+    assert!(dir.path().join("res").join("summary.json").exists());
 }
 
 #[test]
@@ -185,4 +228,27 @@ fn closed_stdout_does_not_panic() {
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("panicked"), "{err}");
+}
+
+/// `pounding convergence` on the stiff case says prominently that it did not converge, shows
+/// the refused RK4 steps as failed, and recommends nothing. (The finest RK4 step of the ladder,
+/// 0.125 ms, gives a peak force ~20 % above the converged 4.36e8 N: see tests/convergence.rs.)
+#[test]
+fn convergence_says_not_converged() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("stiff.toml"), stiff_scenario("rk4", 1e-3)).unwrap();
+    let out = pounding(&["convergence", "stiff.toml"], dir.path());
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("*** NOT CONVERGED within 1 %: nothing is recommended ***"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("FAILED: rk4 refused at t = "), "{stdout}");
+    assert!(stdout.contains("try: a smaller solver.dt"), "{stdout}");
+    assert!(!stdout.contains("recommendation ("), "{stdout}");
 }

@@ -617,3 +617,146 @@ fn two_levels_agree_across_methods() {
         }
     }
 }
+
+/// Issue 9's stiff case: k_h = 2.808e13 N/m^1.5, T1 = 0.3 s, T2 = 0.6 s, equal masses 2.273e6 kg,
+/// L = 10 m, 3 modes, ζ = 0.01, gap 12.7 mm at the top, harmonic 0.5 g at Tg = 0.8 s.
+fn stiff_system() -> System {
+    let s1 = structure(10.0, 2.273e6, 0.3, 3, Damping::Modal(vec![0.01]));
+    let s2 = structure(10.0, 2.273e6, 0.6, 3, Damping::Modal(vec![0.01]));
+    System::new(
+        [s1.modal(), s2.modal()],
+        &ContactLaw::Hertz {
+            stiffness: 2.808e13,
+        },
+        &[ContactLevel {
+            height: 10.0,
+            gap: 0.0127,
+        }],
+        GroundMotion::Harmonic(Harmonic::from_pga_g(0.5, 0.8)),
+    )
+}
+
+/// RK4 refuses the stiff case at dt = 1 ms (issue 9, item 6), and the step it suggests runs.
+///
+/// Expected values from the physics of the first impact: until the gap first closes there is
+/// no contact force, so `exact-modal` (exact without contact, tested above against the closed
+/// form) gives the approach speed v₀ at the first crossing of δ = 0. Two point masses m* meeting
+/// at v₀ through Hertz's law reach δ₁ with ½m*v₀² = (2/5)k_h δ₁^{5/2}, where the tangent
+/// frequency is ω_c = √(1.5 k_h √δ₁/m*). At the tip of 3 + 3 mass-normalised modes φ² = 4/M each,
+/// so m* = M/24. With ω_c·1 ms > 2√2 (RK4's limit, undamped) the first impact cannot be
+/// integrated stably at 1 ms: the run must stop there, and a step with ω_c·dt well inside the
+/// limit for that impact must be the suggestion (no smaller than half of 2√2/ω_c, to be of use).
+/// The run at the suggested step is checked over the whole 6 s; `adaptive` and `exact-modal`,
+/// whose steps follow the contact, are not refused at 1 ms.
+#[test]
+fn rk4_refuses_a_step_the_contact_makes_unstable() {
+    use pounding::integrate::SolveError;
+    let sys = stiff_system();
+    let k_h = 2.808e13;
+    let m_star = 2.273e6 / 24.0;
+    assert!((sys.levels[0].effective_mass - m_star).abs() < 1e-9 * m_star);
+
+    // the first crossing of δ = 0, from the contact-free motion
+    let mut first: Option<(f64, f64)> = None;
+    let mut prev: Option<(f64, f64, f64)> = None;
+    let mut watch = Watch(|_: &System, v: &StepView| {
+        let (d, dd) = (v.levels[0].delta, v.levels[0].delta_dot);
+        if first.is_none()
+            && d > 0.0
+            && let Some((t0, d0, dd0)) = prev
+        {
+            let th = -d0 / (d - d0);
+            first = Some((t0 + th * (v.t - t0), dd0 + th * (dd - dd0)));
+        }
+        prev = Some((v.t, d, dd));
+    });
+    integrate(
+        &sys,
+        &settings(Method::ExactModal, 1e-5, 0.6),
+        &InitialState::default(),
+        &mut watch,
+    )
+    .unwrap();
+    let (t1, v0) = first.expect("the gap closes within 0.6 s");
+    let delta1 = (0.5 * m_star * v0 * v0 / (0.4 * k_h)).powf(0.4);
+    let omega_c1 = (1.5 * k_h * delta1.sqrt() / m_star).sqrt();
+    let limit = 2.0 * 2f64.sqrt();
+    assert!(
+        omega_c1 * 1e-3 > limit,
+        "premise: the first impact is beyond RK4's limit at 1 ms ({})",
+        omega_c1 * 1e-3
+    );
+
+    let err = run_system(
+        &sys,
+        &settings(Method::Rk4, 1e-3, 6.0),
+        &InitialState::default(),
+        &[10.0],
+        0.01,
+    )
+    .unwrap_err();
+    let msg = err.to_string();
+    let SolveError::ContactUnstable {
+        t,
+        level,
+        omega_c_dt,
+        omega_dt,
+        limit: lim,
+        max_dt,
+        dt,
+        ..
+    } = err
+    else {
+        panic!("expected a refusal in contact, got: {msg}");
+    };
+    assert_eq!((level, dt), (1, 1e-3));
+    assert!(
+        t > t1 && t <= t1 + 2e-3,
+        "refused at the first impact: {t} vs {t1}"
+    );
+    assert!(
+        (lim - limit).abs() < 0.01,
+        "Hertz: undamped contact, limit 2√2: {lim}"
+    );
+    assert!(
+        omega_dt > lim && omega_dt >= omega_c_dt,
+        "{omega_dt} {omega_c_dt} {lim}"
+    );
+    assert!(
+        omega_c1 * max_dt < 0.9 * limit && omega_c1 * max_dt > 0.5 * limit,
+        "suggested dt {max_dt} s gives ω_c·dt = {} at the first impact",
+        omega_c1 * max_dt
+    );
+    for needle in [
+        "t = 0.5",
+        "contact level 1",
+        "ω_c·dt = ",
+        "stability limit 2.8",
+        &format!("dt ≈ {max_dt:.2e} s"),
+    ] {
+        assert!(msg.contains(needle), "message lacks {needle:?}: {msg}");
+    }
+
+    // the suggested step runs the whole case
+    let (_, stats) = run_system(
+        &sys,
+        &settings(Method::Rk4, max_dt, 6.0),
+        &InitialState::default(),
+        &[10.0],
+        0.01,
+    )
+    .unwrap_or_else(|e| panic!("refused at the suggested dt = {max_dt}: {e}"));
+    assert!(stats.max_contact_omega_dt > 0.0 && stats.max_contact_omega_dt < limit);
+
+    // the methods whose steps follow the contact are not refused
+    for m in [Method::Adaptive, Method::ExactModal] {
+        run_system(
+            &sys,
+            &settings(m, 1e-3, 6.0),
+            &InitialState::default(),
+            &[10.0],
+            0.01,
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", m.name()));
+    }
+}

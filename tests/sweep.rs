@@ -450,3 +450,38 @@ fn example_sweeps_are_valid() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("looks like a scenario file"));
 }
+
+/// A case that RK4 refuses in contact (issue 9's stiff case at dt = 1 ms, whose first impact at
+/// t ≈ 0.51 s has ω_c·dt ≈ 3.0 > 2√2: see `tests/integrators.rs`) is recorded as failed with
+/// the refusal and its suggested step, and the case at a stable step (0.5 ms, ω_c·dt ≈ 1.6 at
+/// the first impact) is computed.
+#[test]
+fn a_case_refused_in_contact_is_recorded_with_its_reason() {
+    let d = tempfile::tempdir().unwrap();
+    let stiff = base(1.0)
+        .replacen("period = 0.4203", "period = 0.3", 1)
+        .replacen("period = 0.6004285714285714", "period = 0.6", 1)
+        .replacen("\nstiffness = 2.808e10", "\nstiffness = 2.808e13", 1)
+        .replacen("pga = 0.6\nperiod = 0.65", "pga = 0.5\nperiod = 0.8", 1);
+    write(&d.path().join("base.toml"), &stiff);
+    let sweep = write(
+        &d.path().join("s.toml"),
+        "scenario = \"base.toml\"\n[[axis]]\nkey = \"solver.dt\"\nvalues = [0.001, 0.0005]\n",
+    );
+    let out = d.path().join("o");
+    let r = pounding(&["sweep", s(&sweep), "--out", s(&out), "--no-plot"]);
+    ok(&r);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(err.contains("1 of 2 cases failed"), "{err}");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let rows = data_rows(&csv);
+    assert!(
+        rows[0].starts_with("0,0.001,\"failed: rk4 refused at t = 0.5")
+            && rows[0].contains("contact level 1")
+            && rows[0].contains("Largest stable step, estimated: dt ≈ "),
+        "{}",
+        rows[0]
+    );
+    assert!(rows[0].ends_with(",,,,,,,,,,,,,"), "{}", rows[0]);
+    assert!(rows[1].starts_with("1,0.0005,ok,"), "{}", rows[1]);
+}

@@ -221,6 +221,47 @@ pub enum SolveError {
         /// Its ζ.
         zeta: f64,
     },
+    /// A contact made the fixed step unstable (`rk4`, SPEC §2.9): in contact the system's
+    /// stiffest mode, linearised about the contact state (each mode's stiffness plus the law's
+    /// tangent stiffness and damping at the penetration met), lies beyond RK4's stability
+    /// limit for the step. The run stops there; `max_dt` estimates the largest stable step.
+    #[error(
+        "rk4 refused at t = {t:.4} s: at contact level {level} (h = {height} m) the penetration \
+         {delta:.3e} m gives ω_c·dt = {omega_c_dt:.3} (ω_c = √(k_t/m*) = {omega_c:.4e} rad/s); \
+         with the structures' modes the stiffest mode in contact has ω·dt = {omega_dt:.3}, beyond \
+         RK4's stability limit {limit:.3} at dt = {dt} s. Largest stable step, estimated: \
+         dt ≈ {max_dt:.2e} s ({margin} × the stable step of the stiffest mode at the larger of the \
+         penetration met and the one this impact reaches by energy, ½m*v₀² = contact potential; \
+         only an estimate: at another step the impacts, and so the penetrations, change). Accurate contact forces need ω_c·dt ≲ 0.5, about dt ≲ \
+         {accurate_dt:.1e} s. Reduce solver.dt, or use `exact-modal` or `adaptive`, whose steps \
+         follow the contact"
+    )]
+    ContactUnstable {
+        /// Time at the end of the refused step, s.
+        t: f64,
+        /// Contact level (1-based, in the order of the scenario).
+        level: usize,
+        /// Its height, m.
+        height: f64,
+        /// Penetration at the end of the step, m.
+        delta: f64,
+        /// The contact's tangent frequency `ω_c = √(k_t/m*)` there, rad/s.
+        omega_c: f64,
+        /// `ω_c·dt`.
+        omega_c_dt: f64,
+        /// `ω·dt` of the stiffest mode of the linearised system in contact (≥ `ω_c·dt`).
+        omega_dt: f64,
+        /// RK4's stability limit on `ω·dt` for that mode (2√2 when undamped).
+        limit: f64,
+        /// Requested step, s.
+        dt: f64,
+        /// Estimated largest stable step (with the safety factor `margin`), s.
+        max_dt: f64,
+        /// Safety factor applied to `max_dt`.
+        margin: f64,
+        /// Step for `ω_c·dt ≈ 0.5` at the estimated peak penetration, s.
+        accurate_dt: f64,
+    },
     /// The solution became non-finite.
     #[error(
         "the solution diverged at t = {t:.6} s (largest contact ω·dt met: {contact_omega_dt:.3}; \
