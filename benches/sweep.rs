@@ -46,6 +46,9 @@ fn bench(c: &mut Criterion) {
                         out_dir: out.path().to_path_buf(),
                         jobs,
                         shard: Shard::ALL,
+                        // the sweep machinery and the parallel speed-up, as before the
+                        // self-check existed (which multiplies the work per case)
+                        check: false,
                     };
                     let o = run(&sweep, &opts, &mut Silent).unwrap();
                     assert_eq!(o.computed, CASES);

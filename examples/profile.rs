@@ -8,12 +8,14 @@
 //! ```
 //!
 //! Arguments: scenario file, method (replaces `method = "rk4"`), dt (replaces `dt = 0.001`),
-//! repetitions. Prints the best wall time, the steps and the peaks of the last run.
+//! repetitions, and optionally `check` to run `simulate_checked` (the run and its self-check, as
+//! `pounding run` does) instead of `simulate`. Prints the best wall time, the steps and the
+//! peaks of the last run.
 
 use std::time::Instant;
 
 use pounding::scenario::Scenario;
-use pounding::simulate::simulate;
+use pounding::simulate::simulate_checked;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -21,6 +23,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let method = args.get(2).map_or("exact-modal", |s| s.as_str());
     let dt: f64 = args.get(3).map_or(Ok(0.01), |s| s.parse())?;
     let reps: usize = args.get(4).map_or(Ok(100), |s| s.parse())?;
+    let check = match args.get(5).map(|s| s.as_str()) {
+        None => false,
+        Some("check") => true,
+        Some(other) => {
+            return Err(format!("5th argument: `check` or nothing, not `{other}`").into());
+        }
+    };
     let text = std::fs::read_to_string(path)?
         .replace("method = \"rk4\"", &format!("method = \"{method}\""))
         .replace("dt = 0.001", &format!("dt = {dt}"));
@@ -32,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut last = None;
     for _ in 0..reps.max(1) {
         let t0 = Instant::now();
-        last = Some(simulate(&scenario)?);
+        last = Some(simulate_checked(&scenario, check)?);
         best = best.min(t0.elapsed().as_secs_f64());
     }
     if let Some(r) = last {

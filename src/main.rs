@@ -7,7 +7,7 @@ use clap::{Parser, Subcommand};
 
 use pounding::scenario::Scenario;
 use pounding::separation::Rule;
-use pounding::simulate::{Report, simulate};
+use pounding::simulate::{Report, simulate_checked};
 
 /// The bundled default scenario: the seed paper's case T1/T2 = 0.7.
 const DEFAULT_SCENARIO: &str = include_str!("../examples/paper-c.toml");
@@ -34,9 +34,14 @@ struct Cli {
 enum Command {
     /// Simulate a scenario with and without pounding; print a summary and write results.
     ///
-    /// Writes DIR/summary.json (peaks, change %, impacts, forces, separations, energy balance),
-    /// DIR/history.csv (t, w1, w2, force, w1_free, w2_free at the contact height), DIR/impacts.csv
-    /// (one row per impact) and the time-history figure DIR/history.png/.svg.
+    /// Writes DIR/summary.json (peaks, change %, impacts, forces, separations, energy balance,
+    /// self-check), DIR/history.csv (t, w1, w2, force, w1_free, w2_free at the contact height),
+    /// DIR/impacts.csv (one row per impact) and the time-history figure DIR/history.png/.svg.
+    ///
+    /// Every run checks itself: the scenario is run a second time at a 100× tighter tolerance
+    /// (rtol/100 and atol/100; dt/√10 for rk4) and the peaks, peak force, impacts and required
+    /// separation are compared. A change above 1 % is a warning naming the setting to tighten,
+    /// and the result is reported as NOT converged (summary.json: accuracy).
     Run {
         /// Scenario file (TOML). Without it, the bundled default runs: the seed paper's case
         /// T1/T2 = 0.7 (examples/paper-c.toml).
@@ -47,7 +52,11 @@ enum Command {
         /// Do not draw the figure.
         #[arg(long)]
         no_plot: bool,
-        /// Print only errors.
+        /// Skip the self-check (the second run at a 100× tighter tolerance); summary.json
+        /// then says `"accuracy": {"checked": false, …}`.
+        #[arg(long)]
+        no_check: bool,
+        /// Print only errors and warnings.
         #[arg(short, long)]
         quiet: bool,
     },
@@ -105,8 +114,12 @@ enum Command {
     /// the full product, first axis slowest.
     ///
     /// Writes DIR/results.csv (one row per case, in case order: case, the axis values,
-    /// status, peaks, change %, peak force, impacts, contact time, required separations) and
-    /// pictures in DIR/plots. Every finished case is journaled at once in DIR/journal.csv:
+    /// status, peaks, change %, peak force, impacts, contact time, required separations, and
+    /// the self-check: check_max_change, converged) and pictures in DIR/plots.
+    ///
+    /// Every case checks itself as `pounding run` does (a second run at a 100× tighter
+    /// tolerance; converged = every headline number within 1 %), which costs about one to four
+    /// more runs per case; --no-check skips it and the rows say converged = unchecked. Every finished case is journaled at once in DIR/journal.csv:
     /// if the sweep is stopped (Ctrl-C, kill, a crash), run the same command again and only
     /// the missing cases are computed. A case that fails (e.g. an unstable step) is recorded
     /// with its reason and the sweep goes on.
@@ -132,6 +145,9 @@ enum Command {
         /// Print the scenario of case N (TOML) and exit, e.g. to rerun it with `pounding run`.
         #[arg(long, value_name = "N")]
         case: Option<usize>,
+        /// Skip the cases' self-check (faster); the rows then say converged = unchecked.
+        #[arg(long)]
+        no_check: bool,
         /// Print only errors and warnings.
         #[arg(short, long)]
         quiet: bool,
@@ -209,10 +225,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             scenario,
             out,
             no_plot,
+            no_check,
             quiet,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
-            let report = simulate(&sc)?;
+            let report = simulate_checked(&sc, !no_check)?;
             let mut written = pounding::output::write_run(&out, &sc, &report)?;
             if !no_plot {
                 written.extend(pounding::figures::time_history_figure(
@@ -244,8 +261,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             shard,
             no_plot,
             case,
+            no_check,
             quiet,
-        } => run_sweep(&sweep, out, jobs, shard, no_plot, case, quiet),
+        } => run_sweep(
+            &sweep,
+            out,
+            jobs,
+            shard,
+            SweepFlags {
+                no_plot,
+                case,
+                check: !no_check,
+                quiet,
+            },
+        ),
         Command::Merge { out, parts } => {
             let m = pounding::sweep::results::merge(&out, &parts)?;
             println!(
@@ -381,6 +410,37 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
         "  energy balance error: {:.1e} with contact, {:.1e} without",
         r.energy.relative_error, r.energy_no_contact.relative_error
     );
+    println!("  {}", self_check_line(&r.accuracy));
+}
+
+/// One line saying whether the result passed its self-check.
+fn self_check_line(a: &pounding::accuracy::AccuracyCheck) -> String {
+    use pounding::accuracy::percent;
+    let against = a.settings.map(|s| s.describe()).unwrap_or_default();
+    if !a.checked {
+        return "self-check: not done (--no-check): this result was NOT self-checked".into();
+    }
+    if let Some(f) = &a.failure {
+        return format!("self-check: NOT CONVERGED — not verified: {f} (see the warning)");
+    }
+    let worst = a
+        .quantities
+        .iter()
+        .find(|q| Some(q.name) == a.max_change_quantity)
+        .map_or("", |q| q.label());
+    let change = percent(a.max_change.unwrap_or(f64::NAN));
+    if a.is_converged() {
+        format!(
+            "self-check: converged within {} % (largest change {change}, {worst}, against a run at {against})",
+            100.0 * a.threshold
+        )
+    } else {
+        format!(
+            "self-check: NOT CONVERGED — {worst} changed by {change} against a run at {against} \
+             (more than {} %); see the warning",
+            100.0 * a.threshold
+        )
+    }
 }
 
 fn print_modes(sc: &Scenario) {
@@ -542,16 +602,28 @@ fn print_separation(sc: &Scenario, r: &pounding::simulate::SeparationReport) {
     );
 }
 
+/// The switches of `pounding sweep`.
+struct SweepFlags {
+    no_plot: bool,
+    case: Option<usize>,
+    check: bool,
+    quiet: bool,
+}
+
 fn run_sweep(
     path: &Path,
     out: Option<PathBuf>,
     jobs: Option<usize>,
     shard: Option<pounding::sweep::Shard>,
-    no_plot: bool,
-    case: Option<usize>,
-    quiet: bool,
+    flags: SweepFlags,
 ) -> anyhow::Result<()> {
     use pounding::sweep::{Shard, Sweep, run};
+    let SweepFlags {
+        no_plot,
+        case,
+        check,
+        quiet,
+    } = flags;
     let sweep = Sweep::from_file(path)?;
     if let Some(c) = case {
         if c >= sweep.len() {
@@ -580,6 +652,7 @@ fn run_sweep(
         out_dir: out.clone(),
         jobs,
         shard,
+        check,
     };
     let o = if quiet {
         run::run(&sweep, &opts, &mut run::Silent)?
@@ -616,6 +689,40 @@ fn run_sweep(
             o.failed
         );
         println!("wrote {}", o.results.display());
+        let c = &o.check;
+        let ok = o.cases - o.failed;
+        if ok == 0 {
+            // nothing ran to the end: nothing to check
+        } else if c.unchecked == ok {
+            println!(
+                "self-check: not done (--no-check): the cases were NOT self-checked (column converged = unchecked)"
+            );
+        } else if c.converged == ok {
+            println!(
+                "self-check: every case converged within 1 % against a 100× tighter run (column check_max_change)"
+            );
+        } else {
+            println!(
+                "self-check: {} case(s) converged within 1 %, {} NOT converged, {} not checked (columns converged, check_max_change)",
+                c.converged, c.not_converged, c.unchecked
+            );
+        }
+    }
+    if let Some((c, change)) = &o.check.first_not_converged {
+        let change = match change.parse::<f64>() {
+            Ok(x) if x > pounding::accuracy::CHECK_THRESHOLD => {
+                format!("largest change {}", pounding::accuracy::percent(x))
+            }
+            _ => "not verified: the check run failed or changed nothing".into(),
+        };
+        eprintln!(
+            "warning: self-check: {} of {} cases are NOT converged within 1 % (column converged = false); the first, case {c} ({}): {change}\n\
+             (see it with: pounding sweep {} --case {c} > case.toml && pounding run case.toml)",
+            o.check.not_converged,
+            o.cases - o.failed,
+            sweep.label(*c),
+            path.display()
+        );
     }
     if let Some((c, w)) = &o.first_warning {
         eprintln!(

@@ -1,8 +1,10 @@
 //! One scenario, end to end: the run with contact, the same run without, the comparison and the
-//! required separations — `simulate(&Scenario) -> Report`.
+//! required separations — `simulate(&Scenario) -> Report` — and the same with its self-check,
+//! `simulate_checked(&Scenario, true)` (see [`crate::accuracy`]).
 
 use serde::Serialize;
 
+use crate::accuracy::{AccuracyCheck, limited_tightening, tightened};
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
 use crate::recorder::{EnergyBalance, Impact, Recorder, RunRecord};
 use crate::scenario::Scenario;
@@ -80,6 +82,9 @@ pub struct Report {
     pub levels: Vec<LevelReport>,
     /// Required separations at the main contact height.
     pub separation: Separations,
+    /// The self-check: the headline numbers against a run at a 100× tighter tolerance
+    /// ([`simulate_checked`]); `checked: false` from [`simulate`].
+    pub accuracy: AccuracyCheck,
     /// Energy balance of the run with contact.
     pub energy: EnergyBalance,
     /// Energy balance of the run without contact.
@@ -168,7 +173,8 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
     })
 }
 
-/// Run a scenario with and without contact and compare.
+/// Run a scenario with and without contact and compare. The result is not self-checked
+/// (`accuracy.checked` is false); [`simulate_checked`] checks it.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
     let system = scenario.system();
     let free = system.without_contact();
@@ -251,6 +257,7 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
         contact,
         levels,
         separation,
+        accuracy: AccuracyCheck::unchecked(),
         energy: with.energy,
         energy_no_contact: without.energy,
         impact_log: with.impacts.clone(),
@@ -259,4 +266,37 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
         with_contact: with,
         without_contact: without,
     })
+}
+
+/// [`simulate`], and with `check` its self-check: the same scenario run again with the
+/// [`tightened`] settings (100× tighter tolerance; `dt/√10` for `rk4`), both runs with and
+/// without contact, and the headline numbers compared ([`AccuracyCheck::compare`]). A run
+/// whose numbers move by more than 1 % gets `accuracy.converged = false` and a warning naming
+/// the setting to tighten; so does a run whose check run fails (the result itself is still
+/// returned). Without `check`, exactly [`simulate`].
+pub fn simulate_checked(scenario: &Scenario, check: bool) -> Result<Report, SolveError> {
+    let mut report = simulate(scenario)?;
+    if !check {
+        return Ok(report);
+    }
+    let mut tight = scenario.clone();
+    tight.solver = tightened(&scenario.solver);
+    report.accuracy = match simulate(&tight) {
+        Ok(t) => AccuracyCheck::compare(&report, &t, &scenario.solver),
+        Err(e) => AccuracyCheck::failed(&scenario.solver, &e),
+    };
+    if let Some(w) = report.accuracy.warning(&scenario.solver) {
+        report.warnings.push(w);
+    }
+    if limited_tightening(&scenario.solver) {
+        report.warnings.push(format!(
+            "self-check: could not tighten rtol {:e} / atol {:e} m a full 100× (the smallest \
+             tolerances are {:e} and {:e} m): its changes understate the error",
+            scenario.solver.rtol,
+            scenario.solver.atol,
+            crate::accuracy::MIN_RTOL,
+            crate::accuracy::MIN_ATOL
+        ));
+    }
+    Ok(report)
 }

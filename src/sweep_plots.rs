@@ -61,6 +61,11 @@ pub fn field_label(field: &str) -> (String, f64) {
         "sep_srss" => (s("Required separation, SRSS rule [m]"), 1.0),
         "sep_ddc" => (s("Required separation, DDC rule [m]"), 1.0),
         "sep_time_history" => (s("Required separation from the time history [m]"), 1.0),
+        "check_max_change" => (
+            s("Self-check: largest change against a 100× tighter run [%]"),
+            100.0,
+        ),
+        "converged" => (s("Self-check converged within 1 % (1 = yes, 0 = no)"), 1.0),
         other => (other.to_string(), 1.0),
     }
 }

@@ -233,6 +233,9 @@ fn rows_are_identical_to_pounding_run() {
             ("sep_srss", raw("srss", 0)),
             ("sep_ddc", raw("ddc", 0)),
             ("sep_time_history", raw("time_history", 0)),
+            // the self-check, as `pounding run` reports it
+            ("check_max_change", raw("max_change", 0)),
+            ("converged", raw("converged", 0)),
         ];
         for (col, v) in expect {
             let i = header.iter().position(|h| *h == col).unwrap();
@@ -341,7 +344,7 @@ fn failed_cases_are_recorded_and_the_sweep_goes_on() {
         "{}",
         rows[1]
     );
-    assert!(rows[1].ends_with(",,,,,,,,,,,,,"));
+    assert!(rows[1].ends_with(&",".repeat(pounding::sweep::results::FIELDS.len())));
     assert!(rows[2].contains(",ok,"));
 }
 
@@ -484,4 +487,85 @@ fn a_case_refused_in_contact_is_recorded_with_its_reason() {
     );
     assert!(rows[0].ends_with(",,,,,,,,,,,,,"), "{}", rows[0]);
     assert!(rows[1].starts_with("1,0.0005,ok,"), "{}", rows[1]);
+}
+
+/// Every case checks itself by default: the columns `check_max_change` and `converged` say how
+/// it fared; `--no-check` writes `unchecked` and says so; a journal of the format before these
+/// columns is refused with a message that says why.
+#[test]
+fn sweep_records_the_self_check_and_no_check_says_so() {
+    let d = tempfile::tempdir().unwrap();
+    write(&d.path().join("base.toml"), &base(3.0));
+    // RK4 at 1 ms is accurate on these 3 s; at 8 ms (near its stability limit) it is not
+    let sweep = write(
+        &d.path().join("s.toml"),
+        "scenario = \"base.toml\"\n[[axis]]\nkey = \"solver.dt\"\nvalues = [0.001, 0.008]\n",
+    );
+    let out = d.path().join("o");
+    let r = pounding(&["sweep", s(&sweep), "--out", s(&out), "--no-plot"]);
+    let stdout = ok(&r);
+    let stderr = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        stdout.contains("1 case(s) converged within 1 %, 1 NOT converged"),
+        "{stdout}"
+    );
+    assert!(
+        stderr.contains("1 of 2 cases are NOT converged") && stderr.contains("case 1"),
+        "{stderr}"
+    );
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (change, conv) = (col("check_max_change"), col("converged"));
+    let rows: Vec<Vec<&str>> = data_rows(&csv)
+        .iter()
+        .map(|r| r.split(',').collect())
+        .collect();
+    assert_eq!(rows[0][conv], "true");
+    assert!(rows[0][change].parse::<f64>().unwrap() < 0.01);
+    assert_eq!(rows[1][conv], "false");
+    assert!(rows[1][change].parse::<f64>().unwrap() > 0.01);
+    // the table reads back, `converged` as 1/0
+    let t = pounding::sweep::results::Table::read(&out.join("results.csv")).unwrap();
+    let k = pounding::sweep::results::Table::field_index("converged").unwrap();
+    assert_eq!((t.rows[&0].fields[k], t.rows[&1].fields[k]), (1.0, 0.0));
+
+    // --no-check: the rows and the summary say the cases were not self-checked
+    let plain = d.path().join("plain");
+    let stdout = ok(&pounding(&[
+        "sweep",
+        s(&sweep),
+        "--out",
+        s(&plain),
+        "--no-plot",
+        "--no-check",
+    ]));
+    assert!(stdout.contains("NOT self-checked"), "{stdout}");
+    let csv = std::fs::read_to_string(plain.join("results.csv")).unwrap();
+    for r in data_rows(&csv) {
+        assert!(r.ends_with(",,unchecked"), "{r}");
+    }
+    // the numbers themselves are those of the checked sweep
+    let strip = |t: &str| -> Vec<String> {
+        data_rows(t)
+            .iter()
+            .map(|r| r.rsplitn(3, ',').nth(2).unwrap().to_string())
+            .collect()
+    };
+    assert_eq!(
+        strip(&csv),
+        strip(&std::fs::read_to_string(out.join("results.csv")).unwrap())
+    );
+
+    // a journal of the previous format (v1, without the check columns) is not resumed
+    let journal = plain.join("journal.csv");
+    let j = std::fs::read_to_string(&journal).unwrap();
+    write(&journal, &j.replacen("journal v2;", "journal v1;", 1));
+    let r = pounding(&["sweep", s(&sweep), "--out", s(&plain), "--no-plot"]);
+    assert!(!r.status.success());
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        err.contains("another version of pounding") && err.contains("journal v1"),
+        "{err}"
+    );
 }

@@ -2,15 +2,19 @@
 //! and merging the parts of a sharded sweep.
 //!
 //! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
-//! (`ok` or `failed: reason`), then [`FIELDS`] (SPEC §6 meanings, SI units). Rows are in
-//! `case` order. Numbers are written exactly as `summary.json` writes them (shortest form
+//! (`ok` or `failed: reason`), then [`FIELDS`] (SPEC §6 meanings, SI units), the last two of
+//! which are the case's self-check ([`crate::accuracy`]): `check_max_change`, the largest
+//! relative change of the checked quantities against the 100× tighter rerun (empty when not
+//! checked), and `converged` (`true`, `false`, or `unchecked` for a sweep run with
+//! `--no-check`). Rows are in `case` order. Numbers are written exactly as `summary.json` writes them (shortest form
 //! that reads back to the same `f64`), so a case's numbers are byte-identical to those of
 //! `pounding run` on the same scenario.
 //!
 //! The journal `journal.csv` (`journal-shard-K-of-N.csv` for a part) receives every finished
 //! row as soon as it is known, one `write` per row, in completion order. Its first line
 //! identifies the sweep (a hash of the sweep file and the base scenario, the part, the number
-//! of cases). A rerun reads it, drops a torn last line (a kill in the middle of a write) and
+//! of cases) and the format version (`v2`: with the self-check columns; a journal of another
+//! version is refused with a message saying so). A rerun reads it, drops a torn last line (a kill in the middle of a write) and
 //! runs only the cases not in it. `results.csv` is written from it, sorted, atomically.
 
 use std::collections::BTreeMap;
@@ -23,7 +27,7 @@ use super::{Shard, Sweep, SweepError};
 use crate::simulate::Report;
 
 /// The result columns after `status`.
-pub const FIELDS: [&str; 13] = [
+pub const FIELDS: [&str; NFIELDS] = [
     "peak_displacement_1",
     "peak_displacement_2",
     "peak_displacement_no_contact_1",
@@ -37,7 +41,37 @@ pub const FIELDS: [&str; 13] = [
     "sep_srss",
     "sep_ddc",
     "sep_time_history",
+    "check_max_change",
+    "converged",
 ];
+
+/// Number of [`FIELDS`].
+pub const NFIELDS: usize = 15;
+
+/// The fields of the tables written before the self-check (journal v1): [`FIELDS`] without the
+/// last two. [`Table::read`] still reads such tables (the check columns are then NaN).
+pub const V1_FIELDS: usize = 13;
+
+/// Version of the journal format, in its first line.
+pub const JOURNAL_VERSION: u32 = 2;
+
+/// The value of the `converged` column of a case run without its self-check.
+pub const UNCHECKED: &str = "unchecked";
+
+/// A field read back as a number: the `converged` column as 1 (`true`), 0 (`false`) or NaN
+/// (`unchecked`); `check_max_change` empty as NaN; every other field must be a number.
+fn parse_field(k: usize, x: &str) -> Option<f64> {
+    match FIELDS[k] {
+        "converged" => match x {
+            "true" => Some(1.0),
+            "false" => Some(0.0),
+            UNCHECKED => Some(f64::NAN),
+            _ => None,
+        },
+        "check_max_change" if x.is_empty() => Some(f64::NAN),
+        _ => x.parse().ok(),
+    }
+}
 
 /// An `f64` as `summary.json` writes it: the shortest decimal that reads back to the same
 /// value (`NaN`/`inf` for non-finite values, which JSON cannot hold).
@@ -50,9 +84,10 @@ pub fn fmt_f64(x: f64) -> String {
 }
 
 /// The [`FIELDS`] of a report, formatted.
-pub fn report_fields(r: &Report) -> [String; 13] {
+pub fn report_fields(r: &Report) -> [String; NFIELDS] {
     let [a, b] = &r.structures;
     let s = &r.separation;
+    let acc = &r.accuracy;
     [
         fmt_f64(a.peak_displacement),
         fmt_f64(b.peak_displacement),
@@ -67,6 +102,12 @@ pub fn report_fields(r: &Report) -> [String; 13] {
         fmt_f64(s.srss),
         fmt_f64(s.ddc),
         fmt_f64(s.time_history),
+        acc.max_change.map(fmt_f64).unwrap_or_default(),
+        match acc.converged {
+            _ if !acc.checked => UNCHECKED.to_string(),
+            Some(c) => c.to_string(),
+            None => "false".to_string(),
+        },
     ]
 }
 
@@ -127,7 +168,7 @@ pub fn header(sweep: &Sweep) -> String {
 }
 
 /// One results row (without the line break). `outcome` is the fields, or the failure reason.
-pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; 13], String>) -> String {
+pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; NFIELDS], String>) -> String {
     let mut line = case.to_string();
     for v in sweep.values(case) {
         line.push(',');
@@ -168,7 +209,11 @@ fn check_row(line: &str, columns: usize, cases: usize) -> Option<(usize, bool)> 
     let status = &f[columns - FIELDS.len() - 1];
     let nums = &f[columns - FIELDS.len()..];
     if status == "ok" {
-        if nums.iter().all(|x| x.parse::<f64>().is_ok()) {
+        if nums
+            .iter()
+            .enumerate()
+            .all(|(k, x)| parse_field(k, x).is_some())
+        {
             Some((case, false))
         } else {
             None
@@ -228,8 +273,9 @@ impl Journal {
             }
             Err(std::fs::TryLockError::Error(e)) => return Err(io(e)),
         }
+        let version = format!("# pounding sweep journal v{JOURNAL_VERSION};");
         let ident = format!(
-            "# pounding sweep journal v1; identity={:016x}; shard={shard}; cases={}",
+            "{version} identity={:016x}; shard={shard}; cases={}",
             sweep.identity(),
             sweep.len()
         );
@@ -250,6 +296,23 @@ impl Journal {
         } else {
             let mut lines = text.split_inclusive('\n');
             let first = lines.next().unwrap_or("").trim_end();
+            if first.starts_with("# pounding sweep journal v") && !first.starts_with(&version) {
+                let other = first
+                    .trim_start_matches("# pounding sweep journal ")
+                    .split(';')
+                    .next()
+                    .unwrap_or("?");
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "this journal was written by another version of pounding (journal {other}, \
+                         this one v{JOURNAL_VERSION}: its rows lack or differ in the self-check \
+                         columns check_max_change and converged). Finish that sweep with the \
+                         version that started it, or use another --out, or delete the directory's \
+                         journal and results to start afresh"
+                    ),
+                });
+            }
             if first != ident {
                 let other = first
                     .split("identity=")
@@ -374,8 +437,9 @@ pub struct TableRow {
     pub values: Vec<String>,
     /// `ok` or `failed: …`.
     pub status: String,
-    /// [`FIELDS`] values (NaN for a failed case).
-    pub fields: [f64; 13],
+    /// [`FIELDS`] values (NaN for a failed case; `converged` as 1, 0 or NaN when unchecked;
+    /// the check columns NaN in a table written before them).
+    pub fields: [f64; NFIELDS],
 }
 
 impl Table {
@@ -396,14 +460,18 @@ impl Table {
             .to_string();
         let cols = parse_csv_line(&header).unwrap_or_default();
         let n = cols.len();
-        let ok_shape = n >= 2 + FIELDS.len()
-            && cols[0] == "case"
-            && cols[n - FIELDS.len() - 1] == "status"
-            && cols[n - FIELDS.len()..]
-                .iter()
-                .zip(FIELDS)
-                .all(|(a, b)| a == b);
-        if !ok_shape {
+        // the current layout, or that of tables written before the self-check columns
+        let shape = |nf: usize| {
+            n >= 2 + nf
+                && cols[0] == "case"
+                && cols[n - nf - 1] == "status"
+                && cols[n - nf..].iter().zip(FIELDS).all(|(a, b)| a == b)
+        };
+        let nf = if shape(NFIELDS) {
+            NFIELDS
+        } else if shape(V1_FIELDS) {
+            V1_FIELDS
+        } else {
             return Err(bad(
                 1,
                 format!(
@@ -411,8 +479,8 @@ impl Table {
                     FIELDS.join(", ")
                 ),
             ));
-        }
-        let axes = cols[1..n - FIELDS.len() - 1].to_vec();
+        };
+        let axes = cols[1..n - nf - 1].to_vec();
         let mut rows = BTreeMap::new();
         for (i, line) in lines.enumerate() {
             let lineno = i + 2;
@@ -425,18 +493,23 @@ impl Table {
             let case: usize = f[0]
                 .parse()
                 .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
-            let mut fields = [f64::NAN; 13];
-            for (k, x) in f[n - FIELDS.len()..].iter().enumerate() {
+            let mut fields = [f64::NAN; NFIELDS];
+            for (k, x) in f[n - nf..].iter().enumerate() {
                 if !x.is_empty() {
-                    fields[k] = x.parse().map_err(|_| {
-                        bad(lineno, format!("`{}` = `{x}` is not a number", FIELDS[k]))
+                    fields[k] = parse_field(k, x).ok_or_else(|| {
+                        let what = if FIELDS[k] == "converged" {
+                            "true, false or unchecked"
+                        } else {
+                            "a number"
+                        };
+                        bad(lineno, format!("`{}` = `{x}` is not {what}", FIELDS[k]))
                     })?;
                 }
             }
             let r = TableRow {
                 line: line.to_string(),
-                values: f[1..n - FIELDS.len() - 1].to_vec(),
-                status: f[n - FIELDS.len() - 1].clone(),
+                values: f[1..n - nf - 1].to_vec(),
+                status: f[n - nf - 1].clone(),
                 fields,
             };
             if rows.insert(case, r).is_some() {
@@ -637,6 +710,31 @@ mod tests {
         let parsed = parse_csv_line(&line.join(",")).unwrap();
         assert_eq!(parsed, fields);
         assert!(parse_csv_line("\"open").is_none());
+    }
+
+    #[test]
+    fn tables_before_the_check_columns_still_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("old.csv");
+        let head = format!("case,pga,status,{}", FIELDS[..V1_FIELDS].join(","));
+        let row = format!("0,0.2,ok,{}", vec!["1.5"; V1_FIELDS].join(","));
+        std::fs::write(&p, format!("{head}\n{row}\n")).unwrap();
+        let t = Table::read(&p).unwrap();
+        assert_eq!(t.axes, ["pga"]);
+        let f = &t.rows[&0].fields;
+        assert!(f[..V1_FIELDS].iter().all(|&x| x == 1.5));
+        assert!(f[V1_FIELDS..].iter().all(|x| x.is_nan()));
+        // the current layout: `converged` is true/false/unchecked, the change may be empty
+        let head = format!("case,pga,status,{}", FIELDS.join(","));
+        let nums = vec!["1.5"; V1_FIELDS].join(",");
+        let text = format!("{head}\n0,0.2,ok,{nums},0.5,false\n1,0.3,ok,{nums},,unchecked\n");
+        std::fs::write(&p, text).unwrap();
+        let t = Table::read(&p).unwrap();
+        assert_eq!(t.rows[&0].fields[V1_FIELDS..], [0.5, 0.0]);
+        assert!(t.rows[&1].fields[V1_FIELDS..].iter().all(|x| x.is_nan()));
+        std::fs::write(&p, format!("{head}\n0,0.2,ok,{nums},0.5,maybe\n")).unwrap();
+        let e = Table::read(&p).unwrap_err().to_string();
+        assert!(e.contains("true, false or unchecked"), "{e}");
     }
 
     #[test]

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use super::results::{self, Journal};
 use super::{Shard, Sweep, SweepError};
-use crate::simulate::simulate;
+use crate::simulate::simulate_checked;
 
 /// How to run a sweep.
 #[derive(Debug, Clone)]
@@ -22,6 +22,10 @@ pub struct RunOptions {
     pub jobs: usize,
     /// The part of the grid to run.
     pub shard: Shard,
+    /// Self-check every case (`simulate_checked`: a second run at a 100× tighter tolerance,
+    /// recorded in the `check_max_change` and `converged` columns). The default of
+    /// `pounding sweep`; `--no-check` turns it off and the rows say `unchecked`.
+    pub check: bool,
 }
 
 /// What a run did.
@@ -47,6 +51,51 @@ pub struct RunOutcome {
     pub first_warning: Option<(usize, String)>,
     /// Wall-clock time of the computation, s.
     pub seconds: f64,
+    /// Self-check of the part's cases that did not fail (from the journal, so resumed cases
+    /// count too).
+    pub check: CheckCounts,
+}
+
+/// How the cases of a sweep fared in their self-check (column `converged`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CheckCounts {
+    /// Checked and converged within 1 %.
+    pub converged: usize,
+    /// Checked and not converged.
+    pub not_converged: usize,
+    /// Not self-checked (run with `--no-check`).
+    pub unchecked: usize,
+    /// The lowest not-converged case and its `check_max_change` (as written; empty if the
+    /// check run failed).
+    pub first_not_converged: Option<(usize, String)>,
+}
+
+impl CheckCounts {
+    /// Count the `converged` column of finished rows (`(case, line)`, in case order).
+    pub fn of_rows<'a>(rows: impl Iterator<Item = (usize, &'a str)>) -> CheckCounts {
+        let mut c = CheckCounts::default();
+        for (case, line) in rows {
+            let Some(f) = results::parse_csv_line(line) else {
+                continue;
+            };
+            let (Some(conv), Some(change)) = (f.last(), f.len().checked_sub(2).map(|i| &f[i]))
+            else {
+                continue;
+            };
+            match conv.as_str() {
+                "true" => c.converged += 1,
+                "false" => {
+                    c.not_converged += 1;
+                    if c.first_not_converged.is_none() {
+                        c.first_not_converged = Some((case, change.clone()));
+                    }
+                }
+                results::UNCHECKED => c.unchecked += 1,
+                _ => {} // a failed case
+            }
+        }
+        c
+    }
 }
 
 /// Receives progress. Implementations must be cheap: they are called once per case.
@@ -180,18 +229,24 @@ pub struct CaseResult {
     pub line: String,
     /// Did the case fail?
     pub failed: bool,
-    /// The run's first warning (inaccurate contact resolution, energy drift), if any.
+    /// The run's first warning (inaccurate contact resolution, energy drift), if any; the
+    /// self-check's warnings are not included (see the row's `converged` column).
     pub warning: Option<String>,
 }
 
-/// Compute one case. A panic in the library is caught and recorded as a failure, so that one
-/// bad case cannot stop a sweep.
-pub fn compute_case(sweep: &Sweep, case: usize) -> CaseResult {
+/// Compute one case, with its self-check if `check`. A panic in the library is caught and
+/// recorded as a failure, so that one bad case cannot stop a sweep.
+pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
-        let report = simulate(&sc).map_err(|e| e.to_string())?;
-        warning = report.warnings.first().cloned();
+        let report = simulate_checked(&sc, check).map_err(|e| e.to_string())?;
+        // the self-check's verdict is counted from the `converged` column instead
+        warning = report
+            .warnings
+            .iter()
+            .find(|w| !crate::accuracy::is_check_warning(w))
+            .cloned();
         Ok(results::report_fields(&report))
     }))
     .unwrap_or_else(|p| {
@@ -273,7 +328,7 @@ pub fn run(
                     if stop.load(Ordering::Relaxed) {
                         return;
                     }
-                    let r = compute_case(sweep, case);
+                    let r = compute_case(sweep, case, opts.check);
                     if tx.send((case, r)).is_err() {
                         stop.store(true, Ordering::Relaxed);
                     }
@@ -321,7 +376,9 @@ pub fn run(
                 .unwrap_or_default();
             (*c, status)
         });
+    let check = CheckCounts::of_rows(journal.rows.iter().map(|(c, (l, _))| (*c, l.as_str())));
     Ok(RunOutcome {
+        check,
         results: results_path,
         cases,
         resumed,

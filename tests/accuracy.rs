@@ -1,0 +1,246 @@
+//! Every run checks itself (issue 9, item 4): the `accuracy` section of summary.json, its
+//! warning, `--no-check`. The expected changes are recomputed here from runs made at settings
+//! written by hand (not through `accuracy::tightened`).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use pounding::scenario::Scenario;
+use pounding::simulate::{simulate, simulate_checked};
+
+const PAPER_C: &str = include_str!("../examples/paper-c.toml");
+
+/// The paper's case c (RK4, dt = 1 ms) over its first 4 s: 11 impacts, which RK4 at 1 ms
+/// resolves to ~3e-4 (the impact sequence stays that of the converged solution until ~5.8 s).
+fn paper_c(duration: f64) -> String {
+    PAPER_C.replace("duration = 20.0", &format!("duration = {duration:?}"))
+}
+
+fn scenario(text: &str) -> Scenario {
+    Scenario::from_toml(text, "test.toml", Path::new("examples")).unwrap()
+}
+
+fn pounding(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("the binary runs")
+}
+
+fn run_json(text: &str, extra: &[&str]) -> (serde_json::Value, String, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("s.toml"), text).unwrap();
+    let mut args = vec!["run", "s.toml", "--out", "res", "--no-plot"];
+    args.extend_from_slice(extra);
+    let out = pounding(&args, dir.path());
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    );
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    let json =
+        std::fs::read_to_string(dir.path().join("res").join("summary.json")).expect("summary");
+    (serde_json::from_str(&json).unwrap(), stdout, stderr)
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+const QUANTITIES: [&str; 7] = [
+    "peak_displacement_1",
+    "peak_displacement_2",
+    "peak_displacement_no_contact_1",
+    "peak_displacement_no_contact_2",
+    "peak_force",
+    "impacts",
+    "sep_time_history",
+];
+
+/// At the paper's settings over 4 s the run is accurate: the section is there, every change is
+/// small, `converged` is true; the changes are those of a run at dt/√10 made here.
+#[test]
+fn accurate_run_passes_and_its_changes_are_reproduced() {
+    let text = paper_c(4.0);
+    let (j, stdout, stderr) = run_json(&text, &[]);
+    let a = &j["accuracy"];
+    assert_eq!(a["checked"], true, "{a}");
+    assert_eq!(a["converged"], true, "{a}");
+    assert_eq!(a["threshold"], 0.01);
+    assert_eq!(a["settings"]["method"], "rk4");
+    let tight_dt = 0.001 / 10f64.sqrt();
+    assert!(rel(a["settings"]["dt"].as_f64().unwrap(), tight_dt) < 1e-15);
+    let mut largest: f64 = 0.0;
+    for q in QUANTITIES {
+        let c = a["quantities"][q]["change"].as_f64().unwrap();
+        // RK4 at 1 ms: peaks and force to ~3e-4 on these 11 impacts (README accuracy table)
+        assert!(c < 2e-3, "{q}: {c}");
+        largest = largest.max(c);
+    }
+    assert!(rel(a["max_change"].as_f64().unwrap(), largest) < 1e-12);
+    // the values are the report's own
+    assert_eq!(
+        a["quantities"]["peak_displacement_1"]["value"],
+        j["structures"][0]["peak_displacement"]
+    );
+    assert_eq!(
+        a["quantities"]["sep_time_history"]["value"],
+        j["separation"]["time_history"]
+    );
+    assert_eq!(a["quantities"]["impacts"]["value"], 11.0);
+    assert!(
+        stdout.contains("self-check: converged within 1 %"),
+        "{stdout}"
+    );
+    assert!(!stderr.contains("self-check"), "{stderr}");
+
+    // independently: the same scenario at dt/√10, written by hand, through the library
+    let tight = simulate(&scenario(
+        &text.replace("dt = 0.001", &format!("dt = {tight_dt:?}")),
+    ))
+    .unwrap();
+    let json_f64 = |q: &str, k: &str| a["quantities"][q][k].as_f64().unwrap();
+    let tight_values = [
+        ("peak_force", tight.contact.peak_force),
+        ("peak_displacement_2", tight.structures[1].peak_displacement),
+        (
+            "peak_displacement_no_contact_1",
+            tight.structures[0].peak_displacement_no_contact,
+        ),
+        ("sep_time_history", tight.separation.time_history),
+    ];
+    for (q, b) in tight_values {
+        // serde_json's reader may be one ulp off: compare to 1e-12, not bit for bit
+        assert!(rel(json_f64(q, "tight"), b) < 1e-12, "{q}");
+        let expect = rel(json_f64(q, "value"), b);
+        let got = json_f64(q, "change");
+        // (an ulp of the values read back is ~2e-16 of them: the absolute term)
+        assert!(
+            (got - expect).abs() <= 1e-9 * expect + 1e-14,
+            "{q}: {got} vs {expect}"
+        );
+    }
+    assert_eq!(
+        json_f64("impacts", "tight"),
+        tight.contact.impacts as f64,
+        "impacts of the tight run"
+    );
+}
+
+/// The default method (`adaptive`, rtol 1e-10, atol 1e-12 m) on the same case: converged, and the
+/// change equals the one recomputed from a run at rtol 1e-12, atol 1e-14 m set by hand.
+#[test]
+fn adaptive_check_matches_a_hand_tightened_run() {
+    let text = paper_c(4.0).replace("method = \"rk4\"", "method = \"adaptive\"");
+    let report = simulate_checked(&scenario(&text), true).unwrap();
+    let acc = &report.accuracy;
+    assert!(acc.checked && acc.is_converged(), "{acc:?}");
+    assert!(acc.max_change.unwrap() < 1e-3, "{acc:?}");
+    let s = acc.settings.unwrap();
+    assert_eq!((s.method, s.dt), ("adaptive", 0.001));
+    let (rtol, atol) = (1e-10 / 100.0, 1e-12 / 100.0);
+    assert_eq!((s.rtol, s.atol), (Some(rtol), Some(atol)));
+    let hand = text.replace(
+        "output_interval = 0.01",
+        &format!("output_interval = 0.01\nrtol = {rtol:?}\natol = {atol:?}"),
+    );
+    let tight = simulate(&scenario(&hand)).unwrap();
+    let change = |a: f64, b: f64| (a - b).abs() / b.abs();
+    let pairs = [
+        (
+            "peak_force",
+            report.contact.peak_force,
+            tight.contact.peak_force,
+        ),
+        (
+            "peak_displacement_1",
+            report.structures[0].peak_displacement,
+            tight.structures[0].peak_displacement,
+        ),
+        (
+            "peak_displacement_no_contact_2",
+            report.structures[1].peak_displacement_no_contact,
+            tight.structures[1].peak_displacement_no_contact,
+        ),
+    ];
+    for (q, a, b) in pairs {
+        // same program, same arithmetic: bit for bit
+        assert_eq!(acc.change_of(q), Some(change(a, b)), "{q}");
+    }
+    // the run itself is that of plain `simulate`, and the check adds no warning
+    let plain = simulate(&scenario(&text)).unwrap();
+    assert_eq!(plain.with_contact, report.with_contact);
+    assert_eq!(plain.warnings, report.warnings);
+    assert!(!plain.accuracy.checked);
+}
+
+/// RK4 at 8 ms (its stability limit is 10.9 ms) under the paper's contact is coarse: the check
+/// says so, in `converged`, in `warnings` (naming `[solver] dt`), on stderr and in the summary.
+#[test]
+fn coarse_run_fails_its_check_and_names_the_setting() {
+    let text = paper_c(4.0).replace("dt = 0.001", "dt = 0.008");
+    let (j, stdout, stderr) = run_json(&text, &[]);
+    let a = &j["accuracy"];
+    assert_eq!(a["checked"], true);
+    assert_eq!(a["converged"], false, "{a}");
+    let worst = a["max_change"].as_f64().unwrap();
+    assert!(worst > 0.01, "{a}");
+    // the worst quantity is named and is the largest change
+    let name = a["max_change_quantity"].as_str().unwrap();
+    assert_eq!(a["quantities"][name]["change"].as_f64().unwrap(), worst);
+    let warnings: Vec<&str> = j["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap())
+        .collect();
+    let w = warnings
+        .iter()
+        .find(|w| w.contains("self-check NOT converged"))
+        .unwrap_or_else(|| panic!("no self-check warning in {warnings:?}"));
+    assert!(w.contains("`[solver] dt`") && w.contains("%"), "{w}");
+    assert!(w.contains("number of modes"), "{w}");
+    assert!(
+        stderr.contains("warning: self-check NOT converged"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("self-check: NOT CONVERGED"), "{stdout}");
+    assert!(!stdout.contains("converged within"), "{stdout}");
+}
+
+/// `--no-check`: no second run, `"checked": false`, and the summary says so.
+#[test]
+fn no_check_writes_checked_false() {
+    let (j, stdout, stderr) = run_json(&paper_c(2.0), &["--no-check"]);
+    let a = &j["accuracy"];
+    assert_eq!(a["checked"], false, "{a}");
+    assert!(a["converged"].is_null() && a["max_change"].is_null(), "{a}");
+    assert!(a["quantities"].as_object().unwrap().is_empty());
+    assert!(stdout.contains("NOT self-checked"), "{stdout}");
+    assert!(!stderr.contains("self-check"), "{stderr}");
+}
+
+/// A check run identical to the run tightened nothing and cannot vouch for it: a run with
+/// impacts compared with itself is not converged, with the reason.
+#[test]
+fn a_check_that_changed_nothing_is_not_a_pass() {
+    let sc = scenario(&paper_c(2.0));
+    let r = simulate(&sc).unwrap();
+    assert!(r.contact.impacts > 0);
+    let acc = pounding::accuracy::AccuracyCheck::compare(&r, &r, &sc.solver);
+    assert_eq!(acc.max_change, Some(0.0));
+    assert_eq!(acc.converged, Some(false));
+    assert!(acc.failure.as_deref().unwrap().contains("bit-identical"));
+    let w = acc.warning(&sc.solver).unwrap();
+    assert!(
+        w.contains("NOT converged") && w.contains("not verified"),
+        "{w}"
+    );
+    // without contact an identical rerun is right (the exact methods are exact there)
+    let free = scenario(&paper_c(2.0).replace("gap = 0.0127", "gap = 10.0"));
+    let r = simulate(&free).unwrap();
+    assert_eq!(r.contact.impacts, 0);
+    let acc = pounding::accuracy::AccuracyCheck::compare(&r, &r, &free.solver);
+    assert_eq!(acc.converged, Some(true));
+}
