@@ -31,10 +31,10 @@ pub const TIGHTENING: f64 = 100.0;
 /// Smallest relative tolerance the check run uses (the smallest a scenario accepts); below it
 /// the error estimate of `adaptive` would sink into round-off and its steps would shrink
 /// without end.
-pub const MIN_RTOL: f64 = 1e-14;
+pub const MIN_RTOL: f64 = crate::integrate::MIN_RTOL;
 
 /// Smallest absolute tolerance the check run uses, m (the smallest a scenario accepts).
-pub const MIN_ATOL: f64 = 1e-16;
+pub const MIN_ATOL: f64 = crate::integrate::MIN_ATOL;
 
 /// Every warning of the self-check starts with this (see [`is_check_warning`]).
 pub const WARNING_PREFIX: &str = "self-check";
@@ -189,7 +189,7 @@ impl CheckSettings {
                     "dt / sqrt(10): fourth order, so the error is about 100 times smaller"
                 }
                 Method::Adaptive | Method::ExactModal => {
-                    "rtol / 100 and atol / 100 (not below 1e-14 and 1e-16 m), dt unchanged"
+                    "rtol / 100 and atol / 100 (not below 1e-12 and 1e-14 m), dt unchanged"
                 }
             },
         }
@@ -439,7 +439,7 @@ mod tests {
             assert!(!limited_tightening(&s));
         }
         let mut s = SolverSettings::new(Method::Adaptive, 1e-3, 10.0);
-        s.rtol = 1e-13;
+        s.rtol = 1e-11;
         assert_eq!(tightened(&s).rtol, MIN_RTOL);
         assert!(limited_tightening(&s));
     }

@@ -15,7 +15,9 @@
 
 use serde::{Serialize, Serializer};
 
-use crate::integrate::{InitialState, Method, SolveError, SolverSettings, rk4_max_stable_dt};
+use crate::integrate::{
+    InitialState, MIN_ATOL, MIN_RTOL, Method, SolveError, SolverSettings, rk4_max_stable_dt,
+};
 use crate::scenario::Scenario;
 use crate::simulate::run_system;
 
@@ -462,13 +464,13 @@ pub fn convergence_with(
 }
 
 /// A finer setting of the same method for the check of a recommendation: dt/4 for the
-/// fixed-step methods, rtol and atol/100 (at least 1e-14 and 1e-16) for `adaptive` (atol too:
+/// fixed-step methods, rtol and atol/100 (at least [`MIN_RTOL`] and [`MIN_ATOL`]) for `adaptive` (atol too:
 /// it bounds the error control from below).
 fn finer(settings: SolverSettings) -> SolverSettings {
     match settings.method {
         Method::Adaptive => SolverSettings {
-            rtol: (settings.rtol / 100.0).max(1e-14),
-            atol: (settings.atol / 100.0).max(1e-16),
+            rtol: (settings.rtol / 100.0).max(MIN_RTOL),
+            atol: (settings.atol / 100.0).max(MIN_ATOL),
             ..settings
         },
         Method::Rk4 | Method::ExactModal => SolverSettings {

@@ -12,7 +12,7 @@ use toml::Spanned;
 
 use crate::contact::{ContactLaw, HertzDampModel};
 use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
-use crate::integrate::{ATOL_PER_RTOL, Method, SolverSettings};
+use crate::integrate::{ATOL_PER_RTOL, MIN_ATOL, MIN_RTOL, Method, SolverSettings};
 use crate::modal::{Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
@@ -1067,8 +1067,13 @@ fn solver(
         None => method.default_rtol(),
         Some(v) => {
             let x = *v.get_ref();
-            if !(x.is_finite() && (1e-14..=0.1).contains(&x)) {
-                return Err(c.invalid(v, "solver.rtol", "must be in [1e-14, 0.1]"));
+            if !(x.is_finite() && (MIN_RTOL..=0.1).contains(&x)) {
+                return Err(c.invalid(
+                    v,
+                    "solver.rtol",
+                    "must be in [1e-12, 0.1] (below 1e-12 double precision cannot resolve the \
+                     error estimate)",
+                ));
             }
             x
         }
@@ -1077,11 +1082,11 @@ fn solver(
         None => rtol * ATOL_PER_RTOL,
         Some(v) => {
             let x = *v.get_ref();
-            if !(x.is_finite() && (1e-16..=1.0).contains(&x)) {
+            if !(x.is_finite() && (MIN_ATOL..=1.0).contains(&x)) {
                 return Err(c.invalid(
                     v,
                     "solver.atol",
-                    "must be in [1e-16, 1] m (an error in a structure's top displacement)",
+                    "must be in [1e-14, 1] m (an error in a structure's top displacement)",
                 ));
             }
             x

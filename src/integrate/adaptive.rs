@@ -47,7 +47,8 @@ use crate::system::{LevelState, System, dot};
 const EVENT_TOL: f64 = 1e-12;
 /// Quantisation of step sizes: h = dt·2^(−k/QUANT).
 const QUANT: f64 = 4.0;
-const MAX_K: usize = 240;
+/// Smallest step `dt·2^(−MAX_K/4)` ≈ dt·1e-9: below it the tolerance is out of reach.
+const MAX_K: usize = 120;
 /// Gauss–Lobatto weights on [0, 1] for the nodes below.
 const WEIGHTS: [f64; 4] = [1.0 / 12.0, 5.0 / 12.0, 5.0 / 12.0, 1.0 / 12.0];
 
@@ -862,9 +863,17 @@ pub(crate) fn run_traced<O: Observer>(
             };
             rejected_last = true;
             if k_step >= MAX_K {
-                return Err(SolveError::Diverged {
-                    t,
-                    contact_omega_dt: stats.max_contact_omega_dt,
+                return Err(if err.is_finite() {
+                    SolveError::ToleranceUnreachable {
+                        t,
+                        h: h_taken,
+                        rtol,
+                    }
+                } else {
+                    SolveError::Diverged {
+                        t,
+                        contact_omega_dt: stats.max_contact_omega_dt,
+                    }
                 });
             }
             continue;

@@ -69,6 +69,12 @@ impl Method {
 /// N/m^1.5, issue 9) rtol = 1e-8 leaves the peak force 2.4 % from the converged one and 1e-10
 /// 0.15 %, while on the paper's case 1e-10 costs 1.25× what 1e-8 does.
 pub const DEFAULT_RTOL: f64 = 1e-10;
+/// Smallest relative tolerance accepted: on a stiff contact (k_h = 2.808e13 N/m^1.5) the
+/// round-off of one contact step is ~1.4e-13 of the state, so below ~1e-12 an error estimate
+/// measures round-off and the steps would shrink without end.
+pub const MIN_RTOL: f64 = 1e-12;
+/// Smallest absolute tolerance accepted, m ([`MIN_RTOL`] × [`ATOL_PER_RTOL`]).
+pub const MIN_ATOL: f64 = MIN_RTOL * ATOL_PER_RTOL;
 /// Default relative tolerance of `exact-modal`'s contact sub-steps.
 pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 1e-10;
 /// Absolute tolerance that goes with a relative one when `atol` is not given, m per unit of
@@ -272,6 +278,21 @@ pub enum SolveError {
         t: f64,
         /// Largest contact ω·dt met before.
         contact_omega_dt: f64,
+    },
+    /// An error-controlled method could not meet its tolerance with any step it may take (the
+    /// step fell to `dt·1e-9`): the tolerance is below what double precision resolves here.
+    #[error(
+        "the tolerance cannot be met at t = {t:.6} s: the step fell to {h:.3e} s and the error \
+         estimate still exceeds rtol = {rtol:e} (below what double precision resolves here); \
+         raise solver.rtol (and solver.atol, if set)"
+    )]
+    ToleranceUnreachable {
+        /// Time, s.
+        t: f64,
+        /// Last step tried, s.
+        h: f64,
+        /// The relative tolerance.
+        rtol: f64,
     },
 }
 
