@@ -256,6 +256,18 @@ impl ContactForce {
         }
     }
 
+    /// Whether the force depends on the penetration rate δ̇ (the damped laws): its peak over an
+    /// impact then comes before the largest penetration, not with it.
+    #[inline]
+    pub fn rate_dependent(&self) -> bool {
+        matches!(
+            self,
+            ContactForce::Kelvin { .. }
+                | ContactForce::HertzDamp { .. }
+                | ContactForce::Jankowski { .. }
+        )
+    }
+
     /// Contact force (N, ≥ 0) at penetration δ (m), penetration rate δ̇ (m/s) and approach speed
     /// at the onset of the episode v₀ (m/s; only the damped Hertz law uses it).
     #[inline(always)]

@@ -13,12 +13,21 @@
 //! the polynomial load exactly (quasi-statically), so the step is set by the contact alone and
 //! the cost grows linearly with the number of modes.
 //!
-//! Error control: the contact force's cubic component (its shifted-Legendre P₃ part) is what a
-//! quadratic load would miss; the end-state response to it is the error estimate of the
-//! lower-order solution (local extrapolation), in the max norm over every modal coordinate
-//! scaled by `atol_j + rtol·|y_j|` (atol per structure from the user's metres, see
-//! [`super::SolverSettings::atol`]); step sizes are quantised to `dt·2^(−k/4)` so the tables
-//! are computed once per size.
+//! Error control (issue 9): a step without contact forces is exact and needs no estimate. A step
+//! that carries contact forces is estimated by step doubling ([`doubling_error`]): the same
+//! interval in two halves, whose distance from the single step kept is that step's error; unlike
+//! an embedded formula (the response to the force cubic's P₃ part, used before, which scaled like
+//! (ω_j h)² and was blind to the contact by factors up to 1e9) it sees the contact stiffness, the
+//! (t − t_on)^{3/2} start and the release. The norm is the max over every modal coordinate of
+//! |error| / (atol_j + rtol·|y_j|), atol per structure from the user's metres (see
+//! [`super::SolverSettings::atol`]; by default rtol × 1 cm, so that rtol acts down to its
+//! smallest value 1e-12). The controller is PI with an assumed local order 5. A step that starts
+//! on a located onset uses the law's right limit there (c·δ̇ for Kelvin) and starts near the size
+//! the previous onset needed. Step sizes are quantised to `dt·2^(−k/4)` so the tables are
+//! computed once per size (the halves' table is 4 entries further on). Tested: the estimate of
+//! every accepted contact step is within 10× of its true local error (the step redone in 256
+//! sub-steps) on a stiff, two damped and the paper's case at rtol 1e-6 … 1e-10; measured within
+//! 1.3× except Kelvin (up to 9×: its force has a kink inside contact, where kδ + cδ̇ = 0).
 //!
 //! Events: when a level's penetration δ changes sign inside an accepted step, the step is
 //! replaced by one ending where δ = 0 (cubic Hermite estimate from the nodes, then secant /
