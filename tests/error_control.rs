@@ -223,3 +223,233 @@ fn damped_law_peak_force_is_found_between_observations() {
         );
     }
 }
+
+/// A bundled example with `replace` applied to its text (scenario directory `examples/`, so a
+/// record resolves as it does for the user).
+fn example(file: &str, replace: &[(&str, &str)]) -> Scenario {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut text = std::fs::read_to_string(dir.join(file)).expect("bundled example");
+    for (a, b) in replace {
+        assert!(text.contains(a), "{file} has no `{a}`");
+        text = text.replace(a, b);
+    }
+    Scenario::from_toml(&text, file, &dir).expect("valid scenario")
+}
+
+/// The cases of issue 9, item 3, beyond the stiff Hertz one: a record, a damped law at two
+/// levels of structures of different heights (5 modes each), many modes (20 per structure),
+/// and every damped law on a 100× stiffer-than-the-paper contact. Each as (name, scenario
+/// with `method`, `dt` and `solver` lines).
+fn cases(method: &str, dt_scale: f64, solver: &str) -> Vec<(&'static str, Scenario)> {
+    let m = format!("method = \"{method}\"\n{solver}");
+    let dt = |d: f64| format!("dt = {}", d * dt_scale);
+    let stiff_law = |law: &str| stiff_with(law, 0.5, 3.0, method, 1e-3 * dt_scale, solver);
+    vec![
+        (
+            "Loma Prieta record",
+            example(
+                "loma-prieta.toml",
+                &[("method = \"rk4\"", &m), ("dt = 0.001", &dt(5e-3))],
+            ),
+        ),
+        (
+            "two levels, hertzdamp, unequal heights",
+            example(
+                "two-levels.toml",
+                &[("method = \"rk4\"", &m), ("dt = 0.0002", &dt(1e-3))],
+            ),
+        ),
+        (
+            "paper case c, 20 modes",
+            example(
+                "paper-c.toml",
+                &[
+                    ("method = \"rk4\"", &m),
+                    ("dt = 0.001", &dt(1e-3)),
+                    ("modes = 3", "modes = 20"),
+                    ("duration = 20.0", "duration = 10.0"),
+                ],
+            ),
+        ),
+        (
+            "stiff hertzdamp",
+            stiff_law("law = \"hertzdamp\"\nstiffness = 2.808e11\nrestitution = 0.6"),
+        ),
+        (
+            "stiff kelvin",
+            stiff_law("law = \"kelvin\"\nstiffness = 1e10\nrestitution = 0.6"),
+        ),
+        (
+            "stiff jankowski",
+            stiff_law("law = \"jankowski\"\nstiffness = 2.808e11\nrestitution = 0.6"),
+        ),
+    ]
+}
+
+/// Every headline number of `r` within `tol` of `reference` (and, with `same_impacts`, the
+/// same number of impacts: at 0.5 % a long sequence may gain or lose one).
+fn assert_close(what: &str, r: &Report, reference: &Report, tol: f64, same_impacts: bool) {
+    for ((name, a), (_, b)) in headline(r).iter().zip(headline(reference)) {
+        assert!(
+            rel(*a, b) < tol,
+            "{what}: {name} {a} vs converged {b} ({:.2e})",
+            rel(*a, b)
+        );
+    }
+    if same_impacts {
+        assert_eq!(
+            r.contact.impacts, reference.contact.impacts,
+            "{what}: impacts"
+        );
+    }
+}
+
+/// Issue 9, item 3: at default settings every result is within 0.5 % of the converged
+/// solution, on a record, damped laws, many modes and unequal heights (the stiff Hertz case has
+/// its own test above); at rtol = 1e-10 both accurate methods are within 0.1 %. The converged
+/// solution is `adaptive` at rtol 1e-12 and a tenth of the step, confirmed by the other
+/// method, `exact-modal` at rtol 1e-11, within 1e-5 (two schemes that share only the exact
+/// modal propagators). Measured: defaults within 2e-7 (`adaptive`) and 8.8e-4 (`exact-modal`,
+/// whose count of impacts may differ by one or two), rtol 1e-10 within 1.1e-7 and 4.1e-7.
+#[test]
+fn defaults_and_rtol_1e_10_are_within_their_bounds_across_cases() {
+    let reference = cases("adaptive", 0.1, "rtol = 1e-12");
+    let confirm = cases("exact-modal", 1.0, "rtol = 1e-11");
+    for (method, solver, tol) in [
+        ("adaptive", "", 5e-3),
+        ("exact-modal", "", 5e-3),
+        ("adaptive", "rtol = 1e-10", 1e-3),
+        ("exact-modal", "rtol = 1e-10", 1e-3),
+    ] {
+        for ((name, s), ((_, r), (_, c))) in cases(method, 1.0, solver)
+            .iter()
+            .zip(reference.iter().zip(&confirm))
+        {
+            let reference = run(r);
+            if method == "adaptive" && solver.is_empty() {
+                assert_close(
+                    &format!("{name}: reference"),
+                    &run(c),
+                    &reference,
+                    1e-5,
+                    true,
+                );
+            }
+            let what = format!("{name}: {method} {solver}");
+            assert_close(&what, &run(s), &reference, tol, tol < 5e-3);
+        }
+    }
+}
+
+/// The stiff Hertz case of issue 9 (6 s, 54 impacts, at the PGA of its independent solution)
+/// at rtol = 1e-10 with either accurate method is within 0.1 % of the converged run (measured
+/// 4.7e-6 `adaptive`, 1.1e-4 `exact-modal`, on the peak force). This is not a bound for every
+/// case: at PGA 0.5 g exactly the same case is so sensitive that `adaptive` at 1e-10 is 0.22 %
+/// off and `exact-modal` 12 % (the self-check says so, see below).
+#[test]
+fn stiff_case_at_rtol_1e_10_is_within_a_tenth_of_a_percent_with_both_methods() {
+    let pga = 0.5 * 9.81 / 9.80665;
+    let reference = run(&stiff(pga, 6.0, "adaptive", 1e-4, "rtol = 1e-12"));
+    for method in ["adaptive", "exact-modal"] {
+        let r = run(&stiff(pga, 6.0, method, 1e-3, "rtol = 1e-10"));
+        assert_close(method, &r, &reference, 1e-3, true);
+    }
+}
+
+/// `exact-modal`'s rtol controls its contact sub-steps: on the first impacts of the stiff case
+/// (before the sequence turns sensitive: from the fourth on, each impact inherits the earlier
+/// ones' errors amplified) the peak-force error against the converged run falls at least 5×
+/// for every 100× of rtol (rtol 1e-4, 1e-6, 1e-8: measured 3.6e-4, 3.2e-5, 1.4e-6),
+/// while the sub-steps grow in number.
+#[test]
+fn exact_modal_rtol_controls_its_error() {
+    let reference = run(&stiff(0.5, 1.0, "adaptive", 1e-4, "rtol = 1e-12"));
+    assert_eq!(reference.contact.impacts, 10);
+    let mut last = (f64::INFINITY, 0);
+    for rtol in [1e-4, 1e-6, 1e-8] {
+        let r = run(&stiff(
+            0.5,
+            1.0,
+            "exact-modal",
+            1e-3,
+            &format!("rtol = {rtol}"),
+        ));
+        assert_eq!(r.contact.impacts, 10, "rtol {rtol}");
+        let err = r
+            .impact_log
+            .iter()
+            .zip(&reference.impact_log)
+            .take(3)
+            .map(|(a, b)| rel(a.peak_force, b.peak_force))
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "exact-modal rtol {rtol}: first three impacts' peak force within {err:.2e}, {} steps",
+            r.with_contact.steps
+        );
+        assert!(
+            err < last.0 / 5.0,
+            "rtol {rtol}: {err:.3e} after {:.3e}",
+            last.0
+        );
+        assert!(
+            r.with_contact.steps > last.1,
+            "rtol {rtol}: no more sub-steps"
+        );
+        last = (err, r.with_contact.steps);
+    }
+    assert!(last.0 < 5e-6, "rtol 1e-8: {:.3e}", last.0);
+}
+
+/// The free flight of a long base step is tested for contact with a margin for the modes that
+/// oscillate within it (ω₃·dt = 3.7 here): at dt = 10 ms `exact-modal` meets the same ten
+/// impacts as the converged run in the stiff case's first second, at the same times. Without
+/// the margin the cubic through the step's ends missed the fifth (a 1.8 ms, 22 MN impact at
+/// t = 0.573 s) and merged its neighbours.
+#[test]
+fn exact_modal_does_not_miss_short_impacts_inside_a_long_step() {
+    let reference = run(&stiff(0.5, 1.0, "adaptive", 1e-4, "rtol = 1e-12"));
+    let r = run(&stiff(0.5, 1.0, "exact-modal", 1e-2, "rtol = 1e-8"));
+    assert_eq!(r.contact.impacts, reference.contact.impacts);
+    for (a, b) in r.impact_log.iter().zip(&reference.impact_log) {
+        assert!(
+            (a.start - b.start).abs() < 1e-5,
+            "{} vs {}",
+            a.start,
+            b.start
+        );
+        assert!(
+            rel(a.peak_force, b.peak_force) < 1e-3,
+            "{} vs {}",
+            a.peak_force,
+            b.peak_force
+        );
+    }
+}
+
+/// A result that failed its check is never presented as converged: on the stiff Hertz case
+/// (PGA 0.5 g, where it is most sensitive) `exact-modal` at its default tolerance is 1.6 %
+/// (dt 1 ms) and 20 % (dt 10 ms) off in peak force, and at rtol 1e-10 still 12 %: a chaotic
+/// sequence of impacts amplifies its per-impact error. Its self-check, at rtol/100, says NOT
+/// converged each time; a run presented as converged must be within 2 %. (Before the
+/// sub-steps followed rtol, the check run was bit-identical and could see nothing.)
+#[test]
+fn exact_modal_on_the_stiff_case_is_flagged_not_converged() {
+    use pounding::simulate::simulate_checked;
+    let reference = run(&stiff(0.5, 6.0, "adaptive", 1e-4, "rtol = 1e-12"));
+    for (dt, solver) in [(1e-3, ""), (1e-2, ""), (1e-3, "rtol = 1e-10")] {
+        let s = stiff(0.5, 6.0, "exact-modal", dt, solver);
+        let r = simulate_checked(&s, true).expect("runs");
+        let err = rel(r.contact.peak_force, reference.contact.peak_force);
+        let converged = r.accuracy.converged;
+        eprintln!(
+            "exact-modal dt {dt} {solver}: peak force error {err:.2e}, converged {converged:?}"
+        );
+        if converged == Some(true) {
+            assert!(
+                err < 0.02,
+                "dt {dt} {solver}: presented as converged, error {err:.3e}"
+            );
+        }
+        assert_eq!(converged, Some(false), "dt {dt} {solver}: error {err:.3e}");
+    }
+}

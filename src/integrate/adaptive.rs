@@ -44,7 +44,7 @@
 
 use super::linear::{
     GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
-    mode_work, propagator,
+    mode_work, monomial_influence, propagator,
 };
 use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
@@ -103,64 +103,6 @@ fn vandermonde_inverse() -> [[f64; 4]; 4] {
         }
     }
     inv
-}
-
-/// Exact response (η, η̇) at time s from rest of one mode under the loads (τ/h)^m, m = 0..3.
-fn monomial_influence(omega: f64, damp: f64, s: f64, h: f64, p: &Prop) -> [(f64, f64); 4] {
-    let w2 = omega * omega;
-    let mut out = [(0.0, 0.0); 4];
-    if s == 0.0 {
-        return out;
-    }
-    if s * (omega + damp) < 1.0 {
-        // Σ_r (m!/h^m) s^{r+m+1}/(r+m+1)! A^r e₂
-        for (m, o) in out.iter_mut().enumerate() {
-            let mut fact = 1.0; // m!/h^m · s^{m+1}/(m+1)!
-            for q in 1..=m {
-                fact *= q as f64 / h;
-            }
-            let mut c = fact;
-            for q in 1..=(m + 1) {
-                c *= s / q as f64;
-            }
-            let (mut x, mut y) = (0.0, 1.0);
-            let mut acc = (0.0, 0.0);
-            for r in 0..60 {
-                acc.0 += c * x;
-                acc.1 += c * y;
-                c *= s / (r + m + 2) as f64;
-                let (nx, ny) = (y, -w2 * x - damp * y);
-                x = nx;
-                y = ny;
-                if c * (x.abs() + y.abs()) < 1e-17 * (acc.0.abs() * w2.max(1.0) + acc.1.abs()) {
-                    break;
-                }
-            }
-            *o = acc;
-        }
-    } else {
-        for (m, o) in out.iter_mut().enumerate() {
-            // particular polynomial Σ u_r τ^r of the load τ^m/h^m
-            let mut u = [0.0; 6];
-            let cm = 1.0 / h.powi(m as i32);
-            for r in (0..=m).rev() {
-                let c = if r == m { cm } else { 0.0 };
-                u[r] =
-                    (c - damp * (r + 1) as f64 * u[r + 1] - ((r + 2) * (r + 1)) as f64 * u[r + 2])
-                        / w2;
-            }
-            let (mut e, mut d) = (0.0, 0.0);
-            for r in (0..=m).rev() {
-                e = e * s + u[r];
-            }
-            for r in (1..=m).rev() {
-                d = d * s + r as f64 * u[r];
-            }
-            let (a, b) = p.apply(u[0], u[1]);
-            *o = (e - a, d - b);
-        }
-    }
-    out
 }
 
 /// Everything that depends on the step length only.

@@ -76,7 +76,7 @@ pub const MIN_RTOL: f64 = 1e-12;
 /// Smallest absolute tolerance accepted, m ([`MIN_RTOL`] × [`ATOL_PER_RTOL`]).
 pub const MIN_ATOL: f64 = MIN_RTOL * ATOL_PER_RTOL;
 /// Default relative tolerance of `exact-modal`'s contact sub-steps.
-pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 1e-10;
+pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 5e-5;
 /// Absolute tolerance that goes with a relative one when `atol` is not given, m per unit of
 /// rtol: `atol = rtol × 1 cm` at a structure's top. Scaling it with rtol keeps rtol the one
 /// knob: with a fixed atol, rtol below ~1e-9 would change nothing (the modal amplitudes times
@@ -351,7 +351,9 @@ pub(crate) fn step_plan(dt: f64, duration: f64) -> (usize, f64) {
 /// third-order estimate), and its slope there. A previous observation with δ ≥ 0 (a located
 /// onset, or contact from the start) is the crossing itself.
 pub(crate) fn onset_speed(prev: (f64, f64), now: (f64, f64), h: f64) -> f64 {
-    if prev.0 >= 0.0 || !(now.0 > 0.0) || !(h > 0.0) {
+    // (written so that a NaN δ or h also takes the early return)
+    let crossing = now.0 > 0.0 && h > 0.0;
+    if prev.0 >= 0.0 || !crossing {
         return if prev.0 >= 0.0 { prev.1 } else { now.1 };
     }
     let (y0, m0, y1, m1) = (prev.0, prev.1 * h, now.0, now.1 * h);
