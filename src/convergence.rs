@@ -29,6 +29,9 @@ pub const MAX_MODES: usize = 500;
 pub const DT_LADDER: [f64; 6] = [4.0, 2.0, 1.0, 0.5, 0.25, 0.125];
 /// Relative tolerances tried for `adaptive` (each with its atol, [`SolverSettings::with_rtol`]).
 pub const RTOL_LADDER: [f64; 6] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-12];
+/// Relative tolerances tried for `exact-modal`'s contact sub-steps (a second-order scheme: its
+/// default is 5e-5, and 1e-9 costs about 100× the default).
+pub const EXACT_MODAL_RTOL_LADDER: [f64; 6] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-9];
 /// Fraction of RK4's largest stable step offered when a mode count needs a smaller step.
 pub const RK4_DT_MARGIN: f64 = 0.9;
 
@@ -41,15 +44,18 @@ pub struct Ladders {
     pub dt_factors: Vec<f64>,
     /// Relative tolerances (`adaptive`).
     pub rtols: Vec<f64>,
+    /// Relative tolerances (`exact-modal`).
+    pub exact_modal_rtols: Vec<f64>,
 }
 
 impl Default for Ladders {
-    /// [`MODE_LADDER`], [`DT_LADDER`], [`RTOL_LADDER`].
+    /// [`MODE_LADDER`], [`DT_LADDER`], [`RTOL_LADDER`], [`EXACT_MODAL_RTOL_LADDER`].
     fn default() -> Ladders {
         Ladders {
             modes: MODE_LADDER.to_vec(),
             dt_factors: DT_LADDER.to_vec(),
             rtols: RTOL_LADDER.to_vec(),
+            exact_modal_rtols: EXACT_MODAL_RTOL_LADDER.to_vec(),
         }
     }
 }
@@ -179,7 +185,7 @@ fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
         modes,
         method: settings.method.name(),
         dt: settings.dt,
-        rtol: (settings.method == Method::Adaptive).then_some(settings.rtol),
+        rtol: settings.method.has_tolerance().then_some(settings.rtol),
         peak_w1: f64::NAN,
         peak_w2: f64::NAN,
         peak_force: f64::NAN,
@@ -338,9 +344,13 @@ pub fn convergence_with(
     let n_modes = scenario.structures[0]
         .modes
         .max(scenario.structures[1].modes);
-    let mut steps: Vec<Row> = if base.method == Method::Adaptive {
-        ladders
-            .rtols
+    let rtols = match base.method {
+        Method::Adaptive => Some(&ladders.rtols),
+        Method::ExactModal => Some(&ladders.exact_modal_rtols),
+        Method::Rk4 => None,
+    };
+    let mut steps: Vec<Row> = if let Some(rtols) = rtols {
+        rtols
             .iter()
             .map(|&rtol| {
                 progress(&format!("rtol = {rtol:e}"));
@@ -463,17 +473,17 @@ pub fn convergence_with(
     }
 }
 
-/// A finer setting of the same method for the check of a recommendation: dt/4 for the
-/// fixed-step methods, rtol and atol/100 (at least [`MIN_RTOL`] and [`MIN_ATOL`]) for `adaptive` (atol too:
-/// it bounds the error control from below).
+/// A finer setting of the same method for the check of a recommendation: dt/4 for `rk4`,
+/// rtol and atol/100 (at least [`MIN_RTOL`] and [`MIN_ATOL`]) for the methods with a tolerance
+/// (atol too: it bounds the error control from below).
 fn finer(settings: SolverSettings) -> SolverSettings {
     match settings.method {
-        Method::Adaptive => SolverSettings {
+        Method::Adaptive | Method::ExactModal => SolverSettings {
             rtol: (settings.rtol / 100.0).max(MIN_RTOL),
             atol: (settings.atol / 100.0).max(MIN_ATOL),
             ..settings
         },
-        Method::Rk4 | Method::ExactModal => SolverSettings {
+        Method::Rk4 => SolverSettings {
             dt: settings.dt / 4.0,
             ..settings
         },
@@ -524,7 +534,7 @@ fn combine(
             method: s.method,
             modes: m,
             dt: s.dt,
-            rtol: (s.method == Method::Adaptive).then_some(s.rtol),
+            rtol: s.method.has_tolerance().then_some(s.rtol),
             check: String::new(),
             check_change: 0.0,
         }
@@ -579,7 +589,9 @@ fn combine(
     // the check: the same settings at a finer step (tolerance)
     let fine = finer(settings);
     let what = match fine.method {
-        Method::Adaptive => format!("rtol = {:e}, atol = {:e} m", fine.rtol, fine.atol),
+        Method::Adaptive | Method::ExactModal => {
+            format!("rtol = {:e}, atol = {:e} m", fine.rtol, fine.atol)
+        }
         _ => format!("dt = {} s", fine.dt),
     };
     progress(&format!(
@@ -607,7 +619,7 @@ fn combine(
             label(&settings)
         ));
         notes.push(match settings.method {
-            Method::Adaptive => format!(
+            Method::Adaptive | Method::ExactModal => format!(
                 "try: a tighter solver.rtol than {:e} (and solver.atol, if it is set), a \
                  smaller solver.dt, another method, or a larger --tolerance.",
                 settings.rtol
@@ -623,7 +635,7 @@ fn combine(
         method: settings.method,
         modes: m,
         dt: settings.dt,
-        rtol: (settings.method == Method::Adaptive).then_some(settings.rtol),
+        rtol: settings.method.has_tolerance().then_some(settings.rtol),
         check,
         check_change: worst,
     })
@@ -653,10 +665,14 @@ fn advice_steps(rows: &[Row], base: &SolverSettings) -> String {
              `adaptive`: their steps follow the contact and they are stable for any number of \
              modes);"
         ),
-        Method::ExactModal => format!(
-            "try: a smaller solver.dt than {finest} s, or `adaptive` with a tight solver.rtol \
-             (its error control), or `rk4` with a small dt;"
-        ),
+        Method::ExactModal => {
+            let rtol = rows.last().and_then(|r| r.rtol).unwrap_or(base.rtol);
+            format!(
+                "try: a tighter solver.rtol than {rtol:e} (its contact sub-steps), `adaptive` \
+                 (sixth order: cheaper at tight tolerances), or a smaller solver.dt ({finest} s \
+                 now: it sets the peaks' extraction between observations);"
+            )
+        }
         Method::Adaptive => {
             let rtol = rows.last().and_then(|r| r.rtol).unwrap_or(base.rtol);
             format!(

@@ -9,22 +9,31 @@
 //!
 //! The scheme is second order in the sub-step (the load's linear interpolation has an O(h²)
 //! error and the predicted F₁* an O(h²) error); with no contact it is exact for any step and any
-//! number of modes. While a level is in contact, or may come into contact within the base step
-//! (end state or cubic Hermite bound of δ positive), the base step `dt` is walked in dyadic
-//! sub-steps dt/2^m, m ≥ 2, each with `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the
-//! tangent stiffness at the penetration bound of the sub-step's own free flight (no contact
-//! force: an upper bound) and D(h) the level's displacement under a unit force held for h. For
-//! a point mass D = h²/(2m*) and the rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much
-//! stiffer than the contact add only their static flexibility, so the sub-step does not shrink
-//! as modes are added. The sub-steps follow the stiffness through an impact (refined when the
-//! rule fails, coarsened by one level when aligned and well inside it), so the free flight up to
-//! an onset is not cut as finely as the impact. A sub-step in which a level may start touching
-//! (no force at its start) keeps `ω_c·h_sub ≤ α/4`: the force grows from zero like
-//! (t − t_on)^{3/2} there, which a linear load fits worst (on the paper case this costs 0.4 %
-//! more sub-steps and cuts the energy-balance error by 4). Where the rule gives m = 2 the sub-step is
-//! proportional to dt: halving dt halves every sub-step and the error falls by 4 — the regime
-//! where the order is observed.
+//! number of modes. While a level is in contact, or may come into contact within the base step,
+//! the base step `dt` is walked in dyadic sub-steps dt/2^m, m ≥ 2. Whether a level may touch
+//! is decided on the cubic Hermite bound of δ over the step's free flight plus a margin for the
+//! modes that oscillate within it (each mode's distance from its own cubic is at most
+//! `(|λ|h)⁴/384` of its amplitude, capped at 2: without it a 1.8 ms impact inside a 10 ms base
+//! step was missed). Each sub-step meets two rules:
 //!
+//! - **stability of the predictor:** `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the
+//!   tangent stiffness at the penetration bound of the sub-step's own free flight and D(h) the
+//!   level's displacement under a unit force held for h. For a point mass D = h²/(2m*) and the
+//!   rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much stiffer than the contact add only
+//!   their static flexibility, so the sub-step does not shrink as modes are added. A sub-step in
+//!   which a level may start touching keeps `ω_c·h_sub ≤ α/4`.
+//! - **accuracy (issue 9):** its local error estimate ([`Run::estimate`]) within the tolerance
+//!   `rtol` (see [`SubstepTolerance`]): the response to the end-force correction and to the
+//!   force's curvature, exact per mode through per-level tables of the step length, and across
+//!   an onset or a release a bound (the force is zero over part of the sub-step there). Tested
+//!   against the true local error of every accepted contact sub-step (the sub-step redone in 256):
+//!   never more than 3× below it (measured ≤ 2.4×), median ratio 1.0–1.1 inside contact.
+//!
+//! The walk refines when a rule fails (by as many levels as the estimate's h³ asks for) and
+//! coarsens by one level when aligned and both rules have room. The walk is logarithmic in its
+//! depth, so a force that jumps at an onset (Kelvin's c·δ̇) costs a few dozen sub-steps however
+//! tight the tolerance.
+
 //! Steps split at the samples of a recorded motion (its load is a different polynomial on each
 //! interval): each record interval is cut into equal steps ≤ dt.
 //!

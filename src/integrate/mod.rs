@@ -58,6 +58,12 @@ impl Method {
         }
     }
 
+    /// Whether `rtol`/`atol` control the method's error (`adaptive`, `exact-modal`); `rk4`'s
+    /// error is set by its step alone.
+    pub fn has_tolerance(self) -> bool {
+        matches!(self, Method::Adaptive | Method::ExactModal)
+    }
+
     /// The method called `name` in scenario files.
     pub fn from_name(name: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name)
