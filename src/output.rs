@@ -1,4 +1,4 @@
-//! Output files (SPEC §6): `summary.json`, `history.csv`, `impacts.csv`. Every file is written
+//! Output files (docs/model.md §6): `summary.json`, `history.csv`, `impacts.csv`. Every file is written
 //! to a temporary file in the target directory and renamed into place, so a reader never sees a
 //! half-written file; `summary.json` is written last, so its presence means the run completed.
 
@@ -100,7 +100,7 @@ struct Summary<'a> {
     solver: SolverInfo,
 }
 
-/// The summary as JSON text (SPEC §6 fields plus levels, energy, impacts, warnings, solver).
+/// The summary as JSON text (docs/model.md §6 fields plus levels, energy, impacts, warnings, solver).
 pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, String> {
     let adaptive = scenario.solver.method == Method::Adaptive;
     let s = Summary {

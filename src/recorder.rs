@@ -471,7 +471,7 @@ impl Observer for Recorder {
             *a = *b;
         }
         let sampled = self.sample(s, &main_sample);
-        // energy (SPEC §2.7; balance: input = Δmodal + damping + work into contacts): at the
+        // energy (docs/model.md §2.7; balance: input = Δmodal + damping + work into contacts): at the
         // start, at every observation that gave a history sample (for the peak energy, the
         // balance's scale) and at the end (the balance itself is formed in `finish`)
         if sampled || self.prev.is_none() || s.t >= self.end * (1.0 - 1e-12) {

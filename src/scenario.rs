@@ -1,4 +1,4 @@
-//! Scenario files (SPEC §5): TOML → raw serde structs with spans → [`validate`] → a checked
+//! Scenario files (README, *Scenario files*): TOML → raw serde structs with spans → [`validate`] → a checked
 //! [`Scenario`] in SI units.
 //!
 //! Every error names the file, the line and column, the key and the allowed range.
@@ -579,7 +579,7 @@ fn validate(
         solver,
         output_interval,
     };
-    // stability: needs the modal model (SPEC §2.9)
+    // stability: needs the modal model (docs/model.md §2.9)
     if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
         let dt = raw
             .solver

@@ -125,7 +125,7 @@ fn change_percent(with: f64, without: f64) -> f64 {
     }
 }
 
-/// The separation rules (SPEC §3) from the run without contact.
+/// The separation rules (docs/model.md §3) from the run without contact.
 fn separations(system: &System, without: &RunRecord) -> Separations {
     let [m1, m2] = &system.structures;
     let peaks = PeakPair {

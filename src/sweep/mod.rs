@@ -1,4 +1,4 @@
-//! Parameter sweeps (SPEC §1.3): a sweep file names a base scenario and axes; every point of
+//! Parameter sweeps (docs/model.md §1.3): a sweep file names a base scenario and axes; every point of
 //! the full grid is a *case*, i.e. the base scenario's TOML with the axis values set, validated
 //! exactly like a scenario file and run with [`crate::simulate::simulate`].
 //!
@@ -18,7 +18,7 @@
 //! - `period_ratio` = T1/T2: sets structure 2's `period` to T2 = T1/r (replacing a
 //!   `bending_stiffness` or `tip_stiffness` given for it). T1 is structure 1's `period` if
 //!   given; otherwise it is computed from its length, mass and stiffness by the modal model
-//!   (SPEC §2.6: T1 = 2π/ω₁, ω₁ = (β₁L)²√(EI/(mL⁴))).
+//!   (docs/model.md §2.6: T1 = 2π/ω₁, ω₁ = (β₁L)²√(EI/(mL⁴))).
 //! - `ground_period_ratio` = T2/Tg: sets the harmonic ground motion's `period` to Tg = T2/r,
 //!   with T2 as above (after `period_ratio` is applied, when both are swept).
 //! - any scenario key by path: `structure.1.period` (1-based structure index; also written
@@ -817,7 +817,7 @@ fn level_mut(t: &mut Table, i: usize) -> Result<&mut Table, String> {
 }
 
 /// First-mode period of structure `i` (0-based) as the case table gives it: `period`, or
-/// computed from length, mass and `bending_stiffness`/`tip_stiffness` (SPEC §2.6).
+/// computed from length, mass and `bending_stiffness`/`tip_stiffness` (docs/model.md §2.6).
 fn first_period(t: &Table, i: usize) -> Result<f64, String> {
     let s = match t.get("structure") {
         Some(Value::Array(a)) => match a.get(i) {
