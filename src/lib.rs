@@ -17,6 +17,7 @@
 //! ```
 
 pub mod accuracy;
+pub mod budget;
 pub mod cantilever;
 pub mod contact;
 pub mod convergence;

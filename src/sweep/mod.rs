@@ -569,7 +569,14 @@ impl Sweep {
             return Err(ctx.invalid(
                 Some(list.span().start),
                 "axis",
-                format!("the grid has {cases} cases; at most {MAX_CASES} are allowed"),
+                format!(
+                    "the grid has {cases} cases (results of about {}); a sweep may have at most \
+                     {MAX_CASES} cases: use fewer values per axis (`values`, or `steps` of a range), \
+                     or split the study into several sweep files",
+                    crate::budget::format_size(
+                        crate::budget::estimate_sweep(cases as u64, axes.len()).bytes
+                    )
+                ),
             ));
         }
         // the identity covers what the cases read: the sweep file, the base scenario and the
@@ -678,10 +685,18 @@ impl Sweep {
         for j in idx {
             self.apply(&mut t, &self.axes[j], values[j])?;
         }
-        let title = match self.base.get("title").and_then(Value::as_str) {
-            Some(base) => format!("{base} — sweep case {case}: {}", self.label(case)),
-            None => format!("Sweep case {case}: {}", self.label(case)),
+        // the case's own title: its values, not the base scenario's title (which may name
+        // values this case changes, e.g. "T1/T2 = 0.7" on a period_ratio = 0.9 case)
+        let name = |p: &Path| {
+            p.file_name()
+                .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
         };
+        let title = format!(
+            "{} — case {case} of sweep {} (base scenario {})",
+            self.label(case),
+            name(&self.path),
+            name(&self.scenario_path)
+        );
         t.insert("title".into(), Value::String(title));
         toml::to_string(&t).map_err(|e| format!("cannot encode the case as TOML: {e}"))
     }
@@ -875,6 +890,15 @@ fn reason(e: &ScenarioError) -> String {
             key, value, reason, ..
         } => format!("`{key}` = {value}: {reason}"),
         ScenarioError::Record { key, source, .. } => format!("`{key}`: {source}"),
+        ScenarioError::MissingMany { missing, .. } => format!(
+            "missing keys: {}",
+            missing
+                .iter()
+                .map(|(_, key, expected)| format!("`{key}` ({expected})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        ScenarioError::SweepFile { .. } => e.to_string(),
     }
 }
 
