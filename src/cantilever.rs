@@ -1,11 +1,11 @@
-//! Modes of a uniform Euler–Bernoulli cantilever (clamped at x = 0, free at x = L), SPEC §2.3.
+//! Modes of a uniform Euler–Bernoulli cantilever (clamped at x = 0, free at x = L), docs/model.md §2.3.
 //!
 //! Everything here is dimensionless or per unit of `√(mL)`: the mass-normalised shape of a beam
 //! with total mass `M = m L` is `φ_n(x) = shape(λ_n, x/L) / √M`.
 //!
 //! The textbook form `cosh βx − cos βx − σ (sinh βx − sin βx)` cancels catastrophically for large
 //! βx (useless by mode ~15) and overflows past mode ~225, so [`Mode::shape`] evaluates it with
-//! decaying exponentials only (SPEC §2.3).
+//! decaying exponentials only (docs/model.md §2.3).
 
 use std::f64::consts::PI;
 
@@ -58,7 +58,7 @@ impl Mode {
     }
 
     /// `φ_n(ξL)·√(mL)`: the mass-normalised shape at relative height ξ = x/L ∈ [0, 1],
-    /// evaluated with decaying exponentials only (SPEC §2.3).
+    /// evaluated with decaying exponentials only (docs/model.md §2.3).
     pub fn shape(&self, xi: f64) -> f64 {
         let l = self.lambda;
         let (s, c) = l.sin_cos();
@@ -71,13 +71,13 @@ impl Mode {
         cosh_minus_sigma_sinh - cx + self.sigma * sx
     }
 
-    /// `γ_n·√(mL)/L = (1/L)∫₀ᴸ φ_n dx·√(mL) = 2σ_n/λ_n` (SPEC §2.3): the modal participation
+    /// `γ_n·√(mL)/L = (1/L)∫₀ᴸ φ_n dx·√(mL) = 2σ_n/λ_n` (docs/model.md §2.3): the modal participation
     /// integral per unit length, dimensionless.
     pub fn participation(&self) -> f64 {
         2.0 * self.sigma / self.lambda
     }
 
-    /// ω_n/ω_1 scale: `λ²`, so that `ω_n = λ_n² √(EI/(m L⁴))` (SPEC §2.3, paper eq. 12).
+    /// ω_n/ω_1 scale: `λ²`, so that `ω_n = λ_n² √(EI/(m L⁴))` (docs/model.md §2.3, paper eq. 12).
     pub fn lambda_squared(&self) -> f64 {
         self.lambda * self.lambda
     }
@@ -87,7 +87,7 @@ impl Mode {
 mod tests {
     use super::*;
 
-    /// Roots printed in SPEC §2.3 (and standard tables), to 1e-12 absolute.
+    /// Roots printed in docs/model.md §2.3 (and standard tables), to 1e-12 absolute.
     #[test]
     fn roots_match_tabulated_values() {
         let expected = [
@@ -120,7 +120,7 @@ mod tests {
         }
     }
 
-    /// |φ_n(L)|·√(mL) = 2 for every mode (SPEC §2.3).
+    /// |φ_n(L)|·√(mL) = 2 for every mode (docs/model.md §2.3).
     #[test]
     fn tip_value_is_two() {
         for n in 1..=500 {

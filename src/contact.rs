@@ -1,8 +1,8 @@
-//! Contact laws between the two structures (SPEC §2.7).
+//! Contact laws between the two structures (docs/model.md §2.7).
 //!
 //! Penetration at a contact level is `δ = w₁(h) − w₂(h) − d`; with δ ≤ 0 there is no force, and no
 //! law ever pulls (the force is clamped at zero while the structures separate). The force `F ≥ 0`
-//! pushes structure 1 to the left and structure 2 to the right (SPEC §2.4).
+//! pushes structure 1 to the left and structure 2 to the right (docs/model.md §2.4).
 
 use std::f64::consts::PI;
 

@@ -1,4 +1,4 @@
-//! Convergence study (issue 4; what the seed paper's §4 did by hand, SPEC §4): the run with
+//! Convergence study (issue 4; what the seed paper's §4 did by hand, docs/model.md §4): the run with
 //! pounding repeated for a ladder of mode counts and a ladder of steps (or tolerances), each row
 //! with its peaks, peak force, impacts and change relative to the finest row.
 //!

@@ -4,8 +4,9 @@
 //! reduced to its modes, shaken by a common ground motion, hitting each other through a contact
 //! law at one or more heights. Library first; the `pounding` binary is a thin CLI over it.
 //!
-//! The model and its corrections to the seed paper are in the project's SPEC (sections cited
-//! in the code as `SPEC §x.y`). Units are SI throughout (m, kg, s, N); PGA inputs are in g.
+//! The model, its equations and its corrections to the seed paper are in `docs/model.md`
+//! (sections cited in the code as `docs/model.md §x.y`; older comments say `docs/model.md §x.y`, the
+//! same sections). Units are SI throughout (m, kg, s, N); PGA inputs are in g.
 //!
 //! ```no_run
 //! use pounding::{scenario::Scenario, simulate::simulate};
@@ -16,6 +17,7 @@
 //! ```
 
 pub mod accuracy;
+pub mod budget;
 pub mod cantilever;
 pub mod contact;
 pub mod convergence;

@@ -5,9 +5,12 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use std::io::IsTerminal as _;
+
+use pounding::output::RunWriter;
 use pounding::scenario::Scenario;
 use pounding::separation::Rule;
-use pounding::simulate::{Report, simulate_checked};
+use pounding::simulate::{Phase, Report, simulate_streaming};
 
 /// The bundled default scenario: the seed paper's case T1/T2 = 0.7.
 const DEFAULT_SCENARIO: &str = include_str!("../examples/paper-c.toml");
@@ -28,6 +31,11 @@ const DEFAULT_NAME: &str = "examples/paper-c.toml (bundled default)";
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Print only errors, warnings and what the command exists to print (the tables of
+    /// `modes`, `laws`, `separation`, `convergence`): no progress, no run summary, no list of
+    /// files written. Works before or after the command name.
+    #[arg(short, long, global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -56,9 +64,11 @@ enum Command {
         /// then says `"accuracy": {"checked": false, …}`.
         #[arg(long)]
         no_check: bool,
-        /// Print only errors and warnings.
-        #[arg(short, long)]
-        quiet: bool,
+        /// Largest history.csv the run may write (estimated before the run from
+        /// solver.duration / solver.output_interval), e.g. 5GB, 500MB, 2e9; a run above it is
+        /// refused with the estimate and the keys that change it.
+        #[arg(long, value_name = "SIZE", default_value = "1GB", value_parser = parse_size)]
+        max_output_size: u64,
     },
     /// List each structure's modes: period, frequency, damping ratio, φ(h) and participation.
     Modes {
@@ -148,9 +158,10 @@ enum Command {
         /// Skip the cases' self-check (faster); the rows then say converged = unchecked.
         #[arg(long)]
         no_check: bool,
-        /// Print only errors and warnings.
-        #[arg(short, long)]
-        quiet: bool,
+        /// Largest output (results.csv and its journal, estimated from the number of cases)
+        /// the sweep may write, e.g. 5GB; a sweep above it is refused with the estimate.
+        #[arg(long, value_name = "SIZE", default_value = "1GB", value_parser = parse_size)]
+        max_output_size: u64,
     },
     /// Join the parts of a sharded sweep into one results table, checking that every case is
     /// there exactly once.
@@ -186,6 +197,11 @@ enum Command {
     },
 }
 
+/// `--max-output-size` values.
+fn parse_size(text: &str) -> Result<u64, String> {
+    pounding::budget::parse_size(text)
+}
+
 fn main() -> ExitCode {
     restore_sigpipe();
     let cli = Cli::parse();
@@ -219,25 +235,107 @@ fn load(path: Option<&Path>) -> anyhow::Result<(Scenario, String)> {
     }
 }
 
+/// Streams a run into its [`RunWriter`] and shows a progress bar on a terminal when the run
+/// takes more than a second.
+struct RunProgress<'a> {
+    writer: &'a mut RunWriter,
+    enabled: bool,
+    bar: Option<indicatif::ProgressBar>,
+    started: std::time::Instant,
+    duration: f64,
+    phases: f64,
+    ticks: u32,
+}
+
+impl RunProgress<'_> {
+    fn finish(&mut self) {
+        if let Some(b) = self.bar.take() {
+            b.finish_and_clear();
+        }
+    }
+}
+
+impl pounding::simulate::RunSink for RunProgress<'_> {
+    fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        self.writer.contact_row(t, w, forces);
+    }
+
+    fn free_row(&mut self, t: f64, w: [f64; 2]) {
+        self.writer.free_row(t, w);
+    }
+
+    fn progress(&mut self, phase: Phase, t: f64) {
+        if !self.enabled {
+            return;
+        }
+        self.ticks = self.ticks.wrapping_add(1);
+        if self.bar.is_none() {
+            if !self.ticks.is_multiple_of(64) || self.started.elapsed().as_secs_f64() < 1.0 {
+                return;
+            }
+            let bar = indicatif::ProgressBar::new(1000);
+            let style = indicatif::ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3} %, ETA {eta} {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+            bar.set_style(style);
+            bar.enable_steady_tick(std::time::Duration::from_millis(200));
+            self.bar = Some(bar);
+        }
+        let index = match phase {
+            Phase::WithContact => 0.0,
+            Phase::WithoutContact => 1.0,
+            Phase::CheckWithContact => 2.0,
+            Phase::CheckWithoutContact => 3.0,
+        };
+        if let Some(b) = &self.bar {
+            let done = (index + t / self.duration) / self.phases;
+            b.set_position((1000.0 * done).clamp(0.0, 1000.0) as u64);
+            if self.ticks.is_multiple_of(256) {
+                b.set_message(format!(
+                    "{} at t = {t:.0} s of {} s",
+                    phase.label(),
+                    self.duration
+                ));
+            }
+        }
+    }
+}
+
 fn run(cli: Cli) -> anyhow::Result<()> {
+    let quiet = cli.quiet;
     match cli.command {
         Command::Run {
             scenario,
             out,
             no_plot,
             no_check,
-            quiet,
+            max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
-            let report = simulate_checked(&sc, !no_check)?;
-            let mut written = pounding::output::write_run(&out, &sc, &report)?;
-            if !no_plot {
-                written.extend(pounding::figures::time_history_figure(
-                    &sc,
-                    &report,
-                    &out.join("history"),
-                )?);
-            }
+            pounding::budget::check_run(&sc, max_output_size)?;
+            let mut writer = RunWriter::create(&out, sc.contact.levels.len())?;
+            let mut sink = RunProgress {
+                writer: &mut writer,
+                enabled: !quiet && std::io::stderr().is_terminal(),
+                bar: None,
+                started: std::time::Instant::now(),
+                duration: sc.solver.duration,
+                phases: if no_check { 2.0 } else { 4.0 },
+                ticks: 0,
+            };
+            let result = simulate_streaming(&sc, !no_check, &mut sink);
+            sink.finish();
+            let report = result?;
+            let draw: Option<Box<pounding::output::DrawPictures>> = if no_plot {
+                None
+            } else {
+                Some(Box::new(|dir: &Path| {
+                    pounding::figures::time_history_figure(&sc, &report, &dir.join("history"))
+                        .map_err(|e| e.to_string())
+                }))
+            };
+            let written = writer.finish(&sc, &report, draw)?;
             if !quiet {
                 print_summary(&sc, &name, &report);
                 println!();
@@ -262,7 +360,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             no_plot,
             case,
             no_check,
-            quiet,
+            max_output_size,
         } => run_sweep(
             &sweep,
             out,
@@ -273,10 +371,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 case,
                 check: !no_check,
                 quiet,
+                max_output_size,
             },
         ),
         Command::Merge { out, parts } => {
             let m = pounding::sweep::results::merge(&out, &parts)?;
+            if quiet {
+                return Ok(());
+            }
             println!(
                 "merged {} part(s): {} cases ({} failed) into {}",
                 m.parts.len(),
@@ -298,6 +400,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
             let req = pounding::sweep_plots::PlotRequest { x, y, field };
             let files = pounding::sweep_plots::plot_table(&table, &req, &dir)?;
+            if quiet {
+                return Ok(());
+            }
             println!(
                 "wrote {} pictures (PNG and SVG) in {}",
                 pounding::sweep_plots::count_pictures(&files),
@@ -321,13 +426,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
-            println!(
-                "{}
+            if !quiet {
+                println!(
+                    "{}
   scenario: {name}",
-                sc.title
-            );
+                    sc.title
+                );
+            }
             let table = pounding::convergence::convergence(&sc, tolerance, |what| {
-                eprintln!("  running {what} …")
+                if !quiet {
+                    eprintln!("  running {what} …")
+                }
             });
             print_convergence(&table);
             Ok(())
@@ -359,6 +468,12 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
         sc.solver.duration,
         r.stats.steps
     );
+    if !sc.defaults_applied.is_empty() {
+        println!(
+            "  defaults used (not in the file): {}",
+            sc.defaults_applied.join(", ")
+        );
+    }
     println!();
     let [a, b] = &r.structures;
     println!("  {:<34}{:>16}{:>16}", "", a.name, b.name);
@@ -608,6 +723,7 @@ struct SweepFlags {
     case: Option<usize>,
     check: bool,
     quiet: bool,
+    max_output_size: u64,
 }
 
 fn run_sweep(
@@ -623,6 +739,7 @@ fn run_sweep(
         case,
         check,
         quiet,
+        max_output_size,
     } = flags;
     let sweep = Sweep::from_file(path)?;
     if let Some(c) = case {
@@ -648,6 +765,8 @@ fn run_sweep(
     });
     let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let shard = shard.unwrap_or(Shard::ALL);
+    let in_shard = (0..sweep.len()).filter(|&c| shard.contains(c)).count();
+    pounding::budget::check_sweep(in_shard as u64, sweep.axes.len(), max_output_size)?;
     let opts = run::RunOptions {
         out_dir: out.clone(),
         jobs,

@@ -1,9 +1,9 @@
 //! One structure reduced to its cantilever modes: frequencies, damping ratios, participation
-//! factors and mode shapes (SPEC §2.3–§2.6).
+//! factors and mode shapes (docs/model.md §2.3–§2.6).
 
 use crate::cantilever::Mode;
 
-/// How the structure's stiffness is given (SPEC §2.6). All are converted to EI.
+/// How the structure's stiffness is given (docs/model.md §2.6). All are converted to EI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stiffness {
     /// Bending stiffness EI, N·m².
@@ -14,7 +14,7 @@ pub enum Stiffness {
     Tip(f64),
 }
 
-/// Damping of a structure (SPEC §2.5): exactly one of the two forms.
+/// Damping of a structure (docs/model.md §2.5): exactly one of the two forms.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Damping {
     /// Modal damping ratios: one value for every mode, or one per mode. No air term in the forcing.
@@ -53,7 +53,7 @@ impl Structure {
         self.mass / self.length
     }
 
-    /// Bending stiffness EI, N·m², whatever form the stiffness was given in (SPEC §2.6).
+    /// Bending stiffness EI, N·m², whatever form the stiffness was given in (docs/model.md §2.6).
     pub fn bending_stiffness(&self) -> f64 {
         let m = self.mass_per_length();
         let l = self.length;

@@ -1,16 +1,22 @@
-//! Output files (SPEC §6): `summary.json`, `history.csv`, `impacts.csv`. Every file is written
-//! to a temporary file in the target directory and renamed into place, so a reader never sees a
-//! half-written file; `summary.json` is written last, so its presence means the run completed.
+//! Output files (docs/model.md §6): `summary.json`, `history.csv`, `impacts.csv`. Every file is
+//! written to a temporary file in the target directory and renamed into place, so a reader never
+//! sees a half-written file.
+//!
+//! [`RunWriter`] is how a run is written: created before the run (it removes a previous
+//! `summary.json` from the directory at once), it streams `history.csv` while the run goes
+//! (memory does not grow with the duration), and [`RunWriter::finish`] renames the history into
+//! place, writes `impacts.csv`, the pictures (or removes stale ones) and, last, `summary.json`:
+//! its presence means every file of the run is complete and from the same run.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
+use std::io::{BufReader, BufWriter, Read as _, Seek as _, Write as _};
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
 use crate::integrate::Method;
 use crate::scenario::Scenario;
-use crate::simulate::Report;
+use crate::simulate::{Report, RunSink};
 
 /// Why an output could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -98,9 +104,12 @@ struct Summary<'a> {
     report: &'a Report,
     contact_law: &'static str,
     solver: SolverInfo,
+    /// Keys the scenario left out and the defaults used for them (`key = value`).
+    defaults_applied: &'a [String],
 }
 
-/// The summary as JSON text (SPEC §6 fields plus levels, energy, impacts, warnings, solver).
+/// The summary as JSON text (docs/model.md §6 fields plus levels, energy, impacts, warnings,
+/// solver, defaults applied).
 pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, String> {
     let adaptive = scenario.solver.method == Method::Adaptive;
     let s = Summary {
@@ -125,42 +134,61 @@ pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, Stri
             energy_relative_error: report.energy.relative_error,
             energy_relative_error_no_contact: report.energy_no_contact.relative_error,
         },
+        defaults_applied: &scenario.defaults_applied,
     };
     serde_json::to_string_pretty(&s).map_err(|e| e.to_string())
 }
 
-/// `history.csv`: `t,w1,w2,force,w1_free,w2_free` and, with several levels, `force_1 … force_k`
-/// (`force` is then their sum). Displacements at the main contact height, m; forces, N.
+/// The header line of `history.csv` for `levels` contact levels (without the newline).
+pub fn history_header(levels: usize) -> String {
+    let mut out = String::from("t,w1,w2,force,w1_free,w2_free");
+    if levels > 1 {
+        for k in 1..=levels {
+            let _ = write!(out, ",force_{k}");
+        }
+    }
+    out
+}
+
+/// One row of `history.csv` (with its newline) appended to `out`.
+fn history_row(out: &mut String, t: f64, w: [f64; 2], forces: &[f64], free: [f64; 2]) {
+    let total: f64 = forces.iter().sum();
+    let _ = write!(
+        out,
+        "{},{},{},{},{},{}",
+        t, w[0], w[1], total, free[0], free[1]
+    );
+    if forces.len() > 1 {
+        for f in forces {
+            let _ = write!(out, ",{f}");
+        }
+    }
+    out.push('\n');
+}
+
+/// `history.csv` from a report's in-memory history: `t,w1,w2,force,w1_free,w2_free` and, with
+/// several levels, `force_1 … force_k` (`force` is then their sum). Displacements at the main
+/// contact height, m; forces, N. This is exactly what [`RunWriter`] streams when the history
+/// holds every sample (`History::stride == 1`, runs of at most
+/// [`crate::recorder::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
+/// envelope and only the streamed file has every sample.
 pub fn history_csv(report: &Report) -> String {
     let h = &report.with_contact.history;
     let f = &report.without_contact.history;
     let nl = h.force.len();
     let mut out = String::with_capacity(h.t.len() * (60 + 20 * nl));
-    out.push_str("t,w1,w2,force,w1_free,w2_free");
-    if nl > 1 {
-        for k in 1..=nl {
-            let _ = write!(out, ",force_{k}");
-        }
-    }
+    out.push_str(&history_header(nl));
     out.push('\n');
+    let mut forces = vec![0.0; nl];
     for i in 0..h.t.len() {
-        let total: f64 = h.force.iter().map(|c| c[i]).sum();
-        let _ = write!(
-            out,
-            "{},{},{},{},{},{}",
-            h.t[i],
-            h.w1[i],
-            h.w2[i],
-            total,
-            f.w1.get(i).copied().unwrap_or(f64::NAN),
-            f.w2.get(i).copied().unwrap_or(f64::NAN)
-        );
-        if nl > 1 {
-            for c in &h.force {
-                let _ = write!(out, ",{}", c[i]);
-            }
+        for (x, c) in forces.iter_mut().zip(&h.force) {
+            *x = c[i];
         }
-        out.push('\n');
+        let free = [
+            f.w1.get(i).copied().unwrap_or(f64::NAN),
+            f.w2.get(i).copied().unwrap_or(f64::NAN),
+        ];
+        history_row(&mut out, h.t[i], [h.w1[i], h.w2[i]], &forces, free);
     }
     out
 }
@@ -188,26 +216,281 @@ pub fn impacts_csv(report: &Report) -> String {
     out
 }
 
-/// Write `history.csv`, `impacts.csv` and, last, `summary.json` into `dir` (created if needed).
-/// Returns the paths written.
-pub fn write_run(
-    dir: &Path,
-    scenario: &Scenario,
-    report: &Report,
-) -> Result<Vec<PathBuf>, OutputError> {
-    std::fs::create_dir_all(dir).map_err(|e| OutputError::Io {
-        path: dir.to_path_buf(),
-        source: e,
-    })?;
-    let history = dir.join("history.csv");
-    write_atomic(&history, history_csv(report).as_bytes())?;
-    let impacts = dir.join("impacts.csv");
-    write_atomic(&impacts, impacts_csv(report).as_bytes())?;
-    let summary = dir.join("summary.json");
-    let json = summary_json(scenario, report).map_err(|message| OutputError::Encode {
-        path: summary.clone(),
-        message,
-    })?;
-    write_atomic(&summary, json.as_bytes())?;
-    Ok(vec![summary, history, impacts])
+/// The pictures `pounding run` draws into its directory: removed by [`RunWriter::finish`]
+/// when a run draws none, so that no stale picture sits beside a new summary.
+pub const PICTURE_FILES: [&str; 2] = ["history.png", "history.svg"];
+
+/// Draws a run's pictures into the directory it is given; returns the files written.
+pub type DrawPictures<'a> = dyn FnOnce(&Path) -> Result<Vec<PathBuf>, String> + 'a;
+
+/// Called with each file of a run once it is complete and in place.
+pub type WrittenHook = dyn FnMut(&Path);
+
+/// Writes one run into a directory: streams `history.csv` during the run (it is the run's
+/// [`RunSink`]) and writes the rest in [`RunWriter::finish`], `summary.json` last.
+///
+/// The run with contact comes first ([`crate::simulate::simulate_streaming`]); its rows are
+/// spooled in binary to an anonymous temporary file (8 bytes per number), and each row of the
+/// run without contact completes one row of the CSV. Memory holds one row.
+pub struct RunWriter {
+    dir: PathBuf,
+    levels: usize,
+    /// history.csv being written (temporary name until `finish`).
+    csv: Option<BufWriter<tempfile::NamedTempFile>>,
+    spool: Spool,
+    /// Reused text buffer of one CSV row.
+    line: String,
+    /// Reused spool record.
+    record: Vec<u8>,
+    /// Reused forces of one row.
+    forces: Vec<f64>,
+    /// The first I/O error met while streaming (reported by `finish`).
+    error: Option<OutputError>,
+    /// Called with each file once it is complete and in place, in order.
+    on_written: Option<Box<WrittenHook>>,
+    /// The directory did not exist before: a run that fails removes it again (if empty).
+    created_dir: bool,
+}
+
+impl Drop for RunWriter {
+    /// A writer dropped before [`RunWriter::finish`] completes (the run failed) deletes its
+    /// temporary files and the directory it created, if nothing else is in it.
+    fn drop(&mut self) {
+        self.csv.take();
+        self.spool = Spool::Failed;
+        if self.created_dir {
+            let _ = std::fs::remove_dir(&self.dir);
+        }
+    }
+}
+
+enum Spool {
+    Writing(BufWriter<std::fs::File>),
+    Reading(BufReader<std::fs::File>),
+    Failed,
+}
+
+impl std::fmt::Debug for RunWriter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RunWriter")
+            .field("dir", &self.dir)
+            .field("levels", &self.levels)
+            .finish_non_exhaustive()
+    }
+}
+
+impl RunWriter {
+    /// Prepare `dir` (created if needed) for a run with `levels` contact levels: remove a
+    /// `summary.json` left there by an earlier run (a summary must never describe other files
+    /// than its own run's) and open the temporary history files.
+    pub fn create(dir: &Path, levels: usize) -> Result<RunWriter, OutputError> {
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| OutputError::Io { path, source }
+        };
+        let created_dir = !dir.exists();
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let summary = dir.join("summary.json");
+        match std::fs::remove_file(&summary) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(io(&summary)(e)),
+        }
+        let history = dir.join("history.csv");
+        let tmp = temp_file(dir, ".pounding-history-", ".tmp").map_err(io(&history))?;
+        let mut csv = BufWriter::with_capacity(1 << 16, tmp);
+        writeln!(csv, "{}", history_header(levels)).map_err(io(&history))?;
+        let spool = tempfile::tempfile_in(dir).map_err(io(&history))?;
+        Ok(RunWriter {
+            dir: dir.to_path_buf(),
+            levels,
+            csv: Some(csv),
+            spool: Spool::Writing(BufWriter::with_capacity(1 << 16, spool)),
+            line: String::with_capacity(64 + 24 * levels),
+            record: Vec::with_capacity(8 * (3 + levels)),
+            forces: vec![0.0; levels],
+            error: None,
+            on_written: None,
+            created_dir,
+        })
+    }
+
+    /// Call `hook` with the path of every file once it is complete and in place, in the order
+    /// they are written (tests use it to check that `summary.json` comes last).
+    pub fn on_written(mut self, hook: impl FnMut(&Path) + 'static) -> RunWriter {
+        self.on_written = Some(Box::new(hook));
+        self
+    }
+
+    fn fail(&mut self, source: std::io::Error) {
+        if self.error.is_none() {
+            self.error = Some(OutputError::Io {
+                path: self.dir.join("history.csv"),
+                source,
+            });
+        }
+    }
+
+    /// Switch the spool from writing to reading (at the first row without contact).
+    fn rewind(&mut self) {
+        let spool = std::mem::replace(&mut self.spool, Spool::Failed);
+        self.spool = match spool {
+            Spool::Writing(w) => {
+                match w
+                    .into_inner()
+                    .map_err(|e| e.into_error())
+                    .and_then(|mut f| {
+                        f.rewind()?;
+                        Ok(f)
+                    }) {
+                    Ok(f) => Spool::Reading(BufReader::with_capacity(1 << 16, f)),
+                    Err(e) => {
+                        self.fail(e);
+                        Spool::Failed
+                    }
+                }
+            }
+            other => other,
+        };
+    }
+
+    /// The next spooled row with contact: (t, w₁, w₂, forces in `forces`), or None at the end.
+    fn next_contact_row(&mut self, forces: &mut [f64]) -> Option<(f64, [f64; 2])> {
+        let Spool::Reading(r) = &mut self.spool else {
+            return None;
+        };
+        self.record.resize(8 * (3 + self.levels), 0);
+        match r.read_exact(&mut self.record) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => return None,
+            Err(e) => {
+                self.fail(e);
+                return None;
+            }
+        }
+        let mut it = self
+            .record
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])));
+        let t = it.next().unwrap_or(f64::NAN);
+        let w = [it.next().unwrap_or(f64::NAN), it.next().unwrap_or(f64::NAN)];
+        for (f, v) in forces.iter_mut().zip(it) {
+            *f = v;
+        }
+        Some((t, w))
+    }
+
+    fn write_line(&mut self) {
+        if let Some(csv) = self.csv.as_mut()
+            && let Err(e) = csv.write_all(self.line.as_bytes())
+        {
+            self.fail(e);
+        }
+    }
+
+    /// Rename the history into place, write `impacts.csv`, then the pictures (`draw`) — or,
+    /// without `draw`, remove the pictures ([`PICTURE_FILES`]) an earlier run left — and last
+    /// `summary.json`. Returns the files written, in the order written (`summary.json` last).
+    /// A failure at any point leaves no summary.
+    pub fn finish(
+        mut self,
+        scenario: &Scenario,
+        report: &Report,
+        draw: Option<Box<DrawPictures<'_>>>,
+    ) -> Result<Vec<PathBuf>, OutputError> {
+        // rows with contact the run without contact did not match (none, normally)
+        self.rewind();
+        let mut forces = vec![0.0; self.levels];
+        while let Some((t, w)) = self.next_contact_row(&mut forces) {
+            self.line.clear();
+            history_row(&mut self.line, t, w, &forces, [f64::NAN; 2]);
+            self.write_line();
+        }
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        let mut written = Vec::new();
+        let history = self.dir.join("history.csv");
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| OutputError::Io { path, source }
+        };
+        if let Some(csv) = self.csv.take() {
+            let tmp = csv.into_inner().map_err(|e| io(&history)(e.into_error()))?;
+            tmp.as_file().sync_all().map_err(io(&history))?;
+            tmp.persist(&history).map_err(|e| io(&history)(e.error))?;
+        }
+        self.written(&history, &mut written);
+        let impacts = self.dir.join("impacts.csv");
+        write_atomic(&impacts, impacts_csv(report).as_bytes())?;
+        self.written(&impacts, &mut written);
+        match draw {
+            Some(draw) => {
+                let files = draw(&self.dir).map_err(|message| OutputError::Encode {
+                    path: self.dir.join(PICTURE_FILES[0]),
+                    message: format!(
+                        "{message} (history.csv and impacts.csv are written; summary.json is not)"
+                    ),
+                })?;
+                for f in files {
+                    self.written(&f, &mut written);
+                }
+            }
+            None => {
+                for name in PICTURE_FILES {
+                    let p = self.dir.join(name);
+                    match std::fs::remove_file(&p) {
+                        Ok(()) => {}
+                        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                        Err(e) => return Err(io(&p)(e)),
+                    }
+                }
+            }
+        }
+        let summary = self.dir.join("summary.json");
+        let json = summary_json(scenario, report).map_err(|message| OutputError::Encode {
+            path: summary.clone(),
+            message,
+        })?;
+        write_atomic(&summary, json.as_bytes())?;
+        self.written(&summary, &mut written);
+        self.created_dir = false;
+        Ok(written)
+    }
+
+    fn written(&mut self, path: &Path, list: &mut Vec<PathBuf>) {
+        if let Some(h) = self.on_written.as_mut() {
+            h(path);
+        }
+        list.push(path.to_path_buf());
+    }
+}
+
+impl RunSink for RunWriter {
+    fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        let Spool::Writing(out) = &mut self.spool else {
+            return;
+        };
+        self.record.clear();
+        for v in [t, w[0], w[1]].iter().chain(forces) {
+            self.record.extend_from_slice(&v.to_le_bytes());
+        }
+        if let Err(e) = out.write_all(&self.record) {
+            self.spool = Spool::Failed;
+            self.fail(e);
+        }
+    }
+
+    fn free_row(&mut self, _t: f64, w: [f64; 2]) {
+        if matches!(self.spool, Spool::Writing(_)) {
+            self.rewind();
+        }
+        let mut forces = std::mem::take(&mut self.forces);
+        if let Some((t, wc)) = self.next_contact_row(&mut forces) {
+            self.line.clear();
+            history_row(&mut self.line, t, wc, &forces, w);
+            self.write_line();
+        }
+        self.forces = forces;
+    }
 }

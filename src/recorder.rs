@@ -1,6 +1,11 @@
 //! What a run keeps: peaks over every integration step, impact events, a history sampled at the
 //! output interval, and the energy balance. The recorder is an [`Observer`]: the integrators
 //! do not know it exists.
+//!
+//! Memory does not grow with the duration: every history sample goes, as it is taken, to an
+//! optional [`HistorySink`] (the CSV writer streams it to disk), while the in-memory
+//! [`History`] (for figures and the library) keeps at most [`MAX_KEPT_SAMPLES`] rows — every
+//! sample of an ordinary run, a min/max envelope of a long one ([`History::stride`]).
 
 use serde::Serialize;
 
@@ -69,9 +74,31 @@ pub struct EnergyBalance {
     pub relative_error: f64,
 }
 
+/// Most history rows a [`Recorder`] keeps in memory. Up to this many samples (a 200 s run at
+/// the default 10 ms interval) the [`History`] holds every sample; beyond, an envelope.
+pub const MAX_KEPT_SAMPLES: usize = 20_000;
+
+/// Receives every history sample of a run as the recorder takes it, at full resolution, in
+/// time order: `t` (s), `w` = (w₁, w₂) at the main contact height (m), `forces` one per
+/// contact level (N; empty without contact levels in the system). What a long run writes to
+/// disk goes through here; the in-memory [`History`] is bounded.
+pub trait HistorySink {
+    /// One sample.
+    fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]);
+}
+
 /// Sampled time history: displacements at the main contact height and every level's force.
+///
+/// With `stride == 1` (every run of at most [`MAX_KEPT_SAMPLES`] samples) row i is the sample
+/// at `t = i·output_interval`, exactly as written to history.csv. With `stride > 1` (a longer
+/// run) it is an envelope for drawing: each group of `stride` consecutive samples is kept as
+/// two rows, the columns' minima at the group's first time and their maxima at its last, so
+/// that every extreme of the sampled series (e.g. the largest sampled force) is kept while the
+/// length stays below [`MAX_KEPT_SAMPLES`].
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct History {
+    /// Samples per envelope group: 1 = every sample kept (0 only in an empty default).
+    pub stride: usize,
     /// Sample times, s (multiples of the output interval).
     pub t: Vec<f64>,
     /// w₁(h) at the main contact height, m.
@@ -80,6 +107,59 @@ pub struct History {
     pub w2: Vec<f64>,
     /// Contact force of each level (outer index: level), N.
     pub force: Vec<Vec<f64>>,
+}
+
+/// A group of samples being folded into the envelope (stride > 1).
+#[derive(Debug, Clone)]
+struct Envelope {
+    count: usize,
+    t_first: f64,
+    t_last: f64,
+    /// Minima then maxima of w₁, w₂, force₁ … force_k.
+    min: Vec<f64>,
+    max: Vec<f64>,
+}
+
+impl Envelope {
+    fn new(columns: usize) -> Envelope {
+        Envelope {
+            count: 0,
+            t_first: 0.0,
+            t_last: 0.0,
+            min: vec![f64::INFINITY; columns],
+            max: vec![f64::NEG_INFINITY; columns],
+        }
+    }
+
+    fn add(&mut self, t: f64, values: impl Iterator<Item = f64>) {
+        if self.count == 0 {
+            self.t_first = t;
+        }
+        self.t_last = t;
+        self.count += 1;
+        for ((lo, hi), v) in self.min.iter_mut().zip(self.max.iter_mut()).zip(values) {
+            *lo = lo.min(v);
+            *hi = hi.max(v);
+        }
+    }
+
+    /// Append the group's two rows to `h` and start a new group.
+    fn flush(&mut self, h: &mut History) {
+        if self.count == 0 {
+            return;
+        }
+        for (t, col) in [(self.t_first, &self.min), (self.t_last, &self.max)] {
+            h.t.push(t);
+            h.w1.push(col[0]);
+            h.w2.push(col[1]);
+            for (f, v) in h.force.iter_mut().zip(&col[2..]) {
+                f.push(*v);
+            }
+        }
+        self.count = 0;
+        self.min.fill(f64::INFINITY);
+        self.max.fill(f64::NEG_INFINITY);
+    }
 }
 
 /// Everything one integration produced.
@@ -110,9 +190,9 @@ struct Open {
     approach_speed: f64,
 }
 
-/// The recorder. Build with [`Recorder::new`], pass to an integrator, then [`Recorder::finish`].
-#[derive(Debug)]
-pub struct Recorder {
+/// The recorder. Build with [`Recorder::new`] (and [`Recorder::with_sink`] to stream the
+/// history), pass to an integrator, then [`Recorder::finish`].
+pub struct Recorder<'s> {
     /// Index of the main (highest) tracked height. Heights tracked: the contact levels' (for the
     /// no-contact run the same heights are passed in, so that both runs report the same places).
     main: usize,
@@ -130,6 +210,12 @@ pub struct Recorder {
     interval: f64,
     next_sample: usize,
     history: History,
+    /// The envelope group being filled (stride > 1).
+    envelope: Envelope,
+    /// Where every sample goes as it is taken.
+    sink: Option<&'s mut dyn HistorySink>,
+    /// Forces of the levels at the sample being taken (scratch, no allocation per sample).
+    row_forces: Vec<f64>,
     last_impulse: Vec<f64>,
     prev_force: Vec<f64>,
     modal_initial: f64,
@@ -151,10 +237,25 @@ struct Sample {
     wdot: [f64; 2],
 }
 
-impl Recorder {
+impl std::fmt::Debug for Recorder<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Recorder")
+            .field("steps", &self.steps)
+            .field("kept_samples", &self.history.t.len())
+            .field("streams", &self.sink.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+/// Samples of a run of `duration` s at `interval` s: `⌊duration/interval⌋ + 1` (t = 0 included).
+pub fn sample_count(interval: f64, duration: f64) -> u64 {
+    (duration / interval + 1e-9).floor() as u64 + 1
+}
+
+impl<'s> Recorder<'s> {
     /// A recorder tracking displacements at `heights` (m; the main one is the highest) for
     /// `system`, sampling the history every `interval` s over `duration` s.
-    pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder {
+    pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder<'s> {
         let main = heights
             .iter()
             .enumerate()
@@ -162,7 +263,18 @@ impl Recorder {
         let [s1, s2] = &system.structures;
         let phi1 = heights.iter().map(|&h| s1.shapes_at(h)).collect();
         let phi2 = heights.iter().map(|&h| s2.shapes_at(h)).collect();
-        let samples = (duration / interval + 1e-9).floor() as usize + 1;
+        let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
+        let stride = if samples <= MAX_KEPT_SAMPLES {
+            1
+        } else {
+            // two rows per group
+            samples.div_ceil(MAX_KEPT_SAMPLES / 2)
+        };
+        let kept = if stride == 1 {
+            samples
+        } else {
+            2 * samples.div_ceil(stride)
+        };
         let nl = system.levels.len();
         Recorder {
             main,
@@ -190,11 +302,15 @@ impl Recorder {
             interval,
             next_sample: 0,
             history: History {
-                t: Vec::with_capacity(samples),
-                w1: Vec::with_capacity(samples),
-                w2: Vec::with_capacity(samples),
-                force: vec![Vec::with_capacity(samples); nl],
+                stride,
+                t: Vec::with_capacity(kept),
+                w1: Vec::with_capacity(kept),
+                w2: Vec::with_capacity(kept),
+                force: vec![Vec::with_capacity(kept); nl],
             },
+            envelope: Envelope::new(2 + nl),
+            sink: None,
+            row_forces: vec![0.0; nl],
             last_impulse: vec![0.0; nl],
             prev_force: vec![0.0; nl],
             modal_initial: 0.0,
@@ -207,8 +323,17 @@ impl Recorder {
         }
     }
 
+    /// Send every history sample to `sink` as it is taken (the in-memory history is kept as
+    /// well, bounded: see [`History`]).
+    pub fn with_sink(mut self, sink: &'s mut dyn HistorySink) -> Recorder<'s> {
+        self.sink = Some(sink);
+        self
+    }
+
     /// Close open contact episodes and return the record.
     pub fn finish(mut self) -> RunRecord {
+        let mut envelope = std::mem::replace(&mut self.envelope, Envelope::new(0));
+        envelope.flush(&mut self.history);
         for k in 0..self.open.len() {
             if let Some(o) = self.open[k].take() {
                 self.close(k, o, self.last_t, self.last_impulse[k]);
@@ -263,6 +388,30 @@ impl Recorder {
         l.contact_time += end - o.start;
     }
 
+    /// One history sample (forces in `row_forces`): to the sink, and into the bounded
+    /// in-memory history.
+    fn keep(&mut self, t: f64, w: [f64; 2]) {
+        if let Some(sink) = self.sink.as_deref_mut() {
+            sink.row(t, w, &self.row_forces);
+        }
+        let h = &mut self.history;
+        if h.stride <= 1 {
+            h.t.push(t);
+            h.w1.push(w[0]);
+            h.w2.push(w[1]);
+            for (c, f) in h.force.iter_mut().zip(&self.row_forces) {
+                c.push(*f);
+            }
+        } else {
+            let forces = &self.row_forces;
+            self.envelope
+                .add(t, w.into_iter().chain(forces.iter().copied()));
+            if self.envelope.count == h.stride {
+                self.envelope.flush(h);
+            }
+        }
+    }
+
     /// History samples at multiples of the interval in (previous step, this step]: cubic
     /// Hermite in the displacements (4th-order accurate like the step), linear in the forces.
     /// Returns whether a sample was taken.
@@ -273,8 +422,7 @@ impl Recorder {
             if tau > s.t + 1e-9 * self.interval {
                 break;
             }
-            self.history.t.push(tau);
-            match self.prev {
+            let w = match self.prev {
                 Some(p) if s.t > p.t => {
                     let h = s.t - p.t;
                     let th = ((tau - p.t) / h).clamp(0.0, 1.0);
@@ -286,21 +434,20 @@ impl Recorder {
                     let w = |i: usize| {
                         h00 * p.w[i] + h10 * h * p.wdot[i] + h01 * now.w[i] + h11 * h * now.wdot[i]
                     };
-                    self.history.w1.push(w(0));
-                    self.history.w2.push(w(1));
                     for (k, st) in s.levels.iter().enumerate() {
-                        let f = self.prev_force[k] + th * (st.force - self.prev_force[k]);
-                        self.history.force[k].push(f);
+                        self.row_forces[k] =
+                            self.prev_force[k] + th * (st.force - self.prev_force[k]);
                     }
+                    [w(0), w(1)]
                 }
                 _ => {
-                    self.history.w1.push(now.w[0]);
-                    self.history.w2.push(now.w[1]);
                     for (k, st) in s.levels.iter().enumerate() {
-                        self.history.force[k].push(st.force);
+                        self.row_forces[k] = st.force;
                     }
+                    now.w
                 }
-            }
+            };
+            self.keep(tau, w);
             self.next_sample += 1;
         }
         for (k, st) in s.levels.iter().enumerate() {
@@ -323,7 +470,7 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
     (w, wd)
 }
 
-impl Observer for Recorder {
+impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
         let (n1, q) = (system.n1(), s.q);
         // displacements and velocities at every tracked height
@@ -471,7 +618,7 @@ impl Observer for Recorder {
             *a = *b;
         }
         let sampled = self.sample(s, &main_sample);
-        // energy (SPEC §2.7; balance: input = Δmodal + damping + work into contacts): at the
+        // energy (docs/model.md §2.7; balance: input = Δmodal + damping + work into contacts): at the
         // start, at every observation that gave a history sample (for the peak energy, the
         // balance's scale) and at the end (the balance itself is formed in `finish`)
         if sampled || self.prev.is_none() || s.t >= self.end * (1.0 - 1e-12) {
@@ -593,6 +740,78 @@ mod tests {
             rec.observe(sys, &view);
         }
         rec.finish().impacts
+    }
+
+    /// Memory does not grow with the duration: over a run of 2·10⁶ samples (2000 s at 1 ms)
+    /// the sink receives every sample, in order, while the recorder keeps at most
+    /// [`MAX_KEPT_SAMPLES`] rows; the envelope keeps the extremes of the sampled series (its
+    /// maximum and minimum of w₁ equal those of the streamed samples) and its time range.
+    #[test]
+    fn long_run_keeps_a_bounded_history() {
+        struct Count {
+            n: u64,
+            last_t: f64,
+            max_w1: f64,
+            min_w1: f64,
+        }
+        impl HistorySink for Count {
+            fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+                assert!(t > self.last_t || self.n == 0);
+                assert_eq!(forces.len(), 1);
+                self.n += 1;
+                self.last_t = t;
+                self.max_w1 = self.max_w1.max(w[0]);
+                self.min_w1 = self.min_w1.min(w[0]);
+            }
+        }
+        let base = system(ContactLaw::Hertz { stiffness: 2.8e10 });
+        let sys = System::new(
+            base.structures.clone(),
+            &ContactLaw::Hertz { stiffness: 2.8e10 },
+            &[ContactLevel {
+                height: 10.0,
+                gap: 0.01,
+            }],
+            GroundMotion::Harmonic(crate::ground_motion::Harmonic::from_pga_g(0.01, 0.5)),
+        );
+        let (interval, duration) = (1e-3, 2000.0);
+        let mut sink = Count {
+            n: 0,
+            last_t: 0.0,
+            max_w1: f64::NEG_INFINITY,
+            min_w1: f64::INFINITY,
+        };
+        let settings = crate::integrate::SolverSettings::new(
+            crate::integrate::Method::ExactModal,
+            0.01,
+            duration,
+        );
+        let mut rec = Recorder::new(&sys, &[10.0], interval, duration).with_sink(&mut sink);
+        crate::integrate::integrate(
+            &sys,
+            &settings,
+            &crate::integrate::InitialState::default(),
+            &mut rec,
+        )
+        .unwrap();
+        let run = rec.finish();
+        assert_eq!(sink.n, sample_count(interval, duration));
+        assert_eq!(sink.n, 2_000_001);
+        let h = &run.history;
+        assert!(h.stride > 1);
+        assert!(h.t.len() <= MAX_KEPT_SAMPLES, "{} rows kept", h.t.len());
+        assert_eq!(h.t.len(), h.w1.len());
+        assert_eq!(h.force[0].len(), h.t.len());
+        let max = h.w1.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let min = h.w1.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!(max, sink.max_w1);
+        assert_eq!(min, sink.min_w1);
+        assert!(sink.max_w1 > 0.0, "the ground moved the structure");
+        assert_eq!(h.t[0], 0.0);
+        assert_eq!(*h.t.last().unwrap(), sink.last_t);
+        // a run of at most MAX_KEPT_SAMPLES samples keeps every one
+        let short = Recorder::new(&sys, &[10.0], 0.01, 20.0);
+        assert_eq!(short.history.stride, 1);
     }
 
     /// A force law's round-off impulse over an interval where δ stays ≤ 0 (a step that ends on a

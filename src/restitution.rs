@@ -56,7 +56,7 @@ struct Tip {
 
 /// The recorder (impact events, energy balance) and the tip probe, fed by one integration.
 struct Probe {
-    recorder: Recorder,
+    recorder: Recorder<'static>,
     tip: Tip,
 }
 

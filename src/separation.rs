@@ -1,4 +1,4 @@
-//! Required separation between the structures (SPEC §3, paper §3).
+//! Required separation between the structures (docs/model.md §3, paper §3).
 //!
 //! The design rules combine the two structures' peak displacements at the contact height
 //! without pounding; the time-history value is exact for the given motion.
@@ -12,7 +12,7 @@ pub enum Rule {
     Abs,
     /// Square root of the sum of squares `√(w₁² + w₂²)`.
     Srss,
-    /// Double difference combination with the CQC correlation (SPEC §3).
+    /// Double difference combination with the CQC correlation (docs/model.md §3).
     Ddc,
     /// DDC as printed in the seed paper (eq. 22–23: factor 2 in ρ, no 2 on the cross term).
     /// Kept only to reproduce the paper; not a correct rule.
@@ -144,7 +144,7 @@ mod tests {
         assert!((p.separation(Rule::Ddc) - ddc).abs() < 1e-12);
         let ddc_paper = (25.0 - rho / 4.0 * 12.0).sqrt();
         assert!((p.separation(Rule::DdcPaper) - ddc_paper).abs() < 1e-12);
-        // SRSS ≥ ABS/√2 always (SPEC §4)
+        // SRSS ≥ ABS/√2 always (docs/model.md §4)
         assert!(p.separation(Rule::Srss) >= p.separation(Rule::Abs) / 2f64.sqrt());
     }
 

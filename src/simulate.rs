@@ -6,13 +6,22 @@ use serde::Serialize;
 
 use crate::accuracy::{AccuracyCheck, limited_tightening, tightened};
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
-use crate::recorder::{EnergyBalance, Impact, Recorder, RunRecord};
+use crate::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
 use crate::scenario::Scenario;
 use crate::separation::{PeakPair, Separations};
 use crate::system::System;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
 pub const ENERGY_WARNING_THRESHOLD: f64 = 1e-3;
+
+/// Peak drift (displacement at the contact height over that height) above which a run warns
+/// that a linear model no longer means much: 5 %, several times the elastic range of
+/// buildings (≈ 0.5–2 %).
+pub const PLAUSIBLE_DRIFT: f64 = 0.05;
+
+/// Penetration above which a run warns, m ("a few centimetres"), besides any penetration
+/// larger than the gap.
+pub const PLAUSIBLE_PENETRATION: f64 = 0.05;
 
 /// Per-structure results.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -104,6 +113,75 @@ pub struct Report {
     pub without_contact: RunRecord,
 }
 
+/// The integrations a checked run does, in this order: the run with contact, the run without,
+/// then (with the self-check) the same two at the tightened settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// The run with contact.
+    WithContact,
+    /// The run without contact.
+    WithoutContact,
+    /// The self-check's run with contact.
+    CheckWithContact,
+    /// The self-check's run without contact.
+    CheckWithoutContact,
+}
+
+impl Phase {
+    /// A short description for progress displays.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phase::WithContact => "with pounding",
+            Phase::WithoutContact => "without pounding",
+            Phase::CheckWithContact => "self-check, with pounding",
+            Phase::CheckWithoutContact => "self-check, without pounding",
+        }
+    }
+}
+
+/// What a run streams out while it goes, so that nothing of it needs to be held in memory:
+/// every history sample of the two runs of the result (not of the self-check), and progress.
+/// All methods default to doing nothing.
+pub trait RunSink {
+    /// A history sample of the run with contact: `t` (s), (w₁, w₂) at the main contact height
+    /// (m), one force per level (N). Every one of them comes before any sample of the run
+    /// without contact.
+    fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        let _ = (t, w, forces);
+    }
+    /// A history sample of the run without contact (same times as the run with contact).
+    fn free_row(&mut self, t: f64, w: [f64; 2]) {
+        let _ = (t, w);
+    }
+    /// `phase` has reached simulated time `t` (s); called at every history sample.
+    fn progress(&mut self, phase: Phase, t: f64) {
+        let _ = (phase, t);
+    }
+}
+
+/// A [`RunSink`] that ignores everything.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoSink;
+
+impl RunSink for NoSink {}
+
+/// Adapts a [`RunSink`] to the recorder's [`HistorySink`] for one phase.
+struct PhaseSink<'a> {
+    sink: &'a mut dyn RunSink,
+    phase: Phase,
+}
+
+impl HistorySink for PhaseSink<'_> {
+    fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        match self.phase {
+            Phase::WithContact => self.sink.contact_row(t, w, forces),
+            Phase::WithoutContact => self.sink.free_row(t, w),
+            Phase::CheckWithContact | Phase::CheckWithoutContact => {}
+        }
+        self.sink.progress(self.phase, t);
+    }
+}
+
 /// Integrate `system` and record displacements at `heights` (m), sampling every `interval` s.
 pub fn run_system(
     system: &System,
@@ -117,6 +195,22 @@ pub fn run_system(
     Ok((rec.finish(), stats))
 }
 
+/// [`run_system`], streaming every history sample to `sink` as `phase`.
+fn run_phase(
+    system: &System,
+    settings: &SolverSettings,
+    heights: &[f64],
+    interval: f64,
+    sink: &mut dyn RunSink,
+    phase: Phase,
+) -> Result<(RunRecord, Stats), SolveError> {
+    let mut adapter = PhaseSink { sink, phase };
+    let mut rec =
+        Recorder::new(system, heights, interval, settings.duration).with_sink(&mut adapter);
+    let stats = integrate(system, settings, &InitialState::default(), &mut rec)?;
+    Ok((rec.finish(), stats))
+}
+
 fn change_percent(with: f64, without: f64) -> f64 {
     if without > 0.0 {
         100.0 * (with - without) / without
@@ -125,7 +219,7 @@ fn change_percent(with: f64, without: f64) -> f64 {
     }
 }
 
-/// The separation rules (SPEC §3) from the run without contact.
+/// The separation rules (docs/model.md §3) from the run without contact.
 fn separations(system: &System, without: &RunRecord) -> Separations {
     let [m1, m2] = &system.structures;
     let peaks = PeakPair {
@@ -176,24 +270,27 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
 /// Run a scenario with and without contact and compare. The result is not self-checked
 /// (`accuracy.checked` is false); [`simulate_checked`] checks it.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
+    simulate_phases(scenario, &mut NoSink, false)
+}
+
+/// The two runs of [`simulate`], streamed to `sink` as the phases of the result or (`check`)
+/// of the self-check.
+fn simulate_phases(
+    scenario: &Scenario,
+    sink: &mut dyn RunSink,
+    check: bool,
+) -> Result<Report, SolveError> {
     let system = scenario.system();
     let free = system.without_contact();
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
-    let init = InitialState::default();
-    let (with, stats) = run_system(
-        &system,
-        &scenario.solver,
-        &init,
-        &heights,
-        scenario.output_interval,
-    )?;
-    let (without, _) = run_system(
-        &free,
-        &scenario.solver,
-        &init,
-        &heights,
-        scenario.output_interval,
-    )?;
+    let (p1, p2) = if check {
+        (Phase::CheckWithContact, Phase::CheckWithoutContact)
+    } else {
+        (Phase::WithContact, Phase::WithoutContact)
+    };
+    let interval = scenario.output_interval;
+    let (with, stats) = run_phase(&system, &scenario.solver, &heights, interval, sink, p1)?;
+    let (without, _) = run_phase(&free, &scenario.solver, &heights, interval, sink, p2)?;
 
     let structures = [0, 1].map(|i| {
         let s = &scenario.structures[i];
@@ -235,7 +332,38 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
     };
     let separation = separations(&system, &without);
 
-    let mut warnings = Vec::new();
+    let mut warnings = scenario.warnings.clone();
+    let h = scenario.main_height();
+    for s in &structures {
+        let peak = s.peak_displacement.max(s.peak_displacement_no_contact);
+        if peak > PLAUSIBLE_DRIFT * h {
+            warnings.push(format!(
+                "{}: peak displacement {peak:.3} m at h = {h} m is a drift of {:.1} %, beyond {} %: \
+                 a building would long have yielded (elastic drifts are ≈ 0.5–2 %), so a linear \
+                 elastic model means little here; check the PGA and the stiffness",
+                s.name,
+                100.0 * peak / h,
+                100.0 * PLAUSIBLE_DRIFT
+            ));
+        }
+    }
+    for l in &levels {
+        let p = l.max_penetration;
+        if p > PLAUSIBLE_PENETRATION || (l.gap > 0.0 && p > l.gap) {
+            let what = if l.gap > 0.0 && p > l.gap {
+                format!("larger than the gap ({:.1} mm)", l.gap * 1e3)
+            } else {
+                format!("more than {:.0} cm", PLAUSIBLE_PENETRATION * 1e2)
+            };
+            warnings.push(format!(
+                "contact at h = {} m: the structures overlap by up to {:.1} mm, {what}: the \
+                 contact stiffness is too low for a contact between buildings (a real collision \
+                 crushes millimetres); check `contact.stiffness`",
+                l.height,
+                p * 1e3
+            ));
+        }
+    }
     if scenario.solver.method == crate::integrate::Method::Rk4 && stats.max_contact_omega_dt > 0.5 {
         warnings.push(format!(
             "the contact is stiff for this step: ω_c·dt reached {:.2} (accurate below ≈0.5, unstable above ≈2.8); \
@@ -275,13 +403,25 @@ pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
 /// the setting to tighten; so does a run whose check run fails (the result itself is still
 /// returned). Without `check`, exactly [`simulate`].
 pub fn simulate_checked(scenario: &Scenario, check: bool) -> Result<Report, SolveError> {
-    let mut report = simulate(scenario)?;
+    simulate_streaming(scenario, check, &mut NoSink)
+}
+
+/// [`simulate_checked`], streaming the history of both runs and the progress of every run to
+/// `sink` as they are computed (the self-check's runs report progress only). This is how a
+/// long run is written without holding its history in memory (see
+/// [`crate::output::RunWriter`]).
+pub fn simulate_streaming(
+    scenario: &Scenario,
+    check: bool,
+    sink: &mut dyn RunSink,
+) -> Result<Report, SolveError> {
+    let mut report = simulate_phases(scenario, sink, false)?;
     if !check {
         return Ok(report);
     }
     let mut tight = scenario.clone();
     tight.solver = tightened(&scenario.solver);
-    report.accuracy = match simulate(&tight) {
+    report.accuracy = match simulate_phases(&tight, sink, true) {
         Ok(t) => AccuracyCheck::compare(&report, &t, &scenario.solver),
         Err(e) => AccuracyCheck::failed(&scenario.solver, &e),
     };

@@ -1,12 +1,12 @@
 //! The two structures, their contact levels and the ground motion assembled into one system of
-//! modal equations, stored as flat arrays for the integrators' hot loops (SPEC §2.4).
+//! modal equations, stored as flat arrays for the integrators' hot loops (docs/model.md §2.4).
 //!
 //! The modal coordinates of both structures are concatenated: indices `0..n₁` are structure 1,
 //! `n₁..n₁+n₂` structure 2. For contact level k the *coupling* row is `c_kj = s_i φ_ij(h_k)` with
 //! s₁ = −1, s₂ = +1, so that
 //!
 //! - penetration `δ_k = w₁(h_k) − w₂(h_k) − d_k = −Σ_j c_kj η_j − d_k`,
-//! - generalised contact load on mode j: `c_kj F_k` (action and reaction, SPEC §2.4),
+//! - generalised contact load on mode j: `c_kj F_k` (action and reaction, docs/model.md §2.4),
 //!
 //! which makes the contact force exactly `−∂U/∂η` of the contact potential U(δ): the discrete
 //! system conserves energy with an elastic law.
@@ -103,7 +103,7 @@ impl System {
             for j in 0..s.omega.len() {
                 omega.push(s.omega[j]);
                 damp.push(2.0 * s.zeta[j] * s.omega[j]);
-                // SPEC §2.4: −γ_n (m a_g + c_a v_g)
+                // docs/model.md §2.4: −γ_n (m a_g + c_a v_g)
                 load_a.push(-s.gamma[j] * s.mass_per_length);
                 load_v.push(-s.gamma[j] * s.air_damping);
             }
@@ -306,7 +306,7 @@ impl System {
         self.impulsive
     }
 
-    /// Stereomechanical impacts (SPEC §2.7, issue 3): at every level with an impulsive law where
+    /// Stereomechanical impacts (docs/model.md §2.7, issue 3): at every level with an impulsive law where
     /// the structures touch or overlap (δ ≥ −1e-12 m) and still approach (δ̇ > 0), apply the impulse
     /// `P = (1 + e) m* δ̇` as the velocity jump `v += c_k P`, which turns δ̇ into −e δ̇. Adds P to
     /// `impulse[k]` and the kinetic energy lost, `½(1 − e²) m* δ̇²`, to `dissipated`. Returns

@@ -1,4 +1,4 @@
-//! The binary end to end: outputs per SPEC §6, exit codes, and no partial output on failure.
+//! The binary end to end: outputs per docs/model.md §6, exit codes, and no partial output on failure.
 
 use std::path::Path;
 use std::process::{Command, Output};

@@ -86,8 +86,8 @@ fn stiff_case_at_default_tolerance_is_within_half_a_percent_of_converged() {
 }
 
 /// Against an independent implementation: issue 9's converged solution of this case (54
-/// impacts, peak force 5.4461e8 N) was computed with g = 9.81 m/s² (SPEC says 9.80665), i.e.
-/// PGA = 0.5 × 9.81 / 9.80665 g in SPEC's units. At the default tolerance the peak force is
+/// impacts, peak force 5.4461e8 N) was computed with g = 9.81 m/s² (docs/model.md says 9.80665), i.e.
+/// PGA = 0.5 × 9.81 / 9.80665 g in the program's units. At the default tolerance the peak force is
 /// within 0.5 % of it, and the converged run within 1e-4 (its five printed digits).
 #[test]
 fn stiff_case_matches_the_independent_converged_peak_force() {

@@ -220,7 +220,7 @@ fn record_ramp_matches_closed_form() {
     }
 }
 
-/// The paper's case T1/T2 = 0.7 (SPEC §4 interpretation) over `duration` with `modes` modes.
+/// The paper's case T1/T2 = 0.7 (docs/model.md §4 interpretation) over `duration` with `modes` modes.
 fn paper_system(modes: usize) -> System {
     let s1 = structure(10.0, 2.273e6, 0.4203, modes, Damping::Modal(vec![0.01]));
     let s2 = structure(

@@ -35,7 +35,7 @@ impl<F: FnMut(&System, &StepView)> Observer for Watch<F> {
 }
 
 /// Complex steady-state amplitude W of w(h) under a_g = −P sin Ωt, so that w(t) = Im[W e^{iΩt}]:
-/// the load −γ(m a_g + c_a v_g) = Im[F e^{iΩt}] with F_n = γ_n P (m − i c_a/Ω) (SPEC §2.4), and
+/// the load −γ(m a_g + c_a v_g) = Im[F e^{iΩt}] with F_n = γ_n P (m − i c_a/Ω) (docs/model.md §2.4), and
 /// W = Σ φ_n(h) F_n/(ω_n² − Ω² + 2iζ_nω_nΩ).
 fn steady_amplitude(m: &ModalModel, h: f64, pga: f64, big_omega: f64) -> (f64, f64) {
     let (mut re, mut im) = (0.0, 0.0);
@@ -337,7 +337,7 @@ fn mirrored_problem_gives_same_peaks() {
 }
 
 /// Pounding changes the response at all, and in the direction the paper reports for its
-/// T1/T2 = 0.7 case (SPEC §4): the stiffer structure 1 is amplified, structure 2 reduced.
+/// T1/T2 = 0.7 case (docs/model.md §4): the stiffer structure 1 is amplified, structure 2 reduced.
 #[test]
 fn paper_case_c_qualitative() {
     let text = std::fs::read_to_string(concat!(

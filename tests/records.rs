@@ -11,7 +11,7 @@ use pounding::scenario::Scenario;
 use pounding::simulate::simulate;
 use pounding::system::System;
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/ground-motions");
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/records");
 
 fn with_ground(ground: &str) -> String {
     let base = include_str!("../examples/paper-c.toml");
@@ -151,7 +151,7 @@ fn constant_ground_acceleration_step_response() {
     assert!(obs.1 < 1e-9 * stat.abs(), "error {:e} of {stat}", obs.1);
 }
 
-/// After the record ends the ground is still (SPEC §2.8): no more input work, free decay.
+/// After the record ends the ground is still (docs/model.md §2.8): no more input work, free decay.
 #[test]
 fn no_input_after_the_record_ends() {
     let sc = Scenario::from_file(
@@ -176,9 +176,9 @@ fn no_input_after_the_record_ends() {
     assert!(at(end) > 0.0);
 }
 
-/// Every shared record drives a full run (with and without pounding) without trouble.
+/// Every bundled record (tests/data/records) drives a full run (with and without pounding) without trouble.
 #[test]
-fn every_shared_record_runs() {
+fn every_bundled_record_runs() {
     for f in [
         "RSN753_LOMAP_CLS000.AT2",
         "RSN753_LOMAP_CLS090.AT2",

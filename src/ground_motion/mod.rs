@@ -1,5 +1,5 @@
 //! Ground motion: the acceleration a_g(t) and velocity v_g(t) that both structures' bases share
-//! (SPEC §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file.
+//! (docs/model.md §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file.
 
 pub mod record;
 
@@ -8,7 +8,7 @@ pub use record::{AccelUnits, Record, RecordError, RecordFormat, RecordOptions, S
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-/// Harmonic ground displacement `y = A sin(ω_g t)` with `A = PGA/ω_g²` (SPEC §2.8, paper eq. 3).
+/// Harmonic ground displacement `y = A sin(ω_g t)` with `A = PGA/ω_g²` (docs/model.md §2.8, paper eq. 3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Harmonic {
     /// Peak ground acceleration, m/s².

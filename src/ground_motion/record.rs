@@ -912,14 +912,13 @@ mod tests {
     use std::path::PathBuf;
     use std::sync::atomic::{AtomicUsize, Ordering};
 
-    /// Directory of the real PEER records. In the main crate (at /work/main, data at
-    /// /work/shared) this is `concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/ground-motions")`.
-    const GROUND_MOTIONS_DIR: &str =
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/ground-motions");
+    /// Directory of the real PEER records bundled with the tests (`tests/data/records/`, with
+    /// their source in its README).
+    const GROUND_MOTIONS_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/records");
 
     const G: f64 = STANDARD_GRAVITY;
 
-    /// (file, NPTS, DT in s, PGA in g) from the README of the ground-motion directory.
+    /// (file, NPTS, DT in s, PGA in g) from `tests/data/records/README.md` (the data set's own description).
     const README_FACTS: [(&str, usize, f64, f64); 5] = [
         ("RSN753_LOMAP_CLS000.AT2", 7995, 0.005, 0.645),
         ("RSN786_LOMAP_PAE055.AT2", 11999, 0.005, 0.215),

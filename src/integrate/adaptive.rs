@@ -561,7 +561,7 @@ pub(crate) struct StepTrace {
 }
 
 /// Per-coordinate absolute tolerances in modal units: `atol·√M_i/2` for η of structure i (so
-/// that `atol` is metres at its top, |φ(L)| = 2/√M, SPEC §2.3), times its ω₁ for η̇.
+/// that `atol` is metres at its top, |φ(L)| = 2/√M, docs/model.md §2.3), times its ω₁ for η̇.
 fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
     let n = sys.len();
     let (mut aq, mut av) = (vec![0.0; n], vec![0.0; n]);

@@ -1,5 +1,5 @@
 //! `exact-modal`: every mode's linear dynamics and the ground load propagated exactly over each
-//! step (SPEC §2.4; see [`super::linear`]), the contact load `Σ_k c_kj F_k(t)` treated as an
+//! step (docs/model.md §2.4; see [`super::linear`]), the contact load `Σ_k c_kj F_k(t)` treated as an
 //! extra load that is linear in time over a sub-step, from the law's force at the sub-step start
 //! to a predicted force at its end (trapezoidal predictor–corrector, PECE):
 //!

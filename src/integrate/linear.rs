@@ -1,5 +1,5 @@
 //! The shared core of the `exact-modal` and `adaptive` methods: each mode's linear dynamics
-//! `η̈ + 2ζωη̇ + ω²η = f(t)` (SPEC §2.4) propagated exactly over a step.
+//! `η̈ + 2ζωη̇ + ω²η = f(t)` (docs/model.md §2.4) propagated exactly over a step.
 //!
 //! - [`propagator`]: the 2×2 matrix `P(h) = exp(hA)`, `A = [[0, 1], [−ω², −2ζω]]`, for any ζ ≥ 0
 //!   (under-, critically and over-damped) and any ωh (for large ζωh it tends to 0 without
@@ -53,7 +53,7 @@ impl Prop {
     }
 }
 
-/// `P(h)` for `η̈ + damp·η̇ + ω²η = 0` (ω in rad/s, damp = 2ζω in 1/s, h in s; SPEC §2.4, §2.5).
+/// `P(h)` for `η̈ + damp·η̇ + ω²η = 0` (ω in rad/s, damp = 2ζω in 1/s, h in s; docs/model.md §2.4, §2.5).
 ///
 /// Written as `P = [[C + ζωS, S], [−ω²S, C − ζωS]]` with `C = e^{−ζωh} cos ω_d h`,
 /// `S = e^{−ζωh} sin(ω_d h)/ω_d` for ζ < 1 and, for ζ ≥ 1, the hyperbolic forms evaluated with
@@ -218,7 +218,7 @@ pub enum Piece {
     Harmonic,
 }
 
-/// Per-mode ground data: exact particular solutions (SPEC §2.4, §2.8).
+/// Per-mode ground data: exact particular solutions (docs/model.md §2.4, §2.8).
 #[derive(Debug, Clone)]
 pub struct GroundModes {
     /// ω², 1/s².

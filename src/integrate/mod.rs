@@ -1,4 +1,4 @@
-//! Time integration of the assembled [`System`] (SPEC §2.9).
+//! Time integration of the assembled [`System`] (docs/model.md §2.9).
 //!
 //! An integrator advances the modal state and reports every step to an [`Observer`]; it knows
 //! nothing of files or of what is kept. Alongside the state it integrates, with the same order,
@@ -106,7 +106,7 @@ pub struct SolverSettings {
     pub rtol: f64,
     /// Absolute tolerance of `adaptive`, m: an error of this size in a structure's top
     /// displacement. Turned into modal units per structure i as `atol·√M_i/2` (since
-    /// |φ(L)| = 2/√(M), SPEC §2.3) for η, and that times ω₁ of the structure for η̇.
+    /// |φ(L)| = 2/√(M), docs/model.md §2.3) for η, and that times ω₁ of the structure for η̇.
     pub atol: f64,
 }
 
@@ -134,7 +134,7 @@ impl SolverSettings {
     }
 }
 
-/// Initial modal state (default: at rest relative to the ground, SPEC §2.8).
+/// Initial modal state (default: at rest relative to the ground, docs/model.md §2.8).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct InitialState {
     /// Modal displacements η(0), structure 1 then 2 (empty: zeros).
@@ -233,7 +233,7 @@ pub enum SolveError {
         /// Its ζ.
         zeta: f64,
     },
-    /// A contact made the fixed step unstable (`rk4`, SPEC §2.9): in contact the system's
+    /// A contact made the fixed step unstable (`rk4`, docs/model.md §2.9): in contact the system's
     /// stiffest mode, linearised about the contact state (each mode's stiffness plus the law's
     /// tangent stiffness and damping at the penetration met), lies beyond RK4's stability
     /// limit for the step. The run stops there; `max_dt` estimates the largest stable step.

@@ -1,4 +1,4 @@
-//! Fixed-step classical Runge–Kutta (SPEC §2.9), with the energy flows and impulses integrated
+//! Fixed-step classical Runge–Kutta (docs/model.md §2.9), with the energy flows and impulses integrated
 //! by the same stage weights.
 
 use super::{
@@ -69,7 +69,7 @@ fn scan_limit_along(ux: f64, uy: f64) -> f64 {
 }
 
 /// Largest stable RK4 step for a linear oscillator `η̈ + 2ζωη̇ + ω²η = 0`, s.
-/// For ζ = 0 it is `2√2/ω` (SPEC §2.9).
+/// For ζ = 0 it is `2√2/ω` (docs/model.md §2.9).
 pub fn rk4_stability_limit(omega: f64, zeta: f64) -> f64 {
     // eigenvalues λ = ω(−ζ ± i√(1−ζ²)) or ω(−ζ ± √(ζ²−1))
     if zeta < 1.0 {

@@ -1,4 +1,4 @@
-//! Parameter sweeps (SPEC §1.3): a sweep file names a base scenario and axes; every point of
+//! Parameter sweeps (docs/model.md §1.3): a sweep file names a base scenario and axes; every point of
 //! the full grid is a *case*, i.e. the base scenario's TOML with the axis values set, validated
 //! exactly like a scenario file and run with [`crate::simulate::simulate`].
 //!
@@ -18,7 +18,7 @@
 //! - `period_ratio` = T1/T2: sets structure 2's `period` to T2 = T1/r (replacing a
 //!   `bending_stiffness` or `tip_stiffness` given for it). T1 is structure 1's `period` if
 //!   given; otherwise it is computed from its length, mass and stiffness by the modal model
-//!   (SPEC §2.6: T1 = 2π/ω₁, ω₁ = (β₁L)²√(EI/(mL⁴))).
+//!   (docs/model.md §2.6: T1 = 2π/ω₁, ω₁ = (β₁L)²√(EI/(mL⁴))).
 //! - `ground_period_ratio` = T2/Tg: sets the harmonic ground motion's `period` to Tg = T2/r,
 //!   with T2 as above (after `period_ratio` is applied, when both are swept).
 //! - any scenario key by path: `structure.1.period` (1-based structure index; also written
@@ -569,7 +569,14 @@ impl Sweep {
             return Err(ctx.invalid(
                 Some(list.span().start),
                 "axis",
-                format!("the grid has {cases} cases; at most {MAX_CASES} are allowed"),
+                format!(
+                    "the grid has {cases} cases (results of about {}); a sweep may have at most \
+                     {MAX_CASES} cases: use fewer values per axis (`values`, or `steps` of a range), \
+                     or split the study into several sweep files",
+                    crate::budget::format_size(
+                        crate::budget::estimate_sweep(cases as u64, axes.len()).bytes
+                    )
+                ),
             ));
         }
         // the identity covers what the cases read: the sweep file, the base scenario and the
@@ -678,10 +685,18 @@ impl Sweep {
         for j in idx {
             self.apply(&mut t, &self.axes[j], values[j])?;
         }
-        let title = match self.base.get("title").and_then(Value::as_str) {
-            Some(base) => format!("{base} — sweep case {case}: {}", self.label(case)),
-            None => format!("Sweep case {case}: {}", self.label(case)),
+        // the case's own title: its values, not the base scenario's title (which may name
+        // values this case changes, e.g. "T1/T2 = 0.7" on a period_ratio = 0.9 case)
+        let name = |p: &Path| {
+            p.file_name()
+                .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
         };
+        let title = format!(
+            "{} — case {case} of sweep {} (base scenario {})",
+            self.label(case),
+            name(&self.path),
+            name(&self.scenario_path)
+        );
         t.insert("title".into(), Value::String(title));
         toml::to_string(&t).map_err(|e| format!("cannot encode the case as TOML: {e}"))
     }
@@ -817,7 +832,7 @@ fn level_mut(t: &mut Table, i: usize) -> Result<&mut Table, String> {
 }
 
 /// First-mode period of structure `i` (0-based) as the case table gives it: `period`, or
-/// computed from length, mass and `bending_stiffness`/`tip_stiffness` (SPEC §2.6).
+/// computed from length, mass and `bending_stiffness`/`tip_stiffness` (docs/model.md §2.6).
 fn first_period(t: &Table, i: usize) -> Result<f64, String> {
     let s = match t.get("structure") {
         Some(Value::Array(a)) => match a.get(i) {
@@ -875,6 +890,15 @@ fn reason(e: &ScenarioError) -> String {
             key, value, reason, ..
         } => format!("`{key}` = {value}: {reason}"),
         ScenarioError::Record { key, source, .. } => format!("`{key}`: {source}"),
+        ScenarioError::MissingMany { missing, .. } => format!(
+            "missing keys: {}",
+            missing
+                .iter()
+                .map(|(_, key, expected)| format!("`{key}` ({expected})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        ScenarioError::SweepFile { .. } => e.to_string(),
     }
 }
 
