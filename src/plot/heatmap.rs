@@ -347,7 +347,9 @@ impl Render for Heatmap<'_> {
             )
         }))
         .map_err(draw_err)?;
-        let z_fmt = |v: &f64| bar.label(*v);
+        // the bar's labels are drawn below, left-aligned (plotters aligns right-side labels
+        // by a width heuristic that leaves "≥ ×10" and "×5" ragged)
+        let z_fmt = |_: &f64| String::new();
         cbar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
@@ -359,6 +361,14 @@ impl Render for Heatmap<'_> {
             .y_desc(self.z_label)
             .draw()
             .map_err(draw_err)?;
+        let style = font(f.tick)
+            .color(&AXIS)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        for &t in &bar.ticks {
+            let (bx, by) = cbar.backend_coord(&(1.0, t));
+            root.draw_text(&bar.label(t), &style, (bx + 10, by))
+                .map_err(draw_err)?;
+        }
         for area in [
             chart.plotting_area().strip_coord_spec(),
             cbar.plotting_area().strip_coord_spec(),

@@ -11,6 +11,7 @@
 use std::sync::OnceLock;
 
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
@@ -245,6 +246,14 @@ pub(super) fn log_ticks(lo: f64, hi: f64, max_n: usize) -> Vec<f64> {
             .collect()
     };
     let dense = pick(&[1.0, 2.0, 5.0], 1);
+    if dense.len() < 4 {
+        // about a decade or less: plotters' linear ticks read better (1, 1.5, 2, 2.5 …)
+        let lin: Vec<f64> = RangedCoordf64::from(lo..hi).key_points(max_n.max(2));
+        let lin: Vec<f64> = lin.into_iter().filter(|&t| t > 0.0).collect();
+        if lin.len() > dense.len() {
+            return lin;
+        }
+    }
     if (2..=max_n).contains(&dense.len()) {
         return dense;
     }
