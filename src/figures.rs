@@ -2,12 +2,50 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::plot::{Figure, LineStyle, Panel, PlotError, Series, write_figure};
+use crate::plot::{AxisScale, Figure, LineStyle, Panel, PlotError, Series, write_figure};
+use crate::recorder::Impact;
 use crate::scenario::Scenario;
 use crate::simulate::Report;
 
+/// The contact force of one level as the time-history figure draws it, N: the history's
+/// samples `(t, force)` merged with every impact's located start and end (force 0) and its peak
+/// force (`Impact::peak_force`, located between the integration steps).
+///
+/// The history is sampled at the output interval (10 ms by default) while an impact lasts
+/// 14–74 ms, so the samples alone miss most peaks; with the peaks added, the drawn maximum of a
+/// level is its peak force at any output interval. The impact log gives each peak's value, not
+/// its time: the peak is drawn at the largest sample inside the impact (within one output
+/// interval of the true time), or at the impact's midpoint when no sample falls inside it.
+/// `t` must be ascending; returns the times and forces, ascending in time.
+pub fn drawn_force(
+    t: &[f64],
+    force: &[f64],
+    impacts: &[Impact],
+    level: usize,
+) -> (Vec<f64>, Vec<f64>) {
+    let n = t.len().min(force.len());
+    let mut pts: Vec<(f64, f64)> = t
+        .iter()
+        .copied()
+        .zip(force.iter().copied())
+        .take(n)
+        .collect();
+    for i in impacts.iter().filter(|i| i.level == level) {
+        let (a, b) = (
+            t[..n].partition_point(|&s| s < i.start),
+            t[..n].partition_point(|&s| s <= i.end),
+        );
+        let inside = (a..b).max_by(|&p, &q| force[p].total_cmp(&force[q]));
+        let t_peak = inside.map_or(0.5 * (i.start + i.end), |k| t[k]);
+        pts.extend([(i.start, 0.0), (t_peak, i.peak_force), (i.end, 0.0)]);
+    }
+    pts.sort_by(|p, q| p.0.total_cmp(&q.0));
+    pts.into_iter().unzip()
+}
+
 /// The time-history figure (the paper's Figs. 2–4, readable): displacement at the contact
-/// height of each structure with and without pounding, and the contact force. Writes
+/// height of each structure with and without pounding, and the contact force of each level in a
+/// panel of its own, every impact drawn at its located peak ([`drawn_force`]). Writes
 /// `<stem>.png` and `<stem>.svg`.
 pub fn time_history_figure(
     scenario: &Scenario,
@@ -29,96 +67,70 @@ pub fn time_history_figure(
             report.structures[i].change_percent
         )
     });
-    let total: Vec<f64> = (0..h.t.len())
-        .map(|i| h.force.iter().map(|c| c[i]).sum())
+    let forces: Vec<(String, Vec<f64>, Vec<f64>)> = (0..h.force.len())
+        .map(|k| {
+            let (t, n) = drawn_force(&h.t, &h.force[k], &report.impact_log, k);
+            let (count, peak) = report
+                .levels
+                .get(k)
+                .map_or((0, 0.0), |l| (l.impacts, l.peak_force));
+            let at = if h.force.len() > 1 {
+                format!(" at h = {} m", scenario.contact.levels[k].height)
+            } else {
+                String::new()
+            };
+            let title = format!(
+                "Contact force{at}: {count} impacts, peak {:.3} MN (each impact drawn at its peak)",
+                peak / 1e6
+            );
+            (title, t, n.iter().map(|x| x / 1e6).collect())
+        })
         .collect();
-    let force_mn: Vec<f64> = total.iter().map(|x| x / 1e6).collect();
-    let mut force_series = vec![Series {
-        label: "total",
-        x: &h.t,
-        y: &force_mn,
-        style: LineStyle::Solid,
-    }];
-    let per_level: Vec<(String, Vec<f64>)> = if h.force.len() > 1 {
-        h.force
-            .iter()
-            .enumerate()
-            .map(|(k, c)| {
-                (
-                    format!("h = {} m", scenario.contact.levels[k].height),
-                    c.iter().map(|x| x / 1e6).collect(),
-                )
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-    for (label, y) in &per_level {
-        force_series.push(Series {
-            label,
-            x: &h.t,
-            y,
-            style: LineStyle::Dashed,
-        });
-    }
-    let force_title = format!(
-        "Contact force: {} impacts, {} {:.3} MN",
-        report.contact.impacts,
-        if h.force.len() > 1 {
-            "largest peak at one level"
-        } else {
-            "peak"
-        },
-        report.contact.peak_force / 1e6
-    );
-    let fig = Figure {
-        title: &scenario.title,
-        x_label: "time t [s]",
-        panels: vec![
-            Panel {
-                title: &titles[0],
-                y_label: "w1 [m]",
-                series: vec![
-                    Series {
-                        label: "with pounding",
-                        x: &h.t,
-                        y: &h.w1,
-                        style: LineStyle::Solid,
-                    },
-                    Series {
-                        label: "without pounding",
-                        x: &f.t,
-                        y: &f.w1,
-                        style: LineStyle::Dashed,
-                    },
-                ],
+    let displacement = |title, y_label, with: &'static str, a, b| Panel {
+        title,
+        y_label,
+        series: vec![
+            Series {
+                label: with,
+                x: &h.t,
+                y: a,
+                style: LineStyle::Solid,
             },
-            Panel {
-                title: &titles[1],
-                y_label: "w2 [m]",
-                series: vec![
-                    Series {
-                        label: "with pounding",
-                        x: &h.t,
-                        y: &h.w2,
-                        style: LineStyle::Solid,
-                    },
-                    Series {
-                        label: "without pounding",
-                        x: &f.t,
-                        y: &f.w2,
-                        style: LineStyle::Dashed,
-                    },
-                ],
-            },
-            Panel {
-                title: &force_title,
-                y_label: "F [MN]",
-                series: force_series,
+            Series {
+                label: "without pounding",
+                x: &f.t,
+                y: b,
+                style: LineStyle::Dashed,
             },
         ],
+        y_scale: AxisScale::Linear,
+    };
+    let mut panels = vec![
+        displacement(&titles[0], "w1 [m]", "with pounding", &h.w1, &f.w1),
+        displacement(&titles[1], "w2 [m]", "with pounding", &h.w2, &f.w2),
+    ];
+    for (title, t, y) in &forces {
+        panels.push(Panel {
+            title,
+            y_label: "F [MN]",
+            series: vec![Series {
+                label: "",
+                x: t,
+                y,
+                style: LineStyle::Solid,
+            }],
+            y_scale: AxisScale::Linear,
+        });
+    }
+    let extra = forces.len().saturating_sub(1) as u32;
+    let fig = Figure {
+        title: &scenario.title,
+        subtitle: "",
+        x_label: "time t [s]",
+        panels,
+        legend_once: true,
         width: 1200,
-        height: 900,
+        height: 900 + 220 * extra.min(8),
     };
     write_figure(&fig, stem)
 }

@@ -1,13 +1,22 @@
 //! Pictures of a sweep's results table, drawn with [`crate::plot`]: heatmaps of a field over
 //! two numeric axes and line plots over one, one picture per combination of the other axes'
 //! values (e.g. one heatmap per PGA level). Failed cases are grey cells / gaps in lines.
+//!
+//! Each quantity has one colour scale everywhere ([`field_scale`]): the change of a peak
+//! displacement is drawn as the amplification ratio peak with / peak without pounding on a
+//! logarithmic diverging scale centred on 1 (×0.1 … ×10, saturating), quantities spanning more
+//! than a factor of 100 (peak force, required separation) on a logarithmic scale. Axes are
+//! named as on the command line, e.g. "T1/T2 (period_ratio)".
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use crate::plot::{Figure, Heatmap, LineStyle, Panel, Series, write_figure, write_heatmap};
+use crate::plot::{
+    AxisScale, ColorScale, Figure, Heatmap, LineStyle, Panel, PlotError, Series, write_figure,
+    write_heatmap,
+};
 use crate::sweep::SweepError;
-use crate::sweep::results::{FIELDS, Table};
+use crate::sweep::results::{FIELDS, Table, TableRow};
 
 /// The fields drawn when none is asked for.
 pub const DEFAULT_FIELDS: [&str; 5] = [
@@ -21,6 +30,9 @@ pub const DEFAULT_FIELDS: [&str; 5] = [
 /// Most lines on one line-plot panel (evenly chosen among the series axis' values).
 const MAX_SERIES: usize = 6;
 
+/// Saturation of the amplification colour scale: ×0.1 … ×10.
+pub const RATIO_LIMIT: f64 = 10.0;
+
 /// What to draw. Empty: the defaults (the first two numeric axes, [`DEFAULT_FIELDS`]).
 #[derive(Debug, Clone, Default)]
 pub struct PlotRequest {
@@ -32,99 +44,125 @@ pub struct PlotRequest {
     pub field: Option<String>,
 }
 
-/// A field's label (with unit) and the factor from SI to the unit shown.
-pub fn field_label(field: &str) -> (String, f64) {
+/// A field's title (with unit), short axis / colour-bar label and the factor from SI to the
+/// unit shown. `change_percent_i` is drawn as the ratio peak with / without pounding.
+pub fn field_label(field: &str) -> (String, String, f64) {
     let s = |t: &str| t.to_string();
-    match field {
-        "peak_displacement_1" => (s("Peak displacement of structure 1 with pounding [m]"), 1.0),
-        "peak_displacement_2" => (s("Peak displacement of structure 2 with pounding [m]"), 1.0),
-        "peak_displacement_no_contact_1" => (
-            s("Peak displacement of structure 1 without pounding [m]"),
+    let (title, short, scale) = match field {
+        "peak_displacement_1" | "peak_displacement_2" => (
+            format!(
+                "Peak displacement of structure {} with pounding",
+                &field[18..]
+            ),
+            s("peak w [m]"),
             1.0,
         ),
-        "peak_displacement_no_contact_2" => (
-            s("Peak displacement of structure 2 without pounding [m]"),
+        "peak_displacement_no_contact_1" | "peak_displacement_no_contact_2" => (
+            format!(
+                "Peak displacement of structure {} without pounding",
+                &field[29..]
+            ),
+            s("peak w [m]"),
             1.0,
         ),
-        "change_percent_1" => (
-            s("Change of peak displacement due to pounding, structure 1 [%]"),
+        "change_percent_1" | "change_percent_2" => (
+            format!(
+                "Structure {}: peak displacement with / without pounding",
+                &field[15..]
+            ),
+            s("with / without"),
             1.0,
         ),
-        "change_percent_2" => (
-            s("Change of peak displacement due to pounding, structure 2 [%]"),
+        "peak_force" => (s("Peak contact force"), s("peak force [MN]"), 1e-6),
+        "impacts" => (s("Number of impacts"), s("impacts"), 1.0),
+        "contact_time" => (s("Time in contact"), s("time in contact [s]"), 1.0),
+        "sep_abs" => (s("Required separation, ABS rule"), s("separation [m]"), 1.0),
+        "sep_srss" => (
+            s("Required separation, SRSS rule"),
+            s("separation [m]"),
             1.0,
         ),
-        "peak_force" => (s("Peak contact force [MN]"), 1e-6),
-        "impacts" => (s("Number of impacts"), 1.0),
-        "contact_time" => (s("Time in contact [s]"), 1.0),
-        "sep_abs" => (s("Required separation, ABS rule [m]"), 1.0),
-        "sep_srss" => (s("Required separation, SRSS rule [m]"), 1.0),
-        "sep_ddc" => (s("Required separation, DDC rule [m]"), 1.0),
-        "sep_time_history" => (s("Required separation from the time history [m]"), 1.0),
+        "sep_ddc" => (s("Required separation, DDC rule"), s("separation [m]"), 1.0),
+        "sep_time_history" => (
+            s("Required separation from the time history"),
+            s("separation [m]"),
+            1.0,
+        ),
         "check_max_change" => (
-            s("Self-check: largest change against a 100× tighter run [%]"),
+            s("Self-check: largest change against a 100× tighter run"),
+            s("largest change [%]"),
             100.0,
         ),
-        "converged" => (s("Self-check converged within 1 % (1 = yes, 0 = no)"), 1.0),
-        other => (other.to_string(), 1.0),
+        "converged" => (
+            s("Self-check converged within 1 % (1 = yes, 0 = no)"),
+            s("converged"),
+            1.0,
+        ),
+        other => (s(other), s(other), 1.0),
+    };
+    (title, short, scale)
+}
+
+/// How a field is coloured (and whether its line-plot axis is logarithmic), given its values:
+/// the amplification ratio on the diverging log scale, else [`ColorScale::auto`].
+pub fn field_scale(field: &str, values: &[f64]) -> ColorScale {
+    if field.starts_with("change_percent_") {
+        ColorScale::Ratio { limit: RATIO_LIMIT }
+    } else {
+        ColorScale::auto(values)
     }
 }
 
-/// A short panel/colour-bar label for a field.
-fn short_label(field: &str) -> String {
-    match field {
-        "change_percent_1" => "change 1 [%]".into(),
-        "change_percent_2" => "change 2 [%]".into(),
-        "peak_force" => "F max [MN]".into(),
-        "impacts" => "impacts".into(),
-        "contact_time" => "contact [s]".into(),
-        "sep_time_history" => "gap needed [m]".into(),
-        other => field_label(other).0,
-    }
-}
-
-/// An axis key as a person reads it.
-pub fn axis_label(key: &str) -> String {
-    match key {
-        "period_ratio" => "T1/T2".into(),
-        "ground_period_ratio" => "T2/Tg".into(),
-        "ground_motion.pga" => "PGA [g]".into(),
-        "ground_motion.period" => "Tg [s]".into(),
-        "ground_motion.scale_to_pga" => "PGA [g]".into(),
-        "ground_motion.file" => "record".into(),
-        "contact.gap" => "gap [m]".into(),
-        "contact.stiffness" => "contact stiffness".into(),
-        "solver.dt" => "dt [s]".into(),
-        k if k.starts_with("structure.") && k.ends_with(".period") => {
-            format!("T{} [s]", &k[10..k.len() - 7])
+/// The value drawn for `field` in row `r`, in the unit shown: for `change_percent_i` the ratio
+/// `peak_displacement_i / peak_displacement_no_contact_i`.
+fn value(r: &TableRow, field: &str) -> f64 {
+    let get = |name: &str| Table::field_index(name).map_or(f64::NAN, |i| r.fields[i]);
+    match field.strip_prefix("change_percent_") {
+        Some(i) => {
+            get(&format!("peak_displacement_{i}"))
+                / get(&format!("peak_displacement_no_contact_{i}"))
         }
-        k => k.to_string(),
+        None => get(field) * field_label(field).2,
     }
 }
 
-fn axis_name_short(key: &str) -> String {
+/// An axis key as a person reads it, with the name the command line uses.
+pub fn axis_label(key: &str) -> String {
+    let readable = match key {
+        "period_ratio" => "T1/T2",
+        "ground_period_ratio" => "T2/Tg",
+        "ground_motion.pga" | "ground_motion.scale_to_pga" => "PGA [g]",
+        "ground_motion.period" => "Tg [s]",
+        "ground_motion.file" => "record",
+        "contact.gap" => "gap [m]",
+        "solver.dt" => "dt [s]",
+        k if k.starts_with("structure.") && k.ends_with(".period") => {
+            return format!("T{} [s] ({key})", &k[10..k.len() - 7]);
+        }
+        _ => return key.to_string(),
+    };
+    format!("{readable} ({key})")
+}
+
+/// A short name for titles and legends.
+fn axis_name_short(key: &str) -> &str {
     match key {
-        "period_ratio" => "T1/T2".into(),
-        "ground_period_ratio" => "T2/Tg".into(),
-        "ground_motion.pga" | "ground_motion.scale_to_pga" => "PGA".into(),
-        k => k.to_string(),
+        "period_ratio" => "T1/T2",
+        "ground_period_ratio" => "T2/Tg",
+        "ground_motion.pga" | "ground_motion.scale_to_pga" => "PGA",
+        k => k,
     }
 }
 
 /// A value for a title: numbers as written, record files by their file name.
 fn show_value(key: &str, v: &str) -> String {
-    let mut s = if key == "ground_motion.file" {
-        Path::new(v)
+    match key {
+        "ground_motion.file" => Path::new(v)
             .file_name()
-            .map(|f| f.to_string_lossy().into_owned())
-            .unwrap_or_else(|| v.to_string())
-    } else {
-        v.to_string()
-    };
-    if key == "ground_motion.pga" || key == "ground_motion.scale_to_pga" {
-        s.push_str(" g");
+            .map_or_else(|| v.to_string(), |f| f.to_string_lossy().into_owned()),
+        "ground_motion.pga" | "ground_motion.scale_to_pga" => format!("{v} g"),
+        _ => v.to_string(),
     }
-    s
 }
 
 /// An axis key as written in file names.
@@ -138,15 +176,8 @@ fn file_key(key: &str) -> String {
 }
 
 fn sanitize(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '=' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    let ok = |c: char| c.is_ascii_alphanumeric() || c == '.' || c == '-' || c == '=';
+    s.chars().map(|c| if ok(c) { c } else { '_' }).collect()
 }
 
 /// Distinct values of column `j` in case order, and whether all are numbers.
@@ -182,8 +213,9 @@ fn slices(table: &Table, other: &[usize]) -> Vec<Vec<String>> {
     out
 }
 
+/// What a slice holds fixed ("PGA = 0.5 g") and its file-name suffix ("_PGA=0.5").
 fn slice_text(table: &Table, other: &[usize], s: &[String]) -> (String, String) {
-    let title = other
+    let fixed = other
         .iter()
         .zip(s)
         .map(|(&j, v)| {
@@ -206,8 +238,21 @@ fn slice_text(table: &Table, other: &[usize], s: &[String]) -> (String, String) 
             };
             format!("_{}={}", file_key(&table.axes[j]), sanitize(&v))
         })
-        .collect::<String>();
-    (title, stem)
+        .collect();
+    (fixed, stem)
+}
+
+/// The subtitle: the slice's fixed values and the base scenario the other keys come from.
+fn held_fixed(fixed: &str, base: Option<&str>) -> String {
+    let rest = match base {
+        Some(b) => format!("other keys as in {b}"),
+        None => "other keys as in the base scenario".to_string(),
+    };
+    if fixed.is_empty() {
+        rest
+    } else {
+        format!("{fixed}; {rest}")
+    }
 }
 
 fn find_axis(table: &Table, key: &str) -> Result<usize, SweepError> {
@@ -222,11 +267,23 @@ fn find_axis(table: &Table, key: &str) -> Result<usize, SweepError> {
 }
 
 /// Draw the requested pictures of `table` into `out_dir` (created if missing). Returns the
-/// files written (PNG and SVG of each picture).
+/// files written (PNG and SVG of each picture). Titles say that the keys not swept are the
+/// base scenario's; [`plot_table_of`] names it.
 pub fn plot_table(
     table: &Table,
     req: &PlotRequest,
     out_dir: &Path,
+) -> Result<Vec<PathBuf>, SweepError> {
+    plot_table_of(table, req, out_dir, None)
+}
+
+/// [`plot_table`], naming the base scenario (e.g. `"paper-c.toml (Paper case T1/T2 = 0.7)"`)
+/// in every picture's subtitle as what the keys not swept were held at.
+pub fn plot_table_of(
+    table: &Table,
+    req: &PlotRequest,
+    out_dir: &Path,
+    base: Option<&str>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let fields: Vec<&str> = match &req.field {
         Some(f) => {
@@ -282,24 +339,27 @@ pub fn plot_table(
         path: out_dir.display().to_string(),
         source: e,
     })?;
+    let perr = |e: PlotError| SweepError::Usage(format!("plot: {e}"));
+    let in_slice = |r: &TableRow, other: &[usize], s: &[String]| {
+        other.iter().zip(s).all(|(&j, v)| r.values[j] == *v)
+    };
+    let xs = sorted_numbers(&info[x].0);
+    let xl = axis_label(&table.axes[x]);
     let mut written = Vec::new();
-    let perr = |e: crate::plot::PlotError| SweepError::Usage(format!("plot: {e}"));
+
     if let Some(y) = y {
         let other: Vec<usize> = (0..table.axes.len())
             .filter(|&j| j != x && j != y)
             .collect();
-        let xs = sorted_numbers(&info[x].0);
         let ys = sorted_numbers(&info[y].0);
+        let yl = axis_label(&table.axes[y]);
         for s in slices(table, &other) {
-            let (stitle, sstem) = slice_text(table, &other, &s);
+            let (fixed, sstem) = slice_text(table, &other, &s);
+            let subtitle = held_fixed(&fixed, base);
             for &field in &fields {
-                let fi = Table::field_index(field).unwrap_or(0);
-                let (label, scale) = field_label(field);
+                let (title, short, _) = field_label(field);
                 let mut z = vec![f64::NAN; xs.len() * ys.len()];
-                for r in table.rows.values() {
-                    if other.iter().zip(&s).any(|(&j, v)| r.values[j] != *v) {
-                        continue;
-                    }
+                for r in table.rows.values().filter(|r| in_slice(r, &other, &s)) {
                     let (Ok(vx), Ok(vy)) = (r.values[x].parse::<f64>(), r.values[y].parse::<f64>())
                     else {
                         continue;
@@ -307,15 +367,9 @@ pub fn plot_table(
                     let ix = xs.iter().position(|&a| a == vx);
                     let iy = ys.iter().position(|&a| a == vy);
                     if let (Some(ix), Some(iy)) = (ix, iy) {
-                        z[iy * xs.len() + ix] = r.fields[fi] * scale;
+                        z[iy * xs.len() + ix] = value(r, field);
                     }
                 }
-                let title = if stitle.is_empty() {
-                    label.clone()
-                } else {
-                    format!("{label} — {stitle}")
-                };
-                let (xl, yl) = (axis_label(&table.axes[x]), axis_label(&table.axes[y]));
                 let stem = out_dir.join(format!(
                     "heatmap_{field}_{}-{}{sstem}",
                     file_key(&table.axes[x]),
@@ -323,95 +377,113 @@ pub fn plot_table(
                 ));
                 let h = Heatmap {
                     title: &title,
+                    subtitle: &subtitle,
                     x_label: &xl,
                     y_label: &yl,
                     x: &xs,
                     y: &ys,
                     z: &z,
-                    z_label: &short_label(field),
+                    z_label: &short,
+                    scale: field_scale(field, &z),
+                    zero_label: if field == "peak_force" {
+                        "0: no impact"
+                    } else {
+                        "0"
+                    },
                     width: 1000,
-                    height: 800,
+                    height: 820,
                 };
                 written.extend(write_heatmap(&h, &stem).map_err(perr)?);
             }
         }
+        if req.y.is_some() {
+            return Ok(written);
+        }
     }
+
     // line plots over x: one line per value of a series axis, one figure per slice of the rest
-    let series_axis = match (y, req.y.is_some()) {
-        (Some(y), _) => Some(y),
-        (None, _) => (0..table.axes.len()).find(|&j| j != x && info[j].0.len() > 1),
+    let series_axis = y.or_else(|| (0..table.axes.len()).find(|&j| j != x && info[j].0.len() > 1));
+    let other: Vec<usize> = (0..table.axes.len())
+        .filter(|&j| j != x && Some(j) != series_axis)
+        .collect();
+    let (series_vals, subset) = match series_axis {
+        Some(j) => {
+            let mut v = info[j].0.clone();
+            if info[j].1 {
+                v.sort_by(|a, b| {
+                    let num = |s: &String| s.parse::<f64>().unwrap_or(0.0);
+                    num(a).total_cmp(&num(b))
+                });
+            }
+            let n = v.len();
+            if n > MAX_SERIES {
+                v = (0..MAX_SERIES)
+                    .map(|i| v[i * (n - 1) / (MAX_SERIES - 1)].clone())
+                    .collect();
+            }
+            let subset = (n > MAX_SERIES).then(|| {
+                format!(
+                    "lines at {MAX_SERIES} of the {n} values of {}",
+                    axis_name_short(&table.axes[j])
+                )
+            });
+            (v, subset)
+        }
+        None => (vec![String::new()], None),
     };
-    if req.y.is_none() {
-        let other: Vec<usize> = (0..table.axes.len())
-            .filter(|&j| j != x && Some(j) != series_axis)
+    let labels: Vec<String> = series_vals
+        .iter()
+        .map(|v| match series_axis {
+            Some(j) => format!(
+                "{} = {}",
+                axis_name_short(&table.axes[j]),
+                show_value(&table.axes[j], v)
+            ),
+            None => String::new(),
+        })
+        .collect();
+    let titles: Vec<(String, String, f64)> = fields.iter().map(|f| field_label(f)).collect();
+    for s in slices(table, &other) {
+        let (fixed, sstem) = slice_text(table, &other, &s);
+        // data[field][series] = y over xs
+        let mut data = vec![vec![vec![f64::NAN; xs.len()]; series_vals.len()]; fields.len()];
+        for r in table.rows.values().filter(|r| in_slice(r, &other, &s)) {
+            let k = match series_axis {
+                Some(j) => match series_vals.iter().position(|v| *v == r.values[j]) {
+                    Some(k) => k,
+                    None => continue,
+                },
+                None => 0,
+            };
+            let Some(ix) = r.values[x]
+                .parse::<f64>()
+                .ok()
+                .and_then(|vx| xs.iter().position(|&a| a == vx))
+            else {
+                continue;
+            };
+            for (fi, field) in fields.iter().enumerate() {
+                data[fi][k][ix] = value(r, field);
+            }
+        }
+        let panel_titles: Vec<String> = (0..fields.len())
+            .map(|fi| {
+                let all: Vec<f64> = data[fi].iter().flatten().copied().collect();
+                let log = field_scale(fields[fi], &all) != ColorScale::Linear;
+                let note = match (log, all.iter().any(|&v| v <= 0.0)) {
+                    (true, true) => " (log scale; zero values not drawn)",
+                    (true, false) => " (log scale)",
+                    _ => "",
+                };
+                format!("{}{note}", titles[fi].0)
+            })
             .collect();
-        let xs = sorted_numbers(&info[x].0);
-        let series_vals: Vec<String> = match series_axis {
-            Some(j) => {
-                let mut v = info[j].0.clone();
-                if info[j].1 {
-                    v.sort_by(|a, b| {
-                        a.parse::<f64>()
-                            .unwrap_or(0.0)
-                            .total_cmp(&b.parse::<f64>().unwrap_or(0.0))
-                    });
-                }
-                if v.len() > MAX_SERIES {
-                    let n = v.len();
-                    v = (0..MAX_SERIES)
-                        .map(|i| v[i * (n - 1) / (MAX_SERIES - 1)].clone())
-                        .collect();
-                }
-                v
-            }
-            None => vec![String::new()],
-        };
-        for s in slices(table, &other) {
-            let (stitle, sstem) = slice_text(table, &other, &s);
-            // data[field][series] = y over xs
-            let mut data: Vec<Vec<Vec<f64>>> =
-                vec![vec![vec![f64::NAN; xs.len()]; series_vals.len()]; fields.len()];
-            for r in table.rows.values() {
-                if other.iter().zip(&s).any(|(&j, v)| r.values[j] != *v) {
-                    continue;
-                }
-                let k = match series_axis {
-                    Some(j) => match series_vals.iter().position(|v| *v == r.values[j]) {
-                        Some(k) => k,
-                        None => continue,
-                    },
-                    None => 0,
-                };
-                let Ok(vx) = r.values[x].parse::<f64>() else {
-                    continue;
-                };
-                let Some(ix) = xs.iter().position(|&a| a == vx) else {
-                    continue;
-                };
-                for (fi, field) in fields.iter().enumerate() {
-                    let c = Table::field_index(field).unwrap_or(0);
-                    data[fi][k][ix] = r.fields[c] * field_label(field).1;
-                }
-            }
-            let labels: Vec<String> = series_vals
-                .iter()
-                .map(|v| match series_axis {
-                    Some(j) => format!(
-                        "{} = {}",
-                        axis_name_short(&table.axes[j]),
-                        show_value(&table.axes[j], v)
-                    ),
-                    None => String::new(),
-                })
-                .collect();
-            let titles: Vec<String> = fields.iter().map(|f| field_label(f).0).collect();
-            let ylabels: Vec<String> = fields.iter().map(|f| short_label(f)).collect();
-            let panels: Vec<Panel> = fields
-                .iter()
-                .enumerate()
-                .map(|(fi, _)| Panel {
-                    title: &titles[fi],
-                    y_label: &ylabels[fi],
+        let panels: Vec<Panel> = (0..fields.len())
+            .map(|fi| {
+                let all: Vec<f64> = data[fi].iter().flatten().copied().collect();
+                Panel {
+                    title: &panel_titles[fi],
+                    y_label: &titles[fi].1,
                     series: (0..series_vals.len())
                         .map(|k| Series {
                             label: &labels[k],
@@ -420,32 +492,39 @@ pub fn plot_table(
                             style: LineStyle::Solid,
                         })
                         .collect(),
-                })
-                .collect();
-            let title = if stitle.is_empty() {
-                format!("Sweep over {}", axis_label(&table.axes[x]))
-            } else {
-                format!("Sweep over {} — {stitle}", axis_label(&table.axes[x]))
-            };
-            let xl = axis_label(&table.axes[x]);
-            let fig = Figure {
-                title: &title,
-                x_label: &xl,
-                panels,
-                width: 1100,
-                height: (260 * fields.len() as u32 + 120).min(4000),
-            };
-            let stem = out_dir.join(format!(
-                "lines_{}{sstem}{}",
-                file_key(&table.axes[x]),
-                if fields.len() == 1 {
-                    format!("_{}", fields[0])
-                } else {
-                    String::new()
+                    y_scale: match field_scale(fields[fi], &all) {
+                        ColorScale::Linear => AxisScale::Linear,
+                        _ => AxisScale::Log,
+                    },
                 }
-            ));
-            written.extend(write_figure(&fig, &stem).map_err(perr)?);
-        }
+            })
+            .collect();
+        let title = format!("Sweep over {}", axis_name_short(&table.axes[x]));
+        let parts: Vec<String> = subset
+            .iter()
+            .cloned()
+            .chain([held_fixed(&fixed, base)])
+            .collect();
+        let subtitle = parts.join("; ");
+        let fig = Figure {
+            title: &title,
+            subtitle: &subtitle,
+            x_label: &xl,
+            panels,
+            legend_once: true,
+            width: 1100,
+            height: (260 * fields.len() as u32 + 150).min(4000),
+        };
+        let stem = out_dir.join(format!(
+            "lines_{}{sstem}{}",
+            file_key(&table.axes[x]),
+            if fields.len() == 1 {
+                format!("_{}", fields[0])
+            } else {
+                String::new()
+            }
+        ));
+        written.extend(write_figure(&fig, &stem).map_err(perr)?);
     }
     Ok(written)
 }
