@@ -870,7 +870,17 @@ fn run_sweep(
     if !no_plot && shard.is_all() {
         let table = pounding::sweep::results::Table::read(&o.results)?;
         let dir = out.join("plots");
-        match pounding::sweep_plots::plot_table(&table, &Default::default(), &dir) {
+        // the pictures name the base scenario as what the keys not swept were held at
+        let base = sweep
+            .scenario_path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned());
+        match pounding::sweep_plots::plot_table_of(
+            &table,
+            &Default::default(),
+            &dir,
+            base.as_deref(),
+        ) {
             Ok(files) => {
                 if !quiet {
                     println!(
