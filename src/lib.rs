@@ -18,6 +18,7 @@
 
 pub mod accuracy;
 pub mod budget;
+pub mod building;
 pub mod cantilever;
 pub mod contact;
 pub mod convergence;

@@ -103,9 +103,9 @@ impl System {
             for j in 0..s.omega.len() {
                 omega.push(s.omega[j]);
                 damp.push(2.0 * s.zeta[j] * s.omega[j]);
-                // docs/model.md §2.4: −γ_n (m a_g + c_a v_g)
-                load_a.push(-s.gamma[j] * s.mass_per_length);
-                load_v.push(-s.gamma[j] * s.air_damping);
+                // docs/model.md §2.4: −Γ_n a_g − c_a γ_n v_g
+                load_a.push(-s.participation[j]);
+                load_v.push(-s.air_load[j]);
             }
         }
         let omega_sq = omega.iter().map(|w| w * w).collect();

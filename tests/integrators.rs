@@ -87,10 +87,7 @@ fn exact_modal_matches_closed_form_without_contact_for_any_dt() {
             for n in 0..m.omega.len() {
                 let (w, z) = (m.omega[n], m.zeta[n]);
                 assert!(z < 1.0, "closed form written for ζ < 1");
-                let (fr, fi) = (
-                    m.gamma[n] * pga * m.mass_per_length,
-                    -m.gamma[n] * pga * m.air_damping / big,
-                );
+                let (fr, fi) = (m.participation[n] * pga, -m.air_load[n] * pga / big);
                 let (hr, hi) = (w * w - big * big, 2.0 * z * w * big);
                 let d2 = hr * hr + hi * hi;
                 let (gr, gi) = ((fr * hr + fi * hi) / d2, (fi * hr - fr * hi) / d2);
@@ -168,10 +165,10 @@ fn record_ramp_matches_closed_form() {
         let mut modes = Vec::new();
         for m in &sys.structures {
             for n in 0..m.omega.len() {
-                // load −γ(m a_g + c_a v_g): a_g = r t, v_g = r t²/2 while the record lasts
-                let (g, mm, ca) = (m.gamma[n], m.mass_per_length, m.air_damping);
-                let c = [0.0, -g * mm * r, -g * ca * r / 2.0];
-                let after = [-g * ca * r * t_end * t_end / 2.0, 0.0, 0.0];
+                // load −Γ a_g − c_a γ v_g: a_g = r t, v_g = r t²/2 while the record lasts
+                let (gam, air) = (m.participation[n], m.air_load[n]);
+                let c = [0.0, -gam * r, -air * r / 2.0];
+                let after = [-air * r * t_end * t_end / 2.0, 0.0, 0.0];
                 let (w, z) = (m.omega[n], m.zeta[n]);
                 let y_end = poly_response(w, z, c, (0.0, 0.0), t_end);
                 modes.push((w, z, c, after, y_end, m.shape(n, h)));

@@ -41,10 +41,7 @@ fn steady_amplitude(m: &ModalModel, h: f64, pga: f64, big_omega: f64) -> (f64, f
     let (mut re, mut im) = (0.0, 0.0);
     for n in 0..m.omega.len() {
         let (w, z) = (m.omega[n], m.zeta[n]);
-        let (fr, fi) = (
-            m.gamma[n] * pga * m.mass_per_length,
-            -m.gamma[n] * pga * m.air_damping / big_omega,
-        );
+        let (fr, fi) = (m.participation[n] * pga, -m.air_load[n] * pga / big_omega);
         let (dr, di) = (w * w - big_omega * big_omega, 2.0 * z * w * big_omega);
         let d2 = dr * dr + di * di;
         let phi = m.shape(n, h);

@@ -567,7 +567,8 @@ fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
     let (mut aq, mut av) = (vec![0.0; n], vec![0.0; n]);
     let n1 = sys.n1();
     for (i, s) in sys.structures.iter().enumerate() {
-        let scale = atol * (s.mass_per_length * s.length).sqrt() / 2.0;
+        // (atol at the top over |φ(top)|: `√M/2` for a cantilever, whose |φ_n(L)| = 2/√M)
+        let scale = atol / s.top_shape_scale();
         let w1 = s.omega.first().copied().unwrap_or(1.0);
         let range = if i == 0 { 0..n1 } else { n1..n };
         for j in range {
