@@ -278,9 +278,9 @@ pub struct EngineerModes {
 }
 
 impl EngineerModes {
-    /// The shapes mass-normalised with the floor masses (`φᵀ M φ = 1`), and the largest
-    /// `|φ_mᵀ M φ_n|` over pairs of different modes with the pair (1-based).
-    pub fn normalised(&self) -> Result<(Vec<Vec<f64>>, f64, (usize, usize)), BuildingError> {
+    /// The shapes mass-normalised with the floor masses (`φᵀ M φ = 1`), and how far from
+    /// mass-orthogonal they are.
+    pub fn normalised(&self) -> Result<NormalisedModes, BuildingError> {
         self.floors.check()?;
         let nf = self.floors.heights.len();
         if self.periods.is_empty() {
@@ -344,13 +344,21 @@ impl EngineerModes {
                 }
             }
         }
-        Ok((out, worst, pair))
+        Ok(NormalisedModes {
+            shapes: out,
+            orthogonality_error: worst,
+            worst_pair: pair,
+        })
     }
 
     /// Reduce to the modal model (the first `modes` modes), refusing shapes that are not
     /// mass-orthogonal within [`MAX_ORTHOGONALITY_ERROR`].
     pub fn modal(&self) -> Result<ModalModel, BuildingError> {
-        let (shapes, worst, (m, n)) = self.normalised()?;
+        let NormalisedModes {
+            shapes,
+            orthogonality_error: worst,
+            worst_pair: (m, n),
+        } = self.normalised()?;
         if worst > MAX_ORTHOGONALITY_ERROR {
             return Err(BuildingError::NotOrthogonal { m, n, value: worst });
         }
@@ -361,6 +369,17 @@ impl EngineerModes {
             .collect();
         floors_model(&self.floors, &omega, shapes, self.modes, &self.damping)
     }
+}
+
+/// The engineer's shapes mass-normalised ([`EngineerModes::normalised`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalisedModes {
+    /// `[mode][floor]`, `φᵀ M φ = 1`, kg^(−1/2).
+    pub shapes: Vec<Vec<f64>>,
+    /// The largest `|φ_mᵀ M φ_n|`, m ≠ n (0 for one mode).
+    pub orthogonality_error: f64,
+    /// The pair (1-based) where it occurs.
+    pub worst_pair: (usize, usize),
 }
 
 /// The modal model of floors from every mode's ω and mass-normalised shape, keeping `modes`.
@@ -445,8 +464,8 @@ mod tests {
                 .collect();
             let norm = (raw.iter().map(|x| m * x * x).sum::<f64>()).sqrt();
             let sign = raw[n - 1].signum();
-            for j in 0..n {
-                let phi = mm.shape(r - 1, b.floors.heights[j]);
+            for (j, &h) in b.floors.heights.iter().enumerate() {
+                let phi = mm.shape(r - 1, h);
                 assert!(
                     (phi - sign * raw[j] / norm).abs() < 1e-10 / m.sqrt(),
                     "mode {r} floor {j}"
