@@ -130,8 +130,8 @@ impl Recommended {
     /// The scenario with these settings (both structures' modes, method, dt, rtol).
     pub fn apply(&self, scenario: &Scenario) -> Scenario {
         let mut sc = scenario.clone();
-        sc.structures[0].modes = self.modes;
-        sc.structures[1].modes = self.modes;
+        sc.structures[0].set_modes(self.modes);
+        sc.structures[1].set_modes(self.modes);
         sc.solver.method = self.method;
         sc.solver.dt = self.dt;
         if let Some(r) = self.rtol {
@@ -198,8 +198,8 @@ fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
 
 fn with_modes(scenario: &Scenario, modes: usize) -> Scenario {
     let mut sc = scenario.clone();
-    sc.structures[0].modes = modes;
-    sc.structures[1].modes = modes;
+    sc.structures[0].set_modes(modes);
+    sc.structures[1].set_modes(modes);
     sc
 }
 
@@ -342,8 +342,8 @@ pub fn convergence_with(
         .collect();
     fill_changes(&mut modes);
     let n_modes = scenario.structures[0]
-        .modes
-        .max(scenario.structures[1].modes);
+        .modes()
+        .max(scenario.structures[1].modes());
     let rtols = match base.method {
         Method::Adaptive => Some(&ladders.rtols),
         Method::ExactModal => Some(&ladders.exact_modal_rtols),

@@ -562,13 +562,23 @@ fn print_modes(sc: &Scenario) {
     let h = sc.main_height();
     for (i, s) in sc.structures.iter().enumerate() {
         let m = s.modal();
+        let stiffness = match s {
+            pounding::modal::Structure::Cantilever(c) => {
+                format!("cantilever, EI = {:.4e} N·m²", c.bending_stiffness())
+            }
+            pounding::modal::Structure::Floors(f) => format!(
+                "{} floors, {} of {} modes kept",
+                f.all_modes.floor_heights().map_or(0, |h| h.len()),
+                f.modes,
+                f.all_modes.len()
+            ),
+        };
         println!(
-            "structure {} \"{}\": L = {} m, M = {:.4e} kg, EI = {:.4e} N·m²",
+            "structure {} \"{}\": L = {} m, M = {:.4e} kg, {stiffness}",
             i + 1,
-            s.name,
-            s.length,
-            s.mass,
-            s.bending_stiffness()
+            s.name(),
+            s.length(),
+            s.mass(),
         );
         println!(
             "  {:>4} {:>12} {:>12} {:>12} {:>9} {:>14} {:>14} {:>10}",
@@ -591,8 +601,9 @@ fn print_modes(sc: &Scenario) {
         println!();
     }
     println!(
-        "φ(h) at the contact height h = {h} m, times √M (dimensionless; ±2 at a free tip). Γ = m∫φ dx is the\n\
-         participation factor (η̈ + … = −Γ a_g); mass % = Γ²/M, the share of the mass each mode moves."
+        "φ(h) at the contact height h = {h} m, times √M (dimensionless; ±2 at a cantilever's free tip). Γ (m∫φ dx,\n\
+         or φᵀM1 for floors) is the participation factor (η̈ + … = −Γ a_g); mass % = Γ²/M, the share of the mass\n\
+         each mode moves."
     );
 }
 

@@ -32,9 +32,154 @@ pub enum Damping {
     },
 }
 
-/// A checked structure: a uniform cantilever of given height, mass and stiffness.
+/// A checked structure of any kind (`[[structure]] kind = …` in a scenario): a closed set.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Structure {
+pub enum Structure {
+    /// The paper's uniform continuous cantilever (`kind = "cantilever"`, the default).
+    Cantilever(Cantilever),
+    /// A building with floors: a shear building or the engineer's own modes (boxed: it
+    /// carries its whole modal model).
+    Floors(Box<FloorStructure>),
+}
+
+/// A building with floors, checked: its input and every one of its modes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloorStructure {
+    /// Name used in reports.
+    pub name: String,
+    /// What the scenario gave.
+    pub kind: FloorKind,
+    /// Every mode of the building (one per floor for a shear building, every mode given for
+    /// the engineer's), checked.
+    pub all_modes: ModalModel,
+    /// Modes kept (1 … `all_modes.len()`).
+    pub modes: usize,
+}
+
+/// The kinds of building with floors.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FloorKind {
+    /// `kind = "shear-building"`: storey springs between lumped floor masses.
+    ShearBuilding(crate::building::ShearBuilding),
+    /// `kind = "modal"`: the engineer's periods and mode shapes.
+    Modal(crate::building::EngineerModes),
+}
+
+impl FloorStructure {
+    /// Check a building and compute its modes.
+    pub fn new(
+        name: String,
+        kind: FloorKind,
+    ) -> Result<FloorStructure, crate::building::BuildingError> {
+        let (all_modes, modes) = match &kind {
+            FloorKind::ShearBuilding(b) => {
+                let all = crate::building::ShearBuilding {
+                    modes: b.floors.heights.len(),
+                    ..b.clone()
+                };
+                (all.modal()?, b.modes)
+            }
+            FloorKind::Modal(e) => {
+                let all = crate::building::EngineerModes {
+                    modes: e.periods.len(),
+                    ..e.clone()
+                };
+                (all.modal()?, e.modes)
+            }
+        };
+        if modes == 0 || modes > all_modes.len() {
+            return Err(crate::building::BuildingError::Invalid(format!(
+                "{modes} modes asked for; this building has modes 1 to {}",
+                all_modes.len()
+            )));
+        }
+        Ok(FloorStructure {
+            name,
+            kind,
+            all_modes,
+            modes,
+        })
+    }
+}
+
+impl Structure {
+    /// Name used in reports.
+    pub fn name(&self) -> &str {
+        match self {
+            Structure::Cantilever(c) => &c.name,
+            Structure::Floors(f) => &f.name,
+        }
+    }
+
+    /// Height of the top, m.
+    pub fn length(&self) -> f64 {
+        match self {
+            Structure::Cantilever(c) => c.length,
+            Structure::Floors(f) => f.all_modes.length,
+        }
+    }
+
+    /// Total mass, kg.
+    pub fn mass(&self) -> f64 {
+        match self {
+            Structure::Cantilever(c) => c.mass,
+            Structure::Floors(f) => f.all_modes.mass,
+        }
+    }
+
+    /// Modes kept.
+    pub fn modes(&self) -> usize {
+        match self {
+            Structure::Cantilever(c) => c.modes,
+            Structure::Floors(f) => f.modes,
+        }
+    }
+
+    /// The most modes this structure has (`None`: a cantilever, up to
+    /// [`crate::cantilever::MAX_MODES`]-like limits of the scenario).
+    pub fn available_modes(&self) -> Option<usize> {
+        match self {
+            Structure::Cantilever(_) => None,
+            Structure::Floors(f) => Some(f.all_modes.len()),
+        }
+    }
+
+    /// Keep `n` modes (a building keeps at most the modes it has).
+    pub fn set_modes(&mut self, n: usize) {
+        match self {
+            Structure::Cantilever(c) => c.modes = n,
+            Structure::Floors(f) => f.modes = n.clamp(1, f.all_modes.len()),
+        }
+    }
+
+    /// Floor heights of a building, m (`None` for a cantilever).
+    pub fn floor_heights(&self) -> Option<&[f64]> {
+        match self {
+            Structure::Cantilever(_) => None,
+            Structure::Floors(f) => f.all_modes.floor_heights(),
+        }
+    }
+
+    /// The cantilever, if this is one.
+    pub fn as_cantilever(&self) -> Option<&Cantilever> {
+        match self {
+            Structure::Cantilever(c) => Some(c),
+            Structure::Floors(_) => None,
+        }
+    }
+
+    /// Reduce to the modal model (the modes kept).
+    pub fn modal(&self) -> ModalModel {
+        match self {
+            Structure::Cantilever(c) => c.modal(),
+            Structure::Floors(f) => f.all_modes.truncated(f.modes),
+        }
+    }
+}
+
+/// The paper's structure: a uniform cantilever of given height, mass and stiffness.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cantilever {
     /// Name used in reports.
     pub name: String,
     /// Height L, m (> 0).
@@ -49,7 +194,7 @@ pub struct Structure {
     pub damping: Damping,
 }
 
-impl Structure {
+impl Cantilever {
     /// Mass per unit length m, kg/m.
     pub fn mass_per_length(&self) -> f64 {
         self.mass / self.length
@@ -156,6 +301,31 @@ pub struct ModalModel {
 }
 
 impl ModalModel {
+    /// The first `n` modes (all if fewer).
+    pub fn truncated(&self, n: usize) -> ModalModel {
+        let n = n.min(self.len());
+        let shapes = match &self.shapes {
+            Shapes::Cantilever(m) => Shapes::Cantilever(m[..n].to_vec()),
+            Shapes::Floors {
+                heights,
+                masses,
+                values,
+            } => Shapes::Floors {
+                heights: heights.clone(),
+                masses: masses.clone(),
+                values: values[..n].to_vec(),
+            },
+        };
+        ModalModel {
+            participation: self.participation[..n].to_vec(),
+            air_load: self.air_load[..n].to_vec(),
+            omega: self.omega[..n].to_vec(),
+            zeta: self.zeta[..n].to_vec(),
+            shapes,
+            ..self.clone()
+        }
+    }
+
     /// Number of modes kept.
     pub fn len(&self) -> usize {
         self.omega.len()
@@ -240,8 +410,8 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
-    fn beam(stiffness: Stiffness) -> Structure {
-        Structure {
+    fn beam(stiffness: Stiffness) -> Cantilever {
+        Cantilever {
             name: "b".into(),
             length: 12.0,
             mass: 3.0e6,

@@ -692,11 +692,11 @@ mod tests {
     use crate::contact::ContactLaw;
     use crate::ground_motion::GroundMotion;
     use crate::integrate::Tally;
-    use crate::modal::{Damping, Stiffness, Structure};
+    use crate::modal::{Cantilever, Damping, Stiffness};
     use crate::system::{ContactLevel, LevelState};
 
     fn system(law: ContactLaw) -> System {
-        let st = |period: f64| Structure {
+        let st = |period: f64| Cantilever {
             name: "s".into(),
             length: 10.0,
             mass: 2.0e6,

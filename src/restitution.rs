@@ -11,7 +11,7 @@ use crate::ground_motion::GroundMotion;
 use crate::integrate::{
     InitialState, Method, Observer, SolveError, SolverSettings, StepView, integrate,
 };
-use crate::modal::{Damping, Stiffness, Structure};
+use crate::modal::{Cantilever, Damping, Stiffness};
 use crate::recorder::Recorder;
 use crate::system::{ContactLevel, System};
 
@@ -76,7 +76,7 @@ pub fn isolated_impact(
     m2: f64,
     v: f64,
 ) -> Result<ImpactOutcome, SolveError> {
-    let beam = |mass: f64| Structure {
+    let beam = |mass: f64| Cantilever {
         name: "body".into(),
         length: 10.0,
         mass,

@@ -13,7 +13,7 @@ use toml::Spanned;
 use crate::contact::{ContactLaw, HertzDampModel};
 use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
 use crate::integrate::{ATOL_PER_RTOL, MIN_ATOL, MIN_RTOL, Method, SolverSettings};
-use crate::modal::{Damping, Stiffness, Structure};
+use crate::modal::{Cantilever, Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
 /// Most modes a structure may keep.
@@ -777,7 +777,7 @@ fn validate(
         let b = it.next().unwrap_or_else(|| unreachable!())?;
         [a, b]
     };
-    let min_length = structures[0].length.min(structures[1].length);
+    let min_length = structures[0].length().min(structures[1].length());
     let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
@@ -987,7 +987,7 @@ fn structure(
             Damping::Physical { strain_rate, air }
         }
     };
-    Ok(Structure {
+    Ok(Structure::Cantilever(Cantilever {
         name: s
             .name
             .clone()
@@ -997,7 +997,7 @@ fn structure(
         stiffness,
         modes,
         damping,
-    })
+    }))
 }
 
 fn contact(

@@ -296,7 +296,7 @@ fn simulate_phases(
         let s = &scenario.structures[i];
         let m = &system.structures[i];
         StructureReport {
-            name: s.name.clone(),
+            name: s.name().to_string(),
             periods: m.periods(),
             damping_ratios: m.zeta.clone(),
             peak_displacement: with.peak[i],

@@ -377,10 +377,10 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::modal::{Damping, Stiffness, Structure};
+    use crate::modal::{Cantilever, Damping, Stiffness};
 
     fn pair(modes: usize) -> [ModalModel; 2] {
-        let s = |t: f64, l: f64| Structure {
+        let s = |t: f64, l: f64| Cantilever {
             name: "s".into(),
             length: l,
             mass: 2e6,

@@ -191,7 +191,7 @@ fn forces_are_never_negative() {
     use pounding::integrate::{
         InitialState, Method, Observer, SolverSettings, StepView, integrate,
     };
-    use pounding::modal::{Damping, Stiffness, Structure};
+    use pounding::modal::{Cantilever, Damping, Stiffness};
     use pounding::system::{ContactLevel, System};
     struct MinForce(f64);
     impl Observer for MinForce {
@@ -199,7 +199,7 @@ fn forces_are_never_negative() {
             self.0 = self.0.min(s.levels[0].force);
         }
     }
-    let beam = |m: f64| Structure {
+    let beam = |m: f64| Cantilever {
         name: "b".into(),
         length: 10.0,
         mass: m,
@@ -251,10 +251,10 @@ fn forces_are_never_negative() {
 fn stereomechanical_impact_every_method() {
     use pounding::ground_motion::GroundMotion;
     use pounding::integrate::{InitialState, Method, SolverSettings};
-    use pounding::modal::{Damping, Stiffness, Structure};
+    use pounding::modal::{Cantilever, Damping, Stiffness};
     use pounding::simulate::run_system;
     use pounding::system::{ContactLevel, System};
-    let beam = |m: f64| Structure {
+    let beam = |m: f64| Cantilever {
         name: "b".into(),
         length: 10.0,
         mass: m,

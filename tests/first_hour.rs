@@ -186,8 +186,8 @@ fn a_run_too_large_is_refused_with_the_size_and_the_keys() {
 #[test]
 fn minimal_scenario_runs_with_listed_defaults() {
     let sc = parse(MINIMAL).unwrap();
-    assert_eq!(sc.structures[0].modes, DEFAULT_MODES);
-    assert_eq!(sc.structures[1].modes, DEFAULT_MODES);
+    assert_eq!(sc.structures[0].modes(), DEFAULT_MODES);
+    assert_eq!(sc.structures[1].modes(), DEFAULT_MODES);
     let m = sc.structures[0].modal();
     assert!(m.zeta.iter().all(|&z| z == DEFAULT_DAMPING_RATIO));
     assert_eq!(sc.solver.method, pounding::integrate::Method::Adaptive);
@@ -328,7 +328,7 @@ fn modes_must_be_a_whole_number() {
         err.contains("must be a whole number from 1 to 500"),
         "{err}"
     );
-    assert_eq!(with("7").unwrap().structures[0].modes, 7);
+    assert_eq!(with("7").unwrap().structures[0].modes(), 7);
     assert!(with("0").unwrap_err().contains("1 to 500"));
 }
 

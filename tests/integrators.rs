@@ -10,13 +10,13 @@ use pounding::ground_motion::{GroundMotion, Harmonic, Record};
 use pounding::integrate::{
     InitialState, Method, Observer, SolverSettings, Stats, StepView, integrate,
 };
-use pounding::modal::{Damping, Stiffness, Structure};
+use pounding::modal::{Cantilever, Damping, Stiffness};
 use pounding::recorder::RunRecord;
 use pounding::simulate::run_system;
 use pounding::system::{ContactLevel, System};
 
-fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Structure {
-    Structure {
+fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {
+    Cantilever {
         name: "s".into(),
         length,
         mass,

@@ -5,13 +5,13 @@ use std::path::Path;
 use pounding::contact::ContactLaw;
 use pounding::ground_motion::GroundMotion;
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Damping, Stiffness, Structure};
+use pounding::modal::{Cantilever, Damping, Stiffness};
 use pounding::scenario::Scenario;
 use pounding::simulate::{run_system, simulate};
 use pounding::system::{ContactLevel, System};
 
-fn beam(length: f64, mass: f64, period: f64, zeta: f64) -> Structure {
-    Structure {
+fn beam(length: f64, mass: f64, period: f64, zeta: f64) -> Cantilever {
+    Cantilever {
         name: "b".into(),
         length,
         mass,

@@ -7,12 +7,12 @@ use std::sync::Arc;
 use pounding::contact::ContactLaw;
 use pounding::ground_motion::{GroundMotion, Harmonic, Record};
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Damping, ModalModel, Stiffness, Structure};
+use pounding::modal::{Cantilever, Damping, ModalModel, Stiffness};
 use pounding::simulate::run_system;
 use pounding::system::{ContactLevel, System};
 
-fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Structure {
-    Structure {
+fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {
+    Cantilever {
         name: "s".into(),
         length,
         mass,

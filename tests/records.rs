@@ -6,7 +6,7 @@ use std::sync::Arc;
 use pounding::contact::ContactLaw;
 use pounding::ground_motion::{GroundMotion, Record, STANDARD_GRAVITY};
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Damping, Stiffness, Structure};
+use pounding::modal::{Cantilever, Damping, Stiffness};
 use pounding::scenario::Scenario;
 use pounding::simulate::simulate;
 use pounding::system::System;
@@ -117,7 +117,7 @@ fn bad_records_name_both_files() {
 fn constant_ground_acceleration_step_response() {
     let a0 = 2.0;
     let rec = Record::from_samples(0.01, vec![a0; 1001], "constant".into()).unwrap();
-    let s = Structure {
+    let s = Cantilever {
         name: "s".into(),
         length: 10.0,
         mass: 1e6,

@@ -42,7 +42,7 @@ fn bundled_examples_parse() {
             .join("examples")
             .join(f);
         let sc = Scenario::from_file(&p).unwrap_or_else(|e| panic!("{f}: {e}"));
-        assert_eq!(sc.structures[0].modes, 3);
+        assert_eq!(sc.structures[0].modes(), 3);
         assert_eq!(sc.contact.levels.len(), 1);
         assert_eq!(
             sc.contact.levels[0].height, 10.0,
@@ -54,8 +54,8 @@ fn bundled_examples_parse() {
 #[test]
 fn parsed_values_are_si() {
     let sc = parse(BASE).unwrap();
-    assert_eq!(sc.structures[0].length, 10.0);
-    assert_eq!(sc.structures[0].mass, 2.273e6);
+    assert_eq!(sc.structures[0].length(), 10.0);
+    assert_eq!(sc.structures[0].mass(), 2.273e6);
     assert_eq!(sc.contact.levels[0].gap, 0.0127);
     // PGA in g → m/s² with standard gravity
     assert!((sc.ground_motion.pga() - 0.6 * 9.80665).abs() < 1e-12);
@@ -63,7 +63,7 @@ fn parsed_values_are_si() {
     assert_eq!(sc.output_interval, 0.01);
     // integers are accepted where floats are expected
     let sc = parse(&edit("length = 10.0", "length = 10")).unwrap();
-    assert_eq!(sc.structures[0].length, 10.0);
+    assert_eq!(sc.structures[0].length(), 10.0);
 }
 
 #[test]

@@ -913,9 +913,9 @@ mod tests {
     fn contact_forms_regroup_the_per_mode_tallies() {
         use crate::contact::ContactLaw;
         use crate::ground_motion::Harmonic;
-        use crate::modal::{Damping, Stiffness, Structure};
+        use crate::modal::{Cantilever, Damping, Stiffness};
         use crate::system::ContactLevel;
-        let st = |period: f64, zeta: f64| Structure {
+        let st = |period: f64, zeta: f64| Cantilever {
             name: "s".into(),
             length: 10.0,
             mass: 2.0e6,

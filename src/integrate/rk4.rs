@@ -559,9 +559,9 @@ mod tests {
     fn contact_mode_matches_the_two_by_two_eigenproblem() {
         use crate::contact::ContactLaw;
         use crate::ground_motion::GroundMotion;
-        use crate::modal::{Damping, Stiffness, Structure};
+        use crate::modal::{Cantilever, Damping, Stiffness};
         use crate::system::ContactLevel;
-        let beam = |period: f64, zeta: f64| Structure {
+        let beam = |period: f64, zeta: f64| Cantilever {
             name: "b".into(),
             length: 10.0,
             mass: 2e6,

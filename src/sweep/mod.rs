@@ -41,7 +41,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::{Spanned, Table, Value};
 
-use crate::modal::{Damping, Stiffness, Structure};
+use crate::modal::{Cantilever, Damping, Stiffness};
 use crate::scenario::{Location, RecordCache, Scenario, ScenarioError};
 
 /// Most cases a sweep may have.
@@ -864,7 +864,7 @@ fn first_period(t: &Table, i: usize) -> Result<f64, String> {
             i + 1
         ));
     };
-    let st = Structure {
+    let st = Cantilever {
         name: String::new(),
         length: positive("length")?,
         mass: positive("mass")?,
@@ -1323,7 +1323,7 @@ mod tests {
         .unwrap();
         let sc = s.case_scenario(0).unwrap();
         let t2 = 0.4203 / 0.7;
-        assert_eq!(sc.structures[1].stiffness, Stiffness::Period(t2));
+        assert_eq!(sc.structures[1].as_cantilever().unwrap().stiffness, Stiffness::Period(t2));
         let h = match &sc.ground_motion {
             crate::ground_motion::GroundMotion::Harmonic(h) => *h,
             _ => panic!(),
@@ -1428,10 +1428,10 @@ mod tests {
         assert_eq!(s.axes[0].values[1], AxisValue::Integer(3));
         assert_eq!(s.axes[1].key, "structure.2.tip_stiffness");
         let sc = s.case_scenario(2).unwrap();
-        assert_eq!(sc.structures[1].modes, 5);
-        assert_eq!(sc.structures[1].stiffness, Stiffness::Tip(3e8));
+        assert_eq!(sc.structures[1].modes(), 5);
+        assert_eq!(sc.structures[1].as_cantilever().unwrap().stiffness, Stiffness::Tip(3e8));
         assert!(matches!(
-            sc.structures[0].damping,
+            sc.structures[0].as_cantilever().unwrap().damping,
             Damping::Physical { strain_rate, air } if strain_rate == 0.001 && air == 0.0
         ));
         let e = sweep("[[axis]]\nkey = \"structure.2.modes\"\nvalues = [2.5]\n")
