@@ -17,6 +17,7 @@
 
 pub mod accuracy;
 pub mod cantilever;
+pub mod codes;
 pub mod contact;
 pub mod convergence;
 pub mod figures;
@@ -30,6 +31,7 @@ pub mod restitution;
 pub mod scenario;
 pub mod separation;
 pub mod simulate;
+pub mod spectrum;
 pub mod sweep;
 pub mod sweep_plots;
 pub mod system;
