@@ -4,7 +4,7 @@
 //! them* (see each variant) and, where a code needs them, their heights; it returns the
 //! required separation in m with the per-structure terms, the code's name and the clause.
 //! Sources and what could not be verified are in `docs/codes.md`; nothing here goes beyond
-//! what was verified (no Eurocode 8 §4.4.2.7 rule, no IS 1893 R/2 reduction, no NTC-Sismo).
+//! what was verified (no Eurocode 8 §4.4.2.7 rule, no IS 1893 R/2 reduction).
 //!
 //! | rule | required separation |
 //! |---|---|
@@ -13,6 +13,7 @@
 //! | IS 1893 (Part 1):2016 §7.11.3 | `R (Δ₁ + Δ₂)` |
 //! | NBCC Art. 4.1.8.14 | `√(Δ₁² + Δ₂²)`, `Δ_i = δ_i R_d,i R_o,i / I_E,i` (Sentence 4.1.8.13.(2)) |
 //! | GB 50011-2010 §6.1.4 | joint width by system, the lower height and the intensity |
+//! | NTC-Sismo (Mexico City, 2004) §1.10 | `s₁ + s₂` (half if same height, system, slab levels), `s_i = max(50 mm, d_i + c h)` |
 
 use serde::Serialize;
 
@@ -64,6 +65,9 @@ pub struct PairInput {
     pub displacement: [f64; 2],
     /// Height of each structure (top above the base), m: used by GB 50011 only.
     pub height: [f64; 2],
+    /// Height of the contact level above the ground on each structure, m: used by NTC-Sismo
+    /// only.
+    pub level: [f64; 2],
 }
 
 /// Where the ASCE 7 separation is measured (§12.12.3).
@@ -149,6 +153,40 @@ pub struct Gb50011Params {
     pub partial_step: PartialStep,
 }
 
+/// Mexico City seismic zone (NTC-Sismo 2004): I (firm ground), II (transition), III (lake bed).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum NtcZone {
+    /// Zone I.
+    I,
+    /// Zone II.
+    II,
+    /// Zone III.
+    III,
+}
+
+/// How the NTC-Sismo displacements were obtained (§1.10 gives a rule for each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum NtcMethod {
+    /// Static or dynamic analysis: `s = max(50 mm, d + c h)`, c = 0.001, 0.003, 0.006 in
+    /// zones I, II, III.
+    Analysis,
+    /// The simplified method of seismic analysis: `s = max(50 mm, k h)`, k = 0.007, 0.009,
+    /// 0.012 in zones I, II, III (no displacement used).
+    Simplified,
+}
+
+/// NTC-Sismo (Normas Técnicas Complementarias para Diseño por Sismo, Mexico City, 2004) §1.10.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NtcParams {
+    /// Seismic zone.
+    pub zone: NtcZone,
+    /// Analysis or simplified method.
+    pub method: NtcMethod,
+    /// Both bodies have the same height and structuring and their slabs coincide at every
+    /// level: half the sum is allowed.
+    pub same_height_and_levels: bool,
+}
+
 /// A code separation rule with its parameters: a closed set.
 ///
 /// The displacements of [`PairInput`] are, per rule:
@@ -157,7 +195,9 @@ pub struct Gb50011Params {
 /// - `Is1893`: Δ, the displacement under the design lateral force (§7.11.1), m;
 /// - `Nbcc`: the elastic lateral deflection from the linear analysis under the design forces
 ///   (before × R_dR_o/I_E), m;
-/// - `Gb50011`: not used (the joint width depends on system, height and intensity only).
+/// - `Gb50011`: not used (the joint width depends on system, height and intensity only);
+/// - `NtcSismo`: the horizontal displacement calculated for the level (including the overall
+///   flexure and base rotation when significant), m; not used by the simplified method.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum CodeRule {
     /// ASCE 7-16 §12.12.3.
@@ -168,12 +208,15 @@ pub enum CodeRule {
     Nbcc(NbccParams),
     /// GB 50011-2010 §6.1.4 (reinforced-concrete buildings).
     Gb50011(Gb50011Params),
+    /// NTC-Sismo 2004 (Mexico City) §1.10.
+    NtcSismo(NtcParams),
 }
 
 /// The separation a code requires, with its terms.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CodeSeparation {
-    /// Short key: "asce7", "is1893", "nbcc", "gb50011" (CLI flags, sweep columns `sep_<key>`).
+    /// Short key: "asce7", "is1893", "nbcc", "gb50011", "ntc" (CLI flags, sweep columns
+    /// `sep_<key>`).
     pub key: &'static str,
     /// Code name, e.g. "ASCE 7-16".
     pub name: &'static str,
@@ -182,18 +225,20 @@ pub struct CodeSeparation {
     /// Required separation, m.
     pub required: f64,
     /// Per-structure terms, m: δ_M (ASCE 7), R Δ (IS 1893), R_dR_oΔ/I_E (NBCC), the joint width
-    /// each side's own system and height would need (GB 50011).
+    /// each side's own system and height would need (GB 50011), each side's distance to the
+    /// property line s_i (NTC-Sismo).
     pub terms: [f64; 2],
 }
 
 impl CodeRule {
-    /// Short key: "asce7", "is1893", "nbcc", "gb50011".
+    /// Short key: "asce7", "is1893", "nbcc", "gb50011", "ntc".
     pub fn key(&self) -> &'static str {
         match self {
             CodeRule::Asce7(_) => "asce7",
             CodeRule::Is1893(_) => "is1893",
             CodeRule::Nbcc(_) => "nbcc",
             CodeRule::Gb50011(_) => "gb50011",
+            CodeRule::NtcSismo(_) => "ntc",
         }
     }
 
@@ -204,6 +249,7 @@ impl CodeRule {
             CodeRule::Is1893(_) => "IS 1893 (Part 1):2016",
             CodeRule::Nbcc(_) => "NBCC",
             CodeRule::Gb50011(_) => "GB 50011-2010",
+            CodeRule::NtcSismo(_) => "NTC-Sismo 2004 (Mexico City)",
         }
     }
 
@@ -217,6 +263,7 @@ impl CodeRule {
             CodeRule::Is1893(_) => "§7.11.3",
             CodeRule::Nbcc(_) => "Art. 4.1.8.14 with Sentence 4.1.8.13.(2)",
             CodeRule::Gb50011(_) => "§6.1.4 item 1",
+            CodeRule::NtcSismo(_) => "§1.10",
         }
     }
 
@@ -280,6 +327,43 @@ impl CodeRule {
                 let lower = input.height[0].min(input.height[1]);
                 let required = gb50011_width(p.intensity, wider, lower, p.partial_step)?;
                 (required, own)
+            }
+            CodeRule::NtcSismo(p) => {
+                let d = match p.method {
+                    NtcMethod::Analysis => displacements(key, input)?,
+                    NtcMethod::Simplified => [0.0; 2],
+                };
+                // c for the analysis rule, k for the simplified method (zones I, II, III)
+                let (c, k) = match p.zone {
+                    NtcZone::I => (0.001, 0.007),
+                    NtcZone::II => (0.003, 0.009),
+                    NtcZone::III => (0.006, 0.012),
+                };
+                let mut s = [0.0; 2];
+                for (i, si) in s.iter_mut().enumerate() {
+                    let h = input.level[i];
+                    if !(h.is_finite() && h >= 0.0) {
+                        return Err(CodeError::BadHeight {
+                            code: key,
+                            structure: i + 1,
+                            value: h,
+                        });
+                    }
+                    let own = match p.method {
+                        NtcMethod::Analysis => d[i] + c * h,
+                        NtcMethod::Simplified => k * h,
+                    };
+                    *si = own.max(0.050);
+                }
+                let sum = s[0] + s[1];
+                (
+                    if p.same_height_and_levels {
+                        0.5 * sum
+                    } else {
+                        sum
+                    },
+                    s,
+                )
             }
         };
         Ok(CodeSeparation {

@@ -2,13 +2,14 @@
 
 use pounding::codes::{
     Asce7Boundary, Asce7Params, CodeError, CodeRule, Gb50011Params, GbSystem, Is1893Params,
-    NbccParams, PairInput, PartialStep, gb50011_width,
+    NbccParams, NtcMethod, NtcParams, NtcZone, PairInput, PartialStep, gb50011_width,
 };
 
 fn input(d1: f64, d2: f64) -> PairInput {
     PairInput {
         displacement: [d1, d2],
         height: [20.0, 20.0],
+        level: [12.0, 12.0],
     }
 }
 
@@ -104,6 +105,7 @@ fn gb50011_pair_by_hand() {
         .required_separation(&PairInput {
             displacement: [f64::NAN, f64::NAN], // not used by GB 50011
             height: [30.0, 20.0],
+            level: [0.0, 0.0],
         })
         .unwrap();
     assert!((s.required - 0.140).abs() < 1e-15);
@@ -112,11 +114,46 @@ fn gb50011_pair_by_hand() {
     let bad = rule.required_separation(&PairInput {
         displacement: [0.0, 0.0],
         height: [30.0, -1.0],
+        level: [0.0, 0.0],
     });
     assert!(matches!(
         bad,
         Err(CodeError::BadHeight { structure: 2, .. })
     ));
+}
+
+/// NTC-Sismo 2004 §1.10 at a 12 m level. Zone II, analysis, d = 0.04 and 0.03 m:
+/// s₁ = 0.04 + 0.003·12 = 0.076 m, s₂ = 0.03 + 0.036 = 0.066 m; sum 0.142 m, half 0.071 m.
+/// Zone I: s₂ = 0.03 + 0.001·12 = 0.042 → the 50 mm minimum. Simplified, zone III:
+/// 0.012·12 = 0.144 m each, sum 0.288 m.
+#[test]
+fn ntc_by_hand() {
+    let rule = |zone, method, same| {
+        CodeRule::NtcSismo(NtcParams {
+            zone,
+            method,
+            same_height_and_levels: same,
+        })
+    };
+    let s = rule(NtcZone::II, NtcMethod::Analysis, false)
+        .required_separation(&input(0.04, 0.03))
+        .unwrap();
+    assert!((s.terms[0] - 0.076).abs() < 1e-12 && (s.terms[1] - 0.066).abs() < 1e-12);
+    assert!((s.required - 0.142).abs() < 1e-12);
+    let half = rule(NtcZone::II, NtcMethod::Analysis, true)
+        .required_separation(&input(0.04, 0.03))
+        .unwrap();
+    assert!((half.required - 0.071).abs() < 1e-12);
+    let z1 = rule(NtcZone::I, NtcMethod::Analysis, false)
+        .required_separation(&input(0.04, 0.03))
+        .unwrap();
+    assert!((z1.terms[0] - 0.052).abs() < 1e-12);
+    assert_eq!(z1.terms[1], 0.050);
+    let simp = rule(NtcZone::III, NtcMethod::Simplified, false)
+        .required_separation(&input(f64::NAN, f64::NAN))
+        .unwrap();
+    assert!((simp.required - 0.288).abs() < 1e-12);
+    assert_eq!((simp.key, simp.clause), ("ntc", "§1.10"));
 }
 
 /// No panic on bad input: errors name the factor and the structure.
