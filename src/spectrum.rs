@@ -502,13 +502,17 @@ fn check_model(model: &ModalModel) -> Result<(), SpectrumError> {
     if n == 0 {
         return Err(SpectrumError::BadModel("no modes".into()));
     }
-    if model.zeta.len() != n || model.gamma.len() != n || model.modes.len() != n {
+    let shapes = match &model.shapes {
+        crate::modal::Shapes::Cantilever(m) => m.len(),
+        crate::modal::Shapes::Floors { values, .. } => values.len(),
+    };
+    if model.zeta.len() != n || model.participation.len() != n || shapes != n {
         return Err(SpectrumError::BadModel(format!(
-            "{} frequencies, {} damping ratios, {} participation integrals, {} shapes",
+            "{} frequencies, {} damping ratios, {} participation factors, {} shapes",
             n,
             model.zeta.len(),
-            model.gamma.len(),
-            model.modes.len()
+            model.participation.len(),
+            shapes
         )));
     }
     if let Some((i, w)) = model

@@ -1,6 +1,6 @@
 //! Design spectra and response-spectrum analysis against hand computations (issue 13).
 
-use pounding::modal::{Damping, ModalModel, Stiffness, Structure};
+use pounding::modal::{Cantilever, Damping, ModalModel, Stiffness};
 use pounding::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumError, SpectrumTable,
     modal_correlation, peak_displacement, peak_displacements, relative_peak,
@@ -141,7 +141,7 @@ fn table_interpolation_and_validation() {
 }
 
 fn cantilever(period: f64, modes: usize, zeta: f64) -> ModalModel {
-    Structure {
+    Cantilever {
         name: "s".into(),
         length: 12.0,
         mass: 3.0e6,
