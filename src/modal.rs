@@ -73,15 +73,19 @@ impl FloorStructure {
     ) -> Result<FloorStructure, crate::building::BuildingError> {
         let (all_modes, modes) = match &kind {
             FloorKind::ShearBuilding(b) => {
+                let n = b.floors.heights.len();
                 let all = crate::building::ShearBuilding {
-                    modes: b.floors.heights.len(),
+                    modes: n,
+                    damping: every_mode(&b.damping, n),
                     ..b.clone()
                 };
                 (all.modal()?, b.modes)
             }
             FloorKind::Modal(e) => {
+                let n = e.periods.len();
                 let all = crate::building::EngineerModes {
-                    modes: e.periods.len(),
+                    modes: n,
+                    damping: every_mode(&e.damping, n),
                     ..e.clone()
                 };
                 (all.modal()?, e.modes)
@@ -99,6 +103,19 @@ impl FloorStructure {
             all_modes,
             modes,
         })
+    }
+}
+
+/// Damping ratios given per mode kept, extended to every mode of the building (the modes not
+/// kept take the last ratio; they are truncated away).
+fn every_mode(d: &crate::building::FloorDamping, n: usize) -> crate::building::FloorDamping {
+    match d {
+        crate::building::FloorDamping::Modal(z) if z.len() > 1 && z.len() < n => {
+            let mut z = z.clone();
+            z.resize(n, z[z.len() - 1]);
+            crate::building::FloorDamping::Modal(z)
+        }
+        other => other.clone(),
     }
 }
 

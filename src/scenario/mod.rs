@@ -16,6 +16,8 @@ use crate::integrate::{ATOL_PER_RTOL, MIN_ATOL, MIN_RTOL, Method, SolverSettings
 use crate::modal::{Cantilever, Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
+mod floors;
+
 /// Most modes a structure may keep.
 pub const MAX_MODES: i64 = 500;
 
@@ -166,6 +168,8 @@ struct RawScenario {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawStructure {
+    /// `"cantilever"` (default), `"shear-building"` or `"modal"`.
+    kind: Option<Spanned<String>>,
     name: Option<String>,
     length: Option<Spanned<f64>>,
     mass: Option<Spanned<f64>>,
@@ -177,6 +181,26 @@ struct RawStructure {
     damping_ratio: Option<Spanned<RawZeta>>,
     strain_rate_damping: Option<Spanned<f64>>,
     air_damping: Option<Spanned<f64>>,
+    // buildings with floors (see `floors`)
+    floor_heights: Option<Spanned<Vec<f64>>>,
+    floor_masses: Option<Spanned<Vec<f64>>>,
+    storey_stiffnesses: Option<Spanned<Vec<f64>>>,
+    storeys: Option<Spanned<toml::Value>>,
+    storey_height: Option<Spanned<f64>>,
+    floor_mass: Option<Spanned<f64>>,
+    storey_stiffness: Option<Spanned<f64>>,
+    rayleigh: Option<Spanned<RawRayleigh>>,
+    periods: Option<Spanned<Vec<f64>>>,
+    mode_shapes: Option<Spanned<Vec<Vec<f64>>>>,
+    modes_file: Option<Spanned<String>>,
+}
+
+/// `rayleigh = { damping_ratio = 0.05, modes = [1, 3] }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRayleigh {
+    damping_ratio: Option<Spanned<f64>>,
+    modes: Option<Spanned<Vec<i64>>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -237,6 +261,7 @@ const TABLES: &[(&str, &[&str])] = &[
     (
         "[[structure]]",
         &[
+            "kind",
             "name",
             "length",
             "mass",
@@ -247,8 +272,20 @@ const TABLES: &[(&str, &[&str])] = &[
             "damping_ratio",
             "strain_rate_damping",
             "air_damping",
+            "floor_heights",
+            "floor_masses",
+            "storey_stiffnesses",
+            "storeys",
+            "storey_height",
+            "floor_mass",
+            "storey_stiffness",
+            "rayleigh",
+            "periods",
+            "mode_shapes",
+            "modes_file",
         ],
     ),
+    ("structure.rayleigh", &["damping_ratio", "modes"]),
     (
         "[contact]",
         &[
@@ -429,6 +466,10 @@ fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, String, String)>
             let near = Some(list.span().start);
             for (i, s) in list.get_ref().iter().enumerate().take(2) {
                 let key = |k: &str| format!("structure[{}].{k}", i + 1);
+                if s.kind.as_ref().is_some_and(|k| k.get_ref() != "cantilever") {
+                    // a building with floors: its keys are checked by `floors`
+                    continue;
+                }
                 if s.length.is_none() {
                     miss(near, key("length"), "height L in m");
                 }
@@ -744,6 +785,63 @@ impl Check<'_, '_> {
     }
 }
 
+/// A building with floors touches only at its floors: every contact height must be one of
+/// them (a cantilever may touch at any height up to its top).
+fn floors_at_contact(
+    c: &Check,
+    raw: &RawScenario,
+    structures: &[Structure; 2],
+    contact: &ContactSpec,
+) -> Result<(), ScenarioError> {
+    let Some(rc) = raw.contact.as_ref() else {
+        return Ok(());
+    };
+    let levels = rc.get_ref().level.as_ref();
+    for (k, lv) in contact.levels.iter().enumerate() {
+        for (i, s) in structures.iter().enumerate() {
+            let Some(heights) = s.floor_heights() else {
+                continue;
+            };
+            if heights
+                .iter()
+                .any(|&h| (h - lv.height).abs() <= 1e-9 * h.max(1.0))
+            {
+                continue;
+            }
+            let (key, at) = match levels.and_then(|l| l.get(k)) {
+                Some(l) => (
+                    format!("contact.level[{}].height", k + 1),
+                    l.get_ref()
+                        .height
+                        .as_ref()
+                        .map_or(l.span().start, |h| h.span().start),
+                ),
+                None => (
+                    "contact.height".to_string(),
+                    rc.get_ref()
+                        .height
+                        .as_ref()
+                        .map_or(rc.span().start, |h| h.span().start),
+                ),
+            };
+            let floors: Vec<String> = heights.iter().map(|h| format!("{h}")).collect();
+            return Err(ScenarioError::Invalid {
+                at: c.ctx.at(Some(at)),
+                key,
+                value: format!("{} m", lv.height),
+                reason: format!(
+                    "structure {} (\"{}\") has floors at {} m: a building with floors touches its \
+                     neighbour only at a floor, so a contact height must be one of them",
+                    i + 1,
+                    s.name(),
+                    floors.join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 fn validate(
     raw: RawScenario,
     ctx: &Ctx,
@@ -752,6 +850,7 @@ fn validate(
 ) -> Result<Scenario, ScenarioError> {
     let c = Check { ctx };
     let mut defaults = Vec::new();
+    let mut structure_warnings = Vec::new();
     let structures = {
         let list = c.required(
             &raw.structure,
@@ -768,11 +867,23 @@ fn validate(
             });
         }
         let start = list.span().start;
-        let mut it = list
-            .get_ref()
-            .iter()
-            .enumerate()
-            .map(|(i, s)| structure(&c, i, s, start, &mut defaults));
+        let mut it =
+            list.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, s)| match floors::kind(&c, i, s)? {
+                    floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
+                    kind => floors::floor_structure(
+                        &c,
+                        i,
+                        s,
+                        kind,
+                        start,
+                        base_dir,
+                        &mut defaults,
+                        &mut structure_warnings,
+                    ),
+                });
         let a = it.next().unwrap_or_else(|| unreachable!())?;
         let b = it.next().unwrap_or_else(|| unreachable!())?;
         [a, b]
@@ -781,7 +892,9 @@ fn validate(
     let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
-    let warnings = plausibility(&contact, &ground_motion);
+    floors_at_contact(&c, &raw, &structures, &contact)?;
+    let mut warnings = structure_warnings;
+    warnings.extend(plausibility(&contact, &ground_motion));
     let scenario = Scenario {
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
         structures,
