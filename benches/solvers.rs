@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use criterion::Criterion;
 use pounding::ground_motion::{GroundMotion, Record};
 use pounding::scenario::Scenario;
-use pounding::simulate::simulate;
+use pounding::simulate::simulate_headline;
 
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
 
@@ -117,7 +117,7 @@ fn main() {
     let cases = cases();
     for case in &cases {
         c.bench_function(&case.name, |b| {
-            b.iter(|| simulate(black_box(&case.scenario)).expect("runs"))
+            b.iter(|| simulate_headline(black_box(&case.scenario), false).expect("runs"))
         });
     }
     c.final_summary();
@@ -137,7 +137,7 @@ fn main() {
         let mut steps = 0;
         for _ in 0..20 {
             let t0 = Instant::now();
-            let r = simulate(black_box(&case.scenario)).expect("runs");
+            let r = simulate_headline(black_box(&case.scenario), false).expect("runs");
             best = best.min(t0.elapsed().as_secs_f64());
             steps = r.with_contact.steps + r.without_contact.steps;
         }

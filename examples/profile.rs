@@ -8,14 +8,16 @@
 //! ```
 //!
 //! Arguments: scenario file, method (replaces `method = "rk4"`), dt (replaces `dt = 0.001`),
-//! repetitions, and optionally `check` to run `simulate_checked` (the run and its self-check, as
-//! `pounding run` does) instead of `simulate`. Prints the best wall time, the steps and the
+//! repetitions, and optionally `check` (the run and its self-check, as `pounding run` does),
+//! `floors` (also the responses over the structures' heights, as `pounding run` does) or
+//! `check,floors`; without them the headline integration alone (`simulate_headline`, what a
+//! sweep row costs). Prints the best wall time, the steps and the
 //! peaks of the last run.
 
 use std::time::Instant;
 
 use pounding::scenario::Scenario;
-use pounding::simulate::simulate_checked;
+use pounding::simulate::{simulate_checked, simulate_headline};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -23,11 +25,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let method = args.get(2).map_or("exact-modal", |s| s.as_str());
     let dt: f64 = args.get(3).map_or(Ok(0.01), |s| s.parse())?;
     let reps: usize = args.get(4).map_or(Ok(100), |s| s.parse())?;
-    let check = match args.get(5).map(|s| s.as_str()) {
-        None => false,
-        Some("check") => true,
+    let (check, floors) = match args.get(5).map(|s| s.as_str()) {
+        None => (false, false),
+        Some("check") => (true, false),
+        Some("floors") => (false, true),
+        Some("check,floors") => (true, true),
         Some(other) => {
-            return Err(format!("5th argument: `check` or nothing, not `{other}`").into());
+            return Err(format!(
+                "5th argument: `check`, `floors`, `check,floors` or nothing, not `{other}`"
+            )
+            .into());
         }
     };
     let text = std::fs::read_to_string(path)?
@@ -41,7 +48,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut last = None;
     for _ in 0..reps.max(1) {
         let t0 = Instant::now();
-        last = Some(simulate_checked(&scenario, check)?);
+        last = Some(if floors {
+            simulate_checked(&scenario, check)?
+        } else {
+            simulate_headline(&scenario, check)?
+        });
         best = best.min(t0.elapsed().as_secs_f64());
     }
     if let Some(r) = last {

@@ -24,6 +24,7 @@ pub mod codes;
 pub mod contact;
 pub mod convergence;
 pub mod figures;
+pub mod floor_response;
 pub mod ground_motion;
 pub mod integrate;
 pub mod modal;

@@ -10,6 +10,7 @@
 use serde::Serialize;
 
 use crate::contact::ContactForce;
+use crate::floor_response::{FloorPeaks, FloorRecorder};
 use crate::integrate::linear::hermite_max;
 use crate::integrate::{Observer, StepView, onset_speed};
 use crate::system::System;
@@ -179,6 +180,8 @@ pub struct RunRecord {
     pub energy: EnergyBalance,
     /// Steps observed.
     pub steps: usize,
+    /// Peaks over the height of structure 1 and 2 (floors, or a cantilever's stations).
+    pub floors: [Vec<FloorPeaks>; 2],
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -228,6 +231,8 @@ pub struct Recorder<'s> {
     last_energy: [f64; 5],
     /// End of the run, s.
     end: f64,
+    /// Responses over the structures' heights (`None`: not tracked).
+    floors: Option<FloorRecorder>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -320,7 +325,15 @@ impl<'s> Recorder<'s> {
             steps: 0,
             last_energy: [0.0; 5],
             end: duration,
+            floors: Some(FloorRecorder::new(system, heights)),
         }
+    }
+
+    /// Do not track the responses over the structures' heights (`RunRecord::floors` empty):
+    /// for runs that need only the contact-height numbers.
+    pub fn without_floors(mut self) -> Recorder<'s> {
+        self.floors = None;
+        self
     }
 
     /// Send every history sample to `sink` as it is taken (the in-memory history is kept as
@@ -370,6 +383,9 @@ impl<'s> Recorder<'s> {
             history: self.history,
             energy,
             steps: self.steps,
+            floors: self
+                .floors
+                .map_or([Vec::new(), Vec::new()], FloorRecorder::finish),
         }
     }
 
@@ -472,6 +488,9 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
 
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
+        if let Some(f) = &mut self.floors {
+            f.observe(system, s);
+        }
         let (n1, q) = (system.n1(), s.q);
         // displacements and velocities at every tracked height
         let mut main_sample = Sample {

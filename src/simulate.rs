@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use crate::accuracy::{AccuracyCheck, limited_tightening, tightened};
+use crate::floor_response::FloorPeaks;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
 use crate::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
 use crate::scenario::Scenario;
@@ -38,6 +39,49 @@ pub struct StructureReport {
     pub peak_displacement_no_contact: f64,
     /// 100·(with − without)/without, %.
     pub change_percent: f64,
+    /// Peaks at every floor (a cantilever: every tenth of its height and each contact
+    /// height), lowest first, with and without pounding (see [`crate::floor_response`]).
+    pub floors: Vec<FloorReport>,
+}
+
+/// Peaks at one floor (station), with and without pounding.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FloorReport {
+    /// Height above the base, m.
+    pub height: f64,
+    /// Peak |u| relative to the ground with pounding, m.
+    pub peak_displacement: f64,
+    /// The same without pounding, m.
+    pub peak_displacement_no_contact: f64,
+    /// Peak absolute acceleration |ü + a_g| with pounding, m/s².
+    pub peak_acceleration: f64,
+    /// The same without pounding, m/s².
+    pub peak_acceleration_no_contact: f64,
+    /// Peak inter-storey drift of the storey below with pounding (the first relative to the
+    /// base), m.
+    pub peak_drift: f64,
+    /// The same without pounding, m.
+    pub peak_drift_no_contact: f64,
+    /// Peak shear of the storey below with pounding, N.
+    pub peak_shear: f64,
+    /// The same without pounding, N.
+    pub peak_shear_no_contact: f64,
+}
+
+impl FloorReport {
+    fn pair(a: &FloorPeaks, b: &FloorPeaks) -> FloorReport {
+        FloorReport {
+            height: a.height,
+            peak_displacement: a.displacement,
+            peak_displacement_no_contact: b.displacement,
+            peak_acceleration: a.acceleration,
+            peak_acceleration_no_contact: b.acceleration,
+            peak_drift: a.drift,
+            peak_drift_no_contact: b.drift,
+            peak_shear: a.shear,
+            peak_shear_no_contact: b.shear,
+        }
+    }
 }
 
 /// Contact results, totals and maxima over the levels.
@@ -203,10 +247,14 @@ fn run_phase(
     interval: f64,
     sink: &mut dyn RunSink,
     phase: Phase,
+    floors: bool,
 ) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
     let mut rec =
         Recorder::new(system, heights, interval, settings.duration).with_sink(&mut adapter);
+    if !floors {
+        rec = rec.without_floors();
+    }
     let stats = integrate(system, settings, &InitialState::default(), &mut rec)?;
     Ok((rec.finish(), stats))
 }
@@ -270,7 +318,14 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
 /// Run a scenario with and without contact and compare. The result is not self-checked
 /// (`accuracy.checked` is false); [`simulate_checked`] checks it.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
-    simulate_phases(scenario, &mut NoSink, false)
+    simulate_phases(scenario, &mut NoSink, false, true)
+}
+
+/// [`simulate_checked`] without the responses over the structures' heights
+/// (`structures[i].floors` empty): the headline numbers only, at the cost of the integration
+/// alone (what a sweep row needs).
+pub fn simulate_headline(scenario: &Scenario, check: bool) -> Result<Report, SolveError> {
+    simulate_run(scenario, check, &mut NoSink, false)
 }
 
 /// The two runs of [`simulate`], streamed to `sink` as the phases of the result or (`check`)
@@ -279,6 +334,7 @@ fn simulate_phases(
     scenario: &Scenario,
     sink: &mut dyn RunSink,
     check: bool,
+    floors: bool,
 ) -> Result<Report, SolveError> {
     let system = scenario.system();
     let free = system.without_contact();
@@ -289,8 +345,26 @@ fn simulate_phases(
         (Phase::WithContact, Phase::WithoutContact)
     };
     let interval = scenario.output_interval;
-    let (with, stats) = run_phase(&system, &scenario.solver, &heights, interval, sink, p1)?;
-    let (without, _) = run_phase(&free, &scenario.solver, &heights, interval, sink, p2)?;
+    // (the self-check compares headline numbers only: its runs skip the floors)
+    let floors = floors && !check;
+    let (with, stats) = run_phase(
+        &system,
+        &scenario.solver,
+        &heights,
+        interval,
+        sink,
+        p1,
+        floors,
+    )?;
+    let (without, _) = run_phase(
+        &free,
+        &scenario.solver,
+        &heights,
+        interval,
+        sink,
+        p2,
+        floors,
+    )?;
 
     let structures = [0, 1].map(|i| {
         let s = &scenario.structures[i];
@@ -302,6 +376,11 @@ fn simulate_phases(
             peak_displacement: with.peak[i],
             peak_displacement_no_contact: without.peak[i],
             change_percent: change_percent(with.peak[i], without.peak[i]),
+            floors: with.floors[i]
+                .iter()
+                .zip(&without.floors[i])
+                .map(|(a, b)| FloorReport::pair(a, b))
+                .collect(),
         }
     });
     let levels: Vec<LevelReport> = system
@@ -415,13 +494,22 @@ pub fn simulate_streaming(
     check: bool,
     sink: &mut dyn RunSink,
 ) -> Result<Report, SolveError> {
-    let mut report = simulate_phases(scenario, sink, false)?;
+    simulate_run(scenario, check, sink, true)
+}
+
+fn simulate_run(
+    scenario: &Scenario,
+    check: bool,
+    sink: &mut dyn RunSink,
+    floors: bool,
+) -> Result<Report, SolveError> {
+    let mut report = simulate_phases(scenario, sink, false, floors)?;
     if !check {
         return Ok(report);
     }
     let mut tight = scenario.clone();
     tight.solver = tightened(&scenario.solver);
-    report.accuracy = match simulate_phases(&tight, sink, true) {
+    report.accuracy = match simulate_phases(&tight, sink, true, false) {
         Ok(t) => AccuracyCheck::compare(&report, &t, &scenario.solver),
         Err(e) => AccuracyCheck::failed(&scenario.solver, &e),
     };

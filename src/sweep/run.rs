@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use super::results::{self, Journal};
 use super::{Shard, Sweep, SweepError};
-use crate::simulate::simulate_checked;
+use crate::simulate::simulate_headline;
 
 /// How to run a sweep.
 #[derive(Debug, Clone)]
@@ -240,7 +240,7 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
-        let report = simulate_checked(&sc, check).map_err(|e| e.to_string())?;
+        let report = simulate_headline(&sc, check).map_err(|e| e.to_string())?;
         // the self-check's verdict is counted from the `converged` column instead
         warning = report
             .warnings
