@@ -2,7 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::plot::{AxisScale, Figure, LineStyle, Panel, PlotError, Series, write_figure};
+use crate::plot::{
+    AxisScale, Figure, LineStyle, Panel, PlotError, ProfileFigure, ProfilePanel, ProfileSeries,
+    Series, write_figure, write_profile,
+};
 use crate::recorder::Impact;
 use crate::scenario::Scenario;
 use crate::simulate::Report;
@@ -133,4 +136,89 @@ pub fn time_history_figure(
         height: 900 + 220 * extra.min(8),
     };
     write_figure(&fig, stem)
+}
+
+/// The envelopes over height (the figure of the pounding literature): peak displacement,
+/// storey drift, absolute floor acceleration and storey shear of each structure at every floor
+/// (a cantilever's stations), with pounding (solid) and without (dashed), floors up the page.
+/// Writes `<stem>.png` and `<stem>.svg`.
+pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    type Pick = fn(&crate::simulate::FloorReport) -> (f64, f64);
+    let quantities: [(&str, &str, Pick); 4] = [
+        ("Peak displacement", "u [m]", |f| {
+            (f.peak_displacement, f.peak_displacement_no_contact)
+        }),
+        ("Peak storey drift", "drift [m]", |f| {
+            (f.peak_drift, f.peak_drift_no_contact)
+        }),
+        ("Peak absolute acceleration", "a [m/s²]", |f| {
+            (f.peak_acceleration, f.peak_acceleration_no_contact)
+        }),
+        ("Peak storey shear", "V [MN]", |f| {
+            (f.peak_shear / 1e6, f.peak_shear_no_contact / 1e6)
+        }),
+    ];
+    let heights: Vec<Vec<f64>> = report
+        .structures
+        .iter()
+        .map(|s| s.floors.iter().map(|f| f.height).collect())
+        .collect();
+    // values[q][structure][with/without]
+    let values: Vec<Vec<[Vec<f64>; 2]>> = quantities
+        .iter()
+        .map(|(_, _, pick)| {
+            report
+                .structures
+                .iter()
+                .map(|s| {
+                    let (a, b): (Vec<f64>, Vec<f64>) = s.floors.iter().map(pick).unzip();
+                    [a, b]
+                })
+                .collect()
+        })
+        .collect();
+    let labels: Vec<[String; 2]> = report
+        .structures
+        .iter()
+        .map(|s| {
+            [
+                format!("{}, with pounding", s.name),
+                format!("{}, without", s.name),
+            ]
+        })
+        .collect();
+    let panels = quantities
+        .iter()
+        .zip(&values)
+        .enumerate()
+        .map(|(q, ((title, x_label, _), v))| ProfilePanel {
+            title,
+            x_label,
+            // displacements start from the fixed base; storey quantities and absolute
+            // accelerations have no value there to draw
+            base: (q == 0).then_some(0.0),
+            series: (0..report.structures.len())
+                .flat_map(|i| {
+                    [(0, LineStyle::Solid), (1, LineStyle::Dashed)].map(|(k, style)| {
+                        ProfileSeries {
+                            label: &labels[i][k],
+                            values: &v[i][k],
+                            heights: &heights[i],
+                            style,
+                            color: i,
+                        }
+                    })
+                })
+                .collect(),
+        })
+        .collect();
+    let fig = ProfileFigure {
+        title: &report.title,
+        subtitle: "envelopes over height: peaks at every floor (a cantilever: every tenth of its height and each contact height)",
+        y_label: "height [m]",
+        panels,
+        width: 1600,
+        height: 700,
+    };
+    write_profile(&fig, stem)
 }

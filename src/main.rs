@@ -331,8 +331,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 None
             } else {
                 Some(Box::new(|dir: &Path| {
-                    pounding::figures::time_history_figure(&sc, &report, &dir.join("history"))
-                        .map_err(|e| e.to_string())
+                    let mut files =
+                        pounding::figures::time_history_figure(&sc, &report, &dir.join("history"))
+                            .map_err(|e| e.to_string())?;
+                    files.extend(
+                        pounding::figures::envelope_figure(&report, &dir.join("envelopes"))
+                            .map_err(|e| e.to_string())?,
+                    );
+                    Ok(files)
                 }))
             };
             let written = writer.finish(&sc, &report, draw)?;

@@ -218,7 +218,12 @@ pub fn impacts_csv(report: &Report) -> String {
 
 /// The pictures `pounding run` draws into its directory: removed by [`RunWriter::finish`]
 /// when a run draws none, so that no stale picture sits beside a new summary.
-pub const PICTURE_FILES: [&str; 2] = ["history.png", "history.svg"];
+pub const PICTURE_FILES: [&str; 4] = [
+    "history.png",
+    "history.svg",
+    "envelopes.png",
+    "envelopes.svg",
+];
 
 /// Draws a run's pictures into the directory it is given; returns the files written.
 pub type DrawPictures<'a> = dyn FnOnce(&Path) -> Result<Vec<PathBuf>, String> + 'a;

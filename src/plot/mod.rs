@@ -3,6 +3,7 @@
 //!
 //! - [`lines`]: [`Figure`]s of stacked [`Panel`]s over one x axis, linear or logarithmic y;
 //! - [`heatmap`]: a [`Heatmap`] of a grid with its colour bar, ticked at the grid values;
+//! - [`profile`]: envelopes over height, panels side by side ([`ProfileFigure`]);
 //! - [`style`]: the font, palette, number labels and the colour scales ([`ColorScale`]).
 //!
 //! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, each atomically (rendered
@@ -26,10 +27,12 @@ use plotters::prelude::*;
 
 pub mod heatmap;
 pub mod lines;
+pub mod profile;
 pub mod style;
 
 pub use heatmap::{Heatmap, write_heatmap};
 pub use lines::{AxisScale, Figure, LineStyle, Panel, Series, write_figure};
+pub use profile::{ProfileFigure, ProfilePanel, ProfileSeries, write_profile};
 pub use style::ColorScale;
 
 /// Largest accepted picture side in pixels.
