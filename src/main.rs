@@ -482,25 +482,54 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
     }
     println!();
     let [a, b] = &r.structures;
-    println!("  {:<34}{:>16}{:>16}", "", a.name, b.name);
+    // columns as wide as the longer name (at least 16)
+    let w = 2 + a.name.chars().count().max(b.name.chars().count()).max(14);
+    println!("  {:<34}{:>w$}{:>w$}", "", a.name, b.name);
     println!(
-        "  {:<34}{:>16.4}{:>16.4}",
+        "  {:<34}{:>w$.4}{:>w$.4}",
         "first-mode period [s]", a.periods[0], b.periods[0]
     );
     println!(
-        "  {:<34}{:>16.4}{:>16.4}",
+        "  {:<34}{:>w$.4}{:>w$.4}",
         "peak w(h) without pounding [m]",
         a.peak_displacement_no_contact,
         b.peak_displacement_no_contact
     );
     println!(
-        "  {:<34}{:>16.4}{:>16.4}",
+        "  {:<34}{:>w$.4}{:>w$.4}",
         "peak w(h) with pounding [m]", a.peak_displacement, b.peak_displacement
     );
     println!(
-        "  {:<34}{:>+16.1}{:>+16.1}",
+        "  {:<34}{:>+w$.1}{:>+w$.1}",
         "change [%]", a.change_percent, b.change_percent
     );
+    if !a.floors.is_empty()
+        && (sc.structures[0].floor_heights().is_some()
+            || sc.structures[1].floor_heights().is_some())
+    {
+        let peak = |s: &pounding::simulate::StructureReport,
+                    f: fn(&pounding::simulate::FloorReport) -> f64| {
+            s.floors.iter().map(f).fold(0.0, f64::max)
+        };
+        println!(
+            "  {:<34}{:>w$.3}{:>w$.3}",
+            "peak floor accel. without [m/s²]",
+            peak(a, |f| f.peak_acceleration_no_contact),
+            peak(b, |f| f.peak_acceleration_no_contact)
+        );
+        println!(
+            "  {:<34}{:>w$.3}{:>w$.3}",
+            "peak floor accel. with [m/s²]",
+            peak(a, |f| f.peak_acceleration),
+            peak(b, |f| f.peak_acceleration)
+        );
+        println!(
+            "  {:<34}{:>w$.4}{:>w$.4}",
+            "peak storey drift with [m]",
+            peak(a, |f| f.peak_drift),
+            peak(b, |f| f.peak_drift)
+        );
+    }
     println!();
     let c = &r.contact;
     if c.impacts == 0 {
