@@ -633,6 +633,26 @@ fn print_modes(sc: &Scenario) {
                 100.0 * m.effective_mass_fraction(n)
             );
         }
+        if let Some(heights) = s.floor_heights() {
+            // the floors' mode shapes, each normalised to 1 at the top (as engineers read them)
+            let shown = m.len().min(8);
+            print!("  {:>10}", "floor [m]");
+            for n in 0..shown {
+                print!(" {:>9}", format!("φ{}", n + 1));
+            }
+            println!();
+            for &fh in heights.iter().rev() {
+                print!("  {fh:>10.3}");
+                for n in 0..shown {
+                    let top = m.shape(n, heights[heights.len() - 1]);
+                    print!(" {:>9.4}", m.shape(n, fh) / top);
+                }
+                println!();
+            }
+            if shown < m.len() {
+                println!("  (the first {shown} of {} modes)", m.len());
+            }
+        }
         println!();
     }
     println!(
