@@ -460,3 +460,44 @@ fn a_shear_building_pounds_a_cantilever() {
     let r = simulate(&sc).unwrap();
     assert!(r.contact.impacts > 0);
 }
+
+/// A cantilever's stations are every tenth of its height and each contact height; at the top
+/// nothing is above, so its storey shear is the contact force there alone: 0 without contact
+/// and the peak contact force with pounding at the top (`V(L) = F − m∫_L^L a`; to 1e-4, the
+/// shear being taken at the integration steps and the force refined between them). The
+/// displacement peak at the contact height equals the run's `peak_displacement`.
+#[test]
+fn cantilever_stations_and_the_shear_at_the_top() {
+    // `adaptive`: its steps in contact are short, so the shear (taken at the steps, not refined
+    // between them as the force is) reaches the located peak force closely
+    let text = include_str!("../examples/paper-c.toml")
+        .replace("duration = 20.0", "duration = 3.0")
+        .replace("method = \"rk4\"", "method = \"adaptive\"");
+    assert!(text.contains("adaptive"));
+    let sc =
+        Scenario::from_toml(&text, "paper-c.toml", Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let r = simulate(&sc).unwrap();
+    for (i, s) in r.structures.iter().enumerate() {
+        let heights: Vec<f64> = s.floors.iter().map(|f| f.height).collect();
+        let want: Vec<f64> = (1..=10).map(|k| 10.0 * k as f64 / 10.0).collect();
+        assert_eq!(heights.len(), 10);
+        for (a, b) in heights.iter().zip(&want) {
+            assert!((a - b).abs() < 1e-12, "structure {}: {heights:?}", i + 1);
+        }
+        let top = s.floors.last().unwrap();
+        // (zero to round-off: the modes' integrals above the top are ~1e-13 of their size)
+        let base = s.floors[0].peak_shear_no_contact;
+        assert!(
+            top.peak_shear_no_contact <= 1e-9 * base,
+            "{} vs base {base}",
+            top.peak_shear_no_contact
+        );
+        assert!(
+            (top.peak_shear - r.contact.peak_force).abs() <= 1e-4 * r.contact.peak_force,
+            "{} vs {}",
+            top.peak_shear,
+            r.contact.peak_force
+        );
+        assert!((top.peak_displacement - s.peak_displacement).abs() <= 1e-12 * s.peak_displacement);
+    }
+}
