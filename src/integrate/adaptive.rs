@@ -47,7 +47,8 @@ use super::linear::{
     mode_work, monomial_influence, propagator,
 };
 use super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
+    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    update_onsets,
 };
 use crate::ground_motion::GroundMotion;
 use crate::system::{LevelState, System, dot};
@@ -537,29 +538,6 @@ fn step(
     tr
 }
 
-/// One accepted step that carried contact forces, as seen by its error estimate (for tests that
-/// compare the estimate with the step's true local error).
-#[derive(Debug, Clone)]
-#[cfg_attr(not(test), allow(dead_code))]
-pub(crate) struct StepTrace {
-    /// Start time, s.
-    pub t: f64,
-    /// Step length, s.
-    pub h: f64,
-    /// Modal state at the start.
-    pub q0: Vec<f64>,
-    /// See `q0`.
-    pub v0: Vec<f64>,
-    /// Onset speeds in force during the step.
-    pub onset: Vec<f64>,
-    /// The accepted end state.
-    pub q1: Vec<f64>,
-    /// See `q1`.
-    pub v1: Vec<f64>,
-    /// The scaled error estimate (≤ 1 for an accepted step).
-    pub err: f64,
-}
-
 /// Per-coordinate absolute tolerances in modal units: `atol·√M_i/2` for η of structure i (so
 /// that `atol` is metres at its top, |φ(L)| = 2/√M, docs/model.md §2.3), times its ω₁ for η̇.
 fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
@@ -843,6 +821,7 @@ pub(crate) fn run_traced<O: Observer>(
                 q1: w.qn.clone(),
                 v1: w.vn.clone(),
                 err,
+                kink: false,
             });
         }
         if starts_contact && !tr.free {

@@ -53,7 +53,8 @@ use super::linear::{
     poly_mode_work,
 };
 use super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, update_onsets,
+    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    update_onsets,
 };
 use crate::system::{LevelState, System, dot};
 
@@ -211,32 +212,6 @@ impl StepCache {
     }
 }
 
-/// One accepted contact sub-step as its error estimate saw it (for tests that compare the
-/// estimate with the sub-step's true local error).
-#[derive(Debug, Clone)]
-#[cfg_attr(not(test), allow(dead_code))]
-pub(crate) struct SubstepTrace {
-    /// Start time, s.
-    pub t: f64,
-    /// Sub-step length, s.
-    pub h: f64,
-    /// Modal state at the start.
-    pub q0: Vec<f64>,
-    /// See `q0`.
-    pub v0: Vec<f64>,
-    /// Onset speeds in force at the start.
-    pub onset: Vec<f64>,
-    /// The accepted end state.
-    pub q1: Vec<f64>,
-    /// See `q1`.
-    pub v1: Vec<f64>,
-    /// The scaled error estimate (≤ 1 for an accepted sub-step).
-    pub err: f64,
-    /// Whether a level's force starts or ends at zero inside the sub-step (an onset or a
-    /// release: the estimate is a bound there, not an asymptotic estimate).
-    pub kink: bool,
-}
-
 /// What the contact sub-steps are held to: per level, an error of the penetration δ of
 /// `atol + rtol·|w₁(h) − w₂(h)|` (m) and of its rate δ̇ of `atol·ω₁ + rtol·v` (m/s, ω₁ the
 /// larger first-mode frequency, v the larger of |δ̇| and the episode's approach speed).
@@ -278,7 +253,7 @@ struct Run<'a, O: Observer> {
     fcorr: Vec<f64>,
     /// Whether the last estimate met an onset or a release (for the trace).
     kink: bool,
-    trace: Option<&'a mut Vec<SubstepTrace>>,
+    trace: Option<&'a mut Vec<StepTrace>>,
     gm: GroundModes,
     obs: &'a mut O,
     cache: StepCache,
@@ -346,7 +321,7 @@ impl<'a, O: Observer> Run<'a, O> {
         sys: &'a System,
         settings: &SolverSettings,
         observer: &'a mut O,
-        trace: Option<&'a mut Vec<SubstepTrace>>,
+        trace: Option<&'a mut Vec<StepTrace>>,
         t0: f64,
         q0: Vec<f64>,
         v0: Vec<f64>,
@@ -432,7 +407,7 @@ pub(crate) fn run_traced<'a, O: Observer>(
     settings: &SolverSettings,
     initial: &InitialState,
     observer: &'a mut O,
-    trace: Option<&'a mut Vec<SubstepTrace>>,
+    trace: Option<&'a mut Vec<StepTrace>>,
 ) -> Result<Stats, SolveError> {
     let (q0, v0) = initial.resolved(sys.len());
     let mut r = Run::new(sys, settings, observer, trace, 0.0, q0, v0, None);
@@ -726,7 +701,7 @@ impl<O: Observer> Run<'_, O> {
                 .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
             self.finish_step(ts, h, piece, idx)?;
             if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
-                trace.push(SubstepTrace {
+                trace.push(StepTrace {
                     t: ts,
                     h,
                     q0,
@@ -1161,7 +1136,7 @@ mod tests {
     fn redo(
         sys: &System,
         settings: &SolverSettings,
-        tr: &SubstepTrace,
+        tr: &StepTrace,
         m: usize,
     ) -> (Vec<f64>, Vec<f64>) {
         let mut quiet = Quiet;

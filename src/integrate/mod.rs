@@ -134,6 +134,33 @@ impl SolverSettings {
     }
 }
 
+/// One accepted step (`adaptive`) or contact sub-step (`exact-modal`) that carried contact
+/// forces, as its error estimate saw it: for the tests that compare the estimate with the
+/// step's true local error (the step redone finely from `q0`, `v0`).
+#[derive(Debug, Clone)]
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) struct StepTrace {
+    /// Start time, s.
+    pub t: f64,
+    /// Step length, s.
+    pub h: f64,
+    /// Modal state at the start.
+    pub q0: Vec<f64>,
+    /// See `q0`.
+    pub v0: Vec<f64>,
+    /// Onset speeds in force at the start.
+    pub onset: Vec<f64>,
+    /// The accepted end state.
+    pub q1: Vec<f64>,
+    /// See `q1`.
+    pub v1: Vec<f64>,
+    /// The scaled error estimate (≤ 1 for an accepted step).
+    pub err: f64,
+    /// Whether a level's force starts or ends at zero inside the step (`exact-modal`, which does
+    /// not locate onsets: its estimate is a bound there, not an asymptotic estimate).
+    pub kink: bool,
+}
+
 /// Initial modal state (default: at rest relative to the ground, docs/model.md §2.8).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct InitialState {

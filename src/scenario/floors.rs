@@ -34,45 +34,36 @@ const CANTILEVER_KEYS: &[&str] = &[
     "air_damping",
 ];
 
-/// The keys of `s` that are given, by name (only those that belong to one kind).
+/// The keys of `s` that are given, with where (only those that belong to one kind).
 fn given(s: &RawStructure) -> Vec<(&'static str, usize)> {
-    let mut out = Vec::new();
-    let mut add = |k: &'static str, span: Option<std::ops::Range<usize>>| {
-        if let Some(sp) = span {
-            out.push((k, sp.start));
-        }
-    };
-    add("length", s.length.as_ref().map(|v| v.span()));
-    add("mass", s.mass.as_ref().map(|v| v.span()));
-    add("period", s.period.as_ref().map(|v| v.span()));
-    add(
-        "bending_stiffness",
-        s.bending_stiffness.as_ref().map(|v| v.span()),
-    );
-    add("tip_stiffness", s.tip_stiffness.as_ref().map(|v| v.span()));
-    add(
-        "strain_rate_damping",
-        s.strain_rate_damping.as_ref().map(|v| v.span()),
-    );
-    add("air_damping", s.air_damping.as_ref().map(|v| v.span()));
-    add("floor_heights", s.floor_heights.as_ref().map(|v| v.span()));
-    add("floor_masses", s.floor_masses.as_ref().map(|v| v.span()));
-    add(
-        "storey_stiffnesses",
-        s.storey_stiffnesses.as_ref().map(|v| v.span()),
-    );
-    add("storeys", s.storeys.as_ref().map(|v| v.span()));
-    add("storey_height", s.storey_height.as_ref().map(|v| v.span()));
-    add("floor_mass", s.floor_mass.as_ref().map(|v| v.span()));
-    add(
-        "storey_stiffness",
-        s.storey_stiffness.as_ref().map(|v| v.span()),
-    );
-    add("rayleigh", s.rayleigh.as_ref().map(|v| v.span()));
-    add("periods", s.periods.as_ref().map(|v| v.span()));
-    add("mode_shapes", s.mode_shapes.as_ref().map(|v| v.span()));
-    add("modes_file", s.modes_file.as_ref().map(|v| v.span()));
-    out
+    macro_rules! spans {
+        ($($k:ident),*) => {
+            [$((stringify!($k), s.$k.as_ref().map(|v| v.span().start))),*]
+        };
+    }
+    spans!(
+        length,
+        mass,
+        period,
+        bending_stiffness,
+        tip_stiffness,
+        strain_rate_damping,
+        air_damping,
+        floor_heights,
+        floor_masses,
+        storey_stiffnesses,
+        storeys,
+        storey_height,
+        floor_mass,
+        storey_stiffness,
+        rayleigh,
+        periods,
+        mode_shapes,
+        modes_file
+    )
+    .into_iter()
+    .filter_map(|(k, at)| at.map(|a| (k, a)))
+    .collect()
 }
 
 /// The keys each kind accepts besides `kind`, `name`, `modes`, `damping_ratio`.
