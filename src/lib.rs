@@ -27,6 +27,7 @@ pub mod figures;
 pub mod ground_motion;
 pub mod integrate;
 pub mod modal;
+pub mod opensees;
 pub mod output;
 pub mod plot;
 pub mod recorder;
