@@ -524,7 +524,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 elements,
                 dt,
                 duration,
-                only: only.as_deref().and_then(pounding::opensees::Only::from_name),
+                only: only
+                    .as_deref()
+                    .and_then(pounding::opensees::Only::from_name),
             };
             let script = pounding::opensees::script(&sc, &opts, &name)?;
             match out {

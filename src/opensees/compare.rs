@@ -322,10 +322,7 @@ pub fn program(scenario: &Scenario) -> Result<ProgramNumbers, CrosscheckError> {
         let (without, _) = run_system(&free, &scenario.solver, &init, &all, interval)?;
         for (s, out) in heights.iter_mut().enumerate() {
             for h in tracked_heights(scenario, s) {
-                let k = all
-                    .iter()
-                    .position(|x| (x - h).abs() <= 1e-9)
-                    .unwrap_or(0);
+                let k = all.iter().position(|x| (x - h).abs() <= 1e-9).unwrap_or(0);
                 let pick = |l: &crate::recorder::LevelRecord| {
                     if s == 0 { l.peak_w1 } else { l.peak_w2 }
                 };

@@ -30,7 +30,7 @@ pub mod compare;
 
 use serde::Serialize;
 
-use crate::contact::{ContactLaw, ContactForce};
+use crate::contact::{ContactForce, ContactLaw};
 use crate::ground_motion::GroundMotion;
 use crate::modal::{Cantilever, Damping, FloorKind, Structure};
 use crate::scenario::Scenario;
@@ -365,9 +365,7 @@ pub fn mesh(length: f64, at: &[f64], elements: usize) -> Vec<f64> {
     let mut count: Vec<usize> = ideal.iter().map(|x| (x.floor() as usize).max(1)).collect();
     while count.iter().sum::<usize>() < total {
         let i = (0..count.len())
-            .max_by(|&a, &b| {
-                (ideal[a] - count[a] as f64).total_cmp(&(ideal[b] - count[b] as f64))
-            })
+            .max_by(|&a, &b| (ideal[a] - count[a] as f64).total_cmp(&(ideal[b] - count[b] as f64)))
             .unwrap_or(0);
         count[i] += 1;
     }
