@@ -487,17 +487,27 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
 
 /// What explains the differences, for this scenario and these options.
 pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
-    let mut notes = vec![
-        format!(
-            "mode truncation vs discretisation: the program keeps {} and {} modes of the \
-             continuous structures; OpenSees has every mode of its {} and {} elements (the \
-             low modes converge fast with consistent mass; the high ones, which ring in \
-             contact, differ)",
-            scenario.structures[0].modes(),
-            scenario.structures[1].modes(),
-            o.elements.first().copied().unwrap_or(0),
-            o.elements.get(1).copied().unwrap_or(0),
-        ),
+    let mut notes = Vec::new();
+    for (s, st) in scenario.structures.iter().enumerate() {
+        let elements = o.elements.get(s).copied().unwrap_or(0);
+        notes.push(match st {
+            Structure::Cantilever(_) => format!(
+                "{}: mode truncation vs discretisation — the program keeps {} modes of the \
+                 continuous cantilever, OpenSees has every mode of its {elements} elements \
+                 (the low modes converge fast with consistent mass; the high ones, which ring \
+                 in contact, differ)",
+                st.name(),
+                st.modes()
+            ),
+            Structure::Floors(_) => format!(
+                "{}: the same model in both (floor masses, storey springs); the program keeps \
+                 {} of its {elements} modes, OpenSees all",
+                st.name(),
+                st.modes()
+            ),
+        });
+    }
+    notes.extend([
         format!(
             "time step: OpenSees runs Newmark average acceleration at dt = {} s (period \
              elongation ≈ (ωdt)²/12 per mode; peaks only at step ends), the program {} at \
@@ -514,7 +524,7 @@ pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
         "impacts and contact time follow the sequence of impacts, which a small difference \
          early on changes (a chaotic response): compare them loosely"
             .to_string(),
-    ];
+    ]);
     notes.extend(super::damping_notes(scenario));
     notes
 }

@@ -119,6 +119,7 @@ class Model:
                 ops.element("zeroLength", 9000 + j, self.level_nodes[j][0], self.level_nodes[j][1],
                             "-mat", tag, "-dir", 1)
                 self.contact_eles.append(9000 + j)
+        self.rayleigh()
         self.loads()
 
     def material(self, tag, lv):
@@ -138,25 +139,24 @@ class Model:
         else:
             raise SystemExit("unknown contact material " + kind)
 
-    def damping(self):
+    def rayleigh(self):
+        """Rayleigh damping C = a0 M + a1 K on each structure that has it, never on the contact
+        elements (regions, defined with the model, before the analysis)."""
         ops, m = self.ops, self.m
-        modal = [st["damping"] for st in m["structures"]]
-        region = 1
         for s, st in enumerate(m["structures"]):
             d = st["damping"]
             if d["kind"] != "rayleigh":
                 continue
-            # Rayleigh C = a0 M + a1 K on this structure only (never on the contact elements)
-            if st["kind"] == "cantilever":
-                ops.region(region, "-ele", *self.struct_eles[s], "-rayleigh",
-                           d["alpha_m"], d["beta_k"], 0.0, 0.0)
-            else:
-                ops.region(region, "-node", *self.struct_nodes[s], "-rayleigh",
-                           d["alpha_m"], 0.0, 0.0, 0.0)
-                region += 1
-                ops.region(region, "-ele", *self.struct_eles[s], "-rayleigh",
-                           0.0, d["beta_k"], 0.0, 0.0)
-            region += 1
+            # one region of the structure's elements: a region also sets the factors of the
+            # nodes of its elements (so a second region of the nodes alone would be undone);
+            # α_M acts on the element mass (cantilever) and the floor masses (building)
+            ops.region(s + 1, "-ele", *self.struct_eles[s], "-rayleigh",
+                       d["alpha_m"], d["beta_k"], 0.0, 0.0)
+
+    def damping(self):
+        """Modal damping, after the analysis is defined (eigen and modalDampingQ act on it)."""
+        ops, m = self.ops, self.m
+        modal = [st["damping"] for st in m["structures"]]
         if not any(d["kind"] == "modal" for d in modal):
             return
         # modal damping: every mode of the FE model (all of them, by the full eigensolver),
