@@ -748,7 +748,7 @@ mod tests {
     fn mesh_puts_nodes_at_contact_heights() {
         let n = mesh(16.0, &[10.0, 6.0], 20);
         assert_eq!(n.len(), 21);
-        assert!(n.iter().any(|&x| x == 10.0) && n.iter().any(|&x| x == 6.0));
+        assert!(n.contains(&10.0) && n.contains(&6.0));
         assert_eq!(*n.last().unwrap_or(&0.0), 16.0);
         assert!(n.windows(2).all(|w| w[1] > w[0]));
         let n = mesh(10.0, &[10.0], 20);
@@ -773,7 +773,7 @@ mod tests {
         assert_eq!(f(-gap + 1e-6), 0.0);
         assert_eq!(f(0.5), 0.0);
         let mut worst: f64 = 0.0;
-        let mut d = 1e-6;
+        let mut d: f64 = 1e-6;
         while d < 0.9 {
             let exact = k * d.powf(1.5);
             worst = worst.max((-f(-gap - d) - exact).abs() / exact);
