@@ -255,11 +255,11 @@ class Model:
         ops = self.ops
         if ops.analyze(1, h) == 0:
             return 0
+        target = ops.getTime() + h  # a failed analyze leaves the last committed state
         for alg in (None, ("ModifiedNewton",), ("KrylovNewton",)):
             if alg is not None:
                 ops.algorithm(*alg)
                 ops.test("NormDispIncr", self.m["tolerance"], 200)
-            target = ops.getTime() + h
             sub = h / 2.0
             ok = True
             while ops.getTime() < target - 1e-12 * h:
