@@ -28,6 +28,7 @@ pub mod floor_response;
 pub mod ground_motion;
 pub mod integrate;
 pub mod modal;
+pub mod opensees;
 pub mod output;
 pub mod plot;
 pub mod recorder;

@@ -195,6 +195,67 @@ enum Command {
         #[arg(short, long)]
         out: Option<PathBuf>,
     },
+    /// Export a scenario to another program (`export opensees`).
+    Export {
+        #[command(subcommand)]
+        target: ExportTarget,
+    },
+    /// Run the scenario in OpenSees (a local openseespy) and in the program, and print the
+    /// numbers side by side with their relative differences and what explains them.
+    ///
+    /// Needs python3 with openseespy (`pip install openseespy==3.7.1.2`); the interpreter is
+    /// $POUNDING_PYTHON, else python3. Without openseespy: an error saying how to install it.
+    Crosscheck {
+        /// Scenario file (TOML); the bundled default if omitted.
+        scenario: Option<PathBuf>,
+        /// Beam elements per cantilever in OpenSees.
+        #[arg(long, default_value_t = pounding::opensees::DEFAULT_ELEMENTS)]
+        elements: usize,
+        /// OpenSees' analysis step, s.
+        #[arg(long, default_value_t = pounding::opensees::DEFAULT_DT)]
+        dt: f64,
+        /// Modes per structure in the program (default: the scenario's); an rk4 step that is
+        /// then unstable switches the program to `adaptive`.
+        #[arg(long)]
+        modes: Option<usize>,
+        /// Simulated time, s, for both (default: the scenario's).
+        #[arg(long)]
+        duration: Option<f64>,
+        /// Keep the script (model.py), OpenSees' results (opensees.json) and log in DIR.
+        #[arg(long, value_name = "DIR")]
+        keep: Option<PathBuf>,
+    },
+}
+
+/// Targets of `pounding export`.
+#[derive(Subcommand)]
+enum ExportTarget {
+    /// Write a self-contained OpenSeesPy script of the scenario: `python3 model.py` runs it
+    /// with and without contact and prints JSON with the headline numbers of summary.json.
+    ///
+    /// Cantilevers become N elasticBeamColumn elements (consistent mass), shear buildings
+    /// floor masses with storey springs, each contact level a zeroLength element with the
+    /// law's material (hertz, linear, jankowski: exact; kelvin, hertzdamp: approximate;
+    /// stereomechanical: refused). See the README, "Checking in OpenSees".
+    Opensees {
+        /// Scenario file (TOML); the bundled default if omitted.
+        scenario: Option<PathBuf>,
+        /// Write the script here (default: standard output).
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Beam elements per cantilever.
+        #[arg(long, default_value_t = pounding::opensees::DEFAULT_ELEMENTS)]
+        elements: usize,
+        /// OpenSees' analysis step, s.
+        #[arg(long, default_value_t = pounding::opensees::DEFAULT_DT)]
+        dt: f64,
+        /// Run only the case with contact or only the one without.
+        #[arg(long, value_parser = ["contact", "free"])]
+        only: Option<String>,
+        /// Simulated time, s (default: the scenario's).
+        #[arg(long)]
+        duration: Option<f64>,
+    },
 }
 
 /// `--max-output-size` values.
@@ -451,6 +512,70 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let (sc, _) = load(scenario.as_deref())?;
             let report = pounding::simulate::separation(&sc)?;
             print_separation(&sc, &report);
+            Ok(())
+        }
+        Command::Export {
+            target:
+                ExportTarget::Opensees {
+                    scenario,
+                    out,
+                    elements,
+                    dt,
+                    only,
+                    duration,
+                },
+        } => {
+            let (sc, name) = load(scenario.as_deref())?;
+            let opts = pounding::opensees::ExportOptions {
+                elements,
+                dt,
+                duration,
+                only: only
+                    .as_deref()
+                    .and_then(pounding::opensees::Only::from_name),
+            };
+            let script = pounding::opensees::script(&sc, &opts, &name)?;
+            match out {
+                None => print!("{script}"),
+                Some(path) => {
+                    pounding::output::write_atomic(&path, script.as_bytes())?;
+                    if !quiet {
+                        println!(
+                            "wrote {} (run it: python3 {} [--json results.json])",
+                            path.display(),
+                            path.display()
+                        );
+                    }
+                }
+            }
+            Ok(())
+        }
+        Command::Crosscheck {
+            scenario,
+            elements,
+            dt,
+            modes,
+            duration,
+            keep,
+        } => {
+            let (sc, name) = load(scenario.as_deref())?;
+            let opts = pounding::opensees::compare::CrosscheckOptions {
+                export: pounding::opensees::ExportOptions {
+                    elements,
+                    dt,
+                    duration,
+                    only: None,
+                },
+                modes,
+                keep,
+            };
+            let python = pounding::opensees::compare::python();
+            if !quiet {
+                eprintln!("  running OpenSees ({python}) and the program …");
+            }
+            let c = pounding::opensees::compare::crosscheck(&sc, &name, &opts, &python)?;
+            println!("{}\n  scenario: {name}", sc.title);
+            print!("{}", c.table());
             Ok(())
         }
     }
