@@ -1323,7 +1323,10 @@ mod tests {
         .unwrap();
         let sc = s.case_scenario(0).unwrap();
         let t2 = 0.4203 / 0.7;
-        assert_eq!(sc.structures[1].as_cantilever().unwrap().stiffness, Stiffness::Period(t2));
+        assert_eq!(
+            sc.structures[1].as_cantilever().unwrap().stiffness,
+            Stiffness::Period(t2)
+        );
         let h = match &sc.ground_motion {
             crate::ground_motion::GroundMotion::Harmonic(h) => *h,
             _ => panic!(),
@@ -1429,7 +1432,10 @@ mod tests {
         assert_eq!(s.axes[1].key, "structure.2.tip_stiffness");
         let sc = s.case_scenario(2).unwrap();
         assert_eq!(sc.structures[1].modes(), 5);
-        assert_eq!(sc.structures[1].as_cantilever().unwrap().stiffness, Stiffness::Tip(3e8));
+        assert_eq!(
+            sc.structures[1].as_cantilever().unwrap().stiffness,
+            Stiffness::Tip(3e8)
+        );
         assert!(matches!(
             sc.structures[0].as_cantilever().unwrap().damping,
             Damping::Physical { strain_rate, air } if strain_rate == 0.001 && air == 0.0
