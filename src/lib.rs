@@ -33,6 +33,7 @@ pub mod output;
 pub mod plot;
 pub mod recorder;
 pub mod restitution;
+pub mod rule_study;
 pub mod scenario;
 pub mod separation;
 pub mod simulate;

@@ -188,6 +188,25 @@ enum Command {
         #[arg(required = true)]
         parts: Vec<PathBuf>,
     },
+    /// How often each separation rule is unsafe over a sweep: from a results table with the
+    /// exact time-history separation (sep_time_history) and the rules (sep_abs, sep_srss,
+    /// sep_ddc, and sep_asce7 … when the base scenario had a [separation] table), the fraction
+    /// of cases where each rule is below the exact value, its worst shortfall and its excess
+    /// when safe; draws DIR/rules.png/.svg (rule/exact against one axis: smallest, median,
+    /// largest over the other axes).
+    Rules {
+        /// The results table (results.csv of a sweep, or a merged table).
+        results: PathBuf,
+        /// Axis along x of the figure [default: the first axis].
+        #[arg(long)]
+        x: Option<String>,
+        /// Output directory of the figure [default: plots/ beside the results table].
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Do not draw the figure.
+        #[arg(long)]
+        no_plot: bool,
+    },
     /// Draw a sweep's pictures from its results table: heatmaps over two axes, line plots
     /// over one.
     ///
@@ -427,6 +446,28 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 pounding::sweep_plots::count_pictures(&files),
                 dir.display()
             );
+            Ok(())
+        }
+        Command::Rules {
+            results,
+            x,
+            out,
+            no_plot,
+        } => {
+            let table = pounding::sweep::results::Table::read(&results)?;
+            let study = pounding::rule_study::rule_study(&table);
+            print!("{}", pounding::rule_study::format_study(&study));
+            if !no_plot {
+                let dir =
+                    out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
+                let sub = format!("{} ({} cases)", results.display(), study.rows);
+                let files = pounding::rule_study::rule_figure(&table, x.as_deref(), &dir, &sub)?;
+                if !quiet {
+                    let names: Vec<String> =
+                        files.iter().map(|p| p.display().to_string()).collect();
+                    println!("wrote {}", names.join(", "));
+                }
+            }
             Ok(())
         }
         Command::Laws { speed } => {
@@ -898,6 +939,12 @@ fn run_sweep(
             o.failed
         );
         println!("wrote {}", o.results.display());
+        if !sweep.code_columns().is_empty() {
+            println!(
+                "how often each rule is below the exact separation: pounding rules {}",
+                o.results.display()
+            );
+        }
         let c = &o.check;
         let ok = o.cases - o.failed;
         if ok == 0 {

@@ -247,7 +247,7 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
             .iter()
             .find(|w| !crate::accuracy::is_check_warning(w))
             .cloned();
-        Ok(results::report_fields(&report))
+        Ok(results::case_fields(sweep, &report))
     }))
     .unwrap_or_else(|p| {
         let msg = p
