@@ -29,7 +29,7 @@ pub struct RuleStat {
     pub unsafe_cases: usize,
     /// `unsafe_cases / cases`.
     pub unsafe_fraction: f64,
-    /// Largest shortfall, % of the exact value (≤ 0; 0 when never unsafe).
+    /// Largest shortfall, % of the exact value (< 0; NaN when never unsafe).
     pub worst_under_percent: f64,
     /// Median excess over the exact value in the safe cases, % (NaN when none).
     pub median_over_percent: f64,
@@ -88,7 +88,7 @@ pub fn rule_study(table: &Table) -> RuleStudy {
         .into_iter()
         .map(|column| {
             let mut over = Vec::new();
-            let mut worst: f64 = 0.0;
+            let mut worst = f64::NAN;
             let mut unsafe_cases = 0;
             let mut cases = 0;
             for (r, e) in &counted {
@@ -99,7 +99,7 @@ pub fn rule_study(table: &Table) -> RuleStudy {
                 let pct = 100.0 * (v - e) / e;
                 if v < *e {
                     unsafe_cases += 1;
-                    worst = worst.min(pct);
+                    worst = if worst.is_nan() { pct } else { worst.min(pct) };
                 } else {
                     over.push(pct);
                 }

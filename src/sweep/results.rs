@@ -580,7 +580,7 @@ impl Table {
                 .parse()
                 .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
             let mut fields = [f64::NAN; NFIELDS];
-            for (k, x) in f[n - nf..].iter().enumerate() {
+            for (k, x) in f[n - nf..n].iter().enumerate() {
                 if !x.is_empty() {
                     fields[k] = parse_field(k, x).ok_or_else(|| {
                         let what = if FIELDS[k] == "converged" {
