@@ -161,10 +161,15 @@ impl ToDesign {
 }
 
 fn pair_text(v: [f64; 2]) -> String {
+    // at most 6 decimals, trailing zeros dropped
+    let t = |x: f64| {
+        let s = format!("{x:.6}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
     if v[0] == v[1] {
-        format!("{}", v[0])
+        t(v[0])
     } else {
-        format!("[{}, {}]", v[0], v[1])
+        format!("[{}, {}]", t(v[0]), t(v[1]))
     }
 }
 

@@ -842,3 +842,22 @@ fn rule_study_counts_unsafe_cases_and_excess_by_hand() {
         .unwrap();
     assert!(files.iter().any(|f| f.ends_with("rules.png")));
 }
+
+#[test]
+fn bundled_study_and_spectrum_examples_are_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let s = pounding::sweep::Sweep::from_file(&dir.join("separation-sweep.toml")).unwrap();
+    assert_eq!(s.len(), 3 * 7 * 5);
+    for c in [0, 52, 104] {
+        let sc = s.case_scenario(c).unwrap_or_else(|e| panic!("case {c}: {e}"));
+        assert_eq!(sc.design.codes.len(), 5);
+    }
+    assert_eq!(
+        s.code_columns(),
+        ["sep_asce7", "sep_is1893", "sep_nbcc", "sep_gb50011", "sep_ntc"]
+    );
+    let sc = Scenario::from_file(&dir.join("design-spectrum.toml")).unwrap();
+    assert!(matches!(sc.design.spectrum, Some(DesignSpectrum::Asce7(_))));
+    let r = pounding::gap_report::gap_report(&sc, None, None).unwrap();
+    assert_eq!(r.codes.len(), 5);
+}
