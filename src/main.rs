@@ -486,6 +486,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
+            if let Some(s) = &sc.design.spectrum {
+                return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
+            }
             if !quiet {
                 println!(
                     "{}

@@ -608,6 +608,10 @@ fn run_refuses_a_spectrum_and_points_to_separation() {
         "{err}"
     );
     assert!(!dir.path().join("res").exists(), "nothing is written");
+    // nor is there anything to converge
+    let out = pounding(&["convergence", "s.toml"], dir.path());
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no time history"));
     // the library refuses too (sweeps, convergence)
     let sc = parse(&scenario_text(10.0, ASCE, "")).unwrap();
     let e = pounding::simulate::simulate(&sc).unwrap_err().to_string();
@@ -849,12 +853,20 @@ fn bundled_study_and_spectrum_examples_are_valid() {
     let s = pounding::sweep::Sweep::from_file(&dir.join("separation-sweep.toml")).unwrap();
     assert_eq!(s.len(), 3 * 7 * 5);
     for c in [0, 52, 104] {
-        let sc = s.case_scenario(c).unwrap_or_else(|e| panic!("case {c}: {e}"));
+        let sc = s
+            .case_scenario(c)
+            .unwrap_or_else(|e| panic!("case {c}: {e}"));
         assert_eq!(sc.design.codes.len(), 5);
     }
     assert_eq!(
         s.code_columns(),
-        ["sep_asce7", "sep_is1893", "sep_nbcc", "sep_gb50011", "sep_ntc"]
+        [
+            "sep_asce7",
+            "sep_is1893",
+            "sep_nbcc",
+            "sep_gb50011",
+            "sep_ntc"
+        ]
     );
     let sc = Scenario::from_file(&dir.join("design-spectrum.toml")).unwrap();
     assert!(matches!(sc.design.spectrum, Some(DesignSpectrum::Asce7(_))));
