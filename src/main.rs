@@ -9,7 +9,6 @@ use std::io::IsTerminal as _;
 
 use pounding::output::RunWriter;
 use pounding::scenario::Scenario;
-use pounding::separation::Rule;
 use pounding::simulate::{Phase, Report, simulate_streaming};
 
 /// The bundled default scenario: the seed paper's case T1/T2 = 0.7.
@@ -98,11 +97,28 @@ enum Command {
         #[arg(long, default_value_t = 0.01)]
         tolerance: f64,
     },
-    /// Required separation by every rule (ABS, SRSS, DDC, DDC as printed in the paper) and the
-    /// exact time-history value, side by side.
+    /// Required separation by every rule, side by side: ABS, SRSS, DDC, DDC as printed in the
+    /// paper, and the building codes whose factors the scenario's [separation] table gives
+    /// (ASCE 7-16 §12.12.3, IS 1893 §7.11.3, NBCC 4.1.8.14, GB 50011 §6.1.4, NTC-Sismo §1.10),
+    /// each with the gap given and whether it suffices; with a time history, the exact
+    /// time-history separation beside them and each rule's over/under-estimate of it (%).
+    ///
+    /// With a design spectrum ([ground_motion] kind = "spectrum", or --spectrum) the rules take
+    /// the spectral peak displacement at the contact height of each structure (CQC of
+    /// Γ_n φ_n(h) S_d(T_n, ζ_n)).
     Separation {
         /// Scenario file (TOML); the bundled default if omitted.
         scenario: Option<PathBuf>,
+        /// Only these codes (comma-separated or repeated): asce7, is1893, nbcc, gb50011, ntc
+        /// [default: every code whose factors are in the scenario].
+        #[arg(long, value_delimiter = ',')]
+        code: Vec<String>,
+        /// Use this design spectrum for the rules instead of the time history (which still
+        /// gives the exact separation): asce7:sds=1.0,sd1=0.6,tl=8 |
+        /// ec8:ag=2.5,ground_type=C,type=1[,units=g] (a_g in m/s² unless units=g) |
+        /// table:FILE[,units=g] (T in s, S_a in m/s² unless units=g).
+        #[arg(long, value_name = "SPEC")]
+        spectrum: Option<String>,
     },
     /// Run a parameter study: every case of a grid over scenario keys, in parallel, resumable.
     ///
@@ -171,6 +187,25 @@ enum Command {
         /// The parts (results-shard-K-of-N.csv files), or directories holding them.
         #[arg(required = true)]
         parts: Vec<PathBuf>,
+    },
+    /// How often each separation rule is unsafe over a sweep: from a results table with the
+    /// exact time-history separation (sep_time_history) and the rules (sep_abs, sep_srss,
+    /// sep_ddc, and sep_asce7 … when the base scenario had a [separation] table), the fraction
+    /// of cases where each rule is below the exact value, its worst shortfall and its excess
+    /// when safe; draws DIR/rules.png/.svg (rule/exact against one axis: smallest, median,
+    /// largest over the other axes).
+    Rules {
+        /// The results table (results.csv of a sweep, or a merged table).
+        results: PathBuf,
+        /// Axis along x of the figure [default: the first axis].
+        #[arg(long)]
+        x: Option<String>,
+        /// Output directory of the figure [default: plots/ beside the results table].
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Do not draw the figure.
+        #[arg(long)]
+        no_plot: bool,
     },
     /// Draw a sweep's pictures from its results table: heatmaps over two axes, line plots
     /// over one.
@@ -374,6 +409,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            if let Some(s) = &sc.design.spectrum {
+                return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
+            }
             pounding::budget::check_run(&sc, max_output_size)?;
             let mut writer = RunWriter::create(&out, sc.contact.levels.len())?;
             let mut sink = RunProgress {
@@ -477,6 +515,28 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             );
             Ok(())
         }
+        Command::Rules {
+            results,
+            x,
+            out,
+            no_plot,
+        } => {
+            let table = pounding::sweep::results::Table::read(&results)?;
+            let study = pounding::rule_study::rule_study(&table);
+            print!("{}", pounding::rule_study::format_study(&study));
+            if !no_plot {
+                let dir =
+                    out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
+                let sub = format!("{} ({} cases)", results.display(), study.rows);
+                let files = pounding::rule_study::rule_figure(&table, x.as_deref(), &dir, &sub)?;
+                if !quiet {
+                    let names: Vec<String> =
+                        files.iter().map(|p| p.display().to_string()).collect();
+                    println!("wrote {}", names.join(", "));
+                }
+            }
+            Ok(())
+        }
         Command::Laws { speed } => {
             if !(speed.is_finite() && speed > 0.0) {
                 anyhow::bail!("--speed must be a finite number > 0 (m/s), got {speed}");
@@ -493,6 +553,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
+            if let Some(s) = &sc.design.spectrum {
+                return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
+            }
             if !quiet {
                 println!(
                     "{}
@@ -508,9 +571,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             print_convergence(&table);
             Ok(())
         }
-        Command::Separation { scenario } => {
+        Command::Separation {
+            scenario,
+            code,
+            spectrum,
+        } => {
             let (sc, _) = load(scenario.as_deref())?;
-            let report = pounding::simulate::separation(&sc)?;
+            let spectrum = spectrum
+                .as_deref()
+                .map(pounding::design::spectrum_from_arg)
+                .transpose()?;
+            let codes = (!code.is_empty()).then_some(code.as_slice());
+            let report = pounding::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
             print_separation(&sc, &report);
             Ok(())
         }
@@ -862,50 +934,105 @@ fn first_sentence(text: &str) -> String {
     }
 }
 
-fn print_separation(sc: &Scenario, r: &pounding::simulate::SeparationReport) {
-    let s = &r.separation;
+fn print_separation(sc: &Scenario, r: &pounding::gap_report::GapReport) {
     println!("{}", sc.title);
+    let source = match (&r.spectrum, r.exact) {
+        (Some(s), Some(_)) => format!(
+            "rules from the design spectrum {} (--spectrum); exact separation from the scenario's time history",
+            s.name
+        ),
+        (Some(s), None) => format!(
+            "design spectrum {}: no time history, so no exact separation",
+            s.name
+        ),
+        (None, _) => "time history of the scenario (peaks without pounding)".to_string(),
+    };
+    println!("  ground motion: {source}");
     println!(
-        "  peaks without pounding at h = {} m: w1 = {:.5} m, w2 = {:.5} m; T1/T2 = {:.4}, ζ1 = {}, ζ2 = {}, ρ12 (CQC) = {:.5}",
-        sc.main_height(),
-        r.peaks_no_contact[0],
-        r.peaks_no_contact[1],
-        r.periods[0] / r.periods[1],
+        "  contact height h = {} m, gap given {} m; T1 = {:.4} s, T2 = {:.4} s, ζ1 = {}, ζ2 = {}, ρ12 (CQC, first modes) = {:.5}",
+        r.height,
+        r.gap,
+        r.periods[0],
+        r.periods[1],
         r.damping_ratios[0],
         r.damping_ratios[1],
-        s.rho
+        r.rho
     );
-    println!();
-    println!("  {:<44}{:>12}{:>16}", "rule", "gap [m]", "vs exact");
-    let rows = [
-        ("time history, max(w1 − w2) (exact)", s.time_history, None),
-        ("ABS  w1 + w2", s.abs, Some(Rule::Abs)),
-        ("SRSS √(w1² + w2²)", s.srss, Some(Rule::Srss)),
-        ("DDC  √(w1² + w2² − 2ρ w1 w2)", s.ddc, Some(Rule::Ddc)),
-        (
-            "ddc-paper (eq. 22–23 as printed)",
-            s.ddc_paper,
-            Some(Rule::DdcPaper),
-        ),
-    ];
-    for (label, v, rule) in rows {
-        let vs = if rule.is_some() && s.time_history > 0.0 {
-            format!("{:+.1} %", 100.0 * (v - s.time_history) / s.time_history)
-        } else {
-            String::new()
-        };
-        println!("  {label:<44}{v:>12.5}{vs:>16}");
+    if let Some(p) = r.time_history_peaks {
+        println!(
+            "  time history, peaks without pounding at h: w1 = {:.5} m, w2 = {:.5} m",
+            p[0], p[1]
+        );
+    }
+    if let Some(s) = &r.spectrum {
+        let (a, b) = (&s.response.structure1, &s.response.structure2);
+        println!(
+            "  spectral peak displacement at h [m]: structure 1 SRSS {:.5}, CQC {:.5} ({} modes); structure 2 SRSS {:.5}, CQC {:.5} ({} modes)",
+            a.srss,
+            a.cqc,
+            a.modes.len(),
+            b.srss,
+            b.cqc,
+            b.modes.len()
+        );
+        println!(
+            "  the rules take w1 = {:.5} m, w2 = {:.5} m (CQC)",
+            r.elastic[0], r.elastic[1]
+        );
     }
     println!();
-    println!(
-        "  the at-rest gap in the scenario is {} m: {}",
-        sc.contact.levels[0].gap,
-        if sc.contact.levels[0].gap >= s.time_history {
-            "wide enough, no pounding"
-        } else {
-            "too small, the structures pound"
-        }
+    let gap_col = format!("gap {} m", r.gap);
+    let vs_col = if r.exact.is_some() { "vs exact" } else { "" };
+    let head = format!(
+        "  {:<40}{:<42}{:>12}{:>14}{:>12}",
+        "rule", "clause", "required [m]", gap_col, vs_col
     );
+    println!("{}", head.trim_end());
+    if let Some(e) = r.exact {
+        let ok = if r.gap >= e { "suffices" } else { "TOO SMALL" };
+        let line = format!(
+            "  {:<40}{:<42}{:>12.5}{:>14}",
+            "time history, max(w1 − w2) (exact)", "", e, ok
+        );
+        println!("{}", line.trim_end());
+    }
+    for row in &r.rules {
+        let ok = if row.sufficient {
+            "suffices"
+        } else {
+            "TOO SMALL"
+        };
+        let vs = row
+            .vs_exact_percent
+            .map_or(String::new(), |p| format!("{p:+.1} %"));
+        let line = format!(
+            "  {:<40}{:<42}{:>12.5}{:>14}{:>12}",
+            row.label,
+            row.clause.as_deref().unwrap_or(""),
+            row.value,
+            ok,
+            vs
+        );
+        println!("{}", line.trim_end());
+    }
+    if !r.codes.is_empty() {
+        println!();
+        println!(
+            "  code inputs (elastic displacement at h → the displacement each code multiplies):"
+        );
+        for c in &r.codes {
+            println!(
+                "    {}: {}; displacements [{:.5}, {:.5}] m, terms [{:.5}, {:.5}] m",
+                c.key, c.conversion, c.displacements[0], c.displacements[1], c.terms[0], c.terms[1]
+            );
+        }
+    }
+    if r.exact.is_some() {
+        println!();
+        println!(
+            "  vs exact: 100 (rule − exact)/exact; a negative value is a rule below the exact separation (unsafe)"
+        );
+    }
 }
 
 /// The switches of `pounding sweep`.
@@ -999,6 +1126,12 @@ fn run_sweep(
             o.failed
         );
         println!("wrote {}", o.results.display());
+        if !sweep.code_columns().is_empty() {
+            println!(
+                "how often each rule is below the exact separation: pounding rules {}",
+                o.results.display()
+            );
+        }
         let c = &o.check;
         let ok = o.cases - o.failed;
         if ok == 0 {

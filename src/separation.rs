@@ -64,7 +64,7 @@ impl PeakPair {
 }
 
 /// Every rule side by side, plus the exact time-history value, m.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Separations {
     /// ABS, m.
     pub abs: f64,
@@ -79,6 +79,9 @@ pub struct Separations {
     pub time_history: f64,
     /// CQC correlation ρ₁₂ used by DDC.
     pub rho: f64,
+    /// The building codes of the scenario's `[separation]` table (empty without it).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub codes: Vec<crate::gap_report::CodeCheck>,
 }
 
 impl Separations {
@@ -91,6 +94,7 @@ impl Separations {
             ddc_paper: peaks.separation(Rule::DdcPaper),
             time_history: exact.max(0.0),
             rho: cqc_correlation(peaks.zeta1, peaks.zeta2, peaks.period_ratio),
+            codes: Vec::new(),
         }
     }
 }

@@ -280,6 +280,14 @@ fn separations(system: &System, without: &RunRecord) -> Separations {
     Separations::new(&peaks, without.max_closing)
 }
 
+/// A design spectrum has no time history: refuse it before integrating nothing.
+fn no_spectrum(scenario: &Scenario) -> Result<(), SolveError> {
+    match &scenario.design.spectrum {
+        Some(s) => Err(SolveError::NoTimeHistory(s.name())),
+        None => Ok(()),
+    }
+}
+
 /// What the separation rules need, from the run without contact only (half the work of
 /// [`simulate`], whose `separation` and no-contact peaks it equals).
 #[derive(Debug, Clone, PartialEq)]
@@ -296,6 +304,7 @@ pub struct SeparationReport {
 
 /// Run a scenario without contact and evaluate the separation rules (`pounding separation`).
 pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
+    no_spectrum(scenario)?;
     let system = scenario.system();
     let free = system.without_contact();
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
@@ -336,6 +345,7 @@ fn simulate_phases(
     check: bool,
     floors: bool,
 ) -> Result<Report, SolveError> {
+    no_spectrum(scenario)?;
     let system = scenario.system();
     let free = system.without_contact();
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
@@ -409,9 +419,22 @@ fn simulate_phases(
         impacts: levels.iter().map(|l| l.impacts).sum(),
         contact_time: levels.iter().map(|l| l.contact_time).sum(),
     };
-    let separation = separations(&system, &without);
+    let mut separation = separations(&system, &without);
 
     let mut warnings = scenario.warnings.clone();
+    // the building codes of `[separation]`, from the peaks without pounding
+    match crate::gap_report::code_checks(
+        &scenario.design,
+        None,
+        without.peak,
+        [0, 1].map(|i| scenario.structures[i].length()),
+        scenario.main_height(),
+        crate::gap_report::main_gap(scenario),
+        Some(separation.time_history),
+    ) {
+        Ok(codes) => separation.codes = codes,
+        Err(e) => warnings.push(format!("separation.codes left out: {e}")),
+    }
     let h = scenario.main_height();
     for s in &structures {
         let peak = s.peak_displacement.max(s.peak_displacement_no_contact);

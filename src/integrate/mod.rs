@@ -238,6 +238,14 @@ pub struct Stats {
 /// Why an integration could not be carried out.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
+    /// The scenario's ground motion is a design spectrum: there is no time history to
+    /// integrate (`pounding separation` evaluates a spectrum).
+    #[error(
+        "the ground motion is a design spectrum ({0}), which has no time history to simulate: \
+         use `pounding separation SCENARIO` for the spectral peaks and the required separation \
+         by every rule, or give a record or a harmonic motion to simulate pounding"
+    )]
+    NoTimeHistory(&'static str),
     /// The step exceeds the method's stability limit for the structures' highest mode.
     #[error(
         "time step dt = {dt} s is beyond {method}'s stability limit: mode {mode} of structure {structure} \

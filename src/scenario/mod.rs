@@ -163,6 +163,7 @@ struct RawScenario {
     contact: Option<Spanned<RawContact>>,
     ground_motion: Option<Spanned<RawGround>>,
     solver: Option<Spanned<RawSolver>>,
+    separation: Option<Spanned<crate::design::RawSeparation>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -231,14 +232,23 @@ struct RawLevel {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawGround {
-    kind: Option<Spanned<String>>,
-    pga: Option<Spanned<f64>>,
-    period: Option<Spanned<f64>>,
-    file: Option<Spanned<String>>,
-    units: Option<Spanned<String>>,
-    scale_to_pga: Option<Spanned<f64>>,
-    dt: Option<Spanned<f64>>,
+pub(crate) struct RawGround {
+    pub(crate) kind: Option<Spanned<String>>,
+    pub(crate) pga: Option<Spanned<f64>>,
+    pub(crate) period: Option<Spanned<f64>>,
+    pub(crate) file: Option<Spanned<String>>,
+    pub(crate) units: Option<Spanned<String>>,
+    pub(crate) scale_to_pga: Option<Spanned<f64>>,
+    pub(crate) dt: Option<Spanned<f64>>,
+    // kind = "spectrum": checked in crate::design
+    pub(crate) spectrum: Option<Spanned<String>>,
+    pub(crate) sds: Option<Spanned<f64>>,
+    pub(crate) sd1: Option<Spanned<f64>>,
+    pub(crate) tl: Option<Spanned<f64>>,
+    pub(crate) ag: Option<Spanned<f64>>,
+    pub(crate) ground_type: Option<Spanned<String>>,
+    #[serde(rename = "type")]
+    pub(crate) spectrum_type: Option<Spanned<toml::Value>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -256,7 +266,14 @@ struct RawSolver {
 const TABLES: &[(&str, &[&str])] = &[
     (
         "the top level",
-        &["title", "structure", "contact", "ground_motion", "solver"],
+        &[
+            "title",
+            "structure",
+            "contact",
+            "ground_motion",
+            "solver",
+            "separation",
+        ],
     ),
     (
         "[[structure]]",
@@ -309,6 +326,13 @@ const TABLES: &[(&str, &[&str])] = &[
             "units",
             "scale_to_pga",
             "dt",
+            "spectrum",
+            "sds",
+            "sd1",
+            "tl",
+            "ag",
+            "ground_type",
+            "type",
         ],
     ),
     (
@@ -367,6 +391,9 @@ pub struct Scenario {
     /// Implausible values, each with why (a PGA above 3 g, a gap of metres); the run adds
     /// them to its warnings.
     pub warnings: Vec<String>,
+    /// A design spectrum (`[ground_motion] kind = "spectrum"`, then `ground_motion` is
+    /// [`GroundMotion::None`]) and the code factors of `[separation]` ([`crate::design`]).
+    pub design: crate::design::DesignInputs,
 }
 
 impl Scenario {
@@ -552,7 +579,7 @@ fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, String, String)>
                 None => miss(
                     near,
                     "ground_motion.kind".into(),
-                    "\"harmonic\" or \"record\"",
+                    "\"harmonic\", \"record\" or \"spectrum\"",
                 ),
                 Some("harmonic") => {
                     if r.pga.is_none() {
@@ -619,21 +646,21 @@ impl RecordCache {
     }
 }
 
-struct Ctx<'a> {
-    text: &'a str,
-    file: &'a str,
-    name: Arc<str>,
+pub(crate) struct Ctx<'a> {
+    pub(crate) text: &'a str,
+    pub(crate) file: &'a str,
+    pub(crate) name: Arc<str>,
 }
 
 impl Ctx<'_> {
-    fn at(&self, offset: Option<usize>) -> Location {
+    pub(crate) fn at(&self, offset: Option<usize>) -> Location {
         Location {
             file: self.name.clone(),
             line_col: offset.map(|o| line_col(self.text, o)),
         }
     }
 
-    fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
+    pub(crate) fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
         let at = self.at(e.span().map(|s| s.start));
         let msg = e.message().trim().to_string();
         if let Some(rest) = msg.strip_prefix("unknown field `")
@@ -696,7 +723,7 @@ impl Ctx<'_> {
                     .collect()
             })
             .unwrap_or_default();
-        for (name, keys) in TABLES {
+        for (name, keys) in TABLES.iter().chain(crate::design::TABLES) {
             if !expected.is_empty()
                 && keys.len() == expected.len()
                 && expected.iter().all(|k| keys.contains(k))
@@ -723,12 +750,17 @@ fn line_col(text: &str, offset: usize) -> (u32, u32) {
 }
 
 /// A validator for one key: checks the value against a range and reports with its location.
-struct Check<'a, 'c> {
-    ctx: &'c Ctx<'a>,
+pub(crate) struct Check<'a, 'c> {
+    pub(crate) ctx: &'c Ctx<'a>,
 }
 
 impl Check<'_, '_> {
-    fn invalid<T: fmt::Display>(&self, v: &Spanned<T>, key: &str, reason: &str) -> ScenarioError {
+    pub(crate) fn invalid<T: fmt::Display>(
+        &self,
+        v: &Spanned<T>,
+        key: &str,
+        reason: &str,
+    ) -> ScenarioError {
         ScenarioError::Invalid {
             at: self.ctx.at(Some(v.span().start)),
             key: key.to_string(),
@@ -737,7 +769,7 @@ impl Check<'_, '_> {
         }
     }
 
-    fn missing(&self, key: &str, expected: &str, near: Option<usize>) -> ScenarioError {
+    pub(crate) fn missing(&self, key: &str, expected: &str, near: Option<usize>) -> ScenarioError {
         ScenarioError::Missing {
             at: self.ctx.at(near),
             key: key.to_string(),
@@ -746,7 +778,12 @@ impl Check<'_, '_> {
     }
 
     /// A finite number > 0 (unit in the message).
-    fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, ScenarioError> {
+    pub(crate) fn positive(
+        &self,
+        v: &Spanned<f64>,
+        key: &str,
+        unit: &str,
+    ) -> Result<f64, ScenarioError> {
         let x = *v.get_ref();
         if x.is_finite() && x > 0.0 {
             Ok(x)
@@ -765,7 +802,7 @@ impl Check<'_, '_> {
         }
     }
 
-    fn required<'v, T>(
+    pub(crate) fn required<'v, T>(
         &self,
         v: &'v Option<Spanned<T>>,
         key: &str,
@@ -895,6 +932,13 @@ fn validate(
     floors_at_contact(&c, &raw, &structures, &contact)?;
     let mut warnings = structure_warnings;
     warnings.extend(plausibility(&contact, &ground_motion));
+    let design = crate::design::validate(
+        &c,
+        raw.ground_motion.as_ref(),
+        raw.separation.as_ref(),
+        base_dir,
+        &mut defaults,
+    )?;
     let scenario = Scenario {
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
         structures,
@@ -904,6 +948,7 @@ fn validate(
         output_interval,
         defaults_applied: defaults,
         warnings,
+        design,
     };
     // stability: needs the modal model (docs/model.md §2.9)
     if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
@@ -1327,7 +1372,7 @@ fn ground(
     let kind = c.required(
         &g.kind,
         "ground_motion.kind",
-        "\"harmonic\" or \"record\"",
+        "\"harmonic\", \"record\" or \"spectrum\"",
         near,
     )?;
     let forbid = |present: &[(&str, bool)], kind: &str| -> Result<(), ScenarioError> {
@@ -1430,10 +1475,12 @@ fn ground(
             };
             Ok(GroundMotion::Record(record))
         }
+        // a design spectrum has no time history: crate::design checks its keys
+        "spectrum" => Ok(GroundMotion::None),
         _ => Err(c.invalid(
             kind,
             "ground_motion.kind",
-            "must be \"harmonic\" or \"record\"",
+            "must be \"harmonic\", \"record\" or \"spectrum\"",
         )),
     }
 }

@@ -620,6 +620,21 @@ impl Sweep {
         })
     }
 
+    /// The code columns of the results (`sep_asce7`, …, in the order of
+    /// [`crate::design::CODE_KEYS`]): one per code table in the base scenario's `[separation]`
+    /// (the axes cannot change them), after the [`results::FIELDS`].
+    pub fn code_columns(&self) -> Vec<&'static str> {
+        let Some(Value::Table(sep)) = self.base.get("separation") else {
+            return Vec::new();
+        };
+        crate::design::CODE_KEYS
+            .iter()
+            .zip(results::CODE_FIELDS)
+            .filter(|(k, _)| sep.contains_key(**k))
+            .map(|(_, f)| f)
+            .collect()
+    }
+
     /// Number of cases (the product of the axis lengths).
     pub fn len(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()

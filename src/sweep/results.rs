@@ -10,6 +10,13 @@
 //! that reads back to the same `f64`), so a case's numbers are byte-identical to those of
 //! `pounding run` on the same scenario.
 //!
+//! When the base scenario has a `[separation]` table, one column per code follows the
+//! [`FIELDS`]: [`CODE_FIELDS`] (`sep_asce7`, `sep_is1893`, `sep_nbcc`, `sep_gb50011`,
+//! `sep_ntc`, the codes' required separations in m, `separation.codes` of summary.json), in
+//! that order, only those whose factors the scenario gives. A table without them is the v2
+//! table unchanged; a journal with them is version 3 ([`JOURNAL_VERSION_CODES`]), so that an
+//! older `pounding` refuses to resume it with a message instead of misreading it.
+//!
 //! The journal `journal.csv` (`journal-shard-K-of-N.csv` for a part) receives every finished
 //! row as soon as it is known, one `write` per row, in completion order. Its first line
 //! identifies the sweep (a hash of the sweep file and the base scenario, the part, the number
@@ -54,6 +61,46 @@ pub const V1_FIELDS: usize = 13;
 
 /// Version of the journal format, in its first line.
 pub const JOURNAL_VERSION: u32 = 2;
+
+/// Version of the journal format of a sweep with code columns ([`CODE_FIELDS`]).
+pub const JOURNAL_VERSION_CODES: u32 = 3;
+
+/// The code columns that may follow [`FIELDS`], in this order (`sep_` + the key of
+/// [`crate::design::CODE_KEYS`]).
+pub const CODE_FIELDS: [&str; 5] = [
+    "sep_asce7",
+    "sep_is1893",
+    "sep_nbcc",
+    "sep_gb50011",
+    "sep_ntc",
+];
+
+/// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with code columns, else
+/// [`JOURNAL_VERSION`].
+pub fn journal_version(sweep: &Sweep) -> u32 {
+    if sweep.code_columns().is_empty() {
+        JOURNAL_VERSION
+    } else {
+        JOURNAL_VERSION_CODES
+    }
+}
+
+/// The [`FIELDS`] of a report followed by its code columns for `sweep`
+/// ([`Sweep::code_columns`]): each code's required separation, or NaN if the report lacks it.
+pub fn case_fields(sweep: &Sweep, r: &Report) -> Vec<String> {
+    let mut out: Vec<String> = report_fields(r).into();
+    for col in sweep.code_columns() {
+        let key = col.trim_start_matches("sep_");
+        let v = r
+            .separation
+            .codes
+            .iter()
+            .find(|c| c.key == key)
+            .map_or(f64::NAN, |c| c.required);
+        out.push(fmt_f64(v));
+    }
+    out
+}
 
 /// The value of the `converged` column of a case run without its self-check.
 pub const UNCHECKED: &str = "unchecked";
@@ -164,11 +211,13 @@ pub fn header(sweep: &Sweep) -> String {
     cols.extend(sweep.axes.iter().map(|a| csv_field(&a.key)));
     cols.push("status".into());
     cols.extend(FIELDS.iter().map(|f| f.to_string()));
+    cols.extend(sweep.code_columns().iter().map(|f| f.to_string()));
     cols.join(",")
 }
 
 /// One results row (without the line break). `outcome` is the fields, or the failure reason.
-pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; NFIELDS], String>) -> String {
+/// `outcome` is [`case_fields`] (the [`FIELDS`] and the code columns), or the failure reason.
+pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) -> String {
     let mut line = case.to_string();
     for v in sweep.values(case) {
         line.push(',');
@@ -189,7 +238,7 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; NFIELDS], Strin
                 .collect();
             line.push(',');
             line.push_str(&csv_field(&format!("failed: {reason}")));
-            line.push_str(&",".repeat(FIELDS.len()));
+            line.push_str(&",".repeat(FIELDS.len() + sweep.code_columns().len()));
         }
     }
     line
@@ -197,7 +246,7 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<[String; NFIELDS], Strin
 
 /// Checks a row read back: right number of fields, case in range, a known status, numbers
 /// where the status is `ok`. Returns the case and whether it failed.
-fn check_row(line: &str, columns: usize, cases: usize) -> Option<(usize, bool)> {
+fn check_row(line: &str, columns: usize, codes: usize, cases: usize) -> Option<(usize, bool)> {
     let f = parse_csv_line(line)?;
     if f.len() != columns {
         return None;
@@ -206,14 +255,16 @@ fn check_row(line: &str, columns: usize, cases: usize) -> Option<(usize, bool)> 
     if case >= cases {
         return None;
     }
-    let status = &f[columns - FIELDS.len() - 1];
-    let nums = &f[columns - FIELDS.len()..];
+    let status = &f[columns - FIELDS.len() - codes - 1];
+    let nums = &f[columns - FIELDS.len() - codes..];
     if status == "ok" {
-        if nums
-            .iter()
-            .enumerate()
-            .all(|(k, x)| parse_field(k, x).is_some())
-        {
+        if nums.iter().enumerate().all(|(k, x)| {
+            if k < NFIELDS {
+                parse_field(k, x).is_some()
+            } else {
+                x.parse::<f64>().is_ok()
+            }
+        }) {
             Some((case, false))
         } else {
             None
@@ -273,7 +324,8 @@ impl Journal {
             }
             Err(std::fs::TryLockError::Error(e)) => return Err(io(e)),
         }
-        let version = format!("# pounding sweep journal v{JOURNAL_VERSION};");
+        let this_version = journal_version(sweep);
+        let version = format!("# pounding sweep journal v{this_version};");
         let ident = format!(
             "{version} identity={:016x}; shard={shard}; cases={}",
             sweep.identity(),
@@ -306,10 +358,10 @@ impl Journal {
                     path: path.display().to_string(),
                     message: format!(
                         "this journal was written by another version of pounding (journal {other}, \
-                         this one v{JOURNAL_VERSION}: its rows lack or differ in the self-check \
-                         columns check_max_change and converged). Finish that sweep with the \
-                         version that started it, or use another --out, or delete the directory's \
-                         journal and results to start afresh"
+                         this one v{this_version}: its rows lack or differ in the self-check \
+                         columns check_max_change and converged, or in the code columns sep_asce7 …). \
+                         Finish that sweep with the version that started it, or use another --out, \
+                         or delete the directory's journal and results to start afresh"
                     ),
                 });
             }
@@ -337,7 +389,8 @@ impl Journal {
                             .into(),
                 });
             }
-            let columns = 2 + sweep.axes.len() + FIELDS.len();
+            let codes = sweep.code_columns().len();
+            let columns = 2 + sweep.axes.len() + FIELDS.len() + codes;
             let mut good_end = preamble.len();
             let mut pos = preamble.len();
             for line in lines {
@@ -348,7 +401,7 @@ impl Journal {
                     break;
                 };
                 good_end = pos;
-                match check_row(body, columns, sweep.len()) {
+                match check_row(body, columns, codes, sweep.len()) {
                     Some((case, failed)) if shard.contains(case) => {
                         rows.entry(case).or_insert((body.to_string(), failed));
                     }
@@ -426,6 +479,8 @@ pub struct Table {
     pub axes: Vec<String>,
     /// Rows by case.
     pub rows: BTreeMap<usize, TableRow>,
+    /// The code columns after [`FIELDS`] ([`CODE_FIELDS`], those the table has).
+    pub codes: Vec<String>,
 }
 
 /// One row of a [`Table`].
@@ -440,6 +495,22 @@ pub struct TableRow {
     /// [`FIELDS`] values (NaN for a failed case; `converged` as 1, 0 or NaN when unchecked;
     /// the check columns NaN in a table written before them).
     pub fields: [f64; NFIELDS],
+    /// Values of the table's code columns ([`Table::codes`]), NaN when empty.
+    pub codes: Vec<f64>,
+}
+
+impl TableRow {
+    /// The value of column `name` of `table` (a [`FIELDS`] or code column), if it has it.
+    pub fn get(&self, table: &Table, name: &str) -> Option<f64> {
+        match Table::field_index(name) {
+            Some(i) => Some(self.fields[i]),
+            None => table
+                .codes
+                .iter()
+                .position(|c| c == name)
+                .map(|i| self.codes[i]),
+        }
+    }
 }
 
 impl Table {
@@ -458,7 +529,15 @@ impl Table {
             .next()
             .ok_or_else(|| bad(1, "empty file: not a sweep results table".into()))?
             .to_string();
-        let cols = parse_csv_line(&header).unwrap_or_default();
+        let all = parse_csv_line(&header).unwrap_or_default();
+        // trailing code columns, then the layout before them
+        let ncodes = all
+            .iter()
+            .rev()
+            .take_while(|c| CODE_FIELDS.contains(&c.as_str()))
+            .count();
+        let codes: Vec<String> = all[all.len() - ncodes..].to_vec();
+        let cols = &all[..all.len() - ncodes];
         let n = cols.len();
         // the current layout, or that of tables written before the self-check columns
         let shape = |nf: usize| {
@@ -475,8 +554,10 @@ impl Table {
             return Err(bad(
                 1,
                 format!(
-                    "not a sweep results table: expected columns case, <axis keys>, status, {}",
-                    FIELDS.join(", ")
+                    "not a sweep results table: expected columns case, <axis keys>, status, {} \
+                     (then any of {})",
+                    FIELDS.join(", "),
+                    CODE_FIELDS.join(", ")
                 ),
             ));
         };
@@ -488,13 +569,18 @@ impl Table {
                 continue;
             }
             let f = parse_csv_line(line)
-                .filter(|f| f.len() == n)
-                .ok_or_else(|| bad(lineno, format!("expected {n} comma-separated fields")))?;
+                .filter(|f| f.len() == n + ncodes)
+                .ok_or_else(|| {
+                    bad(
+                        lineno,
+                        format!("expected {} comma-separated fields", n + ncodes),
+                    )
+                })?;
             let case: usize = f[0]
                 .parse()
                 .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
             let mut fields = [f64::NAN; NFIELDS];
-            for (k, x) in f[n - nf..].iter().enumerate() {
+            for (k, x) in f[n - nf..n].iter().enumerate() {
                 if !x.is_empty() {
                     fields[k] = parse_field(k, x).ok_or_else(|| {
                         let what = if FIELDS[k] == "converged" {
@@ -506,11 +592,20 @@ impl Table {
                     })?;
                 }
             }
+            let mut code_values = vec![f64::NAN; ncodes];
+            for (k, x) in f[n..].iter().enumerate() {
+                if !x.is_empty() {
+                    code_values[k] = x.parse().map_err(|_| {
+                        bad(lineno, format!("`{}` = `{x}` is not a number", codes[k]))
+                    })?;
+                }
+            }
             let r = TableRow {
                 line: line.to_string(),
                 values: f[1..n - nf - 1].to_vec(),
                 status: f[n - nf - 1].clone(),
                 fields,
+                codes: code_values,
             };
             if rows.insert(case, r).is_some() {
                 return Err(bad(lineno, format!("case {case} appears twice")));
@@ -521,6 +616,7 @@ impl Table {
             header,
             axes,
             rows,
+            codes,
         })
     }
 

@@ -71,13 +71,15 @@ pub struct CheckCounts {
 }
 
 impl CheckCounts {
-    /// Count the `converged` column of finished rows (`(case, line)`, in case order).
-    pub fn of_rows<'a>(rows: impl Iterator<Item = (usize, &'a str)>) -> CheckCounts {
+    /// Count the `converged` column of finished rows (`(case, line)`, in case order) whose
+    /// last `codes` columns are code columns ([`results::CODE_FIELDS`]).
+    pub fn of_rows<'a>(rows: impl Iterator<Item = (usize, &'a str)>, codes: usize) -> CheckCounts {
         let mut c = CheckCounts::default();
         for (case, line) in rows {
-            let Some(f) = results::parse_csv_line(line) else {
+            let Some(mut f) = results::parse_csv_line(line) else {
                 continue;
             };
+            f.truncate(f.len().saturating_sub(codes));
             let (Some(conv), Some(change)) = (f.last(), f.len().checked_sub(2).map(|i| &f[i]))
             else {
                 continue;
@@ -247,7 +249,7 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
             .iter()
             .find(|w| !crate::accuracy::is_check_warning(w))
             .cloned();
-        Ok(results::report_fields(&report))
+        Ok(results::case_fields(sweep, &report))
     }))
     .unwrap_or_else(|p| {
         let msg = p
@@ -376,7 +378,10 @@ pub fn run(
                 .unwrap_or_default();
             (*c, status)
         });
-    let check = CheckCounts::of_rows(journal.rows.iter().map(|(c, (l, _))| (*c, l.as_str())));
+    let check = CheckCounts::of_rows(
+        journal.rows.iter().map(|(c, (l, _))| (*c, l.as_str())),
+        sweep.code_columns().len(),
+    );
     Ok(RunOutcome {
         check,
         results: results_path,
