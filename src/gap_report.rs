@@ -16,7 +16,10 @@ use crate::design::{CODE_KEYS, DesignInputs};
 use crate::integrate::SolveError;
 use crate::scenario::Scenario;
 use crate::separation::{PeakPair, Rule, Separations};
-use crate::spectrum::{DesignSpectrum, RelativeResponse, SpectrumError, relative_peak};
+use crate::spectrum::{
+    DesignSpectrum, RelativeResponse, SpectralResponse, SpectrumError, peak_displacements,
+    relative_peak,
+};
 
 /// One code's required separation for a scenario (`separation.codes` of summary.json).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -153,6 +156,9 @@ pub struct SpectralPart {
     pub name: &'static str,
     /// Peaks at the contact height of each structure (per mode, SRSS, CQC) and of w₁ − w₂.
     pub response: RelativeResponse,
+    /// Peaks at every floor of each structure that has floors (empty for a cantilever),
+    /// lowest first.
+    pub floors: [Vec<SpectralResponse>; 2],
 }
 
 /// Everything `pounding separation` prints.
@@ -215,10 +221,19 @@ pub fn gap_report(
     };
     let exact = time_history.as_ref().map(|t| t.separation.time_history);
     let spectral = match spectrum {
-        Some(s) => Some(SpectralPart {
-            name: s.name(),
-            response: relative_peak(&models[0], h, &models[1], h, s)?,
-        }),
+        Some(s) => {
+            let mut floors = [Vec::new(), Vec::new()];
+            for (i, f) in floors.iter_mut().enumerate() {
+                if let Some(heights) = scenario.structures[i].floor_heights() {
+                    *f = peak_displacements(&models[i], s, heights)?;
+                }
+            }
+            Some(SpectralPart {
+                name: s.name(),
+                response: relative_peak(&models[0], h, &models[1], h, s)?,
+                floors,
+            })
+        }
         None => None,
     };
     let elastic = match (&spectral, &time_history) {

@@ -979,6 +979,19 @@ fn print_separation(sc: &Scenario, r: &pounding::gap_report::GapReport) {
             "  the rules take w1 = {:.5} m, w2 = {:.5} m (CQC)",
             r.elastic[0], r.elastic[1]
         );
+        for (i, floors) in s.floors.iter().enumerate() {
+            if floors.is_empty() {
+                continue;
+            }
+            println!(
+                "  spectral peak displacement at every floor of structure {} [m]:",
+                i + 1
+            );
+            println!("    {:>10} {:>12} {:>12}", "height [m]", "SRSS", "CQC");
+            for f in floors.iter().rev() {
+                println!("    {:>10.3} {:>12.5} {:>12.5}", f.height, f.srss, f.cqc);
+            }
+        }
     }
     println!();
     let gap_col = format!("gap {} m", r.gap);

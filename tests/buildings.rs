@@ -501,3 +501,39 @@ fn cantilever_stations_and_the_shear_at_the_top() {
         assert!((top.peak_displacement - s.peak_displacement).abs() <= 1e-12 * s.peak_displacement);
     }
 }
+
+/// Issue 13 on buildings: the spectral peak displacement at every floor. Two one-storey
+/// buildings (one mode each: φ = 1/√m, Γ = √m, so u = Γφ·S_d = S_d exactly) under the ASCE 7
+/// spectrum S_DS = 1 g, S_D1 = 0.6 g: building 1 (m = 1e5 kg, k = 4e7 N/m) has ω = 20 rad/s,
+/// T = 0.3142 s on the plateau (T₀ = 0.12 s, T_S = 0.6 s), S_a = 1 g, S_d = 9.80665/400 m;
+/// building 2 (m = 2e5 kg, k = 2e7 N/m) ω = 10 rad/s, T = 0.6283 s > T_S, S_a = S_D1/T g,
+/// S_d = 0.6·9.80665/0.6283/100 m.
+#[test]
+fn spectral_peaks_at_every_floor_by_hand() {
+    use pounding::spectrum::{Asce7Spectrum, DesignSpectrum};
+    let text = format!(
+        "[[structure]]\nkind = \"shear-building\"\nfloor_heights = [3.0]\nfloor_masses = [1.0e5]\n\
+         storey_stiffnesses = [4.0e7]\n[[structure]]\nkind = \"shear-building\"\n\
+         floor_heights = [3.0]\nfloor_masses = [2.0e5]\nstorey_stiffnesses = [2.0e7]\n\
+         [contact]\nstiffness = 1e9\ngap = 0.05\n{GROUND}[solver]\nduration = 2.0\n"
+    );
+    let sc = scenario(&text).unwrap();
+    let spectrum = DesignSpectrum::Asce7(Asce7Spectrum::new(1.0, 0.6, 8.0).unwrap());
+    let r = pounding::gap_report::gap_report(&sc, Some(&spectrum), None).unwrap();
+    let s = r.spectrum.expect("spectral part");
+    let g = 9.80665;
+    let t2 = 2.0 * std::f64::consts::PI / 10.0;
+    let want = [g / 400.0, 0.6 / t2 * g / 100.0];
+    for i in 0..2 {
+        assert_eq!(s.floors[i].len(), 1);
+        let f = &s.floors[i][0];
+        assert_eq!(f.height, 3.0);
+        assert!(
+            (f.srss - want[i]).abs() < 1e-12 * want[i],
+            "{} vs {}",
+            f.srss,
+            want[i]
+        );
+        assert!((f.cqc - want[i]).abs() < 1e-12 * want[i]);
+    }
+}
