@@ -524,16 +524,11 @@ fn spectral_peaks_at_every_floor_by_hand() {
     let g = 9.80665;
     let t2 = 2.0 * std::f64::consts::PI / 10.0;
     let want = [g / 400.0, 0.6 / t2 * g / 100.0];
-    for i in 0..2 {
-        assert_eq!(s.floors[i].len(), 1);
-        let f = &s.floors[i][0];
+    for (floors, want) in s.floors.iter().zip(want) {
+        assert_eq!(floors.len(), 1);
+        let f = &floors[0];
         assert_eq!(f.height, 3.0);
-        assert!(
-            (f.srss - want[i]).abs() < 1e-12 * want[i],
-            "{} vs {}",
-            f.srss,
-            want[i]
-        );
-        assert!((f.cqc - want[i]).abs() < 1e-12 * want[i]);
+        assert!((f.srss - want).abs() < 1e-12 * want, "{} vs {want}", f.srss);
+        assert!((f.cqc - want).abs() < 1e-12 * want);
     }
 }
