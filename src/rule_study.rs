@@ -60,7 +60,13 @@ pub fn rule_columns(table: &Table) -> Vec<String> {
     PAPER_RULES
         .iter()
         .map(|s| s.to_string())
-        .chain(table.codes.iter().cloned())
+        .chain(
+            table
+                .codes
+                .iter()
+                .filter(|c| c.starts_with("sep_"))
+                .cloned(),
+        )
         .collect()
 }
 

@@ -532,3 +532,40 @@ fn spectral_peaks_at_every_floor_by_hand() {
         assert!((f.cqc - want).abs() < 1e-12 * want);
     }
 }
+
+/// A sweep over buildings gets the floor columns: each building's largest floor acceleration
+/// (with and without pounding) and drift over its floors, equal to the maxima of
+/// `structures[i].floors` of the same case run on its own.
+#[test]
+fn sweeps_over_buildings_report_floor_columns() {
+    use pounding::sweep::Sweep;
+    use pounding::sweep::results::{FIELDS, FLOOR_FIELDS, parse_csv_line};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/buildings-sweep.toml");
+    let sweep = Sweep::from_file(&path).unwrap();
+    assert_eq!(sweep.extra_columns(), FLOOR_FIELDS.to_vec());
+    let case = 3;
+    let row = pounding::sweep::run::compute_case(&sweep, case, false);
+    assert!(!row.failed, "{}", row.line);
+    let cells = parse_csv_line(&row.line).unwrap();
+    let first = 2 + sweep.axes.len() + FIELDS.len();
+    let r = simulate(&sweep.case_scenario(case).unwrap()).unwrap();
+    let max = |i: usize, f: fn(&pounding::simulate::FloorReport) -> f64| {
+        r.structures[i].floors.iter().map(f).fold(0.0, f64::max)
+    };
+    let want = [
+        max(0, |f| f.peak_acceleration),
+        max(1, |f| f.peak_acceleration),
+        max(0, |f| f.peak_acceleration_no_contact),
+        max(1, |f| f.peak_acceleration_no_contact),
+        max(0, |f| f.peak_drift),
+        max(1, |f| f.peak_drift),
+    ];
+    for (k, w) in want.iter().enumerate() {
+        let got: f64 = cells[first + k].parse().unwrap();
+        assert_eq!(got, *w, "{}", FLOOR_FIELDS[k]);
+    }
+    assert!(
+        want[1] > 1.5 * want[3],
+        "premise: pounding raises B's floor accelerations"
+    );
+}

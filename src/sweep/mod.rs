@@ -635,6 +635,31 @@ impl Sweep {
             .collect()
     }
 
+    /// The floor columns ([`results::FLOOR_FIELDS`]) when the base scenario has a building
+    /// with floors (`kind = "shear-building"` or `"modal"`).
+    pub fn floor_columns(&self) -> Vec<&'static str> {
+        let buildings = match self.base.get("structure") {
+            Some(Value::Array(list)) => list.iter().any(|s| {
+                s.get("kind")
+                    .and_then(Value::as_str)
+                    .is_some_and(|k| k != "cantilever")
+            }),
+            _ => false,
+        };
+        if buildings {
+            results::FLOOR_FIELDS.to_vec()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Every column after [`results::FIELDS`]: the code columns, then the floor columns.
+    pub fn extra_columns(&self) -> Vec<&'static str> {
+        let mut v = self.code_columns();
+        v.extend(self.floor_columns());
+        v
+    }
+
     /// Number of cases (the product of the axis lengths).
     pub fn len(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()

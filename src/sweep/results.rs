@@ -75,10 +75,23 @@ pub const CODE_FIELDS: [&str; 5] = [
     "sep_ntc",
 ];
 
-/// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with code columns, else
-/// [`JOURNAL_VERSION`].
+/// The floor columns that may follow the code columns (a sweep whose base scenario has a
+/// building with floors): each building's largest peak absolute floor acceleration with and
+/// without pounding (m/s²) and its largest peak storey drift with pounding (m), over its floors
+/// (a cantilever's stations).
+pub const FLOOR_FIELDS: [&str; 6] = [
+    "peak_floor_acceleration_1",
+    "peak_floor_acceleration_2",
+    "peak_floor_acceleration_no_contact_1",
+    "peak_floor_acceleration_no_contact_2",
+    "peak_drift_1",
+    "peak_drift_2",
+];
+
+/// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`]
+/// (codes, floors), else [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
-    if sweep.code_columns().is_empty() {
+    if sweep.extra_columns().is_empty() {
         JOURNAL_VERSION
     } else {
         JOURNAL_VERSION_CODES
@@ -89,7 +102,18 @@ pub fn journal_version(sweep: &Sweep) -> u32 {
 /// ([`Sweep::code_columns`]): each code's required separation, or NaN if the report lacks it.
 pub fn case_fields(sweep: &Sweep, r: &Report) -> Vec<String> {
     let mut out: Vec<String> = report_fields(r).into();
-    for col in sweep.code_columns() {
+    for col in sweep.extra_columns() {
+        if let Some(i) = FLOOR_FIELDS.iter().position(|f| *f == col) {
+            let s = &r.structures[i % 2];
+            let pick = |f: &crate::simulate::FloorReport| match i / 2 {
+                0 => f.peak_acceleration,
+                1 => f.peak_acceleration_no_contact,
+                _ => f.peak_drift,
+            };
+            let v = s.floors.iter().map(pick).fold(f64::NAN, f64::max);
+            out.push(fmt_f64(v));
+            continue;
+        }
         let key = col.trim_start_matches("sep_");
         let v = r
             .separation
@@ -211,7 +235,7 @@ pub fn header(sweep: &Sweep) -> String {
     cols.extend(sweep.axes.iter().map(|a| csv_field(&a.key)));
     cols.push("status".into());
     cols.extend(FIELDS.iter().map(|f| f.to_string()));
-    cols.extend(sweep.code_columns().iter().map(|f| f.to_string()));
+    cols.extend(sweep.extra_columns().iter().map(|f| f.to_string()));
     cols.join(",")
 }
 
@@ -238,7 +262,7 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) ->
                 .collect();
             line.push(',');
             line.push_str(&csv_field(&format!("failed: {reason}")));
-            line.push_str(&",".repeat(FIELDS.len() + sweep.code_columns().len()));
+            line.push_str(&",".repeat(FIELDS.len() + sweep.extra_columns().len()));
         }
     }
     line
@@ -389,7 +413,7 @@ impl Journal {
                             .into(),
                 });
             }
-            let codes = sweep.code_columns().len();
+            let codes = sweep.extra_columns().len();
             let columns = 2 + sweep.axes.len() + FIELDS.len() + codes;
             let mut good_end = preamble.len();
             let mut pos = preamble.len();
@@ -479,7 +503,8 @@ pub struct Table {
     pub axes: Vec<String>,
     /// Rows by case.
     pub rows: BTreeMap<usize, TableRow>,
-    /// The code columns after [`FIELDS`] ([`CODE_FIELDS`], those the table has).
+    /// The columns after [`FIELDS`] ([`CODE_FIELDS`], then [`FLOOR_FIELDS`]: those the table
+    /// has).
     pub codes: Vec<String>,
 }
 
@@ -534,7 +559,7 @@ impl Table {
         let ncodes = all
             .iter()
             .rev()
-            .take_while(|c| CODE_FIELDS.contains(&c.as_str()))
+            .take_while(|c| CODE_FIELDS.contains(&c.as_str()) || FLOOR_FIELDS.contains(&c.as_str()))
             .count();
         let codes: Vec<String> = all[all.len() - ncodes..].to_vec();
         let cols = &all[..all.len() - ncodes];
