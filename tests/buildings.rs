@@ -569,3 +569,29 @@ fn sweeps_over_buildings_report_floor_columns() {
         "premise: pounding raises B's floor accelerations"
     );
 }
+
+/// A shear building's uniform shorthand keys are sweep axes: doubling `storey_stiffness`
+/// multiplies every ω by √2 (K scales, M does not).
+#[test]
+fn building_keys_are_sweep_axes() {
+    use pounding::sweep::Sweep;
+    let dir = std::env::temp_dir().join(format!("pounding-bsweep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shear-buildings.toml");
+    std::fs::write(
+        dir.join("s.toml"),
+        format!(
+            "scenario = {:?}\n[[axis]]\nkey = \"structure.2.storey_stiffness\"\nvalues = [1.2e8, 2.4e8]\n",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    let sweep = Sweep::from_file(&dir.join("s.toml")).unwrap();
+    let w: Vec<Vec<f64>> = (0..2)
+        .map(|c| sweep.case_scenario(c).unwrap().structures[1].modal().omega)
+        .collect();
+    for (a, b) in w[0].iter().zip(&w[1]) {
+        assert!((b / a - 2f64.sqrt()).abs() < 1e-12, "{a} {b}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

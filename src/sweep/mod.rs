@@ -235,6 +235,11 @@ const STRUCTURE_FIELDS: &[(&str, Kind)] = &[
     ("strain_rate_damping", Kind::Number),
     ("air_damping", Kind::Number),
     ("name", Kind::Text),
+    // a shear building's uniform shorthand (kind = "shear-building")
+    ("storeys", Kind::Integer),
+    ("storey_height", Kind::Number),
+    ("floor_mass", Kind::Number),
+    ("storey_stiffness", Kind::Number),
 ];
 const CONTACT_FIELDS: &[(&str, Kind)] = &[
     ("stiffness", Kind::Number),
@@ -798,6 +803,7 @@ impl Sweep {
                     (Section::Structure(_), "damping_ratio") => {
                         table.remove("strain_rate_damping");
                         table.remove("air_damping");
+                        table.remove("rayleigh");
                     }
                     (Section::Structure(_), "strain_rate_damping" | "air_damping") => {
                         table.remove("damping_ratio");
