@@ -66,6 +66,26 @@ fn given(s: &RawStructure) -> Vec<(&'static str, usize)> {
     .collect()
 }
 
+/// Refuses the first of `keys` that `s` gives (`value`: how it is given, `reason`: why not).
+fn refuse_any(
+    c: &Check,
+    i: usize,
+    s: &RawStructure,
+    keys: &[&str],
+    value: &str,
+    reason: &str,
+) -> Result<(), ScenarioError> {
+    match given(s).into_iter().find(|(k, _)| keys.contains(k)) {
+        Some((k, at)) => Err(ScenarioError::Invalid {
+            at: c.ctx.at(Some(at)),
+            key: format!("structure[{}].{k}", i + 1),
+            value: value.into(),
+            reason: reason.into(),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// The keys each kind accepts besides `kind`, `name`, `modes`, `damping_ratio`.
 fn accepted(kind: Kind) -> &'static [&'static str] {
     match kind {
@@ -229,33 +249,16 @@ fn shear_floors(
 ) -> Result<(Floors, Vec<f64>), ScenarioError> {
     let key = |k: &str| format!("structure[{}].{k}", i + 1);
     if let Some(n) = &s.storeys {
-        if let Some((k, at)) = [
-            (
-                "floor_heights",
-                s.floor_heights.as_ref().map(|v| v.span().start),
-            ),
-            (
-                "floor_masses",
-                s.floor_masses.as_ref().map(|v| v.span().start),
-            ),
-            (
-                "storey_stiffnesses",
-                s.storey_stiffnesses.as_ref().map(|v| v.span().start),
-            ),
-        ]
-        .into_iter()
-        .find_map(|(k, a)| a.map(|a| (k, a)))
-        {
-            return Err(ScenarioError::Invalid {
-                at: c.ctx.at(Some(at)),
-                key: key(k),
-                value: "given with `storeys`".into(),
-                reason: "give either the lists (floor_heights, floor_masses, \
+        refuse_any(
+            c,
+            i,
+            s,
+            &["floor_heights", "floor_masses", "storey_stiffnesses"],
+            "given with `storeys`",
+            "give either the lists (floor_heights, floor_masses, \
                          storey_stiffnesses) or the uniform shorthand (storeys, storey_height, \
-                         floor_mass, storey_stiffness), not both"
-                    .into(),
-            });
-        }
+                         floor_mass, storey_stiffness), not both",
+        )?;
         let n = whole(c, n, &key("storeys"), MAX_FLOORS)?;
         let h = c.positive(
             c.required(
@@ -293,30 +296,16 @@ fn shear_floors(
         };
         return Ok((floors, vec![k; n]));
     }
-    if let Some((k, at)) = [
-        (
-            "storey_height",
-            s.storey_height.as_ref().map(|v| v.span().start),
-        ),
-        ("floor_mass", s.floor_mass.as_ref().map(|v| v.span().start)),
-        (
-            "storey_stiffness",
-            s.storey_stiffness.as_ref().map(|v| v.span().start),
-        ),
-    ]
-    .into_iter()
-    .find_map(|(k, a)| a.map(|a| (k, a)))
-    {
-        return Err(ScenarioError::Invalid {
-            at: c.ctx.at(Some(at)),
-            key: key(k),
-            value: "given without `storeys`".into(),
-            reason: "the uniform shorthand needs `storeys` (and storey_height, floor_mass, \
+    refuse_any(
+        c,
+        i,
+        s,
+        &["storey_height", "floor_mass", "storey_stiffness"],
+        "given without `storeys`",
+        "the uniform shorthand needs `storeys` (and storey_height, floor_mass, \
                      storey_stiffness); or give the lists floor_heights, floor_masses, \
-                     storey_stiffnesses"
-                .into(),
-        });
-    }
+                     storey_stiffnesses",
+    )?;
     let floors = floors_lists(c, i, s, near)?;
     let k = c.required(
         &s.storey_stiffnesses,
@@ -572,32 +561,15 @@ pub(super) fn floor_structure(
         _ => {
             let (floors, periods, shapes) = match &s.modes_file {
                 Some(f) => {
-                    if let Some((k, at)) = [
-                        (
-                            "floor_heights",
-                            s.floor_heights.as_ref().map(|v| v.span().start),
-                        ),
-                        (
-                            "floor_masses",
-                            s.floor_masses.as_ref().map(|v| v.span().start),
-                        ),
-                        (
-                            "mode_shapes",
-                            s.mode_shapes.as_ref().map(|v| v.span().start),
-                        ),
-                    ]
-                    .into_iter()
-                    .find_map(|(k, a)| a.map(|a| (k, a)))
-                    {
-                        return Err(ScenarioError::Invalid {
-                            at: c.ctx.at(Some(at)),
-                            key: key(k),
-                            value: "given with modes_file".into(),
-                            reason: "`modes_file` holds the heights, masses and shapes: give \
-                                     either it or the inline lists"
-                                .into(),
-                        });
-                    }
+                    refuse_any(
+                        c,
+                        i,
+                        s,
+                        &["floor_heights", "floor_masses", "mode_shapes"],
+                        "given with modes_file",
+                        "`modes_file` holds the heights, masses and shapes: give \
+                                     either it or the inline lists",
+                    )?;
                     let (floors, shapes) = read_modes_file(c, f, &key("modes_file"), base_dir)?;
                     let p = c.required(
                         &s.periods,
