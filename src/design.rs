@@ -512,7 +512,7 @@ fn spectrum(
 /// a comma; blank lines and lines starting with `#` skipped; a first line that is not numeric
 /// is taken as a header.
 pub fn read_table(path: &Path, scale: f64) -> Result<Vec<(f64, f64)>, String> {
-    let text = std::fs::read_to_string(path)
+    let text = crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut pairs = Vec::new();
     for (i, line) in text.lines().enumerate() {

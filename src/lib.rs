@@ -28,6 +28,7 @@ pub mod figures;
 pub mod floor_response;
 pub mod gap_report;
 pub mod ground_motion;
+pub mod input_file;
 pub mod integrate;
 pub mod modal;
 pub mod opensees;

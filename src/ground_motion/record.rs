@@ -120,6 +120,28 @@ impl fmt::Display for Location {
 /// `record "x.AT2", line 7: "abc" is not a number`.
 #[derive(Debug, thiserror::Error)]
 pub enum RecordError {
+    /// The path is not a regular file (a FIFO, a device, a directory): refused before it is
+    /// opened, since reading a FIFO would block for ever and a device may never end.
+    #[error("{at}: not a regular file ({kind}): a record must be a file on disk")]
+    NotAFile {
+        /// The file.
+        at: Location,
+        /// What it is instead.
+        kind: &'static str,
+    },
+    /// The file is larger than a record can be.
+    #[error(
+        "{at}: the file is {size} bytes, more than the {limit} bytes a record may have \
+         (about 10⁸ samples); is it the right file?"
+    )]
+    TooLarge {
+        /// The file.
+        at: Location,
+        /// Its size, bytes.
+        size: u64,
+        /// The limit, bytes ([`MAX_RECORD_BYTES`]).
+        limit: u64,
+    },
     /// The file could not be read.
     #[error("{at}: cannot read the file: {source}")]
     Io {
@@ -334,6 +356,53 @@ pub struct Record {
     pub description: String,
 }
 
+/// Largest record file read, bytes (500 MB: about 10⁸ samples of a one-column file), so that a
+/// wrong path (a disk image, `/dev/zero`) is refused before it takes the memory.
+pub const MAX_RECORD_BYTES: u64 = 500_000_000;
+
+/// Opens a record file for reading after checking, without opening it, that it is a regular
+/// file no larger than [`MAX_RECORD_BYTES`] (opening a FIFO blocks until a writer comes).
+pub fn open_record_file(path: &Path) -> Result<std::fs::File, RecordError> {
+    let at = || Location::file(&path.display().to_string());
+    let meta = std::fs::metadata(path).map_err(|source| RecordError::Io { at: at(), source })?;
+    let ft = meta.file_type();
+    if !ft.is_file() {
+        let kind = if ft.is_dir() {
+            "a directory"
+        } else {
+            special_kind(&ft)
+        };
+        return Err(RecordError::NotAFile { at: at(), kind });
+    }
+    if meta.len() > MAX_RECORD_BYTES {
+        return Err(RecordError::TooLarge {
+            at: at(),
+            size: meta.len(),
+            limit: MAX_RECORD_BYTES,
+        });
+    }
+    std::fs::File::open(path).map_err(|source| RecordError::Io { at: at(), source })
+}
+
+#[cfg(unix)]
+fn special_kind(ft: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if ft.is_fifo() {
+        "a FIFO"
+    } else if ft.is_char_device() || ft.is_block_device() {
+        "a device"
+    } else if ft.is_socket() {
+        "a socket"
+    } else {
+        "not a regular file"
+    }
+}
+
+#[cfg(not(unix))]
+fn special_kind(_: &std::fs::FileType) -> &'static str {
+    "not a regular file"
+}
+
 impl Record {
     /// Builds a record from accelerations `accel_m_s2` (m/s²) sampled every `dt` seconds,
     /// the first at t = 0. Fails unless `dt` is positive and finite, there are at least
@@ -366,10 +435,22 @@ impl Record {
     /// Reads a record file; see [`Record::parse`] for the formats and options. Bytes that
     /// are not UTF-8 (e.g. Latin-1 station names in a header) are replaced, not refused.
     pub fn read(path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
-        let bytes = std::fs::read(path).map_err(|source| RecordError::Io {
-            at: Location::file(&path.display().to_string()),
-            source,
-        })?;
+        let at = || Location::file(&path.display().to_string());
+        let mut file = open_record_file(path)?;
+        // (at most the limit and one byte more: a file that grows while it is read is caught)
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(&mut file, MAX_RECORD_BYTES + 1),
+            &mut bytes,
+        )
+        .map_err(|source| RecordError::Io { at: at(), source })?;
+        if bytes.len() as u64 > MAX_RECORD_BYTES {
+            return Err(RecordError::TooLarge {
+                at: at(),
+                size: bytes.len() as u64,
+                limit: MAX_RECORD_BYTES,
+            });
+        }
         let text = String::from_utf8_lossy(&bytes);
         Record::parse(&text, path, opts)
     }

@@ -399,10 +399,13 @@ pub struct Scenario {
 impl Scenario {
     /// Read and validate a scenario file. Record files are resolved relative to it.
     pub fn from_file(path: &Path) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Read {
-            path: path.display().to_string(),
-            source: e,
-        })?;
+        let text =
+            crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
+                ScenarioError::Read {
+                    path: path.display().to_string(),
+                    source: e,
+                }
+            })?;
         let base = path.parent().unwrap_or(Path::new("."));
         Scenario::from_toml(&text, &path.display().to_string(), base)
     }

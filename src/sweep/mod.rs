@@ -444,17 +444,68 @@ fn line_col(text: &str, offset: usize) -> (u32, u32) {
 /// FNV-1a, 64 bit: the sweep's identity in its journal (not cryptographic; it only tells
 /// sweeps apart).
 pub fn fnv1a(parts: &[&[u8]]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut h = Fnv1a::new();
     for p in parts {
-        for &b in *p {
-            h ^= u64::from(b);
-            h = h.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-        // separator, so that ("ab", "c") and ("a", "bc") differ
-        h ^= 0xff;
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        h.part(p);
     }
-    h
+    h.finish()
+}
+
+/// [`fnv1a`] fed piece by piece, files streamed in blocks (no file is held in memory).
+#[derive(Debug, Clone, Copy)]
+pub struct Fnv1a(u64);
+
+impl Fnv1a {
+    /// The empty hash.
+    pub fn new() -> Fnv1a {
+        Fnv1a(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn bytes(&mut self, b: &[u8]) {
+        for &x in b {
+            self.0 ^= u64::from(x);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    /// Ends a part (a separator, so that ("ab", "c") and ("a", "bc") differ).
+    pub fn end_part(&mut self) {
+        self.0 ^= 0xff;
+        self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+
+    /// One whole part.
+    pub fn part(&mut self, b: &[u8]) {
+        self.bytes(b);
+        self.end_part();
+    }
+
+    /// A file's bytes, read in 64 KiB blocks (up to [`crate::ground_motion::record::MAX_RECORD_BYTES`]);
+    /// a read error ends the stream (the case's own validation reports it).
+    pub fn stream(&mut self, mut r: impl std::io::Read) {
+        let mut buf = vec![0u8; 1 << 16];
+        let mut left = crate::ground_motion::record::MAX_RECORD_BYTES;
+        while left > 0 {
+            match r.read(&mut buf) {
+                Ok(0) | Err(_) => break,
+                Ok(n) => {
+                    self.bytes(&buf[..n]);
+                    left = left.saturating_sub(n as u64);
+                }
+            }
+        }
+    }
+
+    /// The hash.
+    pub fn finish(self) -> u64 {
+        self.0
+    }
+}
+
+impl Default for Fnv1a {
+    fn default() -> Fnv1a {
+        Fnv1a::new()
+    }
 }
 
 fn number(v: &Value) -> Option<f64> {
@@ -468,10 +519,13 @@ fn number(v: &Value) -> Option<f64> {
 impl Sweep {
     /// Read and check a sweep file and its base scenario.
     pub fn from_file(path: &Path) -> Result<Sweep, SweepError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Read {
-            path: path.display().to_string(),
-            source: e,
-        })?;
+        let text =
+            crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
+                SweepError::Read {
+                    path: path.display().to_string(),
+                    source: e,
+                }
+            })?;
         Sweep::from_toml(&text, path)
     }
 
@@ -506,16 +560,18 @@ impl Sweep {
             )
         })?;
         let scenario_path = sweep_dir.join(sc.get_ref());
-        let base_text = std::fs::read_to_string(&scenario_path).map_err(|e| {
-            ctx.invalid(
-                Some(sc.span().start),
-                "scenario",
-                format!(
-                    "cannot read the base scenario {}: {e}",
-                    scenario_path.display()
-                ),
-            )
-        })?;
+        let base_text =
+            crate::input_file::read_text(&scenario_path, crate::input_file::MAX_TEXT_BYTES)
+                .map_err(|e| {
+                    ctx.invalid(
+                        Some(sc.span().start),
+                        "scenario",
+                        format!(
+                            "cannot read the base scenario {}: {e}",
+                            scenario_path.display()
+                        ),
+                    )
+                })?;
         let base_name = scenario_path.display().to_string();
         let bctx = Ctx {
             text: &base_text,
@@ -604,15 +660,23 @@ impl Sweep {
                 }
             }
         }
-        // (a missing file fails its cases' validation; here it only counts as empty)
-        let contents: Vec<Vec<u8>> = files
-            .iter()
-            .map(|f| std::fs::read(f).unwrap_or_default())
-            .collect();
-        let mut parts: Vec<&[u8]> =
-            vec![b"pounding-sweep-2", text.as_bytes(), base_text.as_bytes()];
-        parts.extend(contents.iter().map(|c| c.as_slice()));
-        let identity = fnv1a(&parts);
+        // the record files streamed through the hash (a file that is missing, not regular or
+        // too large counts as empty here: its cases fail validation with the reason)
+        let mut hash = Fnv1a::new();
+        for p in [
+            b"pounding-sweep-2".as_slice(),
+            text.as_bytes(),
+            base_text.as_bytes(),
+        ] {
+            hash.part(p);
+        }
+        for f in &files {
+            if let Ok(file) = crate::ground_motion::record::open_record_file(f) {
+                hash.stream(file);
+            }
+            hash.end_part();
+        }
+        let identity = hash.finish();
         Ok(Sweep {
             path: path.to_path_buf(),
             scenario_path,
