@@ -390,3 +390,33 @@ fn garbage_never_panics() {
         }
     }
 }
+
+/// A table or a key given twice names itself and both lines (issue 15).
+#[test]
+fn duplicates_name_the_table_or_key_and_both_lines() {
+    let base = include_str!("../examples/paper-c.toml");
+    let dup_table = format!("{base}\n[contact]\nstiffness = 1e9\n");
+    let first = base.lines().position(|l| l.trim() == "[contact]").unwrap() + 1;
+    let again = dup_table
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.trim() == "[contact]")
+        .last()
+        .unwrap()
+        .0
+        + 1;
+    let e = Scenario::from_toml(&dup_table, "d.toml", std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`contact`")
+            && e.contains(&format!("first at line {first}"))
+            && e.contains(&format!("again at line {again}")),
+        "{e}"
+    );
+    let dup_key = base.replacen("gap = 0.0127", "gap = 0.0127\ngap = 0.02", 1);
+    let e = Scenario::from_toml(&dup_key, "d.toml", std::path::Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`gap`") && e.contains("given twice"), "{e}");
+}

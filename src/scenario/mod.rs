@@ -691,12 +691,55 @@ impl Ctx<'_> {
                 };
             }
         }
+        // a duplicate: name the table or key and both lines
+        if msg.starts_with("duplicate key")
+            && let Some(message) = e.span().and_then(|sp| self.duplicate(sp.start))
+        {
+            return ScenarioError::Syntax { at, message };
+        }
         // name the key when the offending line is a `key = value` line
         let message = match e.span().and_then(|sp| self.key_on_line(sp.start)) {
             Some(key) => format!("`{key}`: {msg}"),
             None => msg,
         };
         ScenarioError::Syntax { at, message }
+    }
+
+    /// What a "duplicate key" at byte `offset` repeats, with the line where it first stood:
+    /// a table header (`[contact]` given twice) or a key within the same table.
+    fn duplicate(&self, offset: usize) -> Option<String> {
+        let offset = offset.min(self.text.len());
+        let start = self.text.get(..offset)?.rfind('\n').map_or(0, |p| p + 1);
+        let line_no = self.text[..start].matches('\n').count() + 1;
+        let line = self.text.get(start..)?.lines().next()?.trim();
+        let lines: Vec<&str> = self.text.lines().collect();
+        if let Some(name) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            let name = name.trim();
+            let first = lines[..line_no - 1].iter().position(|l| {
+                l.trim()
+                    .strip_prefix('[')
+                    .and_then(|l| l.strip_suffix(']'))
+                    .is_some_and(|n| n.trim() == name)
+            })?;
+            return Some(format!(
+                "`{name}`: the table [{name}] is given twice (first at line {}, again at line \
+                 {line_no}); merge the two",
+                first + 1
+            ));
+        }
+        let key = self.key_on_line(offset)?;
+        // the earlier line with the same key in the same table (back to the table's header)
+        let first = lines[..line_no - 1]
+            .iter()
+            .enumerate()
+            .rev()
+            .take_while(|(_, l)| !l.trim_start().starts_with('['))
+            .find(|(_, l)| l.split_once('=').is_some_and(|(k, _)| k.trim() == key))
+            .map(|(i, _)| i + 1)?;
+        Some(format!(
+            "`{key}`: given twice in the same table (first at line {first}, again at line \
+             {line_no}); keep one"
+        ))
     }
 
     /// The key of a `key = value` line containing byte `offset`.
