@@ -420,3 +420,76 @@ fn duplicates_name_the_table_or_key_and_both_lines() {
         .to_string();
     assert!(e.contains("`gap`") && e.contains("given twice"), "{e}");
 }
+
+/// Issue 15: every numeric key has a physical range; at both ends of each range (the others as
+/// in the paper's case, 1 s of `adaptive`) a scenario is either refused with the key named, or
+/// runs, or stops with an error — and when it runs, every number of its summary.json is finite.
+/// Outside the ranges the scenario is refused naming the range.
+#[test]
+fn range_corners_give_finite_summaries_or_clear_errors() {
+    use pounding::scenario::physical_range;
+    let base = include_str!("../examples/paper-c.toml")
+        .replace("method = \"rk4\"", "method = \"adaptive\"")
+        .replace("duration = 20.0", "duration = 1.0");
+    // (key as written in the file, the line to replace, a template with {v})
+    let keys = [
+        ("length", "length = 10.0", "length = {v}"),
+        ("mass", "mass = 2.273e6", "mass = {v}"),
+        ("period", "period = 0.4203", "period = {v}"),
+        ("stiffness", "stiffness = 2.808e10", "stiffness = {v}"),
+        ("gap", "gap = 0.0127", "gap = {v}"),
+        ("pga", "pga = 0.6", "pga = {v}"),
+    ];
+    let mut ran = 0;
+    for (key, line, template) in keys {
+        assert!(base.contains(line), "{line}");
+        let (lo, hi, _) = physical_range(key).unwrap();
+        let lo = if lo == 0.0 { 0.0 } else { lo };
+        for v in [lo, hi] {
+            let text = base.replacen(line, &template.replace("{v}", &format!("{v:e}")), 1);
+            let sc = match Scenario::from_toml(&text, "c.toml", std::path::Path::new(".")) {
+                Ok(sc) => sc,
+                Err(e) => {
+                    let e = e.to_string();
+                    assert!(e.contains('`'), "{key} = {v}: an error without a key: {e}");
+                    continue;
+                }
+            };
+            let Ok(report) = pounding::simulate::simulate(&sc) else {
+                continue;
+            };
+            ran += 1;
+            let json = pounding::output::summary_json(&sc, &report).unwrap();
+            let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+            let mut stack = vec![&value];
+            while let Some(x) = stack.pop() {
+                match x {
+                    // (`accuracy` is skipped: unchecked, its nulls say "not checked")
+                    serde_json::Value::Null => panic!("{key} = {v}: a null in summary.json"),
+                    serde_json::Value::Number(n) => {
+                        assert!(n.as_f64().unwrap().is_finite(), "{key} = {v}: {n}");
+                    }
+                    serde_json::Value::Array(a) => stack.extend(a),
+                    serde_json::Value::Object(o) => {
+                        for (k, v2) in o {
+                            if k != "accuracy" {
+                                stack.push(v2);
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        // just outside: refused, naming the range
+        let (lo, hi, _) = physical_range(key).unwrap();
+        for v in [hi * 10.0, if lo > 0.0 { lo / 10.0 } else { -1.0 }] {
+            let text = base.replacen(line, &template.replace("{v}", &format!("{v:e}")), 1);
+            let e = Scenario::from_toml(&text, "c.toml", std::path::Path::new("."))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(key), "{key} = {v}: {e}");
+        }
+    }
+    assert!(ran >= 6, "only {ran} corner runs ran");
+}

@@ -192,8 +192,20 @@ fn positive_list(
             format!("must list 1 to {MAX_FLOORS} values ({unit})"),
         ));
     }
+    let range = super::physical_range(key);
     let mut last = 0.0;
     for (j, &y) in x.iter().enumerate() {
+        if let Some((lo, hi, what)) = range.filter(|(lo, hi, _)| !(*lo..=*hi).contains(&y)) {
+            return Err(list_error(
+                c,
+                v,
+                key,
+                format!(
+                    "value {} is {y}: each must be in [{lo:e}, {hi:e}] {unit} ({what})",
+                    j + 1
+                ),
+            ));
+        }
         if !(y.is_finite() && y > 0.0) {
             return Err(list_error(
                 c,

@@ -795,6 +795,35 @@ fn line_col(text: &str, offset: usize) -> (u32, u32) {
     )
 }
 
+/// The physically meaningful range of a numeric key, by its last component (issue 15): values
+/// outside are refused, so that no accepted input overflows into a non-finite result (a period of
+/// 1e300 s made the CQC correlation overflow and DDC print 0). The bounds are generous: they
+/// exclude only what no structure, motion or run can be.
+pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
+    let last = key.rsplit('.').next().unwrap_or(key);
+    Some(match last {
+        "length" => (0.1, 2000.0, "a structure's height"),
+        "mass" => (1.0, 1e12, "a structure's mass"),
+        "period" => (0.01, 100.0, "a structural or ground period"),
+        "bending_stiffness" => (1.0, 1e22, "a structure's EI"),
+        "tip_stiffness" => (1e-3, 1e16, "a lateral stiffness"),
+        "strain_rate_damping" => (0.0, 10.0, "c_s/E"),
+        "air_damping" => (0.0, 1e10, "c_a"),
+        "stiffness" => (1e-3, 1e20, "a contact stiffness"),
+        "gap" => (0.0, 10.0, "a gap between buildings"),
+        "pga" | "scale_to_pga" => (1e-6, 20.0, "a peak ground acceleration"),
+        "dt" => (1e-7, 100.0, "a time step"),
+        "duration" => (1e-3, 1e7, "a simulated duration"),
+        "output_interval" => (1e-7, 1e6, "a sampling interval"),
+        "storey_height" => (0.1, 100.0, "a storey's height"),
+        "floor_mass" | "floor_masses" => (1.0, 1e10, "a floor's mass"),
+        "storey_stiffness" | "storey_stiffnesses" => (1.0, 1e16, "a storey's stiffness"),
+        "floor_heights" => (0.1, 10000.0, "a floor's height"),
+        "periods" => (1e-3, 1e3, "a mode's period"),
+        _ => return None,
+    })
+}
+
 /// A validator for one key: checks the value against a range and reports with its location.
 pub(crate) struct Check<'a, 'c> {
     pub(crate) ctx: &'c Ctx<'a>,
@@ -832,7 +861,7 @@ impl Check<'_, '_> {
     ) -> Result<f64, ScenarioError> {
         let x = *v.get_ref();
         if x.is_finite() && x > 0.0 {
-            Ok(x)
+            self.in_range(v, key, unit)
         } else {
             Err(self.invalid(v, key, &format!("must be a finite number > 0 ({unit})")))
         }
@@ -842,9 +871,24 @@ impl Check<'_, '_> {
     fn non_negative(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, ScenarioError> {
         let x = *v.get_ref();
         if x.is_finite() && x >= 0.0 {
-            Ok(x)
+            self.in_range(v, key, unit)
         } else {
             Err(self.invalid(v, key, &format!("must be a finite number ≥ 0 ({unit})")))
+        }
+    }
+
+    /// `v` within the physical range of `key` ([`physical_range`]), if it has one.
+    fn in_range(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        match physical_range(key) {
+            Some((lo, hi, what)) if !(lo..=hi).contains(&x) => Err(ScenarioError::Invalid {
+                at: self.ctx.at(Some(v.span().start)),
+                key: key.to_string(),
+                // (shortest form: 1e300, not three hundred digits)
+                value: format!("{x:?}"),
+                reason: format!("must be in [{lo:e}, {hi:e}] {unit} ({what})"),
+            }),
+            _ => Ok(x),
         }
     }
 
@@ -976,6 +1020,21 @@ fn validate(
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
     floors_at_contact(&c, &raw, &structures, &contact)?;
+    // each key within its range can still combine into a structure no run can mean (a huge
+    // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
+    for (i, st) in structures.iter().enumerate() {
+        let t1 = st.modal().periods().first().copied().unwrap_or(f64::NAN);
+        if !(1e-3..=1e4).contains(&t1) {
+            return Err(ScenarioError::Invalid {
+                at: c.ctx.at(raw.structure.as_ref().map(|l| l.span().start)),
+                key: format!("structure[{}]", i + 1),
+                value: format!("first-mode period {t1:e} s"),
+                reason: "the mass, height and stiffness give a first-mode period outside \
+                         [1e-3, 1e4] s: check their units"
+                    .into(),
+            });
+        }
+    }
     let mut warnings = structure_warnings;
     warnings.extend(plausibility(&contact, &ground_motion));
     let design = crate::design::validate(

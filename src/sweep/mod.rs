@@ -1517,7 +1517,7 @@ mod tests {
     #[test]
     fn case_toml_round_trips_floats() {
         let s = sweep(
-            "[[axis]]\nkey = \"contact.gap\"\nvalues = [0.30000000000000004, 1e-20, 2.808e10]\n",
+            "[[axis]]\nkey = \"contact.gap\"\nvalues = [0.30000000000000004, 1e-20, 7.123456789012345]\n",
         )
         .unwrap();
         for i in 0..3 {
