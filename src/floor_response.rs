@@ -82,8 +82,14 @@ struct Stations {
     /// Offset of this structure's modes in the system, and the sign of the contact force on it.
     offset: usize,
     sign: f64,
-    /// (u, u̇) at every station at the previous observation.
+    /// (u, u̇) at every station at the previous observation, and at the one before (for
+    /// the samples between them).
     prev: Vec<(f64, f64)>,
+    before: Vec<(f64, f64)>,
+    /// Absolute acceleration at the current observation, and the one of largest size since
+    /// the last sample (signed).
+    abs_now: Vec<f64>,
+    hold: Vec<f64>,
     peaks: Vec<FloorPeaks>,
 }
 
@@ -153,6 +159,9 @@ impl Stations {
             offset,
             sign,
             prev: vec![(0.0, 0.0); n],
+            before: vec![(0.0, 0.0); n],
+            abs_now: vec![0.0; n],
+            hold: vec![0.0; n],
         }
     }
 }
@@ -161,6 +170,11 @@ impl Stations {
 #[derive(Debug, Clone)]
 pub struct FloorRecorder {
     stations: [Stations; 2],
+    /// Sampling of the floor history (s) and the next sample's index.
+    interval: f64,
+    next_sample: usize,
+    /// One row of the floor history (scratch).
+    row: Vec<f64>,
     /// Modal accelerations at the current observation (scratch).
     accel: Vec<f64>,
     /// Absolute accelerations at the stations of the structure being processed (scratch).
@@ -171,7 +185,7 @@ pub struct FloorRecorder {
 impl FloorRecorder {
     /// Stations for both structures of `system`; `contact_heights` are the contact levels'
     /// heights (the levels of `system`, or for a run without contact those of the run with).
-    pub fn new(system: &System, contact_heights: &[f64]) -> FloorRecorder {
+    pub fn new(system: &System, contact_heights: &[f64], interval: f64) -> FloorRecorder {
         let [s1, s2] = &system.structures;
         let n1 = system.n1();
         let stations = [
@@ -179,16 +193,41 @@ impl FloorRecorder {
             Stations::new(s2, contact_heights, n1, 1.0),
         ];
         let most = stations.iter().map(|s| s.heights.len()).max().unwrap_or(0);
+        let cols = 2 * stations.iter().map(|s| s.heights.len()).sum::<usize>();
         FloorRecorder {
             stations,
+            interval,
+            next_sample: 0,
+            row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
             abs: vec![0.0; most],
             last_t: None,
         }
     }
 
-    /// Record one observation.
-    pub fn observe(&mut self, system: &System, s: &StepView) {
+    /// The names of a floor history row's values: for structure i and every station (height
+    /// h, m), `u{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
+    pub fn columns(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for (i, st) in self.stations.iter().enumerate() {
+            for h in &st.heights {
+                out.push(format!("u{}_{h}", i + 1));
+                out.push(format!("a{}_{h}", i + 1));
+            }
+        }
+        out
+    }
+
+    /// Record one observation; with a `sink`, every floor history sample due by then (times
+    /// `k·interval`, as history.csv): displacements on the cubic Hermite interpolant between
+    /// observations, and for the acceleration the value of largest size since the previous
+    /// sample (so that an impact's spike shows at the sample after it, at its true size).
+    pub fn observe(
+        &mut self,
+        system: &System,
+        s: &StepView,
+        sink: Option<&mut (dyn crate::recorder::HistorySink + '_)>,
+    ) {
         let n = system.len();
         let (ag, vg) = system.ground.accel_velocity(s.t);
         {
@@ -258,6 +297,8 @@ impl FloorRecorder {
                 }
                 abs[f] = ua + ag;
                 raise(&mut p.acceleration, abs[f].abs());
+                st.abs_now[f] = abs[f];
+                st.before[f] = st.prev[f];
                 st.prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
             }
@@ -296,7 +337,65 @@ impl FloorRecorder {
                 }
             }
         }
+        if let Some(sink) = sink {
+            self.emit(s.t, h, sink);
+        }
         self.last_t = Some(s.t);
+    }
+
+    /// The floor history samples due by time `t` (the current observation; `h` since the
+    /// previous one).
+    fn emit(&mut self, t: f64, h: Option<f64>, sink: &mut (dyn crate::recorder::HistorySink + '_)) {
+        let eps = 1e-9 * self.interval;
+        let mut consumed = false;
+        loop {
+            let tau = self.next_sample as f64 * self.interval;
+            if tau > t + eps {
+                break;
+            }
+            // a sample strictly before this observation holds the accelerations up to the
+            // previous one; one at this observation includes it
+            let here = tau >= t - eps;
+            let th = match h {
+                Some(h) if h > 0.0 && !here => ((tau - (t - h)) / h).clamp(0.0, 1.0),
+                _ => 1.0,
+            };
+            let hh = h.unwrap_or(0.0);
+            let (t2, t3) = (th * th, th * th * th);
+            let (h00, h10, h01, h11) = (
+                2.0 * t3 - 3.0 * t2 + 1.0,
+                t3 - 2.0 * t2 + th,
+                -2.0 * t3 + 3.0 * t2,
+                t3 - t2,
+            );
+            let mut k = 0;
+            for st in &mut self.stations {
+                for f in 0..st.heights.len() {
+                    let ((u0, d0), (u1, d1)) = (st.before[f], st.prev[f]);
+                    self.row[k] = h00 * u0 + h10 * hh * d0 + h01 * u1 + h11 * hh * d1;
+                    if here && st.abs_now[f].abs() > st.hold[f].abs() {
+                        st.hold[f] = st.abs_now[f];
+                    }
+                    self.row[k + 1] = st.hold[f];
+                    st.hold[f] = 0.0;
+                    k += 2;
+                }
+            }
+            sink.floor_row(tau, &self.row);
+            self.next_sample += 1;
+            consumed |= here;
+        }
+        if consumed {
+            return;
+        }
+        // this observation's accelerations count towards the next sample
+        for st in &mut self.stations {
+            for f in 0..st.heights.len() {
+                if st.abs_now[f].abs() > st.hold[f].abs() {
+                    st.hold[f] = st.abs_now[f];
+                }
+            }
+        }
     }
 
     /// The peaks of structure 1 and 2, lowest station first.

@@ -26,6 +26,7 @@ pub mod convergence;
 pub mod design;
 pub mod figures;
 pub mod floor_response;
+pub mod floors_csv;
 pub mod gap_report;
 pub mod ground_motion;
 pub mod input_file;

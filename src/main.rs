@@ -360,6 +360,14 @@ impl pounding::simulate::RunSink for RunProgress<'_> {
         self.writer.free_row(t, w);
     }
 
+    fn contact_floor_row(&mut self, t: f64, values: &[f64]) {
+        self.writer.contact_floor_row(t, values);
+    }
+
+    fn free_floor_row(&mut self, t: f64, values: &[f64]) {
+        self.writer.free_floor_row(t, values);
+    }
+
     fn progress(&mut self, phase: Phase, t: f64) {
         if !self.enabled {
             return;
@@ -413,7 +421,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
             }
             pounding::budget::check_run(&sc, max_output_size)?;
-            let mut writer = RunWriter::create(&out, sc.contact.levels.len())?;
+            let heights: Vec<f64> = sc.contact.levels.iter().map(|l| l.height).collect();
+            let columns = pounding::floor_response::FloorRecorder::new(
+                &sc.system(),
+                &heights,
+                sc.output_interval,
+            )
+            .columns();
+            let mut writer =
+                RunWriter::create(&out, sc.contact.levels.len())?.with_floors(&columns)?;
             let mut sink = RunProgress {
                 writer: &mut writer,
                 enabled: !quiet && std::io::stderr().is_terminal(),

@@ -255,6 +255,8 @@ pub struct RunWriter {
     on_written: Option<Box<WrittenHook>>,
     /// The directory did not exist before: a run that fails removes it again (if empty).
     created_dir: bool,
+    /// floors.csv being written, when asked for ([`RunWriter::with_floors`]).
+    floors: Option<crate::floors_csv::FloorsCsv>,
 }
 
 impl Drop for RunWriter {
@@ -262,6 +264,7 @@ impl Drop for RunWriter {
     /// temporary files and the directory it created, if nothing else is in it.
     fn drop(&mut self) {
         self.csv.take();
+        self.floors.take();
         self.spool = Spool::Failed;
         if self.created_dir {
             let _ = std::fs::remove_dir(&self.dir);
@@ -317,7 +320,19 @@ impl RunWriter {
             error: None,
             on_written: None,
             created_dir,
+            floors: None,
         })
+    }
+
+    /// Also write `floors.csv`, the floor histories with the names of
+    /// [`crate::floor_response::FloorRecorder::columns`] (written after impacts.csv).
+    pub fn with_floors(mut self, columns: &[String]) -> Result<RunWriter, OutputError> {
+        let path = self.dir.join(crate::floors_csv::FILE_NAME);
+        self.floors = Some(
+            crate::floors_csv::FloorsCsv::create(&self.dir, columns)
+                .map_err(|source| OutputError::Io { path, source })?,
+        );
+        Ok(self)
     }
 
     /// Call `hook` with the path of every file once it is complete and in place, in the order
@@ -429,6 +444,13 @@ impl RunWriter {
         let impacts = self.dir.join("impacts.csv");
         write_atomic(&impacts, impacts_csv(report).as_bytes())?;
         self.written(&impacts, &mut written);
+        if let Some(f) = self.floors.take() {
+            let path = self.dir.join(crate::floors_csv::FILE_NAME);
+            let done = f
+                .finish()
+                .map_err(|source| OutputError::Io { path, source })?;
+            self.written(&done, &mut written);
+        }
         match draw {
             Some(draw) => {
                 let files = draw(&self.dir).map_err(|message| OutputError::Encode {
@@ -472,6 +494,18 @@ impl RunWriter {
 }
 
 impl RunSink for RunWriter {
+    fn contact_floor_row(&mut self, t: f64, values: &[f64]) {
+        if let Some(f) = self.floors.as_mut() {
+            f.contact_row(t, values);
+        }
+    }
+
+    fn free_floor_row(&mut self, t: f64, values: &[f64]) {
+        if let Some(f) = self.floors.as_mut() {
+            f.free_row(t, values);
+        }
+    }
+
     fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
         let Spool::Writing(out) = &mut self.spool else {
             return;

@@ -86,6 +86,11 @@ pub const MAX_KEPT_SAMPLES: usize = 20_000;
 pub trait HistorySink {
     /// One sample.
     fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]);
+    /// One sample of the floors (see [`crate::floor_response::FloorRecorder::columns`]): at
+    /// every station of structure 1 then 2, the displacement and the absolute acceleration.
+    fn floor_row(&mut self, t: f64, values: &[f64]) {
+        let _ = (t, values);
+    }
 }
 
 /// Sampled time history: displacements at the main contact height and every level's force.
@@ -325,7 +330,7 @@ impl<'s> Recorder<'s> {
             steps: 0,
             last_energy: [0.0; 5],
             end: duration,
-            floors: Some(FloorRecorder::new(system, heights)),
+            floors: Some(FloorRecorder::new(system, heights, interval)),
         }
     }
 
@@ -489,7 +494,7 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
         if let Some(f) = &mut self.floors {
-            f.observe(system, s);
+            f.observe(system, s, self.sink.as_deref_mut());
         }
         let (n1, q) = (system.n1(), s.q);
         // displacements and velocities at every tracked height

@@ -197,6 +197,16 @@ pub trait RunSink {
     fn free_row(&mut self, t: f64, w: [f64; 2]) {
         let _ = (t, w);
     }
+    /// A floor sample of the run with contact (every station's displacement and absolute
+    /// acceleration, [`crate::floor_response::FloorRecorder::columns`]); all come before any
+    /// of the run without contact.
+    fn contact_floor_row(&mut self, t: f64, values: &[f64]) {
+        let _ = (t, values);
+    }
+    /// A floor sample of the run without contact (same times).
+    fn free_floor_row(&mut self, t: f64, values: &[f64]) {
+        let _ = (t, values);
+    }
     /// `phase` has reached simulated time `t` (s); called at every history sample.
     fn progress(&mut self, phase: Phase, t: f64) {
         let _ = (phase, t);
@@ -223,6 +233,14 @@ impl HistorySink for PhaseSink<'_> {
             Phase::CheckWithContact | Phase::CheckWithoutContact => {}
         }
         self.sink.progress(self.phase, t);
+    }
+
+    fn floor_row(&mut self, t: f64, values: &[f64]) {
+        match self.phase {
+            Phase::WithContact => self.sink.contact_floor_row(t, values),
+            Phase::WithoutContact => self.sink.free_floor_row(t, values),
+            Phase::CheckWithContact | Phase::CheckWithoutContact => {}
+        }
     }
 }
 

@@ -595,3 +595,68 @@ fn building_keys_are_sweep_axes() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `floors.csv`: one row per history row; the displacement at the main contact height equals
+/// history.csv's (the same interpolation of the same steps); each station's acceleration column
+/// reaches exactly the peak absolute acceleration of summary.json (every observation is held
+/// until the next sample), with and without pounding.
+#[test]
+fn floors_csv_matches_the_history_and_the_peaks() {
+    use pounding::output::RunWriter;
+    let dir = std::env::temp_dir().join(format!("pounding-floors-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shear-buildings.toml"),
+    )
+    .unwrap()
+    .replace("duration = 25.0", "duration = 6.0");
+    let sc = Scenario::from_toml(
+        &text,
+        "shear-buildings.toml",
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples"),
+    )
+    .unwrap();
+    let heights: Vec<f64> = sc.contact.levels.iter().map(|l| l.height).collect();
+    let columns =
+        pounding::floor_response::FloorRecorder::new(&sc.system(), &heights, sc.output_interval)
+            .columns();
+    let mut writer = RunWriter::create(&dir, sc.contact.levels.len())
+        .unwrap()
+        .with_floors(&columns)
+        .unwrap();
+    let report = pounding::simulate::simulate_streaming(&sc, false, &mut writer).unwrap();
+    writer.finish(&sc, &report, None).unwrap();
+    let read = |name: &str| -> (Vec<String>, Vec<Vec<f64>>) {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap();
+        let mut lines = text.lines();
+        let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+        let rows = lines
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        (head, rows)
+    };
+    let (fh, floors) = read("floors.csv");
+    let (hh, history) = read("history.csv");
+    assert_eq!(floors.len(), history.len());
+    assert_eq!(fh.len(), 1 + 2 * columns.len());
+    let col = |h: &[String], name: &str| h.iter().position(|c| c == name).unwrap();
+    let (u1, w1) = (col(&fh, "u1_14"), col(&hh, "w1"));
+    let scale = report.structures[0].peak_displacement;
+    for (f, h) in floors.iter().zip(&history) {
+        assert_eq!(f[0], h[0]);
+        assert!((f[u1] - h[w1]).abs() <= 1e-12 * scale, "t = {}", f[0]);
+    }
+    for (i, s) in report.structures.iter().enumerate() {
+        for fl in &s.floors {
+            for (suffix, want) in [
+                ("", fl.peak_acceleration),
+                ("_free", fl.peak_acceleration_no_contact),
+            ] {
+                let c = col(&fh, &format!("a{}_{}{suffix}", i + 1, fl.height));
+                let got = floors.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+                assert_eq!(got, want, "a{}_{}{suffix}", i + 1, fl.height);
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
