@@ -42,7 +42,14 @@ pub struct TooLarge(pub String);
 pub fn estimate_run(scenario: &Scenario) -> Estimate {
     let rows = sample_count(scenario.output_interval, scenario.solver.duration);
     let levels = scenario.contact.levels.len() as u64;
-    let numbers = 6 + if levels > 1 { levels } else { 0 };
+    // history.csv, and floors.csv: t and, per floor (station) of each structure, a displacement
+    // and an acceleration with and without pounding (a cantilever: its tenths and the levels)
+    let stations: u64 = scenario
+        .structures
+        .iter()
+        .map(|s| s.floor_heights().map_or(10 + levels, |h| h.len() as u64))
+        .sum();
+    let numbers = 6 + if levels > 1 { levels } else { 0 } + 1 + 4 * stations;
     Estimate {
         rows,
         bytes: rows.saturating_mul(numbers * HISTORY_BYTES_PER_NUMBER),
@@ -58,7 +65,7 @@ pub fn check_run(scenario: &Scenario, limit: u64) -> Result<Estimate, TooLarge> 
     // the output interval that would fit
     let fits = scenario.solver.duration * e.bytes as f64 / limit as f64 / e.rows as f64;
     Err(TooLarge(format!(
-        "this run would write about {} of history ({} rows of history.csv: solver.duration = {} s \
+        "this run would write about {} of history ({} rows of history.csv and floors.csv: solver.duration = {} s \
          sampled every solver.output_interval = {} s), above the limit of {}. Raise \
          `solver.output_interval` (to about {} s or more to fit) or shorten `solver.duration`, \
          or allow it explicitly with --max-output-size {} (the disk must hold it; memory does not \
