@@ -773,3 +773,81 @@ fn mirrored_buildings_give_mirrored_results() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A floor-to-floor impact between two one-storey buildings on storey springs far softer than
+/// the contact (ω = 3e-3 rad/s, so the floors are free bodies during the 10 ms impact) against
+/// the two-body Hertz impact (Goldsmith): m* = m₁m₂/(m₁ + m₂), δ_max = (5m*v²/(4k_h))^{2/5},
+/// F_max = k_h δ_max^{3/2}, contact time 2.9432 δ_max/v, rebound at the approach speed.
+#[test]
+fn one_storey_floor_impact_matches_the_two_body_hertz_formulas() {
+    use pounding::building::{FloorDamping, Floors, ShearBuilding};
+    use pounding::contact::ContactLaw;
+    use pounding::ground_motion::GroundMotion;
+    use pounding::integrate::{InitialState, Method, SolverSettings, integrate};
+    use pounding::recorder::Recorder;
+    use pounding::system::{ContactLevel, System};
+    let building = |m: f64| {
+        ShearBuilding {
+            floors: Floors {
+                heights: vec![3.0],
+                masses: vec![m],
+            },
+            storey_stiffnesses: vec![1.0],
+            modes: 1,
+            damping: FloorDamping::Modal(vec![0.0]),
+        }
+        .modal()
+        .unwrap()
+    };
+    let (m1, m2, kh, v) = (1.0e5, 2.0e5, 5.0e9, 0.5);
+    let sys = System::new(
+        [building(m1), building(m2)],
+        &ContactLaw::Hertz { stiffness: kh },
+        &[ContactLevel {
+            height: 3.0,
+            gap: 0.0,
+        }],
+        GroundMotion::None,
+    );
+    let m_star = m1 * m2 / (m1 + m2);
+    assert!((sys.levels[0].effective_mass - m_star).abs() < 1e-9 * m_star);
+    let d_max = (5.0 * m_star * v * v / (4.0 * kh)).powf(0.4);
+    let (f_max, t_c) = (kh * d_max.powf(1.5), 2.9432 * d_max / v);
+    // building 1 moves right at v (φ = 1/√m₁, so η̇ = v√m₁)
+    let phi1 = sys.structures[0].shape(0, 3.0);
+    let init = InitialState {
+        q: vec![0.0, 0.0],
+        v: vec![v / phi1, 0.0],
+    };
+    let settings = SolverSettings::new(Method::Adaptive, t_c / 50.0, 3.0 * t_c).with_rtol(1e-11);
+    let mut rec = Recorder::new(&sys, &[3.0], settings.duration, settings.duration);
+    integrate(&sys, &settings, &init, &mut rec).unwrap();
+    let r = rec.finish();
+    assert_eq!(r.impacts.len(), 1);
+    let i = &r.impacts[0];
+    let rel = |a: f64, b: f64| (a - b).abs() / b;
+    // (the storey springs' force over the impact is ~1e-9 of the contact's; the constant
+    // 2.9432 is given to 5 digits)
+    assert!(
+        rel(i.peak_force, f_max) < 1e-6,
+        "{} vs {f_max}",
+        i.peak_force
+    );
+    assert!(
+        rel(i.max_penetration, d_max) < 1e-6,
+        "{} vs {d_max}",
+        i.max_penetration
+    );
+    assert!(
+        rel(i.end - i.start, t_c) < 1e-4,
+        "{} vs {t_c}",
+        i.end - i.start
+    );
+    // momentum: the impulse m*·(1 + e)·v with e = 1
+    assert!(
+        rel(i.impulse, 2.0 * m_star * v) < 1e-6,
+        "{} vs {}",
+        i.impulse,
+        2.0 * m_star * v
+    );
+}
