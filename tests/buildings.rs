@@ -851,3 +851,64 @@ fn one_storey_floor_impact_matches_the_two_body_hertz_formulas() {
         2.0 * m_star * v
     );
 }
+
+/// Scale factors as sweep axes: `stiffness_scale` multiplies every storey stiffness (ω × √f),
+/// `mass_scale` every floor mass (ω ÷ √f), for a building given by lists or the shorthand; a
+/// `modal` building's periods follow the stiffness (÷ √f) and its shapes stay; the masses of a
+/// `modes_file` are refused (the sweep cannot rewrite the file).
+#[test]
+fn scale_factor_axes() {
+    use pounding::sweep::Sweep;
+    let dir = std::env::temp_dir().join(format!("pounding-scale-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let omega = |file: &str, key: &str, s: usize| -> [Vec<f64>; 2] {
+        std::fs::write(
+            dir.join("s.toml"),
+            format!(
+                "scenario = {:?}\n[[axis]]\nkey = \"{key}\"\nvalues = [1.0, 4.0]\n",
+                ex.join(file).display().to_string()
+            ),
+        )
+        .unwrap();
+        let sweep = Sweep::from_file(&dir.join("s.toml")).unwrap();
+        [0, 1].map(|c| sweep.case_scenario(c).unwrap().structures[s].modal().omega)
+    };
+    for (file, key, s, ratio) in [
+        (
+            "shear-buildings.toml",
+            "structure.1.stiffness_scale",
+            0,
+            2.0,
+        ),
+        ("shear-buildings.toml", "structure.1.mass_scale", 0, 0.5),
+        (
+            "shear-buildings.toml",
+            "structure.2.stiffness_scale",
+            1,
+            2.0,
+        ),
+        ("modal-csv.toml", "structure.1.stiffness_scale", 0, 2.0),
+        ("paper-c.toml", "structure.2.stiffness_scale", 1, 2.0),
+    ] {
+        let [a, b] = omega(file, key, s);
+        for (x, y) in a.iter().zip(&b) {
+            assert!((y / x - ratio).abs() < 1e-12, "{file} {key}: {x} → {y}");
+        }
+    }
+    // the masses of a modes_file cannot be scaled by rewriting the scenario: refused
+    std::fs::write(
+        dir.join("s.toml"),
+        format!(
+            "scenario = {:?}\n[[axis]]\nkey = \"structure.1.mass_scale\"\nvalues = [2.0]\n",
+            ex.join("modal-csv.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    let e = Sweep::from_file(&dir.join("s.toml"))
+        .unwrap()
+        .case_scenario(0)
+        .unwrap_err();
+    assert!(e.contains("modes_file"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

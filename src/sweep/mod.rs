@@ -206,6 +206,12 @@ enum Section {
 enum Target {
     PeriodRatio,
     GroundPeriodRatio,
+    /// `structure.N.stiffness_scale` (`mass = false`) or `structure.N.mass_scale`: every
+    /// stiffness (mass) of structure N times the value, the periods given following.
+    Scale {
+        structure: usize,
+        mass: bool,
+    },
     Key {
         section: Section,
         field: &'static str,
@@ -275,6 +281,8 @@ fn valid_keys() -> Vec<String> {
     for (f, _) in STRUCTURE_FIELDS {
         v.push(format!("structure.N.{f}"));
     }
+    v.push("structure.N.stiffness_scale".into());
+    v.push("structure.N.mass_scale".into());
     for (f, _) in CONTACT_FIELDS {
         v.push(format!("contact.{f}"));
     }
@@ -315,6 +323,13 @@ fn parse_key(raw: &str) -> Result<(String, Target), String> {
     let target = match parts.as_slice() {
         ["period_ratio"] => Ok(Target::PeriodRatio),
         ["ground_period_ratio"] => Ok(Target::GroundPeriodRatio),
+        ["structure", n, f @ ("stiffness_scale" | "mass_scale")] => {
+            let i = index(n, "structure", Some(2))?;
+            Ok(Target::Scale {
+                structure: i,
+                mass: *f == "mass_scale",
+            })
+        }
         ["structure", n, f] => {
             let i = index(n, "structure", Some(2))?;
             field(STRUCTURE_FIELDS, f).map(|(field, kind)| Target::Key {
@@ -786,8 +801,9 @@ impl Sweep {
                 kind: Kind::File, ..
             } => 0,
             Target::Key { .. } => 1,
-            Target::PeriodRatio => 2,
-            Target::GroundPeriodRatio => 3,
+            Target::Scale { .. } => 2,
+            Target::PeriodRatio => 3,
+            Target::GroundPeriodRatio => 4,
         };
         let mut idx: Vec<usize> = (0..self.axes.len()).collect();
         idx.sort_by_key(|&j| order(&self.axes[j]));
@@ -828,6 +844,59 @@ impl Sweep {
                 s2.remove("bending_stiffness");
                 s2.remove("tip_stiffness");
                 s2.insert("period".into(), Value::Float(t1 / r));
+                Ok(())
+            }
+            Target::Scale { structure, mass } => {
+                let f = as_f64(v);
+                let st = structure_mut(t, *structure)?;
+                if *mass && st.contains_key("modes_file") {
+                    return Err(format!(
+                        "structure.{}.mass_scale: the floor masses are in the modes_file, which a \
+                         sweep does not rewrite; give floor_heights, floor_masses and mode_shapes \
+                         inline to scale them",
+                        structure + 1
+                    ));
+                }
+                let times = |x: &mut Value, by: f64| match x {
+                    Value::Float(y) => *y *= by,
+                    Value::Integer(y) => *x = Value::Float(*y as f64 * by),
+                    Value::Array(list) => {
+                        for y in list.iter_mut() {
+                            match y {
+                                Value::Float(z) => *z *= by,
+                                Value::Integer(z) => *y = Value::Float(*z as f64 * by),
+                                _ => {}
+                            }
+                        }
+                    }
+                    _ => {}
+                };
+                // K × f: ω × √f, periods ÷ √f; M × f: ω ÷ √f, periods × √f (a cantilever given
+                // by `period` keeps it: its stiffness follows its mass)
+                let (scaled, period): (&[&str], f64) = if *mass {
+                    (&["mass", "floor_mass", "floor_masses"], f.sqrt())
+                } else {
+                    (
+                        &[
+                            "bending_stiffness",
+                            "tip_stiffness",
+                            "storey_stiffness",
+                            "storey_stiffnesses",
+                        ],
+                        1.0 / f.sqrt(),
+                    )
+                };
+                for k in scaled {
+                    if let Some(x) = st.get_mut(*k) {
+                        times(x, f);
+                    }
+                }
+                if let Some(x) = st.get_mut("periods") {
+                    times(x, period);
+                }
+                if !*mass && let Some(x) = st.get_mut("period") {
+                    times(x, period);
+                }
                 Ok(())
             }
             Target::GroundPeriodRatio => {
@@ -1029,7 +1098,10 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
         Target::Key { kind, .. } => *kind,
         _ => Kind::Number,
     };
-    let ratio = matches!(target, Target::PeriodRatio | Target::GroundPeriodRatio);
+    let ratio = matches!(
+        target,
+        Target::PeriodRatio | Target::GroundPeriodRatio | Target::Scale { .. }
+    );
     let values = match (&r.values, &r.from, &r.to, &r.steps) {
         (Some(list), None, None, None) => {
             if let Some(s) = &r.scale {
