@@ -98,6 +98,30 @@ pub fn field_label(field: &str) -> (String, String, f64) {
             s("converged"),
             1.0,
         ),
+        "peak_floor_acceleration_1" | "peak_floor_acceleration_2" => (
+            format!(
+                "Structure {}: largest floor acceleration with pounding",
+                &field[24..]
+            ),
+            s("acceleration [m/s²]"),
+            1.0,
+        ),
+        "peak_floor_acceleration_no_contact_1" | "peak_floor_acceleration_no_contact_2" => (
+            format!(
+                "Structure {}: largest floor acceleration without pounding",
+                &field[35..]
+            ),
+            s("acceleration [m/s²]"),
+            1.0,
+        ),
+        "peak_drift_1" | "peak_drift_2" => (
+            format!(
+                "Structure {}: largest storey drift with pounding",
+                &field[11..]
+            ),
+            s("drift [m]"),
+            1.0,
+        ),
         other => (s(other), s(other), 1.0),
     };
     (title, short, scale)
@@ -115,8 +139,8 @@ pub fn field_scale(field: &str, values: &[f64]) -> ColorScale {
 
 /// The value drawn for `field` in row `r`, in the unit shown: for `change_percent_i` the ratio
 /// `peak_displacement_i / peak_displacement_no_contact_i`.
-fn value(r: &TableRow, field: &str) -> f64 {
-    let get = |name: &str| Table::field_index(name).map_or(f64::NAN, |i| r.fields[i]);
+fn value(table: &Table, r: &TableRow, field: &str) -> f64 {
+    let get = |name: &str| r.get(table, name).unwrap_or(f64::NAN);
     match field.strip_prefix("change_percent_") {
         Some(i) => {
             get(&format!("peak_displacement_{i}"))
@@ -286,15 +310,24 @@ pub fn plot_table_of(
     base: Option<&str>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let fields: Vec<&str> = match &req.field {
-        Some(f) => {
-            let i = Table::field_index(f).ok_or_else(|| {
-                SweepError::Usage(format!(
-                    "--field `{f}` is not a result field; choose one of {}",
-                    FIELDS.join(", ")
-                ))
-            })?;
-            vec![FIELDS[i]]
-        }
+        Some(f) => match Table::field_index(f) {
+            Some(i) => vec![FIELDS[i]],
+            // a column after the standard ones (codes, floors) that this table has
+            None => match table.codes.iter().find(|c| *c == f) {
+                Some(c) => vec![c.as_str()],
+                None => {
+                    return Err(SweepError::Usage(format!(
+                        "--field `{f}` is not a result field of this table; choose one of {}",
+                        FIELDS
+                            .iter()
+                            .copied()
+                            .chain(table.codes.iter().map(String::as_str))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )));
+                }
+            },
+        },
         None => DEFAULT_FIELDS.to_vec(),
     };
     let info: Vec<(Vec<String>, bool)> =
@@ -367,7 +400,7 @@ pub fn plot_table_of(
                     let ix = xs.iter().position(|&a| a == vx);
                     let iy = ys.iter().position(|&a| a == vy);
                     if let (Some(ix), Some(iy)) = (ix, iy) {
-                        z[iy * xs.len() + ix] = value(r, field);
+                        z[iy * xs.len() + ix] = value(table, r, field);
                     }
                 }
                 let stem = out_dir.join(format!(
@@ -463,7 +496,7 @@ pub fn plot_table_of(
                 continue;
             };
             for (fi, field) in fields.iter().enumerate() {
-                data[fi][k][ix] = value(r, field);
+                data[fi][k][ix] = value(table, r, field);
             }
         }
         let panel_titles: Vec<String> = (0..fields.len())

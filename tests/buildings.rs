@@ -912,3 +912,48 @@ fn scale_factor_axes() {
     assert!(e.contains("modes_file"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `pounding plot --field` draws the floor columns of a results table (and refuses a name the
+/// table does not have, listing the ones it has).
+#[test]
+fn plot_draws_floor_columns() {
+    use pounding::sweep::results::{FIELDS, FLOOR_FIELDS, Table};
+    use pounding::sweep_plots::{PlotRequest, plot_table_of};
+    let dir = std::env::temp_dir().join(format!("pounding-plotfloors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut text = format!(
+        "case,ground_motion.pga,status,{},{}\n",
+        FIELDS.join(","),
+        FLOOR_FIELDS.join(",")
+    );
+    for (c, pga) in [0.1, 0.2, 0.3].iter().enumerate() {
+        let nums: Vec<String> = (0..FIELDS.len() + FLOOR_FIELDS.len())
+            .map(|k| match FIELDS.get(k) {
+                Some(&"converged") => "true".to_string(),
+                _ => format!("{}", pga * (k + 1) as f64),
+            })
+            .collect();
+        text.push_str(&format!("{c},{pga},ok,{}\n", nums.join(",")));
+    }
+    std::fs::write(dir.join("results.csv"), text).unwrap();
+    let table = Table::read(&dir.join("results.csv")).unwrap();
+    assert_eq!(table.codes, FLOOR_FIELDS.to_vec());
+    let req = |f: &str| PlotRequest {
+        x: Some("ground_motion.pga".into()),
+        y: None,
+        field: Some(f.into()),
+    };
+    let files = plot_table_of(
+        &table,
+        &req("peak_floor_acceleration_2"),
+        &dir.join("p"),
+        None,
+    )
+    .unwrap();
+    assert!(files.iter().any(|f| f.exists()));
+    let e = plot_table_of(&table, &req("sep_asce7"), &dir.join("p"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("peak_drift_2"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
