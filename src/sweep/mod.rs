@@ -147,6 +147,7 @@ enum RawValue {
     Int(i64),
     Num(f64),
     Text(String),
+    List(Vec<f64>),
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -161,6 +162,8 @@ pub enum AxisValue {
     Integer(i64),
     /// Text: a record file as listed in the sweep file, a contact law name, …
     Text(String),
+    /// A list of numbers (a building's `floor_masses`, `storey_stiffnesses`, …).
+    List(Vec<f64>),
 }
 
 impl AxisValue {
@@ -170,6 +173,13 @@ impl AxisValue {
             AxisValue::Number(x) => results::fmt_f64(*x),
             AxisValue::Integer(i) => i.to_string(),
             AxisValue::Text(s) => s.clone(),
+            AxisValue::List(v) => format!(
+                "[{}]",
+                v.iter()
+                    .map(|x| results::fmt_f64(*x))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            ),
         }
     }
 }
@@ -190,6 +200,7 @@ enum Kind {
     Integer,
     Text,
     File,
+    List,
 }
 
 /// Where in the scenario an axis writes.
@@ -246,6 +257,11 @@ const STRUCTURE_FIELDS: &[(&str, Kind)] = &[
     ("storey_height", Kind::Number),
     ("floor_mass", Kind::Number),
     ("storey_stiffness", Kind::Number),
+    // a building's lists, one value per floor (or per mode for `periods`)
+    ("floor_heights", Kind::List),
+    ("floor_masses", Kind::List),
+    ("storey_stiffnesses", Kind::List),
+    ("periods", Kind::List),
 ];
 const CONTACT_FIELDS: &[(&str, Kind)] = &[
     ("stiffness", Kind::Number),
@@ -918,6 +934,9 @@ impl Sweep {
                     (AxisValue::Text(s), _) => Value::String(s.clone()),
                     (AxisValue::Integer(i), _) => Value::Integer(*i),
                     (AxisValue::Number(x), _) => Value::Float(*x),
+                    (AxisValue::List(v), _) => {
+                        Value::Array(v.iter().map(|x| Value::Float(*x)).collect())
+                    }
                 };
                 let table = match section {
                     Section::Structure(i) => structure_mut(t, *i)?,
@@ -964,7 +983,7 @@ fn as_f64(v: &AxisValue) -> f64 {
     match v {
         AxisValue::Number(x) => *x,
         AxisValue::Integer(i) => *i as f64,
-        AxisValue::Text(_) => f64::NAN,
+        AxisValue::Text(_) | AxisValue::List(_) => f64::NAN,
     }
 }
 
@@ -1153,7 +1172,24 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
                             format!("`{key}` takes whole numbers"),
                         ));
                     }
-                    (RawValue::Text(_), Kind::Number) => {
+                    (RawValue::List(v), Kind::List) => {
+                        if v.is_empty() || v.iter().any(|x| !x.is_finite()) {
+                            return Err(ctx.invalid(
+                                at,
+                                &name("values"),
+                                format!("`{key}` takes lists of finite numbers, not empty ones"),
+                            ));
+                        }
+                        AxisValue::List(v.clone())
+                    }
+                    (_, Kind::List) => {
+                        return Err(ctx.invalid(
+                            at,
+                            &name("values"),
+                            format!("`{key}` takes lists of numbers, e.g. values = [[2e5, 2e5], [3e5, 3e5]]"),
+                        ));
+                    }
+                    (RawValue::Text(_) | RawValue::List(_), Kind::Number) => {
                         return Err(ctx.invalid(
                             at,
                             &name("values"),
@@ -1174,6 +1210,13 @@ fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Axis, SweepEr
             out
         }
         (None, Some(from), Some(to), Some(steps)) => {
+            if kind == Kind::List {
+                return Err(ctx.invalid(
+                    start,
+                    &name("from"),
+                    format!("`{key}` takes lists: give them with `values = [[…], […]]`"),
+                ));
+            }
             if kind == Kind::Text || kind == Kind::File {
                 return Err(ctx.invalid(
                     start,
