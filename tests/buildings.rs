@@ -1019,6 +1019,8 @@ fn list_keys_are_sweep_axes() {
 /// solved here by Gaussian elimination in complex numbers: to 1e-4 over the last 2 s, sampled
 /// every 1 ms (the sampling misses the crest by at most 1 − cos(Ω·0.5 ms) ≈ 2e-5).
 #[test]
+// (Gaussian elimination reads best with the indices of its formulas)
+#[allow(clippy::needless_range_loop)]
 fn steady_state_harmonic_response_of_a_building_matches_the_closed_form() {
     let (pa, _) = physical_pair();
     let (pga, tg) = (0.3 * 9.80665, 0.5);
