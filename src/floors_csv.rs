@@ -5,26 +5,23 @@
 //! under its name only when complete (temporary file, renamed by [`FloorsCsv::finish`]).
 
 use std::fmt::Write as _;
-use std::io::{BufReader, BufWriter, Read as _, Seek as _, Write as _};
+use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
+
+use crate::row_spool::RowSpool;
 
 /// The file's name in a run's directory.
 pub const FILE_NAME: &str = "floors.csv";
-
-enum Spool {
-    Writing(BufWriter<std::fs::File>),
-    Reading(BufReader<std::fs::File>),
-    Failed,
-}
 
 /// A `floors.csv` being written (see the module).
 pub struct FloorsCsv {
     path: PathBuf,
     csv: Option<BufWriter<tempfile::NamedTempFile>>,
-    spool: Spool,
+    /// The rows with contact: t and the values.
+    spool: RowSpool,
     /// Values per row of one run.
     n: usize,
-    record: Vec<u8>,
+    /// t and the values of the spooled row being completed.
     contact: Vec<f64>,
     line: String,
     error: Option<std::io::Error>,
@@ -56,14 +53,12 @@ impl FloorsCsv {
             let _ = write!(head, ",{c}_free");
         }
         writeln!(csv, "{head}")?;
-        let spool = tempfile::tempfile_in(dir)?;
         Ok(FloorsCsv {
             path: dir.join(FILE_NAME),
             csv: Some(csv),
-            spool: Spool::Writing(BufWriter::with_capacity(1 << 16, spool)),
+            spool: RowSpool::new(dir, 1 + columns.len())?,
             n: columns.len(),
-            record: Vec::with_capacity(8 * (1 + columns.len())),
-            contact: vec![0.0; columns.len()],
+            contact: vec![0.0; 1 + columns.len()],
             line: String::new(),
             error: None,
         })
@@ -77,27 +72,17 @@ impl FloorsCsv {
 
     /// A row of the run with contact.
     pub fn contact_row(&mut self, t: f64, values: &[f64]) {
-        let Spool::Writing(out) = &mut self.spool else {
-            return;
-        };
-        self.record.clear();
-        for v in std::iter::once(&t).chain(values.iter().take(self.n)) {
-            self.record.extend_from_slice(&v.to_le_bytes());
-        }
-        if let Err(e) = out.write_all(&self.record) {
-            self.spool = Spool::Failed;
-            self.fail(e);
-        }
+        self.spool
+            .push(std::iter::once(t).chain(values.iter().copied()));
     }
 
     /// A row of the run without contact: completes the next spooled row.
     pub fn free_row(&mut self, _t: f64, values: &[f64]) {
-        self.rewind();
-        if let Some(t) = self.next_contact() {
+        self.spool.rewind();
+        if self.spool.next(&mut self.contact) {
             self.line.clear();
-            let _ = write!(self.line, "{t}");
-            for v in &self.contact {
-                let _ = write!(self.line, ",{v}");
+            for (i, v) in self.contact.iter().enumerate() {
+                let _ = write!(self.line, "{}{v}", if i == 0 { "" } else { "," });
             }
             for v in values.iter().take(self.n) {
                 let _ = write!(self.line, ",{v}");
@@ -105,50 +90,6 @@ impl FloorsCsv {
             self.line.push('\n');
             self.write_line();
         }
-    }
-
-    fn rewind(&mut self) {
-        if !matches!(self.spool, Spool::Writing(_)) {
-            return;
-        }
-        let spool = std::mem::replace(&mut self.spool, Spool::Failed);
-        if let Spool::Writing(w) = spool {
-            match w
-                .into_inner()
-                .map_err(|e| e.into_error())
-                .and_then(|mut f| {
-                    f.rewind()?;
-                    Ok(f)
-                }) {
-                Ok(f) => self.spool = Spool::Reading(BufReader::with_capacity(1 << 16, f)),
-                Err(e) => self.fail(e),
-            }
-        }
-    }
-
-    /// The next spooled row with contact (its time; the values in `contact`).
-    fn next_contact(&mut self) -> Option<f64> {
-        let Spool::Reading(r) = &mut self.spool else {
-            return None;
-        };
-        self.record.resize(8 * (1 + self.n), 0);
-        match r.read_exact(&mut self.record) {
-            Ok(()) => {}
-            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => return None,
-            Err(e) => {
-                self.fail(e);
-                return None;
-            }
-        }
-        let mut it = self
-            .record
-            .chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])));
-        let t = it.next().unwrap_or(f64::NAN);
-        for (c, v) in self.contact.iter_mut().zip(it) {
-            *c = v;
-        }
-        Some(t)
     }
 
     fn write_line(&mut self) {
@@ -162,12 +103,11 @@ impl FloorsCsv {
     /// Write what is left and rename the file into place; returns its path.
     pub fn finish(mut self) -> std::io::Result<PathBuf> {
         // rows with contact that the run without contact did not match (none, normally)
-        self.rewind();
-        while let Some(t) = self.next_contact() {
+        self.spool.rewind();
+        while self.spool.next(&mut self.contact) {
             self.line.clear();
-            let _ = write!(self.line, "{t}");
-            for v in &self.contact {
-                let _ = write!(self.line, ",{v}");
+            for (i, v) in self.contact.iter().enumerate() {
+                let _ = write!(self.line, "{}{v}", if i == 0 { "" } else { "," });
             }
             for _ in 0..self.n {
                 self.line.push_str(",NaN");
@@ -175,7 +115,7 @@ impl FloorsCsv {
             self.line.push('\n');
             self.write_line();
         }
-        if let Some(e) = self.error.take() {
+        if let Some(e) = self.error.take().or_else(|| self.spool.take_error()) {
             return Err(e);
         }
         if let Some(csv) = self.csv.take() {

@@ -37,6 +37,7 @@ pub mod output;
 pub mod plot;
 pub mod recorder;
 pub mod restitution;
+pub mod row_spool;
 pub mod rule_study;
 pub mod scenario;
 pub mod separation;

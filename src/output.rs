@@ -9,12 +9,13 @@
 //! its presence means every file of the run is complete and from the same run.
 
 use std::fmt::Write as _;
-use std::io::{BufReader, BufWriter, Read as _, Seek as _, Write as _};
+use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
 use crate::integrate::Method;
+use crate::row_spool::RowSpool;
 use crate::scenario::Scenario;
 use crate::simulate::{Report, RunSink};
 
@@ -242,13 +243,12 @@ pub struct RunWriter {
     levels: usize,
     /// history.csv being written (temporary name until `finish`).
     csv: Option<BufWriter<tempfile::NamedTempFile>>,
-    spool: Spool,
+    /// The rows with contact: t, w₁, w₂ and every level's force.
+    spool: RowSpool,
     /// Reused text buffer of one CSV row.
     line: String,
-    /// Reused spool record.
-    record: Vec<u8>,
-    /// Reused forces of one row.
-    forces: Vec<f64>,
+    /// Reused spooled row.
+    row: Vec<f64>,
     /// The first I/O error met while streaming (reported by `finish`).
     error: Option<OutputError>,
     /// Called with each file once it is complete and in place, in order.
@@ -265,17 +265,10 @@ impl Drop for RunWriter {
     fn drop(&mut self) {
         self.csv.take();
         self.floors.take();
-        self.spool = Spool::Failed;
         if self.created_dir {
             let _ = std::fs::remove_dir(&self.dir);
         }
     }
-}
-
-enum Spool {
-    Writing(BufWriter<std::fs::File>),
-    Reading(BufReader<std::fs::File>),
-    Failed,
 }
 
 impl std::fmt::Debug for RunWriter {
@@ -308,15 +301,14 @@ impl RunWriter {
         let tmp = temp_file(dir, ".pounding-history-", ".tmp").map_err(io(&history))?;
         let mut csv = BufWriter::with_capacity(1 << 16, tmp);
         writeln!(csv, "{}", history_header(levels)).map_err(io(&history))?;
-        let spool = tempfile::tempfile_in(dir).map_err(io(&history))?;
+        let spool = RowSpool::new(dir, 3 + levels).map_err(io(&history))?;
         Ok(RunWriter {
             dir: dir.to_path_buf(),
             levels,
             csv: Some(csv),
-            spool: Spool::Writing(BufWriter::with_capacity(1 << 16, spool)),
+            spool,
             line: String::with_capacity(64 + 24 * levels),
-            record: Vec::with_capacity(8 * (3 + levels)),
-            forces: vec![0.0; levels],
+            row: vec![0.0; 3 + levels],
             error: None,
             on_written: None,
             created_dir,
@@ -351,55 +343,6 @@ impl RunWriter {
         }
     }
 
-    /// Switch the spool from writing to reading (at the first row without contact).
-    fn rewind(&mut self) {
-        let spool = std::mem::replace(&mut self.spool, Spool::Failed);
-        self.spool = match spool {
-            Spool::Writing(w) => {
-                match w
-                    .into_inner()
-                    .map_err(|e| e.into_error())
-                    .and_then(|mut f| {
-                        f.rewind()?;
-                        Ok(f)
-                    }) {
-                    Ok(f) => Spool::Reading(BufReader::with_capacity(1 << 16, f)),
-                    Err(e) => {
-                        self.fail(e);
-                        Spool::Failed
-                    }
-                }
-            }
-            other => other,
-        };
-    }
-
-    /// The next spooled row with contact: (t, w₁, w₂, forces in `forces`), or None at the end.
-    fn next_contact_row(&mut self, forces: &mut [f64]) -> Option<(f64, [f64; 2])> {
-        let Spool::Reading(r) = &mut self.spool else {
-            return None;
-        };
-        self.record.resize(8 * (3 + self.levels), 0);
-        match r.read_exact(&mut self.record) {
-            Ok(()) => {}
-            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => return None,
-            Err(e) => {
-                self.fail(e);
-                return None;
-            }
-        }
-        let mut it = self
-            .record
-            .chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])));
-        let t = it.next().unwrap_or(f64::NAN);
-        let w = [it.next().unwrap_or(f64::NAN), it.next().unwrap_or(f64::NAN)];
-        for (f, v) in forces.iter_mut().zip(it) {
-            *f = v;
-        }
-        Some((t, w))
-    }
-
     fn write_line(&mut self) {
         if let Some(csv) = self.csv.as_mut()
             && let Err(e) = csv.write_all(self.line.as_bytes())
@@ -419,12 +362,15 @@ impl RunWriter {
         draw: Option<Box<DrawPictures<'_>>>,
     ) -> Result<Vec<PathBuf>, OutputError> {
         // rows with contact the run without contact did not match (none, normally)
-        self.rewind();
-        let mut forces = vec![0.0; self.levels];
-        while let Some((t, w)) = self.next_contact_row(&mut forces) {
+        self.spool.rewind();
+        while self.spool.next(&mut self.row) {
             self.line.clear();
-            history_row(&mut self.line, t, w, &forces, [f64::NAN; 2]);
+            let r = &self.row;
+            history_row(&mut self.line, r[0], [r[1], r[2]], &r[3..], [f64::NAN; 2]);
             self.write_line();
+        }
+        if let Some(e) = self.spool.take_error() {
+            self.fail(e);
         }
         if let Some(e) = self.error.take() {
             return Err(e);
@@ -507,29 +453,17 @@ impl RunSink for RunWriter {
     }
 
     fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
-        let Spool::Writing(out) = &mut self.spool else {
-            return;
-        };
-        self.record.clear();
-        for v in [t, w[0], w[1]].iter().chain(forces) {
-            self.record.extend_from_slice(&v.to_le_bytes());
-        }
-        if let Err(e) = out.write_all(&self.record) {
-            self.spool = Spool::Failed;
-            self.fail(e);
-        }
+        self.spool
+            .push([t, w[0], w[1]].into_iter().chain(forces.iter().copied()));
     }
 
     fn free_row(&mut self, _t: f64, w: [f64; 2]) {
-        if matches!(self.spool, Spool::Writing(_)) {
-            self.rewind();
-        }
-        let mut forces = std::mem::take(&mut self.forces);
-        if let Some((t, wc)) = self.next_contact_row(&mut forces) {
+        self.spool.rewind();
+        if self.spool.next(&mut self.row) {
             self.line.clear();
-            history_row(&mut self.line, t, wc, &forces, w);
+            let r = &self.row;
+            history_row(&mut self.line, r[0], [r[1], r[2]], &r[3..], w);
             self.write_line();
         }
-        self.forces = forces;
     }
 }
