@@ -26,6 +26,12 @@ pub const MAX_ORTHOGONALITY_ERROR: f64 = 0.1;
 /// Above this |φ_mᵀ M φ_n| the engineer's modes are accepted with a warning.
 pub const WARN_ORTHOGONALITY_ERROR: f64 = 0.01;
 
+/// Whether two heights (m) are the same level: equal to 1e-9 of the height (1e-9 m below 1 m),
+/// the one rule for "a contact at this floor" everywhere.
+pub fn same_height(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
+}
+
 /// The floors of a building: heights above the base and lumped masses.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Floors {
@@ -46,9 +52,9 @@ impl Floors {
         self.heights.last().copied().unwrap_or(0.0)
     }
 
-    /// Index of the floor at height `h` (within 1e-9 m), if any.
+    /// Index of the floor at height `h` ([`same_height`]), if any.
     pub fn floor_at(&self, h: f64) -> Option<usize> {
-        self.heights.iter().position(|&x| (x - h).abs() <= 1e-9)
+        self.heights.iter().position(|&x| same_height(x, h))
     }
 
     fn check(&self) -> Result<(), BuildingError> {

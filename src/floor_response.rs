@@ -131,12 +131,11 @@ impl Stations {
         let above = heights
             .iter()
             .flat_map(|&x| {
-                let tol = 1e-9 * x.max(1.0);
                 contact_heights.iter().map(move |&hk| {
                     if lumped {
-                        (hk - x).abs() <= tol
+                        crate::building::same_height(hk, x)
                     } else {
-                        hk >= x - tol
+                        hk >= x || crate::building::same_height(hk, x)
                     }
                 })
             })

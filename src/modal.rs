@@ -152,15 +152,6 @@ impl Structure {
         }
     }
 
-    /// The most modes this structure has (`None`: a cantilever, up to
-    /// [`crate::cantilever::MAX_MODES`]-like limits of the scenario).
-    pub fn available_modes(&self) -> Option<usize> {
-        match self {
-            Structure::Cantilever(_) => None,
-            Structure::Floors(f) => Some(f.all_modes.len()),
-        }
-    }
-
     /// Keep `n` modes (a building keeps at most the modes it has).
     pub fn set_modes(&mut self, n: usize) {
         match self {

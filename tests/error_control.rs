@@ -430,7 +430,7 @@ fn exact_modal_does_not_miss_short_impacts_inside_a_long_step() {
 /// (PGA 0.5 g, where it is most sensitive) `exact-modal` at its default tolerance is 1.6 %
 /// (dt 1 ms) and 20 % (dt 10 ms) off in peak force, and at rtol 1e-10 still 12 %: a chaotic
 /// sequence of impacts amplifies its per-impact error. Its self-check, at rtol/100, says NOT
-/// converged each time; a run presented as converged must be within 2 %. (Before the
+/// converged each time. (Before the
 /// sub-steps followed rtol, the check run was bit-identical and could see nothing.)
 #[test]
 fn exact_modal_on_the_stiff_case_is_flagged_not_converged() {
@@ -444,12 +444,6 @@ fn exact_modal_on_the_stiff_case_is_flagged_not_converged() {
         eprintln!(
             "exact-modal dt {dt} {solver}: peak force error {err:.2e}, converged {converged:?}"
         );
-        if converged == Some(true) {
-            assert!(
-                err < 0.02,
-                "dt {dt} {solver}: presented as converged, error {err:.3e}"
-            );
-        }
         assert_eq!(converged, Some(false), "dt {dt} {solver}: error {err:.3e}");
     }
 }

@@ -931,7 +931,7 @@ fn floors_at_contact(
             };
             if heights
                 .iter()
-                .any(|&h| (h - lv.height).abs() <= 1e-9 * h.max(1.0))
+                .any(|&h| crate::building::same_height(h, lv.height))
             {
                 continue;
             }
