@@ -399,6 +399,11 @@ pub struct Scenario {
 impl Scenario {
     /// Read and validate a scenario file. Record files are resolved relative to it.
     pub fn from_file(path: &Path) -> Result<Scenario, ScenarioError> {
+        Scenario::read_file(path).map(|(s, _)| s)
+    }
+
+    /// As [`Scenario::from_file`], also returning the file's text (what was validated).
+    pub fn read_file(path: &Path) -> Result<(Scenario, String), ScenarioError> {
         let text =
             crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
                 ScenarioError::Read {
@@ -407,7 +412,8 @@ impl Scenario {
                 }
             })?;
         let base = path.parent().unwrap_or(Path::new("."));
-        Scenario::from_toml(&text, &path.display().to_string(), base)
+        let sc = Scenario::from_toml(&text, &path.display().to_string(), base)?;
+        Ok((sc, text))
     }
 
     /// Validate scenario text. `file` names it in messages; `base_dir` resolves record files.
