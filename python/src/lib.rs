@@ -186,6 +186,9 @@ struct PyScenario {
     inner: Arc<Scenario>,
 }
 
+/// Appended to the name of a scenario made by `replace` (its text is no longer the file's).
+const REPLACED: &str = " (replaced)";
+
 fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
@@ -204,7 +207,7 @@ impl PyScenario {
 
     /// The scenario's path as a sweep names its base: its directory and file name.
     fn path(&self) -> PathBuf {
-        let name = Path::new(&self.origin)
+        let name = Path::new(self.origin.trim_end_matches(REPLACED))
             .file_name()
             .map_or_else(|| "scenario".into(), |n| n.to_string_lossy().into_owned());
         self.base_dir.join(name)
@@ -269,7 +272,13 @@ impl PyScenario {
         }
         let text = pounding::sweep::set_keys(&self.text, &self.path(), list)
             .map_err(|e| ScenarioError::new_err(e.to_string()))?;
-        PyScenario::build(text, self.origin.clone(), self.base_dir.clone())
+        // positions in messages are in the new text, not in the file it came from
+        let origin = if self.origin.ends_with(REPLACED) {
+            self.origin.clone()
+        } else {
+            format!("{}{REPLACED}", self.origin)
+        };
+        PyScenario::build(text, origin, self.base_dir.clone())
     }
 
     /// The scenario's TOML text (what was validated; positions in messages refer to it).

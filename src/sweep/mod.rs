@@ -1045,6 +1045,7 @@ pub fn set_keys(
     base_path: &Path,
     values: Vec<(String, Value)>,
 ) -> Result<String, SweepError> {
+    let keys: Vec<String> = values.iter().map(|(k, _)| k.clone()).collect();
     let axes = values
         .into_iter()
         .map(|(k, v)| {
@@ -1059,16 +1060,37 @@ pub fn set_keys(
         .map_or_else(|| "scenario".into(), |n| n.to_string_lossy().into_owned());
     let text = sweep_text(&name, axes)?;
     let dir = base_path.parent().unwrap_or(Path::new("."));
+    let at = || Location {
+        file: std::sync::Arc::from(base_path.display().to_string()),
+        line_col: None,
+    };
+    // messages name the key as given, not the generated sweep's `axis[N]`
     let sweep =
-        Sweep::from_toml_with_base(&text, &dir.join("replace"), Some((base_text, base_path)))?;
-    let table = sweep.case_table(0).map_err(|reason| SweepError::Invalid {
-        at: Location {
-            file: std::sync::Arc::from(base_path.display().to_string()),
-            line_col: None,
-        },
+        Sweep::from_toml_with_base(&text, &dir.join("replace"), Some((base_text, base_path)))
+            .map_err(|e| match e {
+                SweepError::Invalid { key, reason, .. } if key.starts_with("axis[") => {
+                    let n: usize = key[5..]
+                        .split(']')
+                        .next()
+                        .and_then(|n| n.parse().ok())
+                        .unwrap_or(1);
+                    SweepError::Invalid {
+                        at: at(),
+                        key: keys.get(n.saturating_sub(1)).cloned().unwrap_or(key),
+                        reason,
+                    }
+                }
+                other => other,
+            })?;
+    let mut table = sweep.case_table(0).map_err(|reason| SweepError::Invalid {
+        at: at(),
         key: sweep.label(0),
         reason,
     })?;
+    // the title says what was changed (the base's title may name the values replaced)
+    if let Some(Value::String(title)) = table.get_mut("title") {
+        *title = format!("{title} — with {}", sweep.label(0));
+    }
     toml::to_string(&table)
         .map_err(|e| SweepError::Usage(format!("cannot encode the scenario as TOML: {e}")))
 }
