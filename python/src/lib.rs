@@ -443,6 +443,9 @@ fn run(
 // ---------------------------------------------------------------------------------------------
 // Sweeps
 
+/// (sweep text, sweep path, base scenario text, base scenario path): a sweep, for pickling.
+type SweepSources = (String, PathBuf, String, PathBuf);
+
 /// A checked sweep: its cases, each computed to a results row.
 #[pyclass(frozen, module = "pounding._core", name = "Sweep")]
 struct PySweep {
@@ -521,7 +524,7 @@ impl PySweep {
     }
 
     /// (sweep text, sweep path, base scenario text, base scenario path).
-    fn sources(&self) -> (String, PathBuf, String, PathBuf) {
+    fn sources(&self) -> SweepSources {
         let (a, b, c, d) = self.inner.sources();
         (
             a.to_string(),
@@ -588,9 +591,7 @@ impl PySweep {
         column_dict(py, cols)
     }
 
-    fn __reduce__<'py>(
-        slf: &Bound<'py, Self>,
-    ) -> PyResult<(Bound<'py, PyAny>, (String, PathBuf, String, PathBuf))> {
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, SweepSources)> {
         let ctor = slf.get_type().getattr("from_sources")?;
         Ok((ctor, slf.get().sources()))
     }
