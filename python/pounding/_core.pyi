@@ -5,6 +5,7 @@ and wraps the rest (run → RunResult, sweep → SweepTable).
 """
 
 import os
+from pathlib import Path
 from typing import Any, Mapping, Union
 
 import numpy as np
@@ -57,7 +58,7 @@ class Scenario:
     def name(self) -> str:
         """The name in messages: the file, `<dict>`, `<string>` (+ ` (replaced)`)."""
     @property
-    def base_dir(self) -> str:
+    def base_dir(self) -> Path:
         """The directory record files are resolved from (absolute)."""
     @property
     def title(self) -> str:
@@ -83,7 +84,7 @@ class RunOutput:
     @property
     def warnings(self) -> list[str]:
         """The run's warnings."""
-    def save(self, dir: _Path, plots: bool = True) -> list[str]:
+    def save(self, dir: _Path, plots: bool = True) -> list[Path]:
         """Write the files of `pounding run --out DIR`; returns the paths, summary.json last.
         Raises OutputError."""
 
@@ -104,7 +105,7 @@ class Sweep:
     @staticmethod
     def from_sources(text: str, path: _Path, base_text: str, base_path: _Path) -> Sweep:
         """The sweep `sources()` describes (used by pickling)."""
-    def sources(self) -> tuple[str, str, str, str]:
+    def sources(self) -> tuple[str, Path, str, Path]:
         """(sweep text, sweep path, base scenario text, base scenario path)."""
     def __len__(self) -> int:
         """The number of cases."""
