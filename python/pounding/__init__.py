@@ -151,10 +151,14 @@ class SweepTable(dict):
     """
 
     def to_pandas(self) -> Any:
-        """The table as a pandas DataFrame (needs pandas)."""
+        """The table as a pandas DataFrame (needs pandas); ``impacts`` as pandas' nullable
+        ``Int64`` (``<NA>`` for a failed case)."""
         import pandas as pd  # optional dependency
 
-        return pd.DataFrame(dict(self))
+        df = pd.DataFrame(dict(self))
+        if "impacts" in df:
+            df["impacts"] = df["impacts"].astype("Int64")
+        return df
 
 
 def plan_sweep(source: Union[PathLike, Scenario], axes: Mapping[str, Any] | None = None) -> _core.Sweep:

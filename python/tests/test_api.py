@@ -243,3 +243,13 @@ def test_installed_not_from_the_source_tree() -> None:
     source = Path(__file__).resolve().parents[1] / "pounding"
     assert source not in here.parents, f"pounding imported from the source tree: {here}"
     assert "site-packages" in here.parts
+
+
+def test_sweep_table_to_pandas(paper: pounding.Scenario) -> None:
+    pytest.importorskip("pandas")
+    t = pounding.sweep(paper, axes={"contact.gap": [0.0127, -1.0]}, check=False, jobs=1)
+    df = t.to_pandas()
+    assert list(df.columns) == list(t)
+    assert str(df["impacts"].dtype) == "Int64"
+    assert df["impacts"][0] == t["impacts"][0] and df["impacts"].isna()[1]
+    np.testing.assert_array_equal(df["peak_force"].to_numpy(), t["peak_force"])
