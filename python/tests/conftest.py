@@ -44,3 +44,13 @@ def cli():
         )
 
     return run
+
+
+def need(module: str):
+    """Import an optional dependency of a test (pandas, dask.distributed): skipped without it,
+    except under CI (`CI=true`), where its absence is a failure."""
+    if os.environ.get("CI") == "true":
+        import importlib
+
+        return importlib.import_module(module)
+    return pytest.importorskip(module)

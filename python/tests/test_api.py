@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import pounding
+from conftest import need
 
 HISTORY = ["t", "w1", "w2", "force", "w1_free", "w2_free"]
 IMPACTS = ["level", "height", "start", "end", "duration", "peak_force", "impulse",
@@ -141,7 +142,7 @@ def test_several_levels_have_their_forces(examples: Path) -> None:
 
 
 def test_to_pandas(paper_run: pounding.RunResult) -> None:
-    pd = pytest.importorskip("pandas")
+    pd = need("pandas")
     frames = paper_run.to_pandas()
     assert set(frames) == {"history", "impacts", "floors"}
     assert isinstance(frames["history"], pd.DataFrame)
@@ -246,7 +247,7 @@ def test_installed_not_from_the_source_tree() -> None:
 
 
 def test_sweep_table_to_pandas(paper: pounding.Scenario) -> None:
-    pytest.importorskip("pandas")
+    need("pandas")
     t = pounding.sweep(paper, axes={"contact.gap": [0.0127, -1.0]}, check=False, jobs=1)
     df = t.to_pandas()
     assert list(df.columns) == list(t)
