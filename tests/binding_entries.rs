@@ -10,7 +10,9 @@ use pounding::simulate::{RunCapture, simulate_streaming};
 use pounding::sweep::Sweep;
 
 fn example(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(name)
 }
 
 #[test]
@@ -95,7 +97,10 @@ fn in_memory_rows_are_the_results_rows() {
     let cols = pounding::sweep::results::columns(&sweep, &lines).unwrap();
     let header = pounding::sweep::results::header(&sweep);
     assert_eq!(
-        cols.iter().map(|(k, _)| k.as_str()).collect::<Vec<_>>().join(","),
+        cols.iter()
+            .map(|(k, _)| k.as_str())
+            .collect::<Vec<_>>()
+            .join(","),
         header
     );
     assert!(matches!(&cols[0].1, Column::Int(v) if v.len() == sweep.len()));
