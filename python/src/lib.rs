@@ -76,6 +76,9 @@ fn no_panic<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 // ---------------------------------------------------------------------------------------------
 // Python objects → TOML values
 
+/// Deepest nesting of dicts and lists accepted from Python.
+const MAX_DEPTH: usize = 32;
+
 /// A key path as the library's messages write it: `structure[2].period`.
 fn child(path: &str, key: &str) -> String {
     if path.is_empty() {
@@ -96,6 +99,12 @@ fn to_toml(v: &Bound<'_, PyAny>, path: &str, origin: &str) -> PyResult<toml::Val
         };
         ScenarioError::new_err(format!("{origin}:{at} {what}"))
     };
+    // (a list that contains itself must not recurse until the stack overflows)
+    if path.matches(['.', '[']).count() > MAX_DEPTH {
+        return Err(refuse(format!(
+            "nested more than {MAX_DEPTH} levels deep: a scenario has a few"
+        )));
+    }
     if let Ok(d) = v.cast::<PyDict>() {
         return Ok(toml::Value::Table(dict_to_table(d, path, origin)?));
     }
@@ -196,7 +205,8 @@ fn absolute(p: &Path) -> PathBuf {
 impl PyScenario {
     fn build(text: String, origin: String, base_dir: PathBuf) -> PyResult<PyScenario> {
         let base_dir = absolute(&base_dir);
-        let inner = Scenario::from_toml(&text, &origin, &base_dir).map_err(scenario_err)?;
+        let inner =
+            no_panic(|| Scenario::from_toml(&text, &origin, &base_dir).map_err(scenario_err))?;
         Ok(PyScenario {
             text,
             origin,
@@ -247,7 +257,8 @@ impl PyScenario {
     ) -> PyResult<PyScenario> {
         let table = dict_to_table(data, "", &name)?;
         let base_dir = absolute(&base_dir);
-        let inner = Scenario::from_table(&table, &name, &base_dir).map_err(scenario_err)?;
+        let inner =
+            no_panic(|| Scenario::from_table(&table, &name, &base_dir).map_err(scenario_err))?;
         let text = pounding::scenario::table_to_toml(&table, &name).map_err(scenario_err)?;
         Ok(PyScenario {
             text,

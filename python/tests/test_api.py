@@ -254,3 +254,14 @@ def test_sweep_table_to_pandas(paper: pounding.Scenario) -> None:
     assert str(df["impacts"].dtype) == "Int64"
     assert df["impacts"][0] == t["impacts"][0] and df["impacts"].isna()[1]
     np.testing.assert_array_equal(df["peak_force"].to_numpy(), t["peak_force"])
+
+
+def test_from_dict_refuses_a_list_containing_itself() -> None:
+    loop: list = []
+    loop.append(loop)
+    with pytest.raises(pounding.ScenarioError, match="nested more than"):
+        pounding.Scenario.from_dict({"structure": loop})
+    d: dict = {}
+    d["contact"] = d
+    with pytest.raises(pounding.ScenarioError, match="nested more than"):
+        pounding.Scenario.from_dict(d)
