@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import math
 import pickle
-import tomllib
+try:
+    import tomllib
+except ImportError:  # Python 3.10
+    import tomli as tomllib
 from pathlib import Path
 
 import numpy as np

@@ -107,9 +107,11 @@ def test_dask_sweep_equals_pounding_sweep(examples: Path) -> None:
         sc = pounding.Scenario.from_file(examples / "paper-c.toml")
         axes = {"contact.gap": [0.0127, -1.0], "ground_motion.pga": [0.3, 0.6]}
         by_axes = pd_dask.sweep(client, sc, axes=axes, check=False)
+        chunked = pd_dask.sweep(client, examples / "quick-sweep.toml", cases_per_task=5)
     assert list(table) == list(expected)
     for k in expected:
         np.testing.assert_array_equal(table[k], expected[k], err_msg=k)
+        np.testing.assert_array_equal(chunked[k], expected[k], err_msg=k)
     local = pounding.sweep(sc, axes=axes, check=False, jobs=1)
     assert by_axes["status"][2].startswith("failed: ")  # failed cases come back as rows too
     for k in local:
