@@ -46,6 +46,21 @@ pub fn drawn_force(
     pts.into_iter().unzip()
 }
 
+/// The pictures of a run, as `pounding run` draws them into its directory: the time-history
+/// figure (`history.png/.svg`, [`time_history_figure`]) and the envelopes over height
+/// (`envelopes.png/.svg`, [`envelope_figure`]); for [`crate::output::RunWriter::finish`].
+pub fn run_pictures<'a>(
+    scenario: &'a Scenario,
+    report: &'a Report,
+) -> Box<crate::output::DrawPictures<'a>> {
+    Box::new(move |dir: &Path| {
+        let mut files = time_history_figure(scenario, report, &dir.join("history"))
+            .map_err(|e| e.to_string())?;
+        files.extend(envelope_figure(report, &dir.join("envelopes")).map_err(|e| e.to_string())?);
+        Ok(files)
+    })
+}
+
 /// The time-history figure (the paper's Figs. 2–4, readable): displacement at the contact
 /// height of each structure with and without pounding, and the contact force of each level in a
 /// panel of its own, every impact drawn at its located peak ([`drawn_force`]). Writes

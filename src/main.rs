@@ -417,19 +417,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
-            if let Some(s) = &sc.design.spectrum {
-                return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
-            }
+            pounding::simulate::require_time_history(&sc)?;
             pounding::budget::check_run(&sc, max_output_size)?;
-            let heights: Vec<f64> = sc.contact.levels.iter().map(|l| l.height).collect();
-            let columns = pounding::floor_response::FloorRecorder::new(
-                &sc.system(),
-                &heights,
-                sc.output_interval,
-            )
-            .columns();
-            let mut writer =
-                RunWriter::create(&out, sc.contact.levels.len())?.with_floors(&columns)?;
+            let mut writer = RunWriter::for_scenario(&out, &sc)?;
             let mut sink = RunProgress {
                 writer: &mut writer,
                 enabled: !quiet && std::io::stderr().is_terminal(),
@@ -442,20 +432,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let result = simulate_streaming(&sc, !no_check, &mut sink);
             sink.finish();
             let report = result?;
-            let draw: Option<Box<pounding::output::DrawPictures>> = if no_plot {
-                None
-            } else {
-                Some(Box::new(|dir: &Path| {
-                    let mut files =
-                        pounding::figures::time_history_figure(&sc, &report, &dir.join("history"))
-                            .map_err(|e| e.to_string())?;
-                    files.extend(
-                        pounding::figures::envelope_figure(&report, &dir.join("envelopes"))
-                            .map_err(|e| e.to_string())?,
-                    );
-                    Ok(files)
-                }))
-            };
+            let draw = (!no_plot).then(|| pounding::figures::run_pictures(&sc, &report));
             let written = writer.finish(&sc, &report, draw)?;
             if !quiet {
                 print_summary(&sc, &name, &report);
@@ -569,9 +546,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
-            if let Some(s) = &sc.design.spectrum {
-                return Err(pounding::integrate::SolveError::NoTimeHistory(s.name()).into());
-            }
+            pounding::simulate::require_time_history(&sc)?;
             if !quiet {
                 println!(
                     "{}

@@ -217,6 +217,70 @@ pub fn impacts_csv(report: &Report) -> String {
     out
 }
 
+/// One column of a table handed to another program (the Python package's arrays): whole
+/// numbers, numbers, or text.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Column {
+    /// Whole numbers (a count, an index).
+    Int(Vec<i64>),
+    /// Numbers.
+    Float(Vec<f64>),
+    /// Text.
+    Text(Vec<String>),
+}
+
+/// The columns of `impacts.csv` ([`impacts_csv`]), by its header names: `level` (1-based)
+/// whole numbers, the rest the same numbers the file holds.
+pub fn impact_columns(report: &Report) -> Vec<(&'static str, Column)> {
+    let log = &report.impact_log;
+    let f =
+        |g: &dyn Fn(&crate::recorder::Impact) -> f64| Column::Float(log.iter().map(g).collect());
+    vec![
+        (
+            "level",
+            Column::Int(log.iter().map(|i| i.level as i64 + 1).collect()),
+        ),
+        ("height", f(&|i| report.levels[i.level].height)),
+        ("start", f(&|i| i.start)),
+        ("end", f(&|i| i.end)),
+        ("duration", f(&|i| i.end - i.start)),
+        ("peak_force", f(&|i| i.peak_force)),
+        ("impulse", f(&|i| i.impulse)),
+        ("max_penetration", f(&|i| i.max_penetration)),
+        ("approach_speed", f(&|i| i.approach_speed)),
+    ]
+}
+
+/// The floor columns of a run of `scenario` (`floors.csv` without `t` and the `_free`
+/// copies): every station's displacement and absolute acceleration
+/// ([`crate::floor_response::FloorRecorder::columns`]).
+pub fn floor_columns(scenario: &Scenario) -> Vec<String> {
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    crate::floor_response::FloorRecorder::new(
+        &scenario.system(),
+        &heights,
+        scenario.output_interval,
+    )
+    .columns()
+}
+
+/// Write a run already done into `dir` exactly as `pounding run --out dir` does while it
+/// runs: the samples in `capture` are replayed into a [`RunWriter`] for the scenario
+/// ([`RunWriter::for_scenario`]), then [`RunWriter::finish`] (pictures by `draw`, e.g.
+/// [`crate::figures::run_pictures`]; without, stale pictures are removed; `summary.json`
+/// last). Returns the files written, in order.
+pub fn write_run(
+    dir: &Path,
+    scenario: &Scenario,
+    report: &Report,
+    capture: &crate::simulate::RunCapture,
+    draw: Option<Box<DrawPictures<'_>>>,
+) -> Result<Vec<PathBuf>, OutputError> {
+    let mut writer = RunWriter::for_scenario(dir, scenario)?;
+    capture.replay(&mut writer);
+    writer.finish(scenario, report, draw)
+}
+
 /// The pictures `pounding run` draws into its directory: removed by [`RunWriter::finish`]
 /// when a run draws none, so that no stale picture sits beside a new summary.
 pub const PICTURE_FILES: [&str; 4] = [
@@ -314,6 +378,12 @@ impl RunWriter {
             created_dir,
             floors: None,
         })
+    }
+
+    /// The writer of a run of `scenario` into `dir`, as `pounding run` creates it: one history
+    /// column per contact level and `floors.csv` with the run's [`floor_columns`].
+    pub fn for_scenario(dir: &Path, scenario: &Scenario) -> Result<RunWriter, OutputError> {
+        RunWriter::create(dir, scenario.contact.levels.len())?.with_floors(&floor_columns(scenario))
     }
 
     /// Also write `floors.csv`, the floor histories with the names of

@@ -399,6 +399,11 @@ pub struct Scenario {
 impl Scenario {
     /// Read and validate a scenario file. Record files are resolved relative to it.
     pub fn from_file(path: &Path) -> Result<Scenario, ScenarioError> {
+        Scenario::read_file(path).map(|(s, _)| s)
+    }
+
+    /// As [`Scenario::from_file`], also returning the file's text (what was validated).
+    pub fn read_file(path: &Path) -> Result<(Scenario, String), ScenarioError> {
         let text =
             crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
                 ScenarioError::Read {
@@ -407,7 +412,8 @@ impl Scenario {
                 }
             })?;
         let base = path.parent().unwrap_or(Path::new("."));
-        Scenario::from_toml(&text, &path.display().to_string(), base)
+        let sc = Scenario::from_toml(&text, &path.display().to_string(), base)?;
+        Ok((sc, text))
     }
 
     /// Validate scenario text. `file` names it in messages; `base_dir` resolves record files.
@@ -440,6 +446,22 @@ impl Scenario {
         validate(raw, &ctx, base_dir, records)
     }
 
+    /// Validate a scenario given as a TOML table (the structure of a scenario file, e.g. built
+    /// from nested dicts by the Python package's `Scenario.from_dict`). The table is written
+    /// as TOML text ([`table_to_toml`]) and validated by [`Scenario::from_toml`], so that the
+    /// checks, defaults and messages are exactly those of a file; `origin` names it in
+    /// messages (its positions are line:col of that text) and `base_dir` resolves record
+    /// files. Any table is accepted as input: a wrong one is a [`ScenarioError`], never a
+    /// panic.
+    pub fn from_table(
+        table: &toml::Table,
+        origin: &str,
+        base_dir: &Path,
+    ) -> Result<Scenario, ScenarioError> {
+        let text = table_to_toml(table, origin)?;
+        Scenario::from_toml(&text, origin, base_dir)
+    }
+
     /// The assembled system with contact.
     pub fn system(&self) -> System {
         System::new(
@@ -458,6 +480,18 @@ impl Scenario {
             .map(|l| l.height)
             .fold(f64::NEG_INFINITY, f64::max)
     }
+}
+
+/// A scenario table as TOML text (what [`Scenario::from_table`] validates); `origin` names
+/// the table in the error when it cannot be written as TOML.
+pub fn table_to_toml(table: &toml::Table, origin: &str) -> Result<String, ScenarioError> {
+    toml::to_string(table).map_err(|e| ScenarioError::Syntax {
+        at: Location {
+            file: Arc::from(origin),
+            line_col: None,
+        },
+        message: format!("cannot be written as TOML: {e}"),
+    })
 }
 
 /// A sweep file given where a scenario is expected: it has `[[axis]]` tables or a base

@@ -434,6 +434,9 @@ pub struct Sweep {
     base_dir: PathBuf,
     sweep_dir: PathBuf,
     identity: u64,
+    /// The sweep file's text and the base scenario's text, as read.
+    text: String,
+    base_text: String,
     records: RecordCache,
 }
 
@@ -563,6 +566,20 @@ impl Sweep {
     /// Check sweep text; `path` names it in messages and resolves the base scenario and
     /// record files (relative to its directory).
     pub fn from_toml(text: &str, path: &Path) -> Result<Sweep, SweepError> {
+        Sweep::from_toml_with_base(text, path, None)
+    }
+
+    /// As [`Sweep::from_toml`], with the base scenario's text given instead of read from the
+    /// file the sweep names: `base` = (its TOML text, its path — which names it in messages,
+    /// and whose directory resolves its record files). The sweep text's `scenario` key must
+    /// still be there (it is not read). This is how the Python package sweeps a scenario built
+    /// in memory (`pounding.sweep(scenario, axes=…)`), and how a sweep travels to other
+    /// processes ([`Sweep::sources`]).
+    pub fn from_toml_with_base(
+        text: &str,
+        path: &Path,
+        base: Option<(&str, &Path)>,
+    ) -> Result<Sweep, SweepError> {
         let file = path.display().to_string();
         let ctx = Ctx { text, file: &file };
         let raw: RawSweep = toml::from_str(text).map_err(|e| {
@@ -590,19 +607,25 @@ impl Sweep {
                 "missing: name the base scenario file, e.g. scenario = \"paper-c.toml\" (relative to the sweep file)",
             )
         })?;
-        let scenario_path = sweep_dir.join(sc.get_ref());
-        let base_text =
-            crate::input_file::read_text(&scenario_path, crate::input_file::MAX_TEXT_BYTES)
-                .map_err(|e| {
-                    ctx.invalid(
-                        Some(sc.span().start),
-                        "scenario",
-                        format!(
-                            "cannot read the base scenario {}: {e}",
-                            scenario_path.display()
-                        ),
-                    )
-                })?;
+        let (scenario_path, base_text) = match base {
+            Some((text, p)) => (p.to_path_buf(), text.to_string()),
+            None => {
+                let scenario_path = sweep_dir.join(sc.get_ref());
+                let base_text =
+                    crate::input_file::read_text(&scenario_path, crate::input_file::MAX_TEXT_BYTES)
+                        .map_err(|e| {
+                            ctx.invalid(
+                                Some(sc.span().start),
+                                "scenario",
+                                format!(
+                                    "cannot read the base scenario {}: {e}",
+                                    scenario_path.display()
+                                ),
+                            )
+                        })?;
+                (scenario_path, base_text)
+            }
+        };
         let base_name = scenario_path.display().to_string();
         let bctx = Ctx {
             text: &base_text,
@@ -709,6 +732,8 @@ impl Sweep {
         }
         let identity = hash.finish();
         Ok(Sweep {
+            text: text.to_string(),
+            base_text,
             path: path.to_path_buf(),
             scenario_path,
             axes,
@@ -718,6 +743,14 @@ impl Sweep {
             identity,
             records: RecordCache::new(),
         })
+    }
+
+    /// What the sweep was made of: its text, its path, the base scenario's text and path —
+    /// [`Sweep::from_toml_with_base`] of them gives the same sweep (the same cases, the same
+    /// [`Sweep::identity`]) without reading the files again, e.g. in another process. Record
+    /// files are still read from their (absolute) paths.
+    pub fn sources(&self) -> (&str, &Path, &str, &Path) {
+        (&self.text, &self.path, &self.base_text, &self.scenario_path)
     }
 
     /// The code columns of the results (`sep_asce7`, …, in the order of
@@ -808,6 +841,26 @@ impl Sweep {
     /// The scenario TOML of case `case`: the base with the axis values set. Self-contained
     /// (record files are absolute paths): save it and `pounding run` it to reproduce the case.
     pub fn case_toml(&self, case: usize) -> Result<String, String> {
+        let mut t = self.case_table(case)?;
+        // the case's own title: its values, not the base scenario's title (which may name
+        // values this case changes, e.g. "T1/T2 = 0.7" on a period_ratio = 0.9 case)
+        let name = |p: &Path| {
+            p.file_name()
+                .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
+        };
+        let title = format!(
+            "{} — case {case} of sweep {} (base scenario {})",
+            self.label(case),
+            name(&self.path),
+            name(&self.scenario_path)
+        );
+        t.insert("title".into(), Value::String(title));
+        toml::to_string(&t).map_err(|e| format!("cannot encode the case as TOML: {e}"))
+    }
+
+    /// The scenario table of case `case`: the base with the axis values set (its title
+    /// unchanged), not yet validated.
+    pub fn case_table(&self, case: usize) -> Result<Table, String> {
         let mut t = self.base.clone();
         let values = self.values(case);
         // files first (they change the kind of ground motion), then plain keys, then the
@@ -826,20 +879,7 @@ impl Sweep {
         for j in idx {
             self.apply(&mut t, &self.axes[j], values[j])?;
         }
-        // the case's own title: its values, not the base scenario's title (which may name
-        // values this case changes, e.g. "T1/T2 = 0.7" on a period_ratio = 0.9 case)
-        let name = |p: &Path| {
-            p.file_name()
-                .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
-        };
-        let title = format!(
-            "{} — case {case} of sweep {} (base scenario {})",
-            self.label(case),
-            name(&self.path),
-            name(&self.scenario_path)
-        );
-        t.insert("title".into(), Value::String(title));
-        toml::to_string(&t).map_err(|e| format!("cannot encode the case as TOML: {e}"))
+        Ok(t)
     }
 
     /// The validated scenario of case `case`, or why it is not valid (without file positions,
@@ -977,6 +1017,82 @@ impl Sweep {
             }
         }
     }
+}
+
+/// A sweep file's text (`scenario = …` and one `[[axis]]` per entry of `axes`) for sweeping
+/// a scenario given as text: each axis a table with `key` and either `values` or `from`, `to`,
+/// `steps` (and `scale`), exactly as in a sweep file. `scenario` is the base scenario's file
+/// name (it names it; [`Sweep::from_toml_with_base`] takes its text).
+pub fn sweep_text(scenario: &str, axes: Vec<Table>) -> Result<String, SweepError> {
+    let mut t = Table::new();
+    t.insert("scenario".into(), Value::String(scenario.to_string()));
+    t.insert(
+        "axis".into(),
+        Value::Array(axes.into_iter().map(Value::Table).collect()),
+    );
+    toml::to_string(&t)
+        .map_err(|e| SweepError::Usage(format!("axes: cannot be written as TOML: {e}")))
+}
+
+/// A scenario's TOML text with keys set as a sweep sets them (the same key paths, derived
+/// keys such as `period_ratio` included, and the same rules: setting a structure's `period`
+/// removes its `bending_stiffness`, …): `values` = (key path, value) in any order, applied in
+/// the sweep's order. `base` = the scenario's text and path (record files relative to its
+/// directory). The result is not validated: read it with [`Scenario::from_toml`]. Used by the
+/// Python package's `Scenario.replace`.
+pub fn set_keys(
+    base_text: &str,
+    base_path: &Path,
+    values: Vec<(String, Value)>,
+) -> Result<String, SweepError> {
+    let keys: Vec<String> = values.iter().map(|(k, _)| k.clone()).collect();
+    let axes = values
+        .into_iter()
+        .map(|(k, v)| {
+            let mut a = Table::new();
+            a.insert("key".into(), Value::String(k));
+            a.insert("values".into(), Value::Array(vec![v]));
+            a
+        })
+        .collect();
+    let name = base_path
+        .file_name()
+        .map_or_else(|| "scenario".into(), |n| n.to_string_lossy().into_owned());
+    let text = sweep_text(&name, axes)?;
+    let dir = base_path.parent().unwrap_or(Path::new("."));
+    let at = || Location {
+        file: std::sync::Arc::from(base_path.display().to_string()),
+        line_col: None,
+    };
+    // messages name the key as given, not the generated sweep's `axis[N]`
+    let sweep =
+        Sweep::from_toml_with_base(&text, &dir.join("replace"), Some((base_text, base_path)))
+            .map_err(|e| match e {
+                SweepError::Invalid { key, reason, .. } if key.starts_with("axis[") => {
+                    let n: usize = key[5..]
+                        .split(']')
+                        .next()
+                        .and_then(|n| n.parse().ok())
+                        .unwrap_or(1);
+                    SweepError::Invalid {
+                        at: at(),
+                        key: keys.get(n.saturating_sub(1)).cloned().unwrap_or(key),
+                        reason,
+                    }
+                }
+                other => other,
+            })?;
+    let mut table = sweep.case_table(0).map_err(|reason| SweepError::Invalid {
+        at: at(),
+        key: sweep.label(0),
+        reason,
+    })?;
+    // the title says what was changed (the base's title may name the values replaced)
+    if let Some(Value::String(title)) = table.get_mut("title") {
+        *title = format!("{title} — with {}", sweep.label(0));
+    }
+    toml::to_string(&table)
+        .map_err(|e| SweepError::Usage(format!("cannot encode the scenario as TOML: {e}")))
 }
 
 fn as_f64(v: &AxisValue) -> f64 {

@@ -268,6 +268,70 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) ->
     line
 }
 
+/// A results table as typed columns, named as in [`header`] and in its order, from rows in
+/// the format of [`row`] (e.g. [`super::run::CaseResult::line`]): `case` whole numbers; an
+/// axis of numbers (whole numbers) as numbers (whole numbers), of text or lists as text (as
+/// written in the table); `status` and `converged` text; every other column numbers, the same
+/// `f64` the table holds (an empty field — a failed case, `check_max_change` unchecked — is
+/// NaN; `impacts` too, as a number). A row that is not of the sweep's format is an error.
+pub fn columns(
+    sweep: &Sweep,
+    rows: &[impl AsRef<str>],
+) -> Result<Vec<(String, crate::output::Column)>, SweepError> {
+    use crate::output::Column;
+    let names: Vec<String> = std::iter::once("case".to_string())
+        .chain(sweep.axes.iter().map(|a| a.key.clone()))
+        .chain(std::iter::once("status".to_string()))
+        .chain(FIELDS.iter().map(|f| f.to_string()))
+        .chain(sweep.extra_columns().iter().map(|f| f.to_string()))
+        .collect();
+    let mut cols: Vec<Column> = names
+        .iter()
+        .enumerate()
+        .map(|(j, name)| {
+            let axis = j.checked_sub(1).and_then(|a| sweep.axes.get(a));
+            match axis.and_then(|a| a.values.first()) {
+                Some(super::AxisValue::Number(_)) => Column::Float(Vec::new()),
+                Some(super::AxisValue::Integer(_)) => Column::Int(Vec::new()),
+                Some(_) => Column::Text(Vec::new()),
+                None if j == 0 => Column::Int(Vec::new()),
+                None if name == "status" || name == "converged" => Column::Text(Vec::new()),
+                None => Column::Float(Vec::new()),
+            }
+        })
+        .collect();
+    let bad = |i: usize, why: &str| SweepError::Usage(format!("results row {i}: {why}"));
+    for (i, line) in rows.iter().enumerate() {
+        let fields = parse_csv_line(line.as_ref()).ok_or_else(|| bad(i, "broken quoting"))?;
+        if fields.len() != names.len() {
+            return Err(bad(
+                i,
+                &format!(
+                    "{} fields, the table has {} columns",
+                    fields.len(),
+                    names.len()
+                ),
+            ));
+        }
+        for (col, f) in cols.iter_mut().zip(fields) {
+            match col {
+                Column::Int(v) => v.push(
+                    f.parse()
+                        .map_err(|_| bad(i, &format!("`{f}` is not a whole number")))?,
+                ),
+                Column::Float(v) => v.push(if f.is_empty() {
+                    f64::NAN
+                } else {
+                    f.parse()
+                        .map_err(|_| bad(i, &format!("`{f}` is not a number")))?
+                }),
+                Column::Text(v) => v.push(f),
+            }
+        }
+    }
+    Ok(names.into_iter().zip(cols).collect())
+}
+
 /// Checks a row read back: right number of fields, case in range, a known status, numbers
 /// where the status is `ok`. Returns the case and whether it failed.
 fn check_row(line: &str, columns: usize, codes: usize, cases: usize) -> Option<(usize, bool)> {

@@ -273,6 +273,53 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     }
 }
 
+/// Refuse a sweep none of whose `cases` is a valid scenario (a mistake in the base scenario
+/// or the axes) with [`SweepError::NoValidCase`], before computing anything; usually the
+/// first case settles it. No cases: nothing to refuse.
+pub fn require_valid_case(sweep: &Sweep, cases: &[usize]) -> Result<(), SweepError> {
+    if cases.is_empty() {
+        return Ok(());
+    }
+    let any_valid = cases
+        .par_iter()
+        .with_min_len(64)
+        .any(|&c| sweep.case_scenario(c).is_ok());
+    if any_valid {
+        return Ok(());
+    }
+    let c = cases[0];
+    let reason = sweep.case_scenario(c).err().unwrap_or_default();
+    Err(SweepError::NoValidCase {
+        case: c,
+        label: sweep.label(c),
+        reason,
+        scenario: sweep.scenario_path.display().to_string(),
+        sweep: sweep.path.display().to_string(),
+    })
+}
+
+/// Every case of `sweep` computed in memory on `jobs` threads ([`compute_case`], checked if
+/// `check`), in case order: the rows `pounding sweep` writes to results.csv, without the
+/// journal and the files (the Python package's `pounding.sweep`). A sweep none of whose cases
+/// is valid is refused as by [`run`].
+pub fn compute_all(sweep: &Sweep, jobs: usize, check: bool) -> Result<Vec<CaseResult>, SweepError> {
+    if jobs == 0 {
+        return Err(SweepError::Usage("jobs must be at least 1".into()));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| SweepError::Usage(format!("cannot start {jobs} threads: {e}")))?;
+    let cases: Vec<usize> = (0..sweep.len()).collect();
+    pool.install(|| {
+        require_valid_case(sweep, &cases)?;
+        Ok(cases
+            .par_iter()
+            .map(|&c| compute_case(sweep, c, check))
+            .collect())
+    })
+}
+
 /// Run (or resume) part `opts.shard` of `sweep` into `opts.out_dir`.
 pub fn run(
     sweep: &Sweep,
@@ -299,25 +346,9 @@ pub fn run(
         .map_err(|e| SweepError::Usage(format!("cannot start {} threads: {e}", opts.jobs)))?;
 
     // Refuse a sweep none of whose cases is a valid scenario (a mistake in the base scenario
-    // or the axes), before computing anything. Usually the first case settles it.
-    if !pending.is_empty() && journal.rows.values().all(|(_, failed)| *failed) {
-        let any_valid = pool.install(|| {
-            pending
-                .par_iter()
-                .with_min_len(64)
-                .any(|&c| sweep.case_scenario(c).is_ok())
-        });
-        if !any_valid {
-            let c = pending[0];
-            let reason = sweep.case_scenario(c).err().unwrap_or_default();
-            return Err(SweepError::NoValidCase {
-                case: c,
-                label: sweep.label(c),
-                reason,
-                scenario: sweep.scenario_path.display().to_string(),
-                sweep: sweep.path.display().to_string(),
-            });
-        }
+    // or the axes), before computing anything.
+    if journal.rows.values().all(|(_, failed)| *failed) {
+        pool.install(|| require_valid_case(sweep, &pending))?;
     }
 
     let started = Instant::now();

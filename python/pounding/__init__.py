@@ -1,0 +1,198 @@
+"""pounding — seismic pounding of adjacent buildings, from Python.
+
+The same library as the ``pounding`` command line (written in Rust), with NumPy arrays::
+
+    import pounding
+    sc = pounding.Scenario.from_file("examples/paper-c.toml")
+    res = pounding.run(sc)                      # both runs, as `pounding run`
+    res.summary["structures"][0]["peak_displacement"]
+    res.history["w1"]                           # NumPy float64 arrays, history.csv's columns
+    table = pounding.sweep("examples/quick-sweep.toml", jobs=2)   # results.csv's columns
+
+Nothing is computed in Python: every function here parses its arguments, calls the compiled
+library (``pounding._core``) and converts its results. Simulations release the GIL, so runs
+from a ``concurrent.futures.ThreadPoolExecutor`` use every core. Errors are exceptions carrying
+the command line's message: :class:`ScenarioError` and :class:`SweepError` (both
+``ValueError``), :class:`SolveError` (``RuntimeError``), :class:`OutputError` (``OSError``).
+For a cluster, :mod:`pounding.distributed` runs a sweep through Dask.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Mapping, Union
+
+from . import _core
+from ._core import OutputError, Scenario, ScenarioError, SolveError, SweepError
+
+__all__ = [
+    "Scenario",
+    "RunResult",
+    "SweepTable",
+    "run",
+    "sweep",
+    "plan_sweep",
+    "ScenarioError",
+    "SweepError",
+    "SolveError",
+    "OutputError",
+]
+
+__version__: str = _core.__version__
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class RunResult:
+    """The outcome of :func:`run`: what ``pounding run --out DIR`` writes, as Python objects.
+
+    Attributes are computed from the run once, on first access:
+
+    - ``summary``: dict, exactly the content of summary.json;
+    - ``history``: dict of 1-D float64 arrays keyed by history.csv's columns (``t``, ``w1``,
+      ``w2``, ``force``, ``w1_free``, ``w2_free``, and ``force_1 … force_k`` with several
+      contact levels);
+    - ``impacts``: dict of 1-D arrays keyed by impacts.csv's columns (``level`` int64, 1-based;
+      ``height``, ``start``, ``end``, ``duration``, ``peak_force``, ``impulse``,
+      ``max_penetration``, ``approach_speed`` float64), one entry per impact;
+    - ``floors``: dict of 1-D float64 arrays keyed by floors.csv's columns (``t``, then
+      ``u1_<h>``, ``a1_<h>``, … with pounding, then the same with ``_free``);
+    - ``warnings``: list of the run's warnings (as ``pounding run`` prints them).
+    """
+
+    __slots__ = ("_out", "_cache")
+
+    def __init__(self, out: _core.RunOutput) -> None:
+        self._out = out
+        self._cache: dict[str, Any] = {}
+
+    def _get(self, name: str, make: Any) -> Any:
+        if name not in self._cache:
+            self._cache[name] = make()
+        return self._cache[name]
+
+    @property
+    def summary(self) -> dict[str, Any]:
+        """summary.json's content (the same text ``pounding run`` writes, parsed)."""
+        return self._get("summary", lambda: json.loads(self._out.summary_json()))
+
+    @property
+    def summary_json(self) -> str:
+        """summary.json's text, byte for byte."""
+        return self._out.summary_json()
+
+    @property
+    def history(self) -> dict[str, Any]:
+        """history.csv's columns: dict of 1-D float64 NumPy arrays (s, m, N)."""
+        return self._get("history", self._out.history)
+
+    @property
+    def impacts(self) -> dict[str, Any]:
+        """impacts.csv's columns: dict of 1-D NumPy arrays, one entry per impact."""
+        return self._get("impacts", self._out.impacts)
+
+    @property
+    def floors(self) -> dict[str, Any]:
+        """floors.csv's columns: dict of 1-D float64 NumPy arrays (m, m/s²)."""
+        return self._get("floors", self._out.floors)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The run's warnings."""
+        return self._out.warnings
+
+    def to_pandas(self) -> dict[str, Any]:
+        """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
+        import pandas as pd  # optional dependency
+
+        return {
+            "history": pd.DataFrame(self.history),
+            "impacts": pd.DataFrame(self.impacts),
+            "floors": pd.DataFrame(self.floors),
+        }
+
+    def save(self, dir: PathLike, plots: bool = True) -> list[str]:
+        """Write the files ``pounding run --out DIR`` writes (history.csv, impacts.csv,
+        floors.csv, the pictures unless ``plots`` is false, summary.json last; each file
+        atomically). Returns the paths written, in order."""
+        return [str(p) for p in self._out.save(os.fspath(dir), plots)]
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return (
+            f"RunResult({s['title']!r}: peaks {s['structures'][0]['peak_displacement']:.4g} m, "
+            f"{s['structures'][1]['peak_displacement']:.4g} m, {s['contact']['impacts']} impacts)"
+        )
+
+
+def run(scenario: Scenario, *, check: bool = True, max_output_size: int = 1_000_000_000) -> RunResult:
+    """Simulate ``scenario`` with and without pounding, as ``pounding run`` does.
+
+    ``check``: also run the self-check (a second run at a 100× tighter tolerance; summary's
+    ``accuracy``), as the command line does unless ``--no-check``. ``max_output_size``: the
+    largest history (bytes, as history.csv would hold it) the run may keep (``--max-output-size``).
+    The GIL is released during the simulation. Raises :class:`SolveError` (e.g. an unstable
+    step, a scenario whose ground motion is a design spectrum) and :class:`ScenarioError`
+    (a history above ``max_output_size``).
+    """
+    if not isinstance(scenario, Scenario):
+        raise TypeError(f"run() takes a pounding.Scenario, not {type(scenario).__name__}")
+    return RunResult(_core.run(scenario, check, max_output_size))
+
+
+class SweepTable(dict):
+    """A sweep's results: dict of columns in results.csv's order, rows in case order.
+
+    ``case`` int64; an axis of numbers float64 (of whole numbers int64, of text or lists: a list
+    of str as results.csv writes them); ``status`` and ``converged`` lists of str; every other
+    column float64 — the same numbers results.csv holds (an empty field, e.g. of a failed case,
+    is NaN; ``impacts`` is float64 for that reason).
+    """
+
+    def to_pandas(self) -> Any:
+        """The table as a pandas DataFrame (needs pandas); ``impacts`` as pandas' nullable
+        ``Int64`` (``<NA>`` for a failed case)."""
+        import pandas as pd  # optional dependency
+
+        df = pd.DataFrame(dict(self))
+        if "impacts" in df:
+            df["impacts"] = df["impacts"].astype("Int64")
+        return df
+
+
+def plan_sweep(source: Union[PathLike, Scenario], axes: Mapping[str, Any] | None = None) -> _core.Sweep:
+    """The checked sweep of a sweep file, or of a :class:`Scenario` along ``axes``.
+
+    ``axes``: key path → list of values, or → dict with ``from``, ``to``, ``steps`` (and
+    ``scale = "log"``), exactly as a sweep file's ``[[axis]]`` tables, first axis slowest.
+    The result lists the cases and runs any one of them to its results row (what
+    :mod:`pounding.distributed` sends to workers; it pickles)."""
+    if isinstance(source, Scenario):
+        if not axes:
+            raise SweepError("sweep of a Scenario: give axes={key path: values, …}")
+        return _core.Sweep.from_scenario(source, dict(axes))
+    if axes is not None:
+        raise SweepError("axes= goes with a Scenario; a sweep file gives its own [[axis]] tables")
+    return _core.Sweep.from_file(os.fspath(source))
+
+
+def sweep(
+    source: Union[PathLike, Scenario],
+    axes: Mapping[str, Any] | None = None,
+    *,
+    jobs: int | None = None,
+    check: bool = True,
+) -> SweepTable:
+    """Run every case of a sweep on ``jobs`` threads (default: every core), as ``pounding
+    sweep`` does, and return its results table (:class:`SweepTable`), equal to results.csv.
+
+    ``source``: a sweep file, or a :class:`Scenario` with ``axes`` (see :func:`plan_sweep`).
+    ``check``: each case's self-check (``--no-check`` when false; ``converged`` then says
+    ``unchecked``). A failed case is a row with ``status`` ``failed: …``; a sweep none of whose
+    cases is a valid scenario raises :class:`SweepError`. Nothing is written to disk.
+    """
+    plan = plan_sweep(source, axes)
+    jobs = _core.available_parallelism() if jobs is None else int(jobs)
+    rows = plan.run_all(jobs, check)
+    return SweepTable(plan.columns(rows))
