@@ -279,7 +279,9 @@ mod tests {
                     * st.dy
                     * z.abs().powf(st.n)
                     * (st.beta * (dd * z).abs() + st.gamma * dd * z);
-                assert!((rate - closed).abs() <= 1e-12 * closed.abs().max(1.0));
+                // (round-off of z ḋ − d_y ż, each of size |z ḋ|)
+                let scale = st.kh() * st.dy * (z * dd).abs();
+                assert!((rate - closed).abs() <= 1e-12 * scale.max(1.0));
                 assert!(rate >= -1e-12, "z {z} ḋ {dd}: {rate}");
             }
         }

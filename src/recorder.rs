@@ -10,10 +10,10 @@
 use serde::Serialize;
 
 use crate::contact::ContactForce;
-use crate::storey_record::{StoreyRecord, StoreyTracker};
 use crate::floor_response::{FloorPeaks, FloorRecorder};
 use crate::integrate::linear::hermite_max;
 use crate::integrate::{Observer, StepView, onset_speed};
+use crate::storey_record::{StoreyRecord, StoreyTracker};
 use crate::system::System;
 
 /// One contact episode at one level: from the first instant of penetration to separation.
@@ -383,7 +383,10 @@ impl<'s> Recorder<'s> {
         let [modal, stored, input, damping, contact, hysteretic] = self.last_energy;
         let modal_change = modal - self.modal_initial;
         let residual = input - modal_change - damping - contact - hysteretic;
-        let storeys = self.storeys.take().map_or(Vec::new(), StoreyTracker::finish);
+        let storeys = self
+            .storeys
+            .take()
+            .map_or(Vec::new(), StoreyTracker::finish);
         let (hysteretic_dissipated, hysteretic_stored) = if storeys.is_empty() {
             (None, None)
         } else {

@@ -6,11 +6,11 @@ use serde::Serialize;
 
 use crate::accuracy::{AccuracyCheck, limited_tightening, tightened};
 use crate::floor_response::FloorPeaks;
-use crate::storey_record::StoreyRecord;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
 use crate::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
 use crate::scenario::Scenario;
 use crate::separation::{PeakPair, Separations};
+use crate::storey_record::StoreyRecord;
 use crate::system::System;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
@@ -503,8 +503,11 @@ fn simulate_phases(
             max_residual_drift_no_contact: over(&yb, |r| r.residual_drift.abs(), false),
             hysteretic_energy: over(&ya, |r| r.hysteretic_energy, true),
             hysteretic_energy_no_contact: over(&yb, |r| r.hysteretic_energy, true),
-            min_yield_drift: yielding
-                .then(|| ya.iter().map(|r| r.yield_drift).fold(f64::INFINITY, f64::min)),
+            min_yield_drift: yielding.then(|| {
+                ya.iter()
+                    .map(|r| r.yield_drift)
+                    .fold(f64::INFINITY, f64::min)
+            }),
             name: s.name().to_string(),
             periods: m.periods(),
             damping_ratios: m.zeta.clone(),

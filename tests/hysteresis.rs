@@ -3,6 +3,9 @@
 //! variables, sharing nothing with the program but the equations), and against closed forms of
 //! the law (elastic limit, backbone, loop area), the energy balance and mirror symmetry.
 
+// Index loops over parallel per-floor arrays read like the equations they integrate.
+#![allow(clippy::needless_range_loop)]
+
 use std::path::Path;
 
 use pounding::scenario::Scenario;
@@ -309,7 +312,11 @@ fn compare(r: &Report, i: usize, p: &Storeys, bd: &Building, tol: f64, tol_resid
             ("drift", f.peak_drift, p.drift[j]),
             ("storey force", f.peak_shear, p.force[j]),
             ("ductility", f.peak_ductility.unwrap(), p.drift[j] / dy),
-            ("hysteretic energy", f.hysteretic_energy.unwrap(), p.energy[j]),
+            (
+                "hysteretic energy",
+                f.hysteretic_energy.unwrap(),
+                p.energy[j],
+            ),
         ];
         for (what, got, want) in checks {
             let e = rel(got, want);
@@ -369,16 +376,18 @@ fn yielding_buildings_match_a_physical_coordinate_integration() {
     for (i, bd) in [&a, &b].into_iter().enumerate() {
         worst = worst.max(compare(&r, i, &phys[i], bd, 1e-6, 1e-6));
     }
-    assert!(rel(r.contact.peak_force, force) < 1e-6, "{}", r.contact.peak_force);
+    assert!(
+        rel(r.contact.peak_force, force) < 1e-6,
+        "{}",
+        r.contact.peak_force
+    );
     eprintln!(
         "adaptive: worst relative difference {worst:.2e}; peak force {:.2e}",
         rel(r.contact.peak_force, force)
     );
     assert!(r.energy.relative_error < 1e-8, "{:?}", r.energy);
 
-    let r = run(&text(
-        "method = \"rk4\"\ndt = 2e-4\noutput_interval = 0.01",
-    ));
+    let r = run(&text("method = \"rk4\"\ndt = 2e-4\noutput_interval = 0.01"));
     let mut worst: f64 = 0.0;
     for (i, bd) in [&a, &b].into_iter().enumerate() {
         worst = worst.max(compare(&r, i, &phys[i], bd, 1e-4, 1e-4));
@@ -455,7 +464,12 @@ fn one_mode_and_all_modes_bracket_the_physical_result() {
     let (ground, ag) = harmonic(0.5, 0.8);
     let duration = 3.0;
     let text = |modes: &str| {
-        let with = |s: String| s.replace("kind = \"shear-building\"\n", &format!("kind = \"shear-building\"\n{modes}"));
+        let with = |s: String| {
+            s.replace(
+                "kind = \"shear-building\"\n",
+                &format!("kind = \"shear-building\"\n{modes}"),
+            )
+        };
         format!(
             "{}{}[ground_motion]\nkind = \"harmonic\"\npga = 0.5\nperiod = 0.8\n[solver]\nduration = {duration}\ndt = 1e-3\n",
             with(a.toml("A", &HEIGHTS_A)),
@@ -480,7 +494,9 @@ fn one_mode_and_all_modes_bracket_the_physical_result() {
         worst
     };
     let (e_all, e_one) = (err(&all), err(&one));
-    eprintln!("largest relative error of drift/energy: all modes {e_all:.2e}, one mode {e_one:.2e}");
+    eprintln!(
+        "largest relative error of drift/energy: all modes {e_all:.2e}, one mode {e_one:.2e}"
+    );
     assert!(e_all < 1e-4, "{e_all}");
     assert!(e_one > 100.0 * e_all, "{e_one}");
 }
@@ -713,8 +729,7 @@ fn mirror_symmetry() {
             assert!(rel(f.peak_ductility.unwrap(), g.peak_ductility.unwrap()) < 1e-6);
             assert!(rel(f.hysteretic_energy.unwrap(), g.hysteretic_energy.unwrap()) < 1e-6);
             assert!(
-                (f.residual_drift.unwrap() + g.residual_drift.unwrap()).abs()
-                    < 1e-6 * f.peak_drift
+                (f.residual_drift.unwrap() + g.residual_drift.unwrap()).abs() < 1e-6 * f.peak_drift
             );
         }
     }
@@ -762,11 +777,19 @@ fn hysteresis_keys_and_errors() {
         "",
     );
     assert!(
-        e.contains("y.toml:") && e.contains("structure[1].hysteresis.yield_drifts") && e.contains("3 storeys"),
+        e.contains("y.toml:")
+            && e.contains("structure[1].hysteresis.yield_drifts")
+            && e.contains("3 storeys"),
         "{e}"
     );
-    let e = err("hysteresis = { yield_drifts = 0.01, post_yield_ratio = 1.0 }", "");
-    assert!(e.contains("post_yield_ratio") && e.contains("[0, 1)"), "{e}");
+    let e = err(
+        "hysteresis = { yield_drifts = 0.01, post_yield_ratio = 1.0 }",
+        "",
+    );
+    assert!(
+        e.contains("post_yield_ratio") && e.contains("[0, 1)"),
+        "{e}"
+    );
     let e = err(
         "hysteresis = { yield_drifts = 0.01, post_yield_ratio = 0.1, exponent = 0.5 }",
         "",
@@ -810,5 +833,8 @@ fn hysteresis_keys_and_errors() {
         1,
     );
     let s = scenario(&table, dir).unwrap();
-    assert_eq!(s.structures[0].hysteresis().unwrap().yield_drifts, vec![0.01; 3]);
+    assert_eq!(
+        s.structures[0].hysteresis().unwrap().yield_drifts,
+        vec![0.01; 3]
+    );
 }

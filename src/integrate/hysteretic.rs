@@ -275,7 +275,7 @@ pub(crate) fn run_traced<O: Observer>(
             stats.events += 1;
             continue;
         }
-        if !(err <= 1.0) {
+        if err.is_nan() || err > 1.0 {
             forced = false;
             located = None;
             stats.rejected += 1;
@@ -542,7 +542,16 @@ mod tests {
                     tmp[j] = y[j] + w * h * k[stage - 1][j];
                 }
                 let (_, rest) = k.split_at_mut(stage);
-                deriv(sys, t + c * h, (n, ns), &tmp, &tr.onset, &mut rest[0], &mut pw, &mut st);
+                deriv(
+                    sys,
+                    t + c * h,
+                    (n, ns),
+                    &tmp,
+                    &tr.onset,
+                    &mut rest[0],
+                    &mut pw,
+                    &mut st,
+                );
             }
             for j in 0..len {
                 y[j] += h / 6.0 * (k[0][j] + 2.0 * k[1][j] + 2.0 * k[2][j] + k[3][j]);
@@ -618,7 +627,11 @@ mod tests {
                 trace.len(),
                 stats.events
             );
-            assert!(stats.events > 20, "premise: kinks located ({})", stats.events);
+            assert!(
+                stats.events > 20,
+                "premise: kinks located ({})",
+                stats.events
+            );
             assert!(worst <= 20.0, "rtol {rtol}: {worst}");
             assert!(worst_kink <= 20.0, "rtol {rtol}: {worst_kink}");
             assert!(max_true <= 3.0, "rtol {rtol}: {max_true}");

@@ -397,9 +397,9 @@ pub fn integrate<O: Observer>(
         Method::Rk4 => rk4::run(system, settings, initial, observer),
         Method::Adaptive if yielding => hysteretic::run(system, settings, initial, observer),
         Method::Adaptive => adaptive::run(system, settings, initial, observer),
-        Method::ExactModal if yielding => Err(SolveError::HysteresisUnsupported(
-            Method::ExactModal.name(),
-        )),
+        Method::ExactModal if yielding => {
+            Err(SolveError::HysteresisUnsupported(Method::ExactModal.name()))
+        }
         Method::ExactModal => exact_modal::run(system, settings, initial, observer),
     }
 }

@@ -354,6 +354,8 @@ fn eval(
     p
 }
 
+// (index loops over the parallel stage arrays read like the RK4 formulas)
+#[allow(clippy::needless_range_loop)]
 pub(super) fn run<O: Observer>(
     sys: &System,
     settings: &SolverSettings,

@@ -1060,7 +1060,10 @@ fn validate(
     floors_at_contact(&c, &raw, &structures, &contact)?;
     if structures.iter().any(|s| s.hysteresis().is_some())
         && solver.method == Method::ExactModal
-        && let Some(m) = raw.solver.as_ref().and_then(|s| s.get_ref().method.as_ref())
+        && let Some(m) = raw
+            .solver
+            .as_ref()
+            .and_then(|s| s.get_ref().method.as_ref())
     {
         return Err(c.invalid(
             m,

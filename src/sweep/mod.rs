@@ -753,10 +753,26 @@ impl Sweep {
         }
     }
 
-    /// Every column after [`results::FIELDS`]: the code columns, then the floor columns.
+    /// The ductility columns ([`results::DUCTILITY_FIELDS`]) when the base scenario has a
+    /// yielding building (a `hysteresis` table in a `[[structure]]`).
+    pub fn ductility_columns(&self) -> Vec<&'static str> {
+        let yielding = match self.base.get("structure") {
+            Some(Value::Array(list)) => list.iter().any(|s| s.get("hysteresis").is_some()),
+            _ => false,
+        };
+        if yielding {
+            results::DUCTILITY_FIELDS.to_vec()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Every column after [`results::FIELDS`]: the code columns, then the floor columns, then
+    /// the ductility columns.
     pub fn extra_columns(&self) -> Vec<&'static str> {
         let mut v = self.code_columns();
         v.extend(self.floor_columns());
+        v.extend(self.ductility_columns());
         v
     }
 
