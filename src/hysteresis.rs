@@ -258,7 +258,7 @@ impl Hysteresis {
 mod tests {
     use super::*;
 
-    /// dE_h/dt = (1 − α) k d_y (z ḋ − d_y ż) = (1 − α) k d_y |z|ⁿ (β|ḋz| + γ ḋz) ≥ 0 for β ≥ |γ|.
+    /// dE_h/dt = (1 − α) k d_y z (ḋ − d_y ż) = (1 − α) k d_y |z|ⁿ (β|ḋz| + γ ḋz) ≥ 0 for β ≥ |γ|.
     #[test]
     fn dissipation_rate_is_non_negative_and_matches_the_closed_form() {
         let st = Storey {
@@ -274,12 +274,12 @@ mod tests {
         for &z in &[-1.1, -0.7, -0.1, 0.0, 0.3, 0.99] {
             for &dd in &[-0.3, -0.01, 0.0, 0.02, 0.5] {
                 let zd = st.z_rate(dd, z);
-                let rate = st.kh() * st.dy * (z * dd - st.dy * zd);
+                let rate = st.kh() * st.dy * z * (dd - st.dy * zd);
                 let closed = st.kh()
                     * st.dy
                     * z.abs().powf(st.n)
                     * (st.beta * (dd * z).abs() + st.gamma * dd * z);
-                // (round-off of z ḋ − d_y ż, each of size |z ḋ|)
+                // (round-off of ḋ − d_y ż, each of size |ḋ|)
                 let scale = st.kh() * st.dy * (z * dd).abs();
                 assert!((rate - closed).abs() <= 1e-12 * scale.max(1.0));
                 assert!(rate >= -1e-12, "z {z} ḋ {dd}: {rate}");
