@@ -346,7 +346,7 @@ impl<'s> Recorder<'s> {
             last_energy: [0.0; 6],
             end: duration,
             floors: Some(FloorRecorder::new(system, heights, interval)),
-            storeys: StoreyTracker::new(system, interval),
+            storeys: StoreyTracker::new(system, interval, duration),
         }
     }
 

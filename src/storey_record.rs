@@ -61,12 +61,14 @@ pub struct StoreyTracker {
 
 impl StoreyTracker {
     /// For the yielding storeys of `system` (None when it has none); loop points every
-    /// `interval` s at most.
-    pub fn new(system: &System, interval: f64) -> Option<StoreyTracker> {
+    /// `interval` s at most over a run of `duration` s (their storage reserved here: the time
+    /// loop does not allocate).
+    pub fn new(system: &System, interval: f64, duration: f64) -> Option<StoreyTracker> {
         let h = &system.hysteresis;
         if h.is_empty() {
             return None;
         }
+        let points = ((duration / interval).ceil() as usize + 2).min(MAX_LOOP_POINTS + 1);
         let records = h
             .storeys()
             .iter()
@@ -78,7 +80,7 @@ impl StoreyTracker {
                 peak_force: 0.0,
                 residual_drift: 0.0,
                 hysteretic_energy: 0.0,
-                loop_points: Vec::with_capacity(1024),
+                loop_points: Vec::with_capacity(points),
             })
             .collect();
         Some(StoreyTracker {
@@ -123,8 +125,12 @@ impl StoreyTracker {
             self.prev[k] = (d, dd);
             if take_loop {
                 if r.loop_points.len() >= MAX_LOOP_POINTS {
-                    let kept: Vec<[f64; 2]> = r.loop_points.iter().step_by(2).copied().collect();
-                    r.loop_points = kept;
+                    // keep every other point, in place
+                    let mut i = 0;
+                    r.loop_points.retain(|_| {
+                        i += 1;
+                        i % 2 == 1
+                    });
                     if k + 1 == hy.len() {
                         self.interval *= 2.0;
                     }
