@@ -917,6 +917,16 @@ fn sweeps_report_peak_ductility() {
     assert_eq!(got, r.structures[1].peak_ductility.unwrap());
     let got: f64 = cells[first + 3].parse().unwrap();
     assert_eq!(got, r.structures[1].peak_ductility_no_contact.unwrap());
+    // the Bouc–Wen keys are axes (`yield_drifts` one value for every storey; it replaces
+    // `yield_forces`)
+    let text = "scenario = \"yielding-frames.toml\"\n[[axis]]\n\
+        key = \"structure.2.hysteresis.yield_drifts\"\nvalues = [0.01, 0.02]\n\
+        [[axis]]\nkey = \"structure.2.hysteresis.post_yield_ratio\"\nvalues = [0.1]\n";
+    let sweep = Sweep::from_toml(text, &root.join("s.toml")).unwrap();
+    let sc = sweep.case_scenario(1).unwrap();
+    let bw = sc.structures[1].hysteresis().unwrap();
+    assert_eq!(bw.yield_drifts, vec![0.02; 8]);
+    assert_eq!(bw.post_yield_ratio, 0.1);
 }
 
 /// The self-check sees the hysteresis: every yielding building's peak ductility (with and

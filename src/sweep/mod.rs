@@ -207,6 +207,8 @@ enum Kind {
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Section {
     Structure(usize),
+    /// A structure's `hysteresis` table (issue 16).
+    Hysteresis(usize),
     Contact,
     Level(usize),
     Ground,
@@ -263,6 +265,16 @@ const STRUCTURE_FIELDS: &[(&str, Kind)] = &[
     ("storey_stiffnesses", Kind::List),
     ("periods", Kind::List),
 ];
+/// A yielding building's Bouc–Wen keys (`structure.N.hysteresis.KEY`; one value for every
+/// storey).
+const HYSTERESIS_FIELDS: &[(&str, Kind)] = &[
+    ("yield_drifts", Kind::Number),
+    ("yield_forces", Kind::Number),
+    ("post_yield_ratio", Kind::Number),
+    ("exponent", Kind::Number),
+    ("beta", Kind::Number),
+    ("gamma", Kind::Number),
+];
 const CONTACT_FIELDS: &[(&str, Kind)] = &[
     ("stiffness", Kind::Number),
     ("restitution", Kind::Number),
@@ -299,6 +311,9 @@ fn valid_keys() -> Vec<String> {
     }
     v.push("structure.N.stiffness_scale".into());
     v.push("structure.N.mass_scale".into());
+    for (f, _) in HYSTERESIS_FIELDS {
+        v.push(format!("structure.N.hysteresis.{f}"));
+    }
     for (f, _) in CONTACT_FIELDS {
         v.push(format!("contact.{f}"));
     }
@@ -344,6 +359,14 @@ fn parse_key(raw: &str) -> Result<(String, Target), String> {
             Ok(Target::Scale {
                 structure: i,
                 mass: *f == "mass_scale",
+            })
+        }
+        ["structure", n, "hysteresis", f] => {
+            let i = index(n, "structure", Some(2))?;
+            field(HYSTERESIS_FIELDS, f).map(|(field, kind)| Target::Key {
+                section: Section::Hysteresis(i),
+                field,
+                kind,
             })
         }
         ["structure", n, f] => {
@@ -956,6 +979,7 @@ impl Sweep {
                 };
                 let table = match section {
                     Section::Structure(i) => structure_mut(t, *i)?,
+                    Section::Hysteresis(i) => section_mut(structure_mut(t, *i)?, "hysteresis")?,
                     Section::Contact => section_mut(t, "contact")?,
                     Section::Level(i) => level_mut(t, *i)?,
                     Section::Ground => section_mut(t, "ground_motion")?,
@@ -975,6 +999,12 @@ impl Sweep {
                     }
                     (Section::Structure(_), "strain_rate_damping" | "air_damping") => {
                         table.remove("damping_ratio");
+                    }
+                    (Section::Hysteresis(_), "yield_drifts") => {
+                        table.remove("yield_forces");
+                    }
+                    (Section::Hysteresis(_), "yield_forces") => {
+                        table.remove("yield_drifts");
                     }
                     (Section::Ground, "file") => {
                         table.insert("kind".into(), Value::String("record".into()));
