@@ -17,6 +17,7 @@ use crate::modal::{Cantilever, Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
 mod floors;
+mod hysteresis;
 
 /// Most modes a structure may keep.
 pub const MAX_MODES: i64 = 500;
