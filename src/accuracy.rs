@@ -46,7 +46,7 @@ pub fn is_check_warning(warning: &str) -> bool {
 
 /// The quantities checked, by the names used in `summary.json`'s `accuracy.quantities` and in
 /// a sweep's results table, with what they are.
-pub const QUANTITIES: [(&str, &str); 7] = [
+pub const QUANTITIES: [(&str, &str); 15] = [
     (
         "peak_displacement_1",
         "peak displacement of structure 1 with pounding",
@@ -66,6 +66,39 @@ pub const QUANTITIES: [(&str, &str); 7] = [
     ("peak_force", "peak contact force"),
     ("impacts", "number of impacts"),
     ("sep_time_history", "required separation (time history)"),
+    // yielding buildings only (issue 16)
+    (
+        "peak_ductility_1",
+        "peak ductility demand of structure 1 with pounding",
+    ),
+    (
+        "peak_ductility_2",
+        "peak ductility demand of structure 2 with pounding",
+    ),
+    (
+        "peak_ductility_no_contact_1",
+        "peak ductility demand of structure 1 without pounding",
+    ),
+    (
+        "peak_ductility_no_contact_2",
+        "peak ductility demand of structure 2 without pounding",
+    ),
+    (
+        "residual_drift_1",
+        "largest residual drift of structure 1 with pounding (change relative to the larger of it and the smallest yield drift)",
+    ),
+    (
+        "residual_drift_2",
+        "largest residual drift of structure 2 with pounding (change relative to the larger of it and the smallest yield drift)",
+    ),
+    (
+        "hysteretic_energy_1",
+        "hysteretic energy of structure 1 with pounding (change relative to the larger of it and 0.1 % of the input energy)",
+    ),
+    (
+        "hysteretic_energy_2",
+        "hysteretic energy of structure 2 with pounding (change relative to the larger of it and 0.1 % of the input energy)",
+    ),
 ];
 
 /// The settings of the check run, from the run's own settings — the one place that says what
@@ -320,6 +353,74 @@ impl AccuracyCheck {
                 tight.separation.time_history,
             ),
         ];
+        let mut quantities = quantities;
+        // yielding buildings (issue 16): ductility, residual drift, hysteretic energy
+        let names = [
+            (
+                "peak_ductility_1",
+                "peak_ductility_no_contact_1",
+                "residual_drift_1",
+                "hysteretic_energy_1",
+            ),
+            (
+                "peak_ductility_2",
+                "peak_ductility_no_contact_2",
+                "residual_drift_2",
+                "hysteretic_energy_2",
+            ),
+        ];
+        for (i, (a, b)) in report.structures.iter().zip(&tight.structures).enumerate() {
+            let (
+                Some(mu),
+                Some(mu_t),
+                Some(mu0),
+                Some(mu0_t),
+                Some(r),
+                Some(r_t),
+                Some(e),
+                Some(e_t),
+            ) = (
+                a.peak_ductility,
+                b.peak_ductility,
+                a.peak_ductility_no_contact,
+                b.peak_ductility_no_contact,
+                a.max_residual_drift,
+                b.max_residual_drift,
+                a.hysteretic_energy,
+                b.hysteretic_energy,
+            )
+            else {
+                continue;
+            };
+            let (n_mu, n_mu0, n_r, n_e) = names[i];
+            quantities.push(real(n_mu, mu, mu_t));
+            quantities.push(real(n_mu0, mu0, mu0_t));
+            // a residual drift near zero: its change in units of the yield drift
+            let scale = r_t.abs().max(a.min_yield_drift.unwrap_or(0.0));
+            quantities.push(QuantityChange {
+                name: n_r,
+                value: r,
+                tight: r_t,
+                change: if scale > 0.0 && r.is_finite() && r_t.is_finite() {
+                    (r - r_t).abs() / scale
+                } else {
+                    relative_change(r, r_t)
+                },
+            });
+            // a storey that barely yields dissipates next to nothing: its change in units of
+            // 0.1 % of the ground's input (with pounding) when that is larger
+            let scale = e_t.abs().max(1e-3 * tight.energy.input.abs());
+            quantities.push(QuantityChange {
+                name: n_e,
+                value: e,
+                tight: e_t,
+                change: if scale > 0.0 && e.is_finite() && e_t.is_finite() {
+                    (e - e_t).abs() / scale
+                } else {
+                    relative_change(e, e_t)
+                },
+            });
+        }
         // the largest change; a NaN change counts as the largest
         let worst = quantities.iter().copied().reduce(|m, q| {
             if q.change.is_nan() || q.change > m.change {

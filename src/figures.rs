@@ -48,7 +48,9 @@ pub fn drawn_force(
 
 /// The pictures of a run, as `pounding run` draws them into its directory: the time-history
 /// figure (`history.png/.svg`, [`time_history_figure`]) and the envelopes over height
-/// (`envelopes.png/.svg`, [`envelope_figure`]); for [`crate::output::RunWriter::finish`].
+/// (`envelopes.png/.svg`, [`envelope_figure`]) and, with yielding storeys, the hysteresis loops
+/// (`hysteresis.png/.svg`, [`hysteresis_figure`]; removed after an elastic run so that no stale
+/// loops sit beside its summary); for [`crate::output::RunWriter::finish`].
 pub fn run_pictures<'a>(
     scenario: &'a Scenario,
     report: &'a Report,
@@ -57,6 +59,15 @@ pub fn run_pictures<'a>(
         let mut files = time_history_figure(scenario, report, &dir.join("history"))
             .map_err(|e| e.to_string())?;
         files.extend(envelope_figure(report, &dir.join("envelopes")).map_err(|e| e.to_string())?);
+        match hysteresis_figure(report, &dir.join("hysteresis")).map_err(|e| e.to_string())? {
+            Some(f) => files.extend(f),
+            // an elastic run: no stale loops beside its summary
+            None => {
+                for ext in ["png", "svg"] {
+                    let _ = std::fs::remove_file(dir.join(format!("hysteresis.{ext}")));
+                }
+            }
+        }
         Ok(files)
     })
 }
@@ -202,7 +213,7 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
             ]
         })
         .collect();
-    let panels = quantities
+    let mut panels: Vec<ProfilePanel> = quantities
         .iter()
         .zip(&values)
         .enumerate()
@@ -227,13 +238,124 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
                 .collect(),
         })
         .collect();
+    // yielding buildings (issue 16): the peak ductility demand of every storey
+    let ductility: Vec<[Vec<f64>; 2]> = report
+        .structures
+        .iter()
+        .map(|s| {
+            let (a, b): (Vec<f64>, Vec<f64>) = s
+                .floors
+                .iter()
+                .filter_map(|f| Some((f.peak_ductility?, f.peak_ductility_no_contact?)))
+                .unzip();
+            [a, b]
+        })
+        .collect();
+    if ductility.iter().any(|d| !d[0].is_empty()) {
+        panels.push(ProfilePanel {
+            title: "Peak ductility demand",
+            x_label: "μ = |drift|/d_y",
+            base: None,
+            series: (0..report.structures.len())
+                .filter(|&i| !ductility[i][0].is_empty())
+                .flat_map(|i| {
+                    [(0, LineStyle::Solid), (1, LineStyle::Dashed)].map(|(k, style)| {
+                        ProfileSeries {
+                            label: &labels[i][k],
+                            values: &ductility[i][k],
+                            heights: &heights[i],
+                            style,
+                            color: i,
+                        }
+                    })
+                })
+                .collect(),
+        });
+    }
+    let width = 400 * panels.len() as u32;
     let fig = ProfileFigure {
         title: &report.title,
         subtitle: "envelopes over height: peaks at every floor (a cantilever: every tenth of its height and each contact height)",
         y_label: "height [m]",
         panels,
-        width: 1600,
+        width,
         height: 700,
     };
     write_profile(&fig, stem)
+}
+
+/// The hysteresis loops of a run with yielding storeys (issue 16): for each yielding building,
+/// the storey force against the drift of its most demanded storey (largest peak ductility with
+/// pounding), with pounding (solid) and without (dashed), sampled at the output interval.
+/// `Ok(None)` when no storey yields.
+pub fn hysteresis_figure(report: &Report, stem: &Path) -> Result<Option<Vec<PathBuf>>, PlotError> {
+    let (with, without) = (
+        &report.with_contact.storeys,
+        &report.without_contact.storeys,
+    );
+    if with.is_empty() {
+        return Ok(None);
+    }
+    // per building: the most demanded storey's (drift mm, force MN) with and without pounding
+    let mut loops: Vec<(String, [Vec<f64>; 4])> = Vec::new();
+    for i in 0..2 {
+        let Some((k, r)) = with
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.structure == i)
+            .max_by(|a, b| a.1.peak_ductility().total_cmp(&b.1.peak_ductility()))
+        else {
+            continue;
+        };
+        let free = &without[k];
+        let split = |pts: &[[f64; 2]]| -> (Vec<f64>, Vec<f64>) {
+            pts.iter().map(|p| (p[0] * 1e3, p[1] / 1e6)).unzip()
+        };
+        let (dx, vy) = split(&r.loop_points);
+        let (fx, fy) = split(&free.loop_points);
+        let title = format!(
+            "Structure {}, {}: storey {}, μ = {:.2} with pounding, {:.2} without; residual drift {:.1} / {:.1} mm",
+            i + 1,
+            report.structures[i].name,
+            r.storey + 1,
+            r.peak_ductility(),
+            free.peak_ductility(),
+            r.residual_drift * 1e3,
+            free.residual_drift * 1e3
+        );
+        loops.push((title, [dx, vy, fx, fy]));
+    }
+    let panels = loops
+        .iter()
+        .map(|(title, v)| Panel {
+            title,
+            y_label: "storey force V [MN]",
+            series: vec![
+                Series {
+                    label: "with pounding",
+                    x: &v[0],
+                    y: &v[1],
+                    style: LineStyle::Solid,
+                },
+                Series {
+                    label: "without",
+                    x: &v[2],
+                    y: &v[3],
+                    style: LineStyle::Dashed,
+                },
+            ],
+            y_scale: AxisScale::Linear,
+        })
+        .collect::<Vec<_>>();
+    let n = panels.len() as u32;
+    let fig = Figure {
+        title: &report.title,
+        subtitle: "hysteresis loops: Bouc–Wen storey force against inter-storey drift of each building's most demanded storey",
+        x_label: "inter-storey drift [mm]",
+        panels,
+        legend_once: false,
+        width: 1100,
+        height: 120 + 420 * n,
+    };
+    write_figure(&fig, stem).map(Some)
 }

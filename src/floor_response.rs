@@ -242,6 +242,17 @@ impl FloorRecorder {
                     }
                 }
             }
+            // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::hysteresis)
+            let hy = &system.hysteresis;
+            for (k, st) in hy.storeys().iter().enumerate() {
+                let (d, _) = hy.drift(k, s.q, s.v);
+                let f = st.pseudo_force(d, s.z.get(k).copied().unwrap_or(0.0));
+                if f != 0.0 {
+                    for (a, e) in self.accel.iter_mut().zip(hy.row(k)) {
+                        *a -= e * f;
+                    }
+                }
+            }
         }
         let h = self.last_t.map(|t0| s.t - t0);
         for st in &mut self.stations {

@@ -718,6 +718,50 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
             peak(b, |f| f.peak_drift)
         );
     }
+    // yielding buildings (issue 16); "–" for an elastic one
+    let [sa, sb] = &r.structures;
+    if sa.peak_ductility.is_some() || sb.peak_ductility.is_some() {
+        let cell = |v: Option<f64>, scale: f64, digits: usize| {
+            v.map_or("–".to_string(), |x| format!("{:.digits$}", x * scale))
+        };
+        type Pick = fn(&pounding::simulate::StructureReport) -> Option<f64>;
+        let rows: [(&str, Pick, f64, usize); 6] = [
+            (
+                "peak ductility without",
+                |s| s.peak_ductility_no_contact,
+                1.0,
+                2,
+            ),
+            ("peak ductility with", |s| s.peak_ductility, 1.0, 2),
+            (
+                "residual drift without [mm]",
+                |s| s.max_residual_drift_no_contact,
+                1e3,
+                2,
+            ),
+            ("residual drift with [mm]", |s| s.max_residual_drift, 1e3, 2),
+            (
+                "hysteretic energy without [kJ]",
+                |s| s.hysteretic_energy_no_contact,
+                1e-3,
+                1,
+            ),
+            (
+                "hysteretic energy with [kJ]",
+                |s| s.hysteretic_energy,
+                1e-3,
+                1,
+            ),
+        ];
+        for (label, pick, scale, digits) in rows {
+            println!(
+                "  {:<34}{:>w$}{:>w$}",
+                label,
+                cell(pick(sa), scale, digits),
+                cell(pick(sb), scale, digits)
+            );
+        }
+    }
     println!();
     let c = &r.contact;
     if c.impacts == 0 {

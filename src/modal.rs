@@ -54,6 +54,8 @@ pub struct FloorStructure {
     pub all_modes: ModalModel,
     /// Modes kept (1 … `all_modes.len()`).
     pub modes: usize,
+    /// Yielding storeys (issue 16; a shear building only): `None` for an elastic building.
+    pub hysteresis: Option<crate::hysteresis::BoucWen>,
 }
 
 /// The kinds of building with floors.
@@ -102,6 +104,7 @@ impl FloorStructure {
             kind,
             all_modes,
             modes,
+            hysteresis: None,
         })
     }
 }
@@ -173,6 +176,25 @@ impl Structure {
         match self {
             Structure::Cantilever(c) => Some(c),
             Structure::Floors(_) => None,
+        }
+    }
+
+    /// The Bouc–Wen storeys of a yielding shear building (`None`: elastic).
+    pub fn hysteresis(&self) -> Option<&crate::hysteresis::BoucWen> {
+        match self {
+            Structure::Cantilever(_) => None,
+            Structure::Floors(f) => f.hysteresis.as_ref(),
+        }
+    }
+
+    /// The initial storey stiffnesses of a shear building, N/m (lowest first).
+    pub fn storey_stiffnesses(&self) -> Option<&[f64]> {
+        match self {
+            Structure::Floors(f) => match &f.kind {
+                FloorKind::ShearBuilding(b) => Some(&b.storey_stiffnesses),
+                FloorKind::Modal(_) => None,
+            },
+            Structure::Cantilever(_) => None,
         }
     }
 

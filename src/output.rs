@@ -283,11 +283,13 @@ pub fn write_run(
 
 /// The pictures `pounding run` draws into its directory: removed by [`RunWriter::finish`]
 /// when a run draws none, so that no stale picture sits beside a new summary.
-pub const PICTURE_FILES: [&str; 4] = [
+pub const PICTURE_FILES: [&str; 6] = [
     "history.png",
     "history.svg",
     "envelopes.png",
     "envelopes.svg",
+    "hysteresis.png",
+    "hysteresis.svg",
 ];
 
 /// Draws a run's pictures into the directory it is given; returns the files written.

@@ -13,6 +13,7 @@ use crate::contact::ContactForce;
 use crate::floor_response::{FloorPeaks, FloorRecorder};
 use crate::integrate::linear::hermite_max;
 use crate::integrate::{Observer, StepView, onset_speed};
+use crate::storey_record::{StoreyRecord, StoreyTracker};
 use crate::system::System;
 
 /// One contact episode at one level: from the first instant of penetration to separation.
@@ -69,7 +70,17 @@ pub struct EnergyBalance {
     pub damping_dissipated: f64,
     /// Energy dissipated in the contacts, J (0 for elastic laws, up to integration error).
     pub contact_dissipated: f64,
-    /// |input − modal_change − contact_stored − damping − contact_dissipated| over the largest
+    /// Energy dissipated by the yielding storeys' hysteresis, J (only with yielding storeys;
+    /// see [`crate::hysteresis`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_dissipated: Option<f64>,
+    /// Strain energy the Bouc–Wen storeys hold at the end beyond the linear strain energy of
+    /// the initial stiffness counted in `modal_change`, `Σ ½(1 − α)k(d_y²z² − d²)`, minus that at
+    /// the start, J (only with yielding storeys).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_stored: Option<f64>,
+    /// |input − modal_change − contact_stored − damping − contact_dissipated
+    /// − hysteretic_dissipated − hysteretic_stored| over the largest
     /// energy present in the run (peak modal + contact energy at the history samples, or
     /// |input| if larger).
     pub relative_error: f64,
@@ -187,6 +198,8 @@ pub struct RunRecord {
     pub steps: usize,
     /// Peaks over the height of structure 1 and 2 (floors, or a cantilever's stations).
     pub floors: [Vec<FloorPeaks>; 2],
+    /// Every yielding storey (issue 16; empty when both structures are elastic).
+    pub storeys: Vec<StoreyRecord>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -231,13 +244,15 @@ pub struct Recorder<'s> {
     energy_peak: f64,
     last_t: f64,
     steps: usize,
-    /// Modal and contact energy and the tallies (input, damping, contact) at the last
-    /// observation, J.
-    last_energy: [f64; 5],
+    /// Modal and contact energy and the tallies (input, damping, contact, hysteretic work) at
+    /// the last observation, J.
+    last_energy: [f64; 6],
     /// End of the run, s.
     end: f64,
     /// Responses over the structures' heights (`None`: not tracked).
     floors: Option<FloorRecorder>,
+    /// Yielding storeys (`None`: none).
+    storeys: Option<StoreyTracker>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -328,9 +343,10 @@ impl<'s> Recorder<'s> {
             energy_peak: 0.0,
             last_t: 0.0,
             steps: 0,
-            last_energy: [0.0; 5],
+            last_energy: [0.0; 6],
             end: duration,
             floors: Some(FloorRecorder::new(system, heights, interval)),
+            storeys: StoreyTracker::new(system, interval, duration),
         }
     }
 
@@ -364,9 +380,19 @@ impl<'s> Recorder<'s> {
         }
         self.impacts
             .sort_by(|a, b| a.start.total_cmp(&b.start).then(a.level.cmp(&b.level)));
-        let [modal, stored, input, damping, contact] = self.last_energy;
+        let [modal, stored, input, damping, contact, hysteretic] = self.last_energy;
         let modal_change = modal - self.modal_initial;
-        let residual = input - modal_change - damping - contact;
+        let residual = input - modal_change - damping - contact - hysteretic;
+        let storeys = self
+            .storeys
+            .take()
+            .map_or(Vec::new(), StoreyTracker::finish);
+        let (hysteretic_dissipated, hysteretic_stored) = if storeys.is_empty() {
+            (None, None)
+        } else {
+            let e: f64 = storeys.iter().map(|r| r.hysteretic_energy).sum();
+            (Some(e), Some(hysteretic - e))
+        };
         let scale = self.energy_peak.max(input.abs()).max(f64::MIN_POSITIVE);
         let energy = EnergyBalance {
             input,
@@ -374,6 +400,8 @@ impl<'s> Recorder<'s> {
             contact_stored: stored,
             damping_dissipated: damping,
             contact_dissipated: contact - (stored - self.stored_initial),
+            hysteretic_dissipated,
+            hysteretic_stored,
             relative_error: residual.abs() / scale,
         };
         let (peak, max_closing) = self
@@ -391,6 +419,7 @@ impl<'s> Recorder<'s> {
             floors: self
                 .floors
                 .map_or([Vec::new(), Vec::new()], FloorRecorder::finish),
+            storeys,
         }
     }
 
@@ -495,6 +524,9 @@ impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
         if let Some(f) = &mut self.floors {
             f.observe(system, s, self.sink.as_deref_mut());
+        }
+        if let Some(st) = &mut self.storeys {
+            st.observe(system, s);
         }
         let (n1, q) = (system.n1(), s.q);
         // displacements and velocities at every tracked height
@@ -659,6 +691,7 @@ impl Observer for Recorder<'_> {
                 s.tally.input,
                 s.tally.damping,
                 s.tally.contact,
+                s.tally.hysteretic,
             ];
         }
         if self.prev.is_some() {
@@ -759,6 +792,7 @@ mod tests {
                 q: &q,
                 v: &v,
                 levels: &levels,
+                z: &[],
                 tally: &tally,
             };
             rec.observe(sys, &view);

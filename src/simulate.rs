@@ -10,6 +10,7 @@ use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrat
 use crate::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
 use crate::scenario::Scenario;
 use crate::separation::{PeakPair, Separations};
+use crate::storey_record::StoreyRecord;
 use crate::system::System;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
@@ -42,6 +43,31 @@ pub struct StructureReport {
     /// Peaks at every floor (a cantilever: every tenth of its height and each contact
     /// height), lowest first, with and without pounding (see [`crate::floor_response`]).
     pub floors: Vec<FloorReport>,
+    /// A yielding building only (issue 16): the largest peak ductility demand over its storeys
+    /// with pounding, and without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_ductility: Option<f64>,
+    /// See `peak_ductility`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_ductility_no_contact: Option<f64>,
+    /// A yielding building only: the largest |residual drift| over its storeys, m, with
+    /// pounding, and without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_residual_drift: Option<f64>,
+    /// See `max_residual_drift`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_residual_drift_no_contact: Option<f64>,
+    /// A yielding building only: the energy its storeys dissipate by hysteresis, J, with
+    /// pounding, and without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_energy: Option<f64>,
+    /// See `hysteretic_energy`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_energy_no_contact: Option<f64>,
+    /// A yielding building only: its smallest yield drift, m (the scale of the self-check's
+    /// change in residual drift; not written).
+    #[serde(skip)]
+    pub min_yield_drift: Option<f64>,
 }
 
 /// Peaks at one floor (station), with and without pounding.
@@ -62,13 +88,51 @@ pub struct FloorReport {
     pub peak_drift: f64,
     /// The same without pounding, m.
     pub peak_drift_no_contact: f64,
-    /// Peak shear of the storey below with pounding, N.
+    /// Peak shear of the storey below with pounding, N (a yielding storey: its Bouc–Wen
+    /// storey force V).
     pub peak_shear: f64,
     /// The same without pounding, N.
     pub peak_shear_no_contact: f64,
+    /// Yielding storeys only (issue 16): peak |drift| / d_y of the storey below, with pounding.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_ductility: Option<f64>,
+    /// The same without pounding.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_ductility_no_contact: Option<f64>,
+    /// Yielding storeys only: signed drift of the storey below at the end of the run, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_drift: Option<f64>,
+    /// The same without pounding, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_drift_no_contact: Option<f64>,
+    /// Yielding storeys only: energy dissipated by the storey's hysteresis, J.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_energy: Option<f64>,
+    /// The same without pounding, J.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hysteretic_energy_no_contact: Option<f64>,
+    /// Yielding storeys only: the storey's yield drift d_y, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub yield_drift: Option<f64>,
 }
 
 impl FloorReport {
+    /// A yielding storey: the storey force, ductility, residual drift and hysteretic energy
+    /// from its records with (`a`) and without (`b`) pounding.
+    fn yielding(&mut self, a: &StoreyRecord, b: &StoreyRecord) {
+        self.peak_shear = a.peak_force;
+        self.peak_shear_no_contact = b.peak_force;
+        self.peak_drift = a.peak_drift;
+        self.peak_drift_no_contact = b.peak_drift;
+        self.peak_ductility = Some(a.peak_ductility());
+        self.peak_ductility_no_contact = Some(b.peak_ductility());
+        self.residual_drift = Some(a.residual_drift);
+        self.residual_drift_no_contact = Some(b.residual_drift);
+        self.hysteretic_energy = Some(a.hysteretic_energy);
+        self.hysteretic_energy_no_contact = Some(b.hysteretic_energy);
+        self.yield_drift = Some(a.yield_drift);
+    }
+
     fn pair(a: &FloorPeaks, b: &FloorPeaks) -> FloorReport {
         FloorReport {
             height: a.height,
@@ -80,6 +144,13 @@ impl FloorReport {
             peak_drift_no_contact: b.drift,
             peak_shear: a.shear,
             peak_shear_no_contact: b.shear,
+            peak_ductility: None,
+            peak_ductility_no_contact: None,
+            residual_drift: None,
+            residual_drift_no_contact: None,
+            hysteretic_energy: None,
+            hysteretic_energy_no_contact: None,
+            yield_drift: None,
         }
     }
 }
@@ -534,18 +605,53 @@ fn simulate_phases(
     let structures = [0, 1].map(|i| {
         let s = &scenario.structures[i];
         let m = &system.structures[i];
+        let mut floors: Vec<FloorReport> = with.floors[i]
+            .iter()
+            .zip(&without.floors[i])
+            .map(|(a, b)| FloorReport::pair(a, b))
+            .collect();
+        let mine = |r: &RunRecord| -> Vec<StoreyRecord> {
+            r.storeys
+                .iter()
+                .filter(|x| x.structure == i)
+                .cloned()
+                .collect()
+        };
+        let (ya, yb) = (mine(&with), mine(&without));
+        for (a, b) in ya.iter().zip(&yb) {
+            if let Some(f) = floors.get_mut(a.storey) {
+                f.yielding(a, b);
+            }
+        }
+        let yielding = !ya.is_empty();
+        let over = |v: &[StoreyRecord], f: fn(&StoreyRecord) -> f64, sum: bool| {
+            yielding.then(|| {
+                if sum {
+                    v.iter().map(f).sum()
+                } else {
+                    v.iter().map(f).fold(0.0, f64::max)
+                }
+            })
+        };
         StructureReport {
+            peak_ductility: over(&ya, StoreyRecord::peak_ductility, false),
+            peak_ductility_no_contact: over(&yb, StoreyRecord::peak_ductility, false),
+            max_residual_drift: over(&ya, |r| r.residual_drift.abs(), false),
+            max_residual_drift_no_contact: over(&yb, |r| r.residual_drift.abs(), false),
+            hysteretic_energy: over(&ya, |r| r.hysteretic_energy, true),
+            hysteretic_energy_no_contact: over(&yb, |r| r.hysteretic_energy, true),
+            min_yield_drift: yielding.then(|| {
+                ya.iter()
+                    .map(|r| r.yield_drift)
+                    .fold(f64::INFINITY, f64::min)
+            }),
             name: s.name().to_string(),
             periods: m.periods(),
             damping_ratios: m.zeta.clone(),
             peak_displacement: with.peak[i],
             peak_displacement_no_contact: without.peak[i],
             change_percent: change_percent(with.peak[i], without.peak[i]),
-            floors: with.floors[i]
-                .iter()
-                .zip(&without.floors[i])
-                .map(|(a, b)| FloorReport::pair(a, b))
-                .collect(),
+            floors,
         }
     });
     let levels: Vec<LevelReport> = system

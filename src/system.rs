@@ -62,6 +62,9 @@ pub struct Powers {
     pub damping: f64,
     /// Power flowing into the contacts, `Σ_k F_k δ̇_k`.
     pub contact: f64,
+    /// Power given to the yielding storeys' pseudo-forces, `Σ_s ΔV_s ḋ_s` (0 without
+    /// hysteresis; see [`crate::hysteresis`]).
+    pub hysteretic: f64,
 }
 
 /// The assembled system.
@@ -83,6 +86,10 @@ pub struct System {
     /// Whether any level's law is impulsive (stereomechanical): the step-end hook is skipped
     /// otherwise.
     impulsive: bool,
+    /// Yielding storeys (issue 16): their pseudo-forces enter through drift rows as contact
+    /// forces do, with one hysteretic variable z per storey as extra state. Empty when both
+    /// structures are elastic.
+    pub hysteresis: crate::hysteresis::Hysteresis,
 }
 
 impl System {
@@ -141,7 +148,14 @@ impl System {
             load_a,
             load_v,
             coupling,
+            hysteresis: crate::hysteresis::Hysteresis::none(),
         }
+    }
+
+    /// The same system with yielding storeys (`h` built for these structures' modes).
+    pub fn with_hysteresis(mut self, h: crate::hysteresis::Hysteresis) -> System {
+        self.hysteresis = h;
+        self
     }
 
     /// The same system with contact switched off.

@@ -540,7 +540,7 @@ fn step(
 
 /// Per-coordinate absolute tolerances in modal units: `atol·√M_i/2` for η of structure i (so
 /// that `atol` is metres at its top, |φ(L)| = 2/√M, docs/model.md §2.3), times its ω₁ for η̇.
-fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
+pub(super) fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
     let n = sys.len();
     let (mut aq, mut av) = (vec![0.0; n], vec![0.0; n]);
     let n1 = sys.n1();
@@ -684,6 +684,7 @@ pub(crate) fn run_traced<O: Observer>(
             q: &w.q,
             v: &w.v,
             levels: &states,
+            z: &[],
             tally: &tally,
         },
     );
@@ -822,6 +823,8 @@ pub(crate) fn run_traced<O: Observer>(
                 v1: w.vn.clone(),
                 err,
                 kink: false,
+                z0: Vec::new(),
+                z1: Vec::new(),
             });
         }
         if starts_contact && !tr.free {
@@ -929,6 +932,7 @@ pub(crate) fn run_traced<O: Observer>(
                 q: &w.q,
                 v: &w.v,
                 levels: &states,
+                z: &[],
                 tally: &tally,
             },
         );

@@ -447,6 +447,7 @@ impl<O: Observer> Run<'_, O> {
                 q: &self.q,
                 v: &self.v,
                 levels: &self.states,
+                z: &[],
                 tally: &self.tally,
             },
         );
@@ -711,6 +712,8 @@ impl<O: Observer> Run<'_, O> {
                     v1: self.v.clone(),
                     err,
                     kink: self.kink,
+                    z0: Vec::new(),
+                    z1: Vec::new(),
                 });
             }
             pos += FULL >> level;

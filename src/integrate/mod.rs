@@ -12,6 +12,7 @@
 
 mod adaptive;
 mod exact_modal;
+mod hysteretic;
 pub mod linear;
 mod rk4;
 
@@ -159,6 +160,10 @@ pub(crate) struct StepTrace {
     /// Whether a level's force starts or ends at zero inside the step (`exact-modal`, which does
     /// not locate onsets: its estimate is a bound there, not an asymptotic estimate).
     pub kink: bool,
+    /// Hysteretic variables at the start and the end (empty without hysteresis).
+    pub z0: Vec<f64>,
+    /// See `z0`.
+    pub z1: Vec<f64>,
 }
 
 /// Initial modal state (default: at rest relative to the ground, docs/model.md §2.8).
@@ -196,6 +201,11 @@ pub struct Tally {
     pub contact: f64,
     /// Impulse of each level's contact force, `∫ F_k dt`, N·s.
     pub impulse: Vec<f64>,
+    /// Work given to the yielding storeys' pseudo-forces, `Σ_s ∫ ΔV_s ḋ_s dt`, J (0 without
+    /// hysteresis; see [`crate::hysteresis`]).
+    pub hysteretic: f64,
+    /// The same per yielding storey (in the order of `System::hysteresis`), J.
+    pub storey_work: Vec<f64>,
 }
 
 /// What an observer sees at the end of each step (and once at t = 0).
@@ -209,6 +219,8 @@ pub struct StepView<'a> {
     pub v: &'a [f64],
     /// Contact state of every level.
     pub levels: &'a [LevelState],
+    /// Hysteretic variable z of every yielding storey (empty without hysteresis).
+    pub z: &'a [f64],
     /// Cumulative energy flows and impulses.
     pub tally: &'a Tally,
 }
@@ -335,6 +347,13 @@ pub enum SolveError {
         /// The relative tolerance.
         rtol: f64,
     },
+    /// The method cannot integrate yielding storeys (issue 16).
+    #[error(
+        "method \"{0}\" does not support yielding storeys (a structure's `hysteresis`): use \
+         `adaptive` (the default: error-controlled, its estimate sees the hysteretic variables) \
+         or `rk4` (fixed step)"
+    )]
+    HysteresisUnsupported(&'static str),
 }
 
 impl SolverSettings {
@@ -373,9 +392,14 @@ pub fn integrate<O: Observer>(
     observer: &mut O,
 ) -> Result<Stats, SolveError> {
     settings.check_stability(system)?;
+    let yielding = !system.hysteresis.is_empty();
     match settings.method {
         Method::Rk4 => rk4::run(system, settings, initial, observer),
+        Method::Adaptive if yielding => hysteretic::run(system, settings, initial, observer),
         Method::Adaptive => adaptive::run(system, settings, initial, observer),
+        Method::ExactModal if yielding => {
+            Err(SolveError::HysteresisUnsupported(Method::ExactModal.name()))
+        }
         Method::ExactModal => exact_modal::run(system, settings, initial, observer),
     }
 }

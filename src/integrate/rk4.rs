@@ -325,8 +325,37 @@ struct Work {
     prev_states: Vec<LevelState>,
     onset: Vec<f64>,
     stage_force: [Vec<f64>; 4],
+    /// Hysteretic variables (issue 16), their stage values, rates and per-storey powers (empty
+    /// without yielding storeys).
+    z: Vec<f64>,
+    zs: Vec<f64>,
+    zk: [Vec<f64>; 4],
+    pw: [Vec<f64>; 4],
 }
 
+/// The right-hand side with the yielding storeys' pseudo-forces: [`System::acceleration_in`],
+/// then (with hysteresis) [`crate::hysteresis::Hysteresis::apply`] on the same state.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn eval(
+    sys: &System,
+    ground: (f64, f64),
+    (q, v, z): (&[f64], &[f64], &[f64]),
+    onset: &[f64],
+    a: &mut [f64],
+    zdot: &mut [f64],
+    pw: &mut [f64],
+    states: &mut [LevelState],
+) -> Powers {
+    let mut p = sys.acceleration_in(ground, q, v, onset, a, states);
+    if !sys.hysteresis.is_empty() {
+        p.hysteretic = sys.hysteresis.apply(q, v, z, a, zdot, pw);
+    }
+    p
+}
+
+// (index loops over the parallel stage arrays read like the RK4 formulas)
+#[allow(clippy::needless_range_loop)]
 pub(super) fn run<O: Observer>(
     sys: &System,
     settings: &SolverSettings,
@@ -335,6 +364,7 @@ pub(super) fn run<O: Observer>(
 ) -> Result<Stats, SolveError> {
     let n = sys.len();
     let nl = sys.levels.len();
+    let ns = sys.hysteresis.len();
     let zeros = || vec![0.0; n];
     let (q0, v0) = initial.resolved(n);
     let mut w = Work {
@@ -349,9 +379,14 @@ pub(super) fn run<O: Observer>(
         prev_states: vec![LevelState::default(); nl],
         onset: vec![0.0; nl],
         stage_force: [vec![0.0; nl], vec![0.0; nl], vec![0.0; nl], vec![0.0; nl]],
+        z: vec![0.0; ns],
+        zs: vec![0.0; ns],
+        zk: [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
+        pw: [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
     };
     let mut tally = Tally {
         impulse: vec![0.0; nl],
+        storey_work: vec![0.0; ns],
         ..Tally::default()
     };
     let mut stats = Stats::default();
@@ -361,7 +396,16 @@ pub(super) fn run<O: Observer>(
     // k1 of the first step, and the state at t = 0. The ground is evaluated twice per step:
     // stages 2 and 3 share t + h/2, and stage 4's time is the next step's k1 time.
     let mut ground_end = sys.ground.accel_velocity(0.0);
-    let mut p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, &mut w.a[0], &mut w.states);
+    let mut p1 = eval(
+        sys,
+        ground_end,
+        (&w.q, &w.v, &w.z),
+        &w.onset,
+        &mut w.a[0],
+        &mut w.zk[0],
+        &mut w.pw[0],
+        &mut w.states,
+    );
     stats.evaluations += 1;
     w.prev_states.copy_from_slice(&w.states);
     update_onsets(&mut w.onset, &w.prev_states, &w.states, 0.0);
@@ -372,6 +416,7 @@ pub(super) fn run<O: Observer>(
             q: &w.q,
             v: &w.v,
             levels: &w.states,
+            z: &w.z,
             tally: &tally,
         },
     );
@@ -387,13 +432,27 @@ pub(super) fn run<O: Observer>(
         // stage 2: y + h/2 k1
         let [a1, a2, a3, a4] = &mut w.a;
         let [v2, v3, v4] = &mut w.vstage;
+        let [z1, z2, z3, z4] = &mut w.zk;
+        let [pw1, pw2, pw3, pw4] = &mut w.pw;
         for j in 0..n {
             w.qs[j] = w.q[j] + 0.5 * h * w.v[j];
             w.vs[j] = w.v[j] + 0.5 * h * a1[j];
             v2[j] = w.vs[j];
         }
+        for s in 0..ns {
+            w.zs[s] = w.z[s] + 0.5 * h * z1[s];
+        }
         let ground_mid = sys.ground.accel_velocity(t + 0.5 * h);
-        let p2 = sys.acceleration_in(ground_mid, &w.qs, &w.vs, &w.onset, a2, &mut w.stage_states);
+        let p2 = eval(
+            sys,
+            ground_mid,
+            (&w.qs, &w.vs, &w.zs),
+            &w.onset,
+            a2,
+            z2,
+            pw2,
+            &mut w.stage_states,
+        );
         store_forces(&w.stage_states, &mut w.stage_force[1]);
         // stage 3: y + h/2 k2
         for j in 0..n {
@@ -401,7 +460,19 @@ pub(super) fn run<O: Observer>(
             w.vs[j] = w.v[j] + 0.5 * h * a2[j];
             v3[j] = w.vs[j];
         }
-        let p3 = sys.acceleration_in(ground_mid, &w.qs, &w.vs, &w.onset, a3, &mut w.stage_states);
+        for s in 0..ns {
+            w.zs[s] = w.z[s] + 0.5 * h * z2[s];
+        }
+        let p3 = eval(
+            sys,
+            ground_mid,
+            (&w.qs, &w.vs, &w.zs),
+            &w.onset,
+            a3,
+            z3,
+            pw3,
+            &mut w.stage_states,
+        );
         store_forces(&w.stage_states, &mut w.stage_force[2]);
         // stage 4: y + h k3
         for j in 0..n {
@@ -409,19 +480,35 @@ pub(super) fn run<O: Observer>(
             w.vs[j] = w.v[j] + h * a3[j];
             v4[j] = w.vs[j];
         }
+        for s in 0..ns {
+            w.zs[s] = w.z[s] + h * z3[s];
+        }
         let t_end = if step + 1 == steps {
             settings.duration
         } else {
             (step + 1) as f64 * settings.dt
         };
         ground_end = sys.ground.accel_velocity(t_end);
-        let p4 = sys.acceleration_in(ground_end, &w.qs, &w.vs, &w.onset, a4, &mut w.stage_states);
+        let p4 = eval(
+            sys,
+            ground_end,
+            (&w.qs, &w.vs, &w.zs),
+            &w.onset,
+            a4,
+            z4,
+            pw4,
+            &mut w.stage_states,
+        );
         store_forces(&w.stage_states, &mut w.stage_force[3]);
         // combine
         let h6 = h / 6.0;
         for j in 0..n {
             w.q[j] += h6 * (w.v[j] + 2.0 * v2[j] + 2.0 * v3[j] + v4[j]);
             w.v[j] += h6 * (a1[j] + 2.0 * a2[j] + 2.0 * a3[j] + a4[j]);
+        }
+        for s in 0..ns {
+            w.z[s] += h6 * (z1[s] + 2.0 * z2[s] + 2.0 * z3[s] + z4[s]);
+            tally.storey_work[s] += h6 * (pw1[s] + 2.0 * pw2[s] + 2.0 * pw3[s] + pw4[s]);
         }
         accumulate(&mut tally, h6, [&p1, &p2, &p3, &p4]);
         for k in 0..nl {
@@ -430,14 +517,32 @@ pub(super) fn run<O: Observer>(
         }
 
         // k1 of the next step = the state at the end of this one
-        p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+        p1 = eval(
+            sys,
+            ground_end,
+            (&w.q, &w.v, &w.z),
+            &w.onset,
+            a1,
+            z1,
+            pw1,
+            &mut w.states,
+        );
         if sys.apply_impulses(
             &mut w.v,
             &mut w.states,
             &mut tally.impulse,
             &mut tally.contact,
         ) {
-            p1 = sys.acceleration_in(ground_end, &w.q, &w.v, &w.onset, a1, &mut w.states);
+            p1 = eval(
+                sys,
+                ground_end,
+                (&w.q, &w.v, &w.z),
+                &w.onset,
+                a1,
+                z1,
+                pw1,
+                &mut w.states,
+            );
         }
         stats.evaluations += 4;
         stats.steps += 1;
@@ -455,7 +560,10 @@ pub(super) fn run<O: Observer>(
                 check_contact(sys, &bounds[k], k, st, v0, h, t_end, settings.dt)?;
             }
         }
-        if !(p1.input.is_finite() && p1.damping.is_finite() && w.q.iter().sum::<f64>().is_finite())
+        if !(p1.input.is_finite()
+            && p1.damping.is_finite()
+            && w.q.iter().sum::<f64>().is_finite()
+            && w.z.iter().sum::<f64>().is_finite())
         {
             return Err(SolveError::Diverged {
                 t: t_end,
@@ -469,6 +577,7 @@ pub(super) fn run<O: Observer>(
                 q: &w.q,
                 v: &w.v,
                 levels: &w.states,
+                z: &w.z,
                 tally: &tally,
             },
         );
@@ -488,6 +597,8 @@ fn accumulate(tally: &mut Tally, h6: f64, p: [&Powers; 4]) {
     tally.input += h6 * (p[0].input + 2.0 * p[1].input + 2.0 * p[2].input + p[3].input);
     tally.damping += h6 * (p[0].damping + 2.0 * p[1].damping + 2.0 * p[2].damping + p[3].damping);
     tally.contact += h6 * (p[0].contact + 2.0 * p[1].contact + 2.0 * p[2].contact + p[3].contact);
+    tally.hysteretic +=
+        h6 * (p[0].hysteretic + 2.0 * p[1].hysteretic + 2.0 * p[2].hysteretic + p[3].hysteretic);
 }
 
 #[cfg(test)]

@@ -535,6 +535,20 @@ pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, E
             opts.dt
         )));
     }
+    // yielding storeys (issue 16) have no exporter yet: an elastic OpenSees model would be
+    // compared with a yielding one
+    if let Some(s) = scenario
+        .structures
+        .iter()
+        .find(|s| s.hysteresis().is_some())
+    {
+        return Err(ExportError::Structure {
+            name: s.name().to_string(),
+            reason: "its yielding storeys (Bouc–Wen `hysteresis`) are not exported: the OpenSees \
+                     model would be elastic; remove `hysteresis` to export the elastic building"
+                .into(),
+        });
+    }
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
     let mut structures = Vec::with_capacity(2);
     for s in &scenario.structures {

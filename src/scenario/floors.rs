@@ -59,7 +59,8 @@ fn given(s: &RawStructure) -> Vec<(&'static str, usize)> {
         rayleigh,
         periods,
         mode_shapes,
-        modes_file
+        modes_file,
+        hysteresis
     )
     .into_iter()
     .filter_map(|(k, at)| at.map(|a| (k, a)))
@@ -99,6 +100,7 @@ fn accepted(kind: Kind) -> &'static [&'static str] {
             "floor_mass",
             "storey_stiffness",
             "rayleigh",
+            "hysteresis",
         ],
         Kind::Modal => &[
             "floor_heights",
@@ -155,7 +157,7 @@ pub(super) fn kind(c: &Check, i: usize, s: &RawStructure) -> Result<Kind, Scenar
     Ok(kind)
 }
 
-fn list_error<T: std::fmt::Debug>(
+pub(super) fn list_error<T: std::fmt::Debug>(
     c: &Check,
     v: &Spanned<T>,
     key: &str,
@@ -671,11 +673,20 @@ pub(super) fn floor_structure(
             ));
         }
     }
-    let fs = FloorStructure::new(name, floor_kind).map_err(|err| ScenarioError::Invalid {
+    let mut fs = FloorStructure::new(name, floor_kind).map_err(|err| ScenarioError::Invalid {
         at: c.ctx.at(near),
         key: format!("structure[{}]", i + 1),
         value: "the building given".into(),
         reason: err.to_string(),
     })?;
+    if let (Some(h), FloorKind::ShearBuilding(b)) = (&s.hysteresis, &fs.kind) {
+        fs.hysteresis = Some(super::hysteresis::bouc_wen(
+            c,
+            i,
+            h,
+            &b.storey_stiffnesses,
+            defaults,
+        )?);
+    }
     Ok(Structure::Floors(Box::new(fs)))
 }

@@ -17,6 +17,7 @@ use crate::modal::{Cantilever, Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
 
 mod floors;
+mod hysteresis;
 
 /// Most modes a structure may keep.
 pub const MAX_MODES: i64 = 500;
@@ -194,6 +195,21 @@ struct RawStructure {
     periods: Option<Spanned<Vec<f64>>>,
     mode_shapes: Option<Spanned<Vec<Vec<f64>>>>,
     modes_file: Option<Spanned<String>>,
+    /// Yielding storeys of a shear building (issue 16, see `floors`).
+    hysteresis: Option<Spanned<RawHysteresis>>,
+}
+
+/// `hysteresis = { model = "bouc-wen", yield_drifts = …, post_yield_ratio = …, … }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHysteresis {
+    model: Option<Spanned<String>>,
+    yield_drifts: Option<Spanned<RawZeta>>,
+    yield_forces: Option<Spanned<RawZeta>>,
+    post_yield_ratio: Option<Spanned<f64>>,
+    exponent: Option<Spanned<f64>>,
+    beta: Option<Spanned<f64>>,
+    gamma: Option<Spanned<f64>>,
 }
 
 /// `rayleigh = { damping_ratio = 0.05, modes = [1, 3] }`.
@@ -300,9 +316,22 @@ const TABLES: &[(&str, &[&str])] = &[
             "periods",
             "mode_shapes",
             "modes_file",
+            "hysteresis",
         ],
     ),
     ("structure.rayleigh", &["damping_ratio", "modes"]),
+    (
+        "structure.hysteresis",
+        &[
+            "model",
+            "yield_drifts",
+            "yield_forces",
+            "post_yield_ratio",
+            "exponent",
+            "beta",
+            "gamma",
+        ],
+    ),
     (
         "[contact]",
         &[
@@ -464,12 +493,20 @@ impl Scenario {
 
     /// The assembled system with contact.
     pub fn system(&self) -> System {
+        let models = [self.structures[0].modal(), self.structures[1].modal()];
+        let hysteresis = crate::hysteresis::Hysteresis::new(&self.structures, &models);
         System::new(
-            [self.structures[0].modal(), self.structures[1].modal()],
+            models,
             &self.contact.law,
             &self.contact.levels,
             self.ground_motion.clone(),
         )
+        .with_hysteresis(hysteresis)
+    }
+
+    /// Whether either structure has yielding storeys (issue 16).
+    pub fn has_hysteresis(&self) -> bool {
+        self.structures.iter().any(|s| s.hysteresis().is_some())
     }
 
     /// Height whose displacements are reported as "the" contact height: the highest level, m.
@@ -854,6 +891,8 @@ pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
         "storey_stiffness" | "storey_stiffnesses" => (1.0, 1e16, "a storey's stiffness"),
         "floor_heights" => (0.1, 10000.0, "a floor's height"),
         "periods" => (1e-3, 1e3, "a mode's period"),
+        "yield_drifts" => (1e-6, 10.0, "a storey's yield drift"),
+        "yield_forces" => (1e-3, 1e14, "a storey's yield force"),
         _ => return None,
     })
 }
@@ -1054,6 +1093,20 @@ fn validate(
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
     floors_at_contact(&c, &raw, &structures, &contact)?;
+    if structures.iter().any(|s| s.hysteresis().is_some())
+        && solver.method == Method::ExactModal
+        && let Some(m) = raw
+            .solver
+            .as_ref()
+            .and_then(|s| s.get_ref().method.as_ref())
+    {
+        return Err(c.invalid(
+            m,
+            "solver.method",
+            "does not support yielding storeys (a structure's `hysteresis`): use \"adaptive\" \
+             (the default; its error control sees the hysteretic variables) or \"rk4\"",
+        ));
+    }
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
     for (i, st) in structures.iter().enumerate() {

@@ -207,6 +207,8 @@ enum Kind {
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Section {
     Structure(usize),
+    /// A structure's `hysteresis` table (issue 16).
+    Hysteresis(usize),
     Contact,
     Level(usize),
     Ground,
@@ -263,6 +265,16 @@ const STRUCTURE_FIELDS: &[(&str, Kind)] = &[
     ("storey_stiffnesses", Kind::List),
     ("periods", Kind::List),
 ];
+/// A yielding building's Bouc–Wen keys (`structure.N.hysteresis.KEY`; one value for every
+/// storey).
+const HYSTERESIS_FIELDS: &[(&str, Kind)] = &[
+    ("yield_drifts", Kind::Number),
+    ("yield_forces", Kind::Number),
+    ("post_yield_ratio", Kind::Number),
+    ("exponent", Kind::Number),
+    ("beta", Kind::Number),
+    ("gamma", Kind::Number),
+];
 const CONTACT_FIELDS: &[(&str, Kind)] = &[
     ("stiffness", Kind::Number),
     ("restitution", Kind::Number),
@@ -299,6 +311,9 @@ fn valid_keys() -> Vec<String> {
     }
     v.push("structure.N.stiffness_scale".into());
     v.push("structure.N.mass_scale".into());
+    for (f, _) in HYSTERESIS_FIELDS {
+        v.push(format!("structure.N.hysteresis.{f}"));
+    }
     for (f, _) in CONTACT_FIELDS {
         v.push(format!("contact.{f}"));
     }
@@ -344,6 +359,14 @@ fn parse_key(raw: &str) -> Result<(String, Target), String> {
             Ok(Target::Scale {
                 structure: i,
                 mass: *f == "mass_scale",
+            })
+        }
+        ["structure", n, "hysteresis", f] => {
+            let i = index(n, "structure", Some(2))?;
+            field(HYSTERESIS_FIELDS, f).map(|(field, kind)| Target::Key {
+                section: Section::Hysteresis(i),
+                field,
+                kind,
             })
         }
         ["structure", n, f] => {
@@ -786,10 +809,26 @@ impl Sweep {
         }
     }
 
-    /// Every column after [`results::FIELDS`]: the code columns, then the floor columns.
+    /// The ductility columns ([`results::DUCTILITY_FIELDS`]) when the base scenario has a
+    /// yielding building (a `hysteresis` table in a `[[structure]]`).
+    pub fn ductility_columns(&self) -> Vec<&'static str> {
+        let yielding = match self.base.get("structure") {
+            Some(Value::Array(list)) => list.iter().any(|s| s.get("hysteresis").is_some()),
+            _ => false,
+        };
+        if yielding {
+            results::DUCTILITY_FIELDS.to_vec()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// Every column after [`results::FIELDS`]: the code columns, then the floor columns, then
+    /// the ductility columns.
     pub fn extra_columns(&self) -> Vec<&'static str> {
         let mut v = self.code_columns();
         v.extend(self.floor_columns());
+        v.extend(self.ductility_columns());
         v
     }
 
@@ -980,6 +1019,7 @@ impl Sweep {
                 };
                 let table = match section {
                     Section::Structure(i) => structure_mut(t, *i)?,
+                    Section::Hysteresis(i) => section_mut(structure_mut(t, *i)?, "hysteresis")?,
                     Section::Contact => section_mut(t, "contact")?,
                     Section::Level(i) => level_mut(t, *i)?,
                     Section::Ground => section_mut(t, "ground_motion")?,
@@ -999,6 +1039,12 @@ impl Sweep {
                     }
                     (Section::Structure(_), "strain_rate_damping" | "air_damping") => {
                         table.remove("damping_ratio");
+                    }
+                    (Section::Hysteresis(_), "yield_drifts") => {
+                        table.remove("yield_forces");
+                    }
+                    (Section::Hysteresis(_), "yield_forces") => {
+                        table.remove("yield_drifts");
                     }
                     (Section::Ground, "file") => {
                         table.insert("kind".into(), Value::String("record".into()));

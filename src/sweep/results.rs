@@ -88,6 +88,17 @@ pub const FLOOR_FIELDS: [&str; 6] = [
     "peak_drift_2",
 ];
 
+/// The ductility columns that follow the floor columns when the base scenario has a yielding
+/// building (`hysteresis` in a `[[structure]]`, issue 16): each building's largest peak
+/// ductility demand over its storeys (peak |drift|/d_y) with and without pounding; NaN for an
+/// elastic building.
+pub const DUCTILITY_FIELDS: [&str; 4] = [
+    "peak_ductility_1",
+    "peak_ductility_2",
+    "peak_ductility_no_contact_1",
+    "peak_ductility_no_contact_2",
+];
+
 /// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`]
 /// (codes, floors), else [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
@@ -103,6 +114,16 @@ pub fn journal_version(sweep: &Sweep) -> u32 {
 pub fn case_fields(sweep: &Sweep, r: &Report) -> Vec<String> {
     let mut out: Vec<String> = report_fields(r).into();
     for col in sweep.extra_columns() {
+        if let Some(i) = DUCTILITY_FIELDS.iter().position(|f| *f == col) {
+            let s = &r.structures[i % 2];
+            let v = if i < 2 {
+                s.peak_ductility
+            } else {
+                s.peak_ductility_no_contact
+            };
+            out.push(fmt_f64(v.unwrap_or(f64::NAN)));
+            continue;
+        }
         if let Some(i) = FLOOR_FIELDS.iter().position(|f| *f == col) {
             let s = &r.structures[i % 2];
             let pick = |f: &crate::simulate::FloorReport| match i / 2 {
@@ -567,8 +588,8 @@ pub struct Table {
     pub axes: Vec<String>,
     /// Rows by case.
     pub rows: BTreeMap<usize, TableRow>,
-    /// The columns after [`FIELDS`] ([`CODE_FIELDS`], then [`FLOOR_FIELDS`]: those the table
-    /// has).
+    /// The columns after [`FIELDS`] ([`CODE_FIELDS`], then [`FLOOR_FIELDS`], then
+    /// [`DUCTILITY_FIELDS`]: those the table has).
     pub codes: Vec<String>,
 }
 
@@ -623,7 +644,11 @@ impl Table {
         let ncodes = all
             .iter()
             .rev()
-            .take_while(|c| CODE_FIELDS.contains(&c.as_str()) || FLOOR_FIELDS.contains(&c.as_str()))
+            .take_while(|c| {
+                CODE_FIELDS.contains(&c.as_str())
+                    || FLOOR_FIELDS.contains(&c.as_str())
+                    || DUCTILITY_FIELDS.contains(&c.as_str())
+            })
             .count();
         let codes: Vec<String> = all[all.len() - ncodes..].to_vec();
         let cols = &all[..all.len() - ncodes];
