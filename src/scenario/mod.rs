@@ -38,6 +38,14 @@ pub const DEFAULT_HARMONIC_DURATION: f64 = 20.0;
 /// own sample spacing when smaller).
 pub const DEFAULT_DT: f64 = 0.001;
 
+/// Lowest coefficient of restitution of the laws with a stiffness (kelvin, hertzdamp,
+/// jankowski): their damping grows as 1/e (Jankowski's ξ ≈ 9√5/(32 e)), and at e = 1e-308 one
+/// second of the paper's case took a minute before it diverged (issue 15's corner test).
+pub const MIN_RESTITUTION: f64 = 0.01;
+
+/// Lowest contact height, as a fraction of the lower structure's height.
+pub const MIN_CONTACT_HEIGHT_FRACTION: f64 = 1e-3;
+
 /// PGA above which a ground motion gets a plausibility warning, g.
 pub const PLAUSIBLE_PGA: f64 = 3.0;
 
@@ -1056,10 +1064,19 @@ impl Check<'_, '_> {
 
     fn restitution(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
         let e = *v.get_ref();
-        if e.is_finite() && e > 0.0 && e <= 1.0 {
+        if e.is_finite() && (MIN_RESTITUTION..=1.0).contains(&e) {
             Ok(e)
         } else {
-            Err(self.invalid(v, key, "coefficient of restitution must be in (0, 1]"))
+            Err(self.invalid(
+                v,
+                key,
+                &format!(
+                    "coefficient of restitution must be in [{MIN_RESTITUTION}, 1] (the damping of \
+                     the jankowski and hunt-crossley laws grows as 1/e: below {MIN_RESTITUTION} \
+                     it stalls the solver; for a plastic impact use law = \"stereomechanical\" \
+                     with restitution = 0)"
+                ),
+            ))
         }
     }
 }
@@ -1614,11 +1631,16 @@ fn contact(
             ));
         }
     };
-    let height_reason =
-        format!("contact height must be in (0, {min_length}] m, i.e. (0, min(L1, L2)]");
+    // (near the base the structures barely move: the effective mass of a contact there grows
+    // without bound, 1/φ(h)², and is infinite at h = 0)
+    let lowest = min_length * MIN_CONTACT_HEIGHT_FRACTION;
+    let height_reason = format!(
+        "contact height must be in [{lowest}, {min_length}] m, i.e. [{MIN_CONTACT_HEIGHT_FRACTION} \
+         min(L1, L2), min(L1, L2)] (no contact transfers anything at the base)"
+    );
     let check_height = |h: &Spanned<f64>, key: &str| -> Result<f64, ScenarioError> {
         let x = *h.get_ref();
-        if x.is_finite() && x > 0.0 && x <= min_length * (1.0 + 1e-12) {
+        if x.is_finite() && x >= lowest && x <= min_length * (1.0 + 1e-12) {
             Ok(x.min(min_length))
         } else {
             Err(c.invalid(h, key, &height_reason))
