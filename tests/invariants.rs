@@ -1,7 +1,7 @@
 //! Issue 15: properties that hold for every valid scenario, checked on random ones (proptest):
 //! two structures of random kind (cantilever or shear building, 1–4 storeys of 3.5 m, 1–3
 //! modes), masses, periods or storey stiffnesses, damping, gap, contact law (hertz, linear,
-//! kelvin, hertzdamp, jankowski) and its parameters, a harmonic ground motion of random PGA and
+//! kelvin, hertzdamp, jankowski, stereomechanical) and its parameters, a harmonic ground motion of random PGA and
 //! period, 2–5 s.
 //!
 //! - **Action and reaction.** The equations (docs/model.md §2–3, ARCHITECTURE.md *coupling
@@ -90,7 +90,7 @@ fn building() -> impl Strategy<Value = Building> {
 
 /// The contact table without the gap.
 fn law() -> impl Strategy<Value = String> {
-    (0usize..5, 0.0..1.0f64, 0.5..0.9f64).prop_map(|(law, s, e)| {
+    (0usize..6, 0.0..1.0f64, 0.5..0.9f64).prop_map(|(law, s, e)| {
         let hertz = 1e9 * (50.0f64).powf(s); // N/m^1.5
         let linear = 1e8 * (100.0f64).powf(s); // N/m
         match law {
@@ -98,7 +98,8 @@ fn law() -> impl Strategy<Value = String> {
             1 => format!("law = \"linear\"\nstiffness = {linear:e}\n"),
             2 => format!("law = \"kelvin\"\nstiffness = {linear:e}\nrestitution = {e}\n"),
             3 => format!("law = \"hertzdamp\"\nstiffness = {hertz:e}\nrestitution = {e}\n"),
-            _ => format!("law = \"jankowski\"\nstiffness = {hertz:e}\nrestitution = {e}\n"),
+            4 => format!("law = \"jankowski\"\nstiffness = {hertz:e}\nrestitution = {e}\n"),
+            _ => format!("law = \"stereomechanical\"\nrestitution = {e}\n"),
         }
     })
 }
@@ -173,7 +174,7 @@ impl Case {
     }
 }
 
-/// Cases per property: about three of each pair of kinds × law (2 × 2 × 5), and the file still
+/// Cases per property: about three of each pair of kinds × law (2 × 2 × 6), and the file still
 /// runs in a few seconds in release.
 fn config() -> ProptestConfig {
     ProptestConfig {
@@ -186,11 +187,11 @@ fn config() -> ProptestConfig {
 /// Mirrored results agree to this relative tolerance. Both runs take the same fixed RK4 steps;
 /// they differ only in the order of floating-point sums over the concatenated modes (structure
 /// 1's modes first in one run, structure 2's in the other), a few ulps per step, which impacts
-/// can amplify. Measured: at most 1.5e-12 of the peak (0 in some cases) over 88 cases with
-/// up to 18 impacts; 1e-9 leaves a factor of several hundred for amplification
-/// by impacts and still fails by ten orders of magnitude when the ground motion is not
-/// negated (the test was checked to fail then).
-const MIRROR_TOL: f64 = 1e-9;
+/// can amplify. Measured: at most 5.6e-11 of the peak (0 in some cases) over 384 cases (six
+/// seeds of 64) with up to 18 impacts; 1e-8 leaves a factor of 180 for amplification by impacts
+/// and still fails by many orders of magnitude when the ground motion is not negated (the test
+/// was checked to fail then).
+const MIRROR_TOL: f64 = 1e-8;
 
 proptest! {
     #![proptest_config(config())]
@@ -241,13 +242,13 @@ proptest! {
     /// The energy balance closes, with and without contact, at the default `adaptive`
     /// tolerances (rtol 1e-10). Its error is the integration error of the energy tallies
     /// (integrated with the method's own stage weights), held near rtol by the error control.
-    /// Measured over 88 cases (two seeds): at most 7.2e-11 with contact and 4e-15 without; 1e-8
-    /// is 100× the rtol and over 100× the largest measured.
+    /// Measured over 384 cases (six seeds of 64): at most 9.3e-10 with contact (impulsive and
+    /// damped laws the largest) and 8e-15 without; 1e-7 is 100× the largest measured.
     #[test]
     fn energy_balance_closes(c in case()) {
         let r = simulate(&c.scenario(false, c.gap, "")).unwrap();
         for (what, e) in [("with contact", &r.energy), ("without", &r.energy_no_contact)] {
-            prop_assert!(e.relative_error.is_finite() && e.relative_error < 1e-8,
+            prop_assert!(e.relative_error.is_finite() && e.relative_error < 1e-7,
                          "{}: {:?}", what, e);
         }
         eprintln!("energy: {:.1e} with contact, {:.1e} without",
