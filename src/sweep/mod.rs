@@ -1686,7 +1686,7 @@ mod tests {
             }
         }
         let bytes: Vec<u8> = (0..300_000u32)
-            .map(|i| (i * 2_654_435_761 >> 13) as u8)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
             .collect();
         let mut streamed = Fnv1a::new();
         streamed.part(b"head");
