@@ -12,7 +12,10 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/fuzz-sweep.toml"));
+    let path = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/fuzz-sweep.toml"
+    ));
     if let Ok(sweep) = pounding::sweep::Sweep::from_toml(text, path) {
         assert!(!sweep.is_empty());
         for case in [0, sweep.len() - 1] {
