@@ -334,6 +334,9 @@ fn keys() -> Vec<Key> {
             "scale_to_pga = 0.5",
             "scale_to_pga = {v}",
         ),
+        // a one-column record's spacing (101 samples: at 1e-7 s the record lasts 1e-5 s, below
+        // the shortest duration, and is refused naming `ground_motion.file`)
+        k("dt", r, "dt = 0.01", "dt = {v}"),
         // solver
         Key {
             bounds: Some((1e-12, 0.1)),
