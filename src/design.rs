@@ -259,6 +259,7 @@ pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
         text: &text,
         file: "--spectrum",
         name: "--spectrum".into(),
+        warnings: Default::default(),
     };
     let c = Check { ctx: &ctx };
     let forget_place = |e: ScenarioError| match e {

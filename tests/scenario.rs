@@ -217,12 +217,24 @@ fn out_of_range_values_are_refused_with_the_range() {
     refused(
         "gap = 0.0127",
         "gap = 0.0127\nheight = 11.0",
-        &["contact.height", "(0, 10]"],
+        &["contact.height", "[0.01, 10]"],
     );
     refused(
         "gap = 0.0127",
         "gap = 0.0127\nheight = 0.0",
-        &["contact.height", "(0, 10]"],
+        &["contact.height", "[0.01, 10]"],
+    );
+    // (issue 15: at 1e-3 of the height and below a contact's effective mass runs to infinity)
+    refused(
+        "gap = 0.0127",
+        "gap = 0.0127\nheight = 0.009",
+        &["contact.height", "[0.01, 10]", "at the base"],
+    );
+    // (issue 15: a damped law's damping grows as 1/e)
+    refused(
+        "law = \"hertz\"",
+        "law = \"jankowski\"\nrestitution = 0.001",
+        &["contact.restitution", "[0.01, 1]"],
     );
     refused(
         "stiffness = 2.808e10",

@@ -451,7 +451,19 @@ impl Record {
                 limit: MAX_RECORD_BYTES,
             });
         }
-        let text = String::from_utf8_lossy(&bytes);
+        Record::from_bytes(&bytes, path, opts)
+    }
+
+    /// Parses the bytes of a record file, as [`Record::read`] does after reading them: bytes
+    /// that are not UTF-8 are replaced, then [`Record::parse`]. `path` is used only in error
+    /// messages, for the description and to detect the `.AT2` extension (the fuzz targets of
+    /// `fuzz/` call this).
+    pub fn from_bytes(
+        bytes: &[u8],
+        path: &Path,
+        opts: &RecordOptions,
+    ) -> Result<Record, RecordError> {
+        let text = String::from_utf8_lossy(bytes);
         Record::parse(&text, path, opts)
     }
 

@@ -219,6 +219,7 @@ fn positive_list(
                 ),
             ));
         }
+        c.usual(y, key, unit);
         if increasing && y <= last {
             return Err(list_error(
                 c,
@@ -274,6 +275,7 @@ fn shear_floors(
                          floor_mass, storey_stiffness), not both",
         )?;
         let n = whole(c, n, &key("storeys"), MAX_FLOORS)?;
+        c.usual(n as f64, &key("storeys"), "");
         let h = c.positive(
             c.required(
                 &s.storey_height,
@@ -507,6 +509,9 @@ fn floor_damping(
                     reason: "damping ratios must be in [0, 1)".into(),
                 });
             }
+            for v in &values {
+                c.usual(*v, &key("damping_ratio"), "");
+            }
             Ok(FloorDamping::Modal(values))
         }
         (None, Some(r)) => {
@@ -522,6 +527,7 @@ fn floor_damping(
             if !(ratio.is_finite() && ratio > 0.0 && ratio < 1.0) {
                 return Err(c.invalid(z, &key("rayleigh.damping_ratio"), "must be in (0, 1)"));
             }
+            c.usual(ratio, &key("rayleigh.damping_ratio"), "");
             let m = c.required(
                 &rr.modes,
                 &key("rayleigh.modes"),

@@ -39,6 +39,14 @@ pub const DEFAULT_HARMONIC_DURATION: f64 = 20.0;
 /// own sample spacing when smaller).
 pub const DEFAULT_DT: f64 = 0.001;
 
+/// Lowest coefficient of restitution of the laws with a stiffness (kelvin, hertzdamp,
+/// jankowski): their damping grows as 1/e (Jankowski's ξ ≈ 9√5/(32 e)), and at e = 1e-308 one
+/// second of the paper's case took a minute before it diverged (issue 15's corner test).
+pub const MIN_RESTITUTION: f64 = 0.01;
+
+/// Lowest contact height, as a fraction of the lower structure's height.
+pub const MIN_CONTACT_HEIGHT_FRACTION: f64 = 1e-3;
+
 /// PGA above which a ground motion gets a plausibility warning, g.
 pub const PLAUSIBLE_PGA: f64 = 3.0;
 
@@ -462,6 +470,7 @@ impl Scenario {
             text,
             file,
             name: Arc::from(file),
+            warnings: Default::default(),
         };
         let raw: RawScenario = toml::from_str(text)
             .map_err(|e| sweep_file(text, file).unwrap_or_else(|| ctx.toml_error(&e)))?;
@@ -724,6 +733,8 @@ pub(crate) struct Ctx<'a> {
     pub(crate) text: &'a str,
     pub(crate) file: &'a str,
     pub(crate) name: Arc<str>,
+    /// Values inside their range but outside the usual band ([`usual_range`]), as warnings.
+    pub(crate) warnings: std::cell::RefCell<Vec<String>>,
 }
 
 impl Ctx<'_> {
@@ -897,6 +908,140 @@ pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
     })
 }
 
+/// The usual band of a numeric key for real buildings, earthquakes and runs (issue 15): a value
+/// inside [`physical_range`] but outside this band is accepted with a warning (in
+/// `Scenario::warnings`) that gives the band and why. Keys by path, e.g. `structure[1].period`
+/// or `ground_motion.period` (the ground's period has its own band).
+///
+/// Some quantities are warned about once, where they are known in full rather than per key:
+/// the PGA (of a harmonic motion or a record, scaled or not: `ground_motion.pga`,
+/// `scale_to_pga` → [`PLAUSIBLE_PGA`], [`PLAUSIBLE_MIN_PGA`]), a record's sample spacing
+/// (`ground_motion.dt` or the file's own → [`USUAL_RECORD_DT`]), the gaps ([`PLAUSIBLE_GAP`]),
+/// a structure's stiffness (`bending_stiffness`, `tip_stiffness`: through the first-mode period
+/// it gives with the mass and height, [`USUAL_STRUCTURE_PERIOD`]) and physical damping
+/// (`strain_rate_damping`, `air_damping`: through the first-mode damping ratio,
+/// [`USUAL_DAMPING_RATIO`]). Those keys return `None` here.
+pub fn usual_range(key: &str) -> Option<(f64, f64, &'static str)> {
+    let last = key.rsplit('.').next().unwrap_or(key);
+    let ground = key.starts_with("ground_motion");
+    Some(match last {
+        "length" => (
+            2.5,
+            850.0,
+            "buildings are about 3 m (one storey) to 830 m (the tallest) high",
+        ),
+        "mass" => (
+            1e4,
+            1e10,
+            "a building weighs about 10 t (a house) to 10⁹ kg (the tallest towers)",
+        ),
+        "period" if ground => (
+            0.02,
+            20.0,
+            "earthquake ground motion has its energy at periods of about 0.05–10 s (long-period \
+             pulses up to about 20 s)",
+        ),
+        "period" => (
+            USUAL_STRUCTURE_PERIOD.0,
+            USUAL_STRUCTURE_PERIOD.1,
+            "buildings have first-mode periods of about 0.02 s to 12 s (the tallest)",
+        ),
+        "damping_ratio" => (
+            USUAL_DAMPING_RATIO.0,
+            USUAL_DAMPING_RATIO.1,
+            "buildings have damping ratios of about 0.5–20 % (5 % by convention)",
+        ),
+        "stiffness" => (
+            1e6,
+            1e13,
+            "contact stiffnesses between buildings in the literature are about 10⁶–10¹³ \
+             (N/m or N/m^1.5)",
+        ),
+        "restitution" => (
+            0.3,
+            1.0,
+            "impacts between buildings (concrete, steel, timber) have restitution of about \
+             0.4–0.8",
+        ),
+        "dt" if !ground => (
+            1e-6,
+            0.05,
+            "a step below 1 µs takes very long; above 50 ms a step spans the short periods \
+             of a building and of a record",
+        ),
+        "duration" => (1.0, 3600.0, "earthquake shaking lasts seconds to minutes"),
+        "output_interval" => (
+            1e-4,
+            0.1,
+            "history.csv sampled more sparsely than 0.1 s does not resolve a building's \
+             motion (the peaks are still exact)",
+        ),
+        "rtol" => (
+            crate::integrate::MIN_RTOL,
+            1e-3,
+            "a relative tolerance above 1e-3 gives rough results (the self-check says how rough)",
+        ),
+        "atol" => (
+            crate::integrate::MIN_ATOL,
+            1e-3,
+            "an absolute tolerance above 1 mm is coarser than the gaps it is meant to resolve",
+        ),
+        "storeys" => (1.0, 170.0, "the tallest buildings have about 160 storeys"),
+        "storey_height" => (
+            2.0,
+            10.0,
+            "storeys are about 2.5–6 m high (10 m: industrial)",
+        ),
+        "floor_mass" | "floor_masses" => (
+            1e3,
+            1e8,
+            "a floor weighs about 1 t (a light timber floor) to 10⁸ kg (a tower's)",
+        ),
+        "storey_stiffness" | "storey_stiffnesses" => (
+            1e5,
+            1e12,
+            "a storey's lateral stiffness is about 10⁵ N/m (light timber) to 10¹² N/m (shear \
+             walls)",
+        ),
+        "floor_heights" => (1.0, 850.0, "floors are 1 m to 830 m above the ground"),
+        "periods" => (
+            0.005,
+            USUAL_STRUCTURE_PERIOD.1,
+            "a building's modes have periods of about 0.005 s (high modes) to 12 s (the tallest)",
+        ),
+        _ => return None,
+    })
+}
+
+/// Usual first-mode period of a building, s ([`usual_range`]): from a one-storey stiff frame to
+/// the tallest towers (Burj Khalifa: about 11 s).
+pub const USUAL_STRUCTURE_PERIOD: (f64, f64) = (0.02, 12.0);
+
+/// Usual damping ratio of a building's first mode ([`usual_range`]).
+pub const USUAL_DAMPING_RATIO: (f64, f64) = (0.005, 0.2);
+
+/// Usual sample spacing of an accelerogram, s (50 Hz to 10 kHz).
+pub const USUAL_RECORD_DT: (f64, f64) = (1e-4, 0.02);
+
+/// PGA below which a ground motion gets a plausibility warning, g (barely felt shaking).
+pub const PLAUSIBLE_MIN_PGA: f64 = 0.01;
+
+/// The warning for `x` (of `key`, in `unit`) outside its usual band, if it is.
+pub(crate) fn unusual(x: f64, key: &str, unit: &str) -> Option<String> {
+    let (lo, hi, why) = usual_range(key)?;
+    let unit = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    };
+    (!(lo..=hi).contains(&x)).then(|| {
+        format!(
+            "`{key}` = {x:?}{unit} is outside the usual [{lo:e}, {hi:e}]{unit}: {why}; \
+             check the value and its unit"
+        )
+    })
+}
+
 /// A validator for one key: checks the value against a range and reports with its location.
 pub(crate) struct Check<'a, 'c> {
     pub(crate) ctx: &'c Ctx<'a>,
@@ -961,7 +1106,22 @@ impl Check<'_, '_> {
                 value: format!("{x:?}"),
                 reason: format!("must be in [{lo:e}, {hi:e}] {unit} ({what})"),
             }),
-            _ => Ok(x),
+            _ => {
+                self.usual(x, key, unit);
+                Ok(x)
+            }
+        }
+    }
+
+    /// Records a warning when `x` is outside the usual band of `key` ([`usual_range`]).
+    /// A list warns once, for its first unusual value.
+    pub(crate) fn usual(&self, x: f64, key: &str, unit: &str) {
+        if let Some(w) = unusual(x, key, unit) {
+            let mut list = self.ctx.warnings.borrow_mut();
+            let named = format!("`{key}` = ");
+            if !list.iter().any(|o| o.starts_with(&named)) {
+                list.push(w);
+            }
         }
     }
 
@@ -977,10 +1137,19 @@ impl Check<'_, '_> {
 
     fn restitution(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
         let e = *v.get_ref();
-        if e.is_finite() && e > 0.0 && e <= 1.0 {
+        if e.is_finite() && (MIN_RESTITUTION..=1.0).contains(&e) {
             Ok(e)
         } else {
-            Err(self.invalid(v, key, "coefficient of restitution must be in (0, 1]"))
+            Err(self.invalid(
+                v,
+                key,
+                &format!(
+                    "coefficient of restitution must be in [{MIN_RESTITUTION}, 1] (the damping of \
+                     the jankowski and hunt-crossley laws grows as 1/e: below {MIN_RESTITUTION} \
+                     it stalls the solver; for a plastic impact use law = \"stereomechanical\" \
+                     with restitution = 0)"
+                ),
+            ))
         }
     }
 }
@@ -1124,6 +1293,8 @@ fn validate(
     }
     let mut warnings = structure_warnings;
     warnings.extend(plausibility(&contact, &ground_motion));
+    warnings.extend(derived_warnings(&structures));
+    warnings.extend(ctx.warnings.take());
     let design = crate::design::validate(
         &c,
         raw.ground_motion.as_ref(),
@@ -1171,10 +1342,73 @@ fn validate(
     Ok(scenario)
 }
 
+/// Warnings about what several keys give together: the first-mode period of a structure given
+/// by its stiffness (not by `period`), the first-mode damping ratio of physical damping
+/// (`strain_rate_damping`, `air_damping`), each outside its usual band ([`usual_range`]).
+fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, st) in structures.iter().enumerate() {
+        let (by_period, physical) = match st {
+            Structure::Cantilever(c) => (
+                matches!(c.stiffness, Stiffness::Period(_)),
+                matches!(c.damping, Damping::Physical { .. }),
+            ),
+            Structure::Floors(f) => (matches!(f.kind, crate::modal::FloorKind::Modal(_)), false),
+        };
+        let modal = st.modal();
+        let (lo, hi) = USUAL_STRUCTURE_PERIOD;
+        if let Some(&t1) = modal.periods().first()
+            && !by_period
+            && !(lo..=hi).contains(&t1)
+        {
+            out.push(format!(
+                "structure {} (\"{}\"): its stiffness, mass and height give a first-mode period of \
+                 {t1:.4e} s, outside the usual [{lo}, {hi}] s of buildings; check their units",
+                i + 1,
+                st.name()
+            ));
+        }
+        let (lo, hi) = USUAL_DAMPING_RATIO;
+        if let Some(&z1) = modal.zeta.first()
+            && physical
+            && !(lo..=hi).contains(&z1)
+        {
+            out.push(format!(
+                "structure {} (\"{}\"): strain_rate_damping and air_damping give a first-mode \
+                 damping ratio of {z1:.4}, outside the usual [{lo}, {hi}] of buildings; check \
+                 their units (c_s/E in s, c_a in N·s/m²)",
+                i + 1,
+                st.name()
+            ));
+        }
+    }
+    out
+}
+
 /// Warnings about values that are valid but implausible, each saying why.
 fn plausibility(contact: &ContactSpec, ground: &GroundMotion) -> Vec<String> {
     let mut out = Vec::new();
     let pga_g = ground.pga() / crate::ground_motion::STANDARD_GRAVITY;
+    if matches!(ground, GroundMotion::Harmonic(_) | GroundMotion::Record(_))
+        && pga_g < PLAUSIBLE_MIN_PGA
+    {
+        out.push(format!(
+            "the ground motion's PGA is {pga_g:.3e} g, below {PLAUSIBLE_MIN_PGA} g: shaking that \
+             people barely feel, far below any that makes buildings pound; PGA is in g — was it \
+             given in cm/s² or scaled twice?"
+        ));
+    }
+    if let GroundMotion::Record(r) = ground {
+        let (lo, hi) = USUAL_RECORD_DT;
+        if !(lo..=hi).contains(&r.dt) {
+            out.push(format!(
+                "the record is sampled every {} s, outside the usual [{lo}, {hi}] s of \
+                 accelerograms (50 Hz to 10 kHz); check `ground_motion.dt` or the file's time \
+                 column (in s)",
+                r.dt
+            ));
+        }
+    }
     if pga_g > PLAUSIBLE_PGA {
         out.push(format!(
             "the ground motion's PGA is {pga_g:.3} g, above {PLAUSIBLE_PGA} g: beyond the strongest \
@@ -1308,6 +1542,9 @@ fn structure(
                     reason: "damping ratios must be in [0, 1)".into(),
                 });
             }
+            for v in &values {
+                c.usual(*v, &key("damping_ratio"), "");
+            }
             Damping::Modal(values)
         }
         (None, None, None) => {
@@ -1430,6 +1667,9 @@ fn contact(
         }
         (None, false) => 1.0,
     };
+    if r.restitution.is_some() {
+        c.usual(restitution, "contact.restitution", "");
+    }
     if let (Some(m), false) = (&r.damping_model, law_name == "hertzdamp") {
         return Err(c.invalid(
             m,
@@ -1478,11 +1718,16 @@ fn contact(
             ));
         }
     };
-    let height_reason =
-        format!("contact height must be in (0, {min_length}] m, i.e. (0, min(L1, L2)]");
+    // (near the base the structures barely move: the effective mass of a contact there grows
+    // without bound, 1/φ(h)², and is infinite at h = 0)
+    let lowest = min_length * MIN_CONTACT_HEIGHT_FRACTION;
+    let height_reason = format!(
+        "contact height must be in [{lowest}, {min_length}] m, i.e. [{MIN_CONTACT_HEIGHT_FRACTION} \
+         min(L1, L2), min(L1, L2)] (no contact transfers anything at the base)"
+    );
     let check_height = |h: &Spanned<f64>, key: &str| -> Result<f64, ScenarioError> {
         let x = *h.get_ref();
-        if x.is_finite() && x > 0.0 && x <= min_length * (1.0 + 1e-12) {
+        if x.is_finite() && x >= lowest && x <= min_length * (1.0 + 1e-12) {
             Ok(x.min(min_length))
         } else {
             Err(c.invalid(h, key, &height_reason))
@@ -1665,6 +1910,27 @@ fn ground(
                 None => read()?,
                 Some(cache) => cache.get_or_read(&path, &opts, read)?,
             };
+            // what the file gives is held to the ranges of the keys that could give it
+            let g = crate::ground_motion::STANDARD_GRAVITY;
+            for (what, x, key, unit) in [
+                ("PGA", record.pga() / g, "pga", "g"),
+                ("sample spacing", record.dt, "dt", "s"),
+                ("duration", record.duration(), "duration", "s"),
+            ] {
+                if let Some((lo, hi, range_of)) = physical_range(key)
+                    && !(lo..=hi).contains(&x)
+                {
+                    return Err(c.invalid(
+                        file,
+                        "ground_motion.file",
+                        &format!(
+                            "the record's {what} is {x:e} {unit}, outside [{lo:e}, {hi:e}] {unit} \
+                             ({range_of}): check the file's units (`units`, `dt`) or scale it \
+                             with `scale_to_pga`"
+                        ),
+                    ));
+                }
+            }
             Ok(GroundMotion::Record(record))
         }
         // a design spectrum has no time history: crate::design checks its keys
@@ -1726,6 +1992,7 @@ fn solver(
                      error estimate)",
                 ));
             }
+            c.usual(x, "solver.rtol", "");
             x
         }
     };
@@ -1740,6 +2007,7 @@ fn solver(
                     "must be in [1e-14, 1] m (an error in a structure's top displacement)",
                 ));
             }
+            c.usual(x, "solver.atol", "m");
             x
         }
     };

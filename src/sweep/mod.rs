@@ -1833,6 +1833,34 @@ mod tests {
         assert!(e.contains("whole numbers"), "{e}");
     }
 
+    /// The identity hash of a file streamed in blocks (of any size the reader gives) is the
+    /// hash of its bytes as one part: streaming changes nothing but the memory it takes.
+    #[test]
+    fn streamed_identity_equals_the_whole_file_hash() {
+        /// A reader giving at most 7 777 bytes a call, as a pipe or a slow disk might.
+        struct Trickle<'a>(&'a [u8]);
+        impl std::io::Read for Trickle<'_> {
+            fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+                let n = self.0.len().min(buf.len()).min(7777);
+                buf[..n].copy_from_slice(&self.0[..n]);
+                self.0 = &self.0[n..];
+                Ok(n)
+            }
+        }
+        let bytes: Vec<u8> = (0..300_000u32)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+            .collect();
+        let mut streamed = Fnv1a::new();
+        streamed.part(b"head");
+        streamed.stream(Trickle(&bytes));
+        streamed.end_part();
+        assert_eq!(streamed.finish(), fnv1a(&[b"head", &bytes]));
+        // and a different byte changes it
+        let mut other = bytes.clone();
+        other[123_456] ^= 1;
+        assert_ne!(fnv1a(&[b"head", &bytes]), fnv1a(&[b"head", &other]));
+    }
+
     #[test]
     fn shard_parse() {
         assert_eq!("2/5".parse::<Shard>(), Ok(Shard { k: 2, n: 5 }));

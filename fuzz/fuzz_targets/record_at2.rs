@@ -1,0 +1,19 @@
+//! The record reader on arbitrary bytes, as `Record::read` sees a file (lossy UTF-8, then
+//! `Record::parse`), named `fuzz.AT2`: a record or an error, never a panic, a hang or
+//! unbounded memory.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use pounding::ground_motion::record::{Record, RecordOptions};
+use std::path::Path;
+
+fuzz_target!(|data: &[u8]| {
+    let opts = RecordOptions {
+        dt: None,
+        ..RecordOptions::default()
+    };
+    if let Ok(r) = Record::from_bytes(data, Path::new("fuzz.AT2"), &opts) {
+        assert!(r.num_samples() >= 2 && r.dt > 0.0 && r.dt.is_finite());
+        assert!(r.pga().is_finite() && r.duration().is_finite());
+    }
+});

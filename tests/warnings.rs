@@ -1,0 +1,311 @@
+//! Issue 15: values inside their allowed range but unusual for real buildings, earthquakes or
+//! runs are accepted with a warning that names the key, the usual band and why; the bundled
+//! examples (scenarios and every case of every sweep) give none.
+
+use std::path::Path;
+
+use pounding::scenario::{Scenario, usual_range};
+use pounding::sweep::Sweep;
+
+const BASE: &str = include_str!("../examples/paper-c.toml");
+
+/// Validates `text`, run by `adaptive` (rk4 at 1 ms would refuse the stiffer edits).
+fn parse(text: &str) -> Scenario {
+    let text = text.replace("method = \"rk4\"", "method = \"adaptive\"");
+    Scenario::from_toml(&text, "w.toml", Path::new("examples"))
+        .unwrap_or_else(|e| panic!("must be accepted: {e}\n{text}"))
+}
+
+/// `BASE` with its first line starting with `from` replaced by `to`.
+fn edit(from: &str, to: &str) -> String {
+    let at = BASE
+        .find(&format!("\n{from}"))
+        .unwrap_or_else(|| panic!("test edit `{from}` does not apply"))
+        + 1;
+    let end = at + BASE[at..].find('\n').unwrap();
+    format!("{}{}{}", &BASE[..at], to, &BASE[end..])
+}
+
+/// The warnings of the paper's case with one line edited.
+fn warnings_with(from: &str, to: &str) -> Vec<String> {
+    parse(&edit(from, to)).warnings
+}
+
+#[test]
+fn the_base_case_has_no_warning() {
+    assert!(
+        parse(BASE).warnings.is_empty(),
+        "{:?}",
+        parse(BASE).warnings
+    );
+}
+
+/// A representative value outside each usual band warns, naming the key and the band; a value
+/// just inside does not.
+#[test]
+fn unusual_values_warn_with_key_and_band() {
+    // (line to replace, unusual value line, usual value line, key named, band text)
+    let cases = [
+        (
+            "length = 10.0",
+            "length = 1.0",
+            "length = 3.0",
+            "`structure[1].length`",
+            "[2.5e0, 8.5e2] m",
+        ),
+        (
+            "length = 10.0",
+            "length = 1500.0",
+            "length = 800.0",
+            "`structure[1].length`",
+            "[2.5e0, 8.5e2] m",
+        ),
+        (
+            "mass = 2.273e6",
+            "mass = 100.0",
+            "mass = 2e4",
+            "`structure[1].mass`",
+            "[1e4, 1e10] kg",
+        ),
+        (
+            "period = 0.4203",
+            "period = 0.015",
+            "period = 0.03",
+            "`structure[1].period`",
+            "[2e-2, 1.2e1] s",
+        ),
+        (
+            "period = 0.4203",
+            "period = 50.0",
+            "period = 11.0",
+            "`structure[1].period`",
+            "[2e-2, 1.2e1] s",
+        ),
+        (
+            "damping_ratio = 0.01",
+            "damping_ratio = 0.0",
+            "damping_ratio = 0.006",
+            "`structure[1].damping_ratio`",
+            "[5e-3, 2e-1]",
+        ),
+        (
+            "damping_ratio = 0.01",
+            "damping_ratio = 0.5",
+            "damping_ratio = 0.15",
+            "`structure[1].damping_ratio`",
+            "[5e-3, 2e-1]",
+        ),
+        (
+            "stiffness = 2.808e10",
+            "stiffness = 10.0",
+            "stiffness = 2e6",
+            "`contact.stiffness`",
+            "[1e6, 1e13]",
+        ),
+        (
+            "stiffness = 2.808e10",
+            "stiffness = 1e16",
+            "stiffness = 5e12",
+            "`contact.stiffness`",
+            "[1e6, 1e13]",
+        ),
+        (
+            "period = 0.65",
+            "period = 60.0",
+            "period = 15.0",
+            "`ground_motion.period`",
+            "[2e-2, 2e1] s",
+        ),
+        (
+            "dt = 0.001",
+            "dt = 0.1",
+            "dt = 0.01",
+            "`solver.dt`",
+            "[1e-6, 5e-2] s",
+        ),
+        (
+            "duration = 20.0",
+            "duration = 0.5",
+            "duration = 2.0",
+            "`solver.duration`",
+            "[1e0, 3.6e3] s",
+        ),
+        (
+            "duration = 20.0",
+            "duration = 5000.0",
+            "duration = 3000.0",
+            "`solver.duration`",
+            "[1e0, 3.6e3] s",
+        ),
+    ];
+    for (from, unusual, usual, key, band) in cases {
+        // the ground motion's period line comes after the structures'
+        let text = if from == "period = 0.65" {
+            BASE.replacen("period = 0.65", unusual, 1)
+        } else {
+            edit(from, unusual)
+        };
+        let text = text.replace("method = \"rk4\"", "method = \"adaptive\"");
+        let w = parse(&text).warnings;
+        assert!(
+            w.iter().any(|w| w.contains(key) && w.contains(band)),
+            "`{unusual}` must warn naming {key} and {band}: {w:?}"
+        );
+        let text = if from == "period = 0.65" {
+            BASE.replacen("period = 0.65", usual, 1)
+        } else {
+            edit(from, usual)
+        };
+        let text = text.replace("method = \"rk4\"", "method = \"adaptive\"");
+        let w = parse(&text).warnings;
+        assert!(
+            !w.iter().any(|w| w.contains(key)),
+            "`{usual}` must not warn about {key}: {w:?}"
+        );
+    }
+}
+
+/// Quantities warned about once from what several keys give: the PGA (low too), the first
+/// period of a structure given by its stiffness, the damping of physical coefficients, the
+/// restitution, the tolerances, a shear building's storeys.
+#[test]
+fn derived_and_other_keys_warn() {
+    let w = warnings_with("pga = 0.6", "pga = 0.001");
+    assert!(w.iter().any(|w| w.contains("below 0.01 g")), "{w:?}");
+    // EI of 1e6 N·m² on 10 m and 2273 t: T1 = 2π/(3.516² √(EI/(m L⁴))) ≈ 24 s
+    let w = warnings_with("period = 0.4203", "bending_stiffness = 1e6");
+    assert!(
+        w.iter()
+            .any(|w| w.contains("structure 1") && w.contains("first-mode period")),
+        "{w:?}"
+    );
+    // ζ₁ = c_s ω₁ / 2 = 1 · 15 / 2 ≫ 0.2 (ω₁ = 2π/0.42 s)
+    let w = warnings_with("damping_ratio = 0.01", "strain_rate_damping = 1.0");
+    assert!(
+        w.iter()
+            .any(|w| w.contains("structure 1") && w.contains("damping ratio")),
+        "{w:?}"
+    );
+    let text = edit("law = \"hertz\"", "law = \"kelvin\"\nrestitution = 0.1");
+    let w = parse(&text).warnings;
+    assert!(
+        w.iter().any(|w| w.contains("`contact.restitution`")),
+        "{w:?}"
+    );
+    let text = edit("method = \"rk4\"", "method = \"adaptive\"\nrtol = 0.05");
+    let w = parse(&text).warnings;
+    assert!(w.iter().any(|w| w.contains("`solver.rtol`")), "{w:?}");
+    let text = edit("method = \"rk4\"", "method = \"adaptive\"\natol = 0.01");
+    let w = parse(&text).warnings;
+    assert!(w.iter().any(|w| w.contains("`solver.atol`")), "{w:?}");
+    let text = edit("output_interval = 0.01", "output_interval = 0.5");
+    let w = parse(&text).warnings;
+    assert!(
+        w.iter().any(|w| w.contains("`solver.output_interval`")),
+        "{w:?}"
+    );
+    // a 3-storey shear building with 20 m storeys and 10 kg floors
+    let text = BASE.replacen(
+        "length = 10.0\nmass = 2.273e6\nperiod = 0.4203",
+        "kind = \"shear-building\"\nstoreys = 3\nstorey_height = 20.0\nfloor_mass = 10.0\n\
+         storey_stiffness = 1e3",
+        1,
+    );
+    let text = text
+        .replace("method = \"rk4\"", "method = \"adaptive\"")
+        .replace("modes = 3\n", "");
+    let sc = Scenario::from_toml(&text, "w.toml", Path::new("examples"));
+    // (the contact height of 10 m is not a floor of 20 m storeys: only the warnings matter,
+    // which are collected before; use a height at a floor)
+    let text = if sc.is_err() {
+        text.replace("[contact]", "[contact]\nheight = 20.0")
+            .replace("length = 10.0", "length = 60.0")
+    } else {
+        text
+    };
+    let w = parse(&text).warnings;
+    for key in ["storey_height", "floor_mass", "storey_stiffness"] {
+        assert!(
+            w.iter()
+                .any(|w| w.contains(&format!("`structure[1].{key}`"))),
+            "{key}: {w:?}"
+        );
+    }
+    // a list warns once
+    let damp = edit("damping_ratio = 0.01", "damping_ratio = [0.5, 0.5, 0.5]");
+    let w = parse(&damp).warnings;
+    assert_eq!(
+        w.iter().filter(|w| w.contains("damping_ratio")).count(),
+        1,
+        "{w:?}"
+    );
+}
+
+/// Every band lies inside its key's allowed range.
+#[test]
+fn bands_are_inside_the_ranges() {
+    use pounding::scenario::physical_range;
+    for key in [
+        "length",
+        "mass",
+        "structure[1].period",
+        "ground_motion.period",
+        "stiffness",
+        "solver.dt",
+        "duration",
+        "output_interval",
+        "storey_height",
+        "floor_mass",
+        "storey_stiffness",
+        "floor_heights",
+        "periods",
+    ] {
+        let (ulo, uhi, _) = usual_range(key).unwrap();
+        let (lo, hi, _) = physical_range(key).unwrap();
+        assert!(lo <= ulo && ulo < uhi && uhi <= hi, "{key}");
+    }
+}
+
+fn examples() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples")
+}
+
+/// No bundled scenario, and no case of any bundled sweep, gets a warning at validation.
+#[test]
+fn bundled_examples_give_no_warnings() {
+    let mut scenarios = 0;
+    let mut cases = 0;
+    let mut names: Vec<_> = std::fs::read_dir(examples())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    names.sort();
+    for p in names {
+        let text = std::fs::read_to_string(&p).unwrap();
+        if text
+            .lines()
+            .any(|l| l.trim_start().starts_with("scenario ="))
+        {
+            let sweep = Sweep::from_file(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            for case in 0..sweep.len() {
+                let sc = sweep.case_scenario(case).unwrap();
+                assert!(
+                    sc.warnings.is_empty(),
+                    "{} case {case}: {:?}",
+                    p.display(),
+                    sc.warnings
+                );
+                cases += 1;
+            }
+        } else {
+            let sc = Scenario::from_file(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert!(sc.warnings.is_empty(), "{}: {:?}", p.display(), sc.warnings);
+            scenarios += 1;
+        }
+    }
+    assert!(
+        scenarios >= 10 && cases >= 1000,
+        "{scenarios} scenarios, {cases} cases"
+    );
+}
