@@ -426,6 +426,34 @@ fn against_physical(pga: f64, mu_range: (f64, f64)) {
     );
     assert!(r.energy.relative_error < 1e-8, "{:?}", r.energy);
 
+    // exact-modal: its error falls with rtol (a second-order scheme)
+    let mut errs = Vec::new();
+    for (dt, rtol) in [
+        (1e-3, 1e-5),
+        (1e-3, 1e-6),
+        (1e-3, 1e-7),
+        (1e-3, 1e-8),
+        (1e-3, 1e-9),
+        (1e-3, 1e-10),
+        (1e-4, 1e-8),
+        (1e-4, 1e-10),
+        (1e-5, 1e-10),
+    ] {
+        let r = run(&text(&format!(
+            "method = \"exact-modal\"\ndt = {dt:e}\nrtol = {rtol:e}\noutput_interval = 0.01"
+        )));
+        eprintln!("dt {dt:e} stats {:?}", r.stats);
+        let mut worst: f64 = 0.0;
+        for (i, bd) in [&a, &b].into_iter().enumerate() {
+            worst = worst.max(compare(&r, i, &phys[i], bd, 1.0, 1.0));
+        }
+        let ef = rel(r.contact.peak_force, force);
+        eprintln!(
+            "exact-modal rtol {rtol:e}: worst {worst:.2e}, peak force {ef:.2e}, energy {:.2e}",
+            r.energy.relative_error
+        );
+        errs.push((rtol, worst, ef));
+    }
     let r = run(&text("method = \"rk4\"\ndt = 2e-4\noutput_interval = 0.01"));
     let mut worst: f64 = 0.0;
     for (i, bd) in [&a, &b].into_iter().enumerate() {

@@ -347,13 +347,6 @@ pub enum SolveError {
         /// The relative tolerance.
         rtol: f64,
     },
-    /// The method cannot integrate yielding storeys (issue 16).
-    #[error(
-        "method \"{0}\" does not support yielding storeys (a structure's `hysteresis`): use \
-         `adaptive` (the default: error-controlled, its estimate sees the hysteretic variables) \
-         or `rk4` (fixed step)"
-    )]
-    HysteresisUnsupported(&'static str),
 }
 
 impl SolverSettings {
@@ -397,9 +390,6 @@ pub fn integrate<O: Observer>(
         Method::Rk4 => rk4::run(system, settings, initial, observer),
         Method::Adaptive if yielding => hysteretic::run(system, settings, initial, observer),
         Method::Adaptive => adaptive::run(system, settings, initial, observer),
-        Method::ExactModal if yielding => {
-            Err(SolveError::HysteresisUnsupported(Method::ExactModal.name()))
-        }
         Method::ExactModal => exact_modal::run(system, settings, initial, observer),
     }
 }
