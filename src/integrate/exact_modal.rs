@@ -37,12 +37,27 @@
 //! Steps split at the samples of a recorded motion (its load is a different polynomial on each
 //! interval): each record interval is cut into equal steps ≤ dt.
 //!
+//! Yielding storeys (issue 16, [`Run::base_step_yielding`]): each storey's pseudo-force
+//! P = (1 − α)k(d_y z − d) is a load `−e_s P` along its drift row, treated as a contact force is
+//! (held at P₀ in the predictor, folded into the free flight; linear from P₀ to the predicted
+//! P₁* in the corrector), and z is integrated by the trapezoidal rule in the same
+//! predictor–corrector (z₁* = z₀ + h ż₀, z₁ = z₀ + h/2 (ż₀ + ż₁*), ż₁* at the predicted end),
+//! second order. The pseudo-forces act at every instant, so every sub-step is estimated
+//! ([`Run::estimate_yielding`]: the same two terms over all load rows, and z's own; the kinks of
+//! ż — ḋz changing sign, z = 0 — are not located but covered by the estimate) and the walk
+//! may use the base step itself (m ≥ 0) where no level may touch. Why not locate the kinks as
+//! `adaptive`'s Dormand–Prince path does: a second-order rule's error across a kink of ż is
+//! bounded by its curvature term enlarged by a known factor (see the estimate), which the test
+//! `estimate_sees_the_true_local_error_with_yielding_storeys` confirms against the true local
+//! error; the walk then refines around the kink on its own.
+//!
 //! Tallies: the work of the ground load and the dissipation are computed exactly for the
 //! propagated solution (moments of η from the equation of motion, see
 //! [`super::linear::mode_work`]); the work into the contacts, `∫F(δ)δ̇ dt` with the law's force,
 //! by Simpson's rule on the cubic Hermite interpolant of δ, so that the energy balance measures
 //! the error of the contact scheme (the mismatch between the linearly interpolated load and the
-//! law along the computed motion).
+//! law along the computed motion); each yielding storey's work `∫ P ḋ dt` likewise by Simpson's
+//! rule on the Hermite interpolants of d and z.
 
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
@@ -914,7 +929,7 @@ impl<O: Observer> Run<'_, O> {
             self.predict_storeys(idx, h);
             let err = self.estimate_yielding(h, idx);
             // (a NaN estimate is refined as well)
-            if !(err <= 1.0) {
+            if err.is_nan() || err > 1.0 {
                 if level < MAX_LEVEL {
                     let more = if err.is_finite() {
                         (err.log2() / 3.0).ceil().clamp(1.0, 8.0) as i32
@@ -1127,6 +1142,7 @@ impl<O: Observer> Run<'_, O> {
         let tol = self.tol;
         let h2 = h * h;
         let mut err = 0.0f64;
+        self.kink = false;
         for (s, st) in storeys.iter().enumerate() {
             let (d, dd) = project(nl + s, hy.free[s], &hy.l0, &hy.lpred);
             let z1 = hy.zcorr[s];
@@ -1142,6 +1158,7 @@ impl<O: Observer> Run<'_, O> {
             // 3(h + h_p)/h times (the worst θ → 1)
             let now = hy.now[s];
             let kink = (now.dd * hy.z[s] > 0.0) != (dd * z1 > 0.0);
+            self.kink |= kink;
             let weight = if kink { 3.0 * (h + hp) / h } else { 1.0 };
             let mut ez = 0.5 * h * (zd1 - hy.zdpred[s]).abs() + weight * h * h2 * f.abs() / 6.0;
             if (hy.z[s] > 0.0) != (z1 > 0.0) {
@@ -1160,7 +1177,6 @@ impl<O: Observer> Run<'_, O> {
             err = err.max(ez / (tol.atol / st.dy + tol.rtol * z0.abs().max(z1.abs())));
         }
         // the loads' corrections and curvatures, seen along every row
-        self.kink = false;
         for r in 0..nr {
             let (mut ed, mut ev) = (0.0, 0.0);
             for b in 0..nr {

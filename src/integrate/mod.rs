@@ -32,7 +32,8 @@ pub enum Method {
     /// the kink of the contact law.
     Adaptive,
     /// Exact modal propagation over each step (ground load integrated exactly), contact load
-    /// by a trapezoidal predictor–corrector (second order) with dyadic sub-steps in contact.
+    /// (and yielding storeys' pseudo-forces, z) by a trapezoidal predictor–corrector (second
+    /// order) with dyadic sub-steps in contact (and while storeys may yield).
     ExactModal,
 }
 
@@ -158,7 +159,8 @@ pub(crate) struct StepTrace {
     /// The scaled error estimate (≤ 1 for an accepted step).
     pub err: f64,
     /// Whether a level's force starts or ends at zero inside the step (`exact-modal`, which does
-    /// not locate onsets: its estimate is a bound there, not an asymptotic estimate).
+    /// not locate onsets: its estimate is a bound there, not an asymptotic estimate), or (with
+    /// yielding storeys) a storey's ḋz changes sign in it.
     pub kink: bool,
     /// Hysteretic variables at the start and the end (empty without hysteresis).
     pub z0: Vec<f64>,
