@@ -447,7 +447,7 @@ fn against_physical(pga: f64, mu_range: (f64, f64)) {
 /// local error to rtol: its global error goes like rtol^(2/3) times the accumulation over the
 /// run; measured on the three cases below: ≤ 1.1e-4, 3.8e-6, 2.1e-7), the peak contact force within
 /// the same, the energy balance within 1e3 × rtol; and the error falling with rtol by at least
-/// 4× per two decades (rtol^(2/3) gives 21.5×).
+/// 8× per two decades (the order check: rtol^(2/3) gives 21.5×; measured 14–29×).
 fn exact_modal_converges(
     runs: &[Report; 3],
     buildings: &[(usize, &Building, &Storeys)],
@@ -474,7 +474,7 @@ fn exact_modal_converges(
         errors.push(worst.max(ef));
     }
     assert!(
-        errors[0] > 4.0 * errors[1] && errors[1] > 4.0 * errors[2],
+        errors[0] > 8.0 * errors[1] && errors[1] > 8.0 * errors[2],
         "{errors:?}"
     );
 }
