@@ -37,12 +37,27 @@
 //! Steps split at the samples of a recorded motion (its load is a different polynomial on each
 //! interval): each record interval is cut into equal steps ≤ dt.
 //!
+//! Yielding storeys (issue 16, [`Run::base_step_yielding`]): each storey's pseudo-force
+//! P = (1 − α)k(d_y z − d) is a load `−e_s P` along its drift row, treated as a contact force is
+//! (held at P₀ in the predictor, folded into the free flight; linear from P₀ to the predicted
+//! P₁* in the corrector), and z is integrated by the trapezoidal rule in the same
+//! predictor–corrector (z₁* = z₀ + h ż₀, z₁ = z₀ + h/2 (ż₀ + ż₁*), ż₁* at the predicted end),
+//! second order. The pseudo-forces act at every instant, so every sub-step is estimated
+//! ([`Run::estimate_yielding`]: the same two terms over all load rows, and z's own; the kinks of
+//! ż — ḋz changing sign, z = 0 — are not located but covered by the estimate) and the walk
+//! may use the base step itself (m ≥ 0) where no level may touch. Why not locate the kinks as
+//! `adaptive`'s Dormand–Prince path does: a second-order rule's error across a kink of ż is
+//! bounded by its curvature term enlarged by a known factor (see the estimate), which the test
+//! `estimate_sees_the_true_local_error_with_yielding_storeys` confirms against the true local
+//! error; the walk then refines around the kink on its own.
+//!
 //! Tallies: the work of the ground load and the dissipation are computed exactly for the
 //! propagated solution (moments of η from the equation of motion, see
 //! [`super::linear::mode_work`]); the work into the contacts, `∫F(δ)δ̇ dt` with the law's force,
 //! by Simpson's rule on the cubic Hermite interpolant of δ, so that the energy balance measures
 //! the error of the contact scheme (the mismatch between the linearly interpolated load and the
-//! law along the computed motion).
+//! law along the computed motion); each yielding storey's work `∫ P ḋ dt` likewise by Simpson's
+//! rule on the Hermite interpolants of d and z.
 
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
@@ -87,6 +102,13 @@ struct StepData {
     /// `M1[k·L + l] = Σ_j c_kj c_lj Γ1_j`: the response of level k's displacement to the unit
     /// ramp τ/h at level l (the corrector's end-force term), for the error estimate.
     m1: Vec<(f64, f64)>,
+    /// With yielding storeys, the same three tables over every *load row* r of the system:
+    /// the contact levels' coupling rows c_k (r < L) and then the storeys' drift rows e_s
+    /// (r = L + s), `[r·N + r']`, N = L + S: the response of `row_r · η` (and `row_r · η̇`) to
+    /// a unit load along row r' held (`y0`), ramped (`y1`) or quadratic (`y2`, as `m2`).
+    y0: Vec<(f64, f64)>,
+    y1: Vec<(f64, f64)>,
+    y2: Vec<(f64, f64)>,
     /// Per mode, the bound of the free flight's distance from its cubic Hermite interpolant
     /// over the step per unit of |η − η_p| and of |η̇ − η̇_p| ([`hermite_gap_factor`]).
     herm: Vec<(f64, f64)>,
@@ -107,8 +129,9 @@ impl StepData {
             .map(|j| influence(omega[j], damp[j], h))
             .collect();
         let nl = sys.levels.len();
-        // (Γ2 − Γ1) of every mode, only when there is contact to estimate
-        let quad: Vec<(f64, f64)> = if nl == 0 {
+        let ns = sys.hysteresis.len();
+        // (Γ2 − Γ1) of every mode, only when there is contact or yielding to estimate
+        let quad: Vec<(f64, f64)> = if nl + ns == 0 {
             Vec::new()
         } else {
             (0..sys.len())
@@ -139,6 +162,36 @@ impl StepData {
                 m1[k * nl + l] = r;
             }
         }
+        // the tables over every load row, with yielding storeys only
+        let nr = if ns == 0 { 0 } else { nl + ns };
+        let row = |r: usize| {
+            if r < nl {
+                sys.coupling(r)
+            } else {
+                sys.hysteresis.row(r - nl)
+            }
+        };
+        let mut y0 = vec![(0.0, 0.0); nr * nr];
+        let mut y1 = vec![(0.0, 0.0); nr * nr];
+        let mut y2 = vec![(0.0, 0.0); nr * nr];
+        for a in 0..nr {
+            for b in 0..nr {
+                let (ra, rb) = (row(a), row(b));
+                let (mut s, mut e, mut r) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
+                for (j, (f, g)) in infl.iter().zip(&quad).enumerate() {
+                    let w = ra[j] * rb[j];
+                    s.0 += w * f.g0.0;
+                    s.1 += w * f.g0.1;
+                    e.0 += w * g.0;
+                    e.1 += w * g.1;
+                    r.0 += w * f.g1.0;
+                    r.1 += w * f.g1.1;
+                }
+                y0[a * nr + b] = s;
+                y1[a * nr + b] = r;
+                y2[a * nr + b] = e;
+            }
+        }
         let (rot, half) = big.map_or(((0.0, 1.0), (0.0, 1.0)), |big| {
             ((big * h).sin_cos(), (0.5 * big * h).sin_cos())
         });
@@ -166,6 +219,9 @@ impl StepData {
             m0,
             m1,
             m2,
+            y0,
+            y1,
+            y2,
             inv_h: 1.0 / h,
             rot,
             half,
@@ -302,6 +358,73 @@ struct Run<'a, O: Observer> {
     sums: StateSums,
     tally: Tally,
     stats: Stats,
+    /// Yielding storeys (empty without): see [`Yield`].
+    hy: Yield,
+}
+
+/// One yielding storey's drift d (m), drift rate ḋ (m/s), pseudo-force P = (1 − α)k(d_y z − d)
+/// (N) and ż (1/s) at a state.
+#[derive(Debug, Clone, Copy, Default)]
+struct StoreyState {
+    d: f64,
+    dd: f64,
+    p: f64,
+    zd: f64,
+}
+
+impl Yield {
+    /// Mode j's share of the storeys' load over the (sub-)step: adds the ramp
+    /// `−Σ_s e_sj (P₁* − P₀)` to `g1` and returns the held part `−Σ_s e_sj P₀` (0 without
+    /// yielding storeys).
+    #[inline(always)]
+    fn ramp(&self, j: usize, g1: &mut f64) -> f64 {
+        if self.ns == 0 {
+            return 0.0;
+        }
+        let row = &self.rows_t[j * self.ns..(j + 1) * self.ns];
+        for ((e, st), p1) in row.iter().zip(&self.now).zip(&self.ppred) {
+            *g1 -= e * (p1 - st.p);
+        }
+        self.held[j]
+    }
+}
+
+/// The state and scratch of the yielding storeys (docs/model.md §2.6b): their pseudo-forces
+/// are loads along the drift rows, treated like the contact forces (linear in time over a
+/// sub-step, trapezoidal predictor–corrector), and z is integrated by the trapezoidal rule with
+/// the same predictor–corrector (see [`Run::base_step_yielding`]).
+#[derive(Default)]
+struct Yield {
+    /// Number of storeys S.
+    ns: usize,
+    /// z of every storey.
+    z: Vec<f64>,
+    /// At the current state.
+    now: Vec<StoreyState>,
+    /// Drift rows transposed, mode-major: `[j·S + s]`.
+    rows_t: Vec<f64>,
+    /// Per mode, the storeys' load `−Σ_s e_sj P_s` held over the (sub-)step (folded into the
+    /// free flight (qb, vb)).
+    held: Vec<f64>,
+    /// Per storey, (d, ḋ) of the free flight with the held pseudo-forces.
+    free: Vec<(f64, f64)>,
+    /// Predictor: z₁* = z₀ + h ż₀, ż₁* at the predicted end, P₁*.
+    zpred: Vec<f64>,
+    zdpred: Vec<f64>,
+    ppred: Vec<f64>,
+    /// Corrector: z₁ = z₀ + h/2 (ż₀ + ż₁*).
+    zcorr: Vec<f64>,
+    /// P and ż at the start of the last accepted (sub-)step (third point of the curvature).
+    last_p: Vec<f64>,
+    last_zd: Vec<f64>,
+    /// Scratch over the load rows (levels, then storeys): the generalised load L (F for a
+    /// level, −P for a storey) at the start, predicted and corrected end, and the corrected
+    /// end's projections.
+    l0: Vec<f64>,
+    lpred: Vec<f64>,
+    lcorr: Vec<f64>,
+    /// Level of the last accepted sub-step (where the next base step starts its walk).
+    level: i32,
 }
 
 pub(super) fn run<O: Observer>(
@@ -378,8 +501,40 @@ impl<'a, O: Observer> Run<'a, O> {
                 ..Tally::default()
             },
             stats: Stats::default(),
+            hy: Yield::default(),
         };
-        r.htally = HarmonicTally::new(&r.gm);
+        let ns = sys.hysteresis.len();
+        if ns > 0 {
+            let nr = nl + ns;
+            r.hy = Yield {
+                ns,
+                z: vec![0.0; ns],
+                now: vec![StoreyState::default(); ns],
+                rows_t: (0..n)
+                    .flat_map(|j| (0..ns).map(move |s| sys.hysteresis.row(s)[j]))
+                    .collect(),
+                held: vec![0.0; n],
+                free: vec![(0.0, 0.0); ns],
+                zpred: vec![0.0; ns],
+                zdpred: vec![0.0; ns],
+                ppred: vec![0.0; ns],
+                zcorr: vec![0.0; ns],
+                last_p: vec![0.0; ns],
+                last_zd: vec![0.0; ns],
+                l0: vec![0.0; nr],
+                lpred: vec![0.0; nr],
+                lcorr: vec![0.0; nr],
+                level: 0,
+            };
+            r.tally.storey_work = vec![0.0; ns];
+        }
+        // (the fast harmonic tallies know only the contact loads: with yielding storeys every
+        // step takes the per-mode exact tallies, which take any load linear in time)
+        r.htally = if ns == 0 {
+            HarmonicTally::new(&r.gm)
+        } else {
+            None
+        };
         r.forms = r
             .htally
             .as_ref()
@@ -396,6 +551,7 @@ impl<'a, O: Observer> Run<'a, O> {
             r.onset.copy_from_slice(onset);
         }
         r.evaluate_states();
+        r.evaluate_storeys();
         let s0 = r.states.clone();
         update_onsets(&mut r.onset, &s0, &r.states, 0.0);
         r
@@ -447,7 +603,7 @@ impl<O: Observer> Run<'_, O> {
                 q: &self.q,
                 v: &self.v,
                 levels: &self.states,
-                z: &[],
+                z: &self.hy.z,
                 tally: &self.tally,
             },
         );
@@ -652,6 +808,9 @@ impl<O: Observer> Run<'_, O> {
             self.sync_particular();
         }
         self.since_sync = (self.since_sync + 1) % SYNC_EVERY;
+        if self.hy.ns > 0 {
+            return self.base_step_yielding(t0, hh, piece);
+        }
         let idx = self.cache.index(sys, self.big, hh);
         self.free_flight(t0, hh, piece, idx);
         // Could any level touch within this step? (in contact now, or the free flight's δ, or
@@ -727,6 +886,345 @@ impl<O: Observer> Run<'_, O> {
             }
         }
         Ok(())
+    }
+
+    /// Yielding storeys (issue 16): the base step walked in dyadic sub-steps hh/2^m whose
+    /// length the error estimate [`Self::estimate_yielding`] chooses (z, every storey's drift
+    /// and rate, every level's δ and δ̇ held to the tolerance), m ≥ 0 (m ≥ [`MIN_LEVEL`] when a
+    /// level may touch within the base step, and the contact stability rule as in
+    /// [`Self::base_step`]). The pseudo-forces act at every instant, so every sub-step is
+    /// estimated; the walk starts at the level the last base step ended with.
+    fn base_step_yielding(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
+        let sys = self.sys;
+        let nl = sys.levels.len();
+        let idx = self.cache.index(sys, self.big, hh);
+        self.free_flight(t0, hh, piece, idx);
+        self.hold_storeys(idx);
+        let floor = if nl > 0 && self.contact_bound(hh, idx).0 >= 0.0 {
+            MIN_LEVEL
+        } else {
+            0
+        };
+        const FULL: u64 = 1 << MAX_LEVEL;
+        let limit = 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA;
+        let mut pos: u64 = 0;
+        let mut level = self.hy.level.max(floor);
+        while pos < FULL {
+            let h = hh / (1u64 << level) as f64;
+            let ts = t0 + hh * (pos as f64 / FULL as f64);
+            let idx = self.level_index(hh, level, h);
+            self.free_flight(ts, h, piece, idx);
+            self.hold_storeys(idx);
+            let (bound, worst) = if nl > 0 {
+                self.contact_bound(h, idx)
+            } else {
+                (f64::NEG_INFINITY, 0.0)
+            };
+            if worst > limit && level < MAX_LEVEL {
+                level += 1;
+                continue;
+            }
+            let contact = bound >= 0.0;
+            self.predict(idx, contact);
+            self.predict_storeys(idx, h);
+            let err = self.estimate_yielding(h, idx);
+            // (a NaN estimate is refined as well)
+            if err.is_nan() || err > 1.0 {
+                if level < MAX_LEVEL {
+                    let more = if err.is_finite() {
+                        (err.log2() / 3.0).ceil().clamp(1.0, 8.0) as i32
+                    } else {
+                        1
+                    };
+                    level = (level + more).min(MAX_LEVEL);
+                    self.stats.rejected += 1;
+                    continue;
+                }
+                return Err(SolveError::ToleranceUnreachable {
+                    t: ts,
+                    h,
+                    rtol: self.tol.rtol,
+                });
+            }
+            let start = self.trace.is_some().then(|| {
+                (
+                    self.q.clone(),
+                    self.v.clone(),
+                    self.onset.clone(),
+                    self.hy.z.clone(),
+                )
+            });
+            self.finish_step(ts, h, piece, idx)?;
+            if let (Some(trace), Some((q0, v0, onset, z0))) = (self.trace.as_mut(), start) {
+                trace.push(StepTrace {
+                    t: ts,
+                    h,
+                    q0,
+                    v0,
+                    onset,
+                    q1: self.q.clone(),
+                    v1: self.v.clone(),
+                    err,
+                    kink: self.kink,
+                    z0,
+                    z1: self.hy.z.clone(),
+                });
+            }
+            pos += FULL >> level;
+            if level > floor
+                && 4.0 * worst <= 0.5 * limit
+                && 8.0 * err <= 0.5
+                && pos.is_multiple_of(FULL >> (level - 1))
+            {
+                level -= 1;
+            }
+        }
+        self.hy.level = level;
+        Ok(())
+    }
+
+    /// After the modal state of a (sub-)step of length h is updated: z to its corrected end
+    /// value, the storeys at the new state, and each storey's work `∫ P ḋ dt` by Simpson's rule
+    /// on the cubic Hermite interpolants of d and z (as the contact work is taken: with the
+    /// law's force along the computed motion, so that the energy balance measures the error of
+    /// the linearly interpolated load).
+    fn finish_storeys(&mut self, h: f64) {
+        let hyst = &self.sys.hysteresis;
+        let hy = &mut self.hy;
+        let mut total = 0.0;
+        for (s, st) in hyst.storeys().iter().enumerate() {
+            let a = hy.now[s];
+            let (z0, z1) = (hy.z[s], hy.zcorr[s]);
+            let (d, dd) = hyst.drift(s, &self.q, &self.v);
+            let b = StoreyState {
+                d,
+                dd,
+                p: st.pseudo_force(d, z1),
+                zd: st.z_rate(dd, z1),
+            };
+            let dm = 0.5 * (a.d + b.d) + h * (a.dd - b.dd) / 8.0;
+            let ddm = 1.5 * (b.d - a.d) / h - 0.25 * (a.dd + b.dd);
+            let zm = 0.5 * (z0 + z1) + h * (a.zd - b.zd) / 8.0;
+            let pm = st.pseudo_force(dm, zm);
+            let w = h / 6.0 * (a.p * a.dd + 4.0 * pm * ddm + b.p * b.dd);
+            self.tally.storey_work[s] += w;
+            total += w;
+            hy.last_p[s] = a.p;
+            hy.last_zd[s] = a.zd;
+            hy.now[s] = b;
+            hy.z[s] = z1;
+        }
+        self.tally.hysteretic += total;
+    }
+
+    /// d, ḋ, P and ż of every yielding storey at the current state.
+    fn evaluate_storeys(&mut self) {
+        let hy = &self.sys.hysteresis;
+        for (s, st) in hy.storeys().iter().enumerate() {
+            let (d, dd) = hy.drift(s, &self.q, &self.v);
+            let z = self.hy.z[s];
+            self.hy.now[s] = StoreyState {
+                d,
+                dd,
+                p: st.pseudo_force(d, z),
+                zd: st.z_rate(dd, z),
+            };
+        }
+    }
+
+    /// Fold the storeys' pseudo-forces, held at their start values over the (sub-)step, into
+    /// the free flight (qb, vb) (exact per mode: `g·Γ0`), and widen the contact test's margin by
+    /// the oscillation that load starts in each mode (amplitude |g|/ω²).
+    fn hold_storeys(&mut self, idx: usize) {
+        let ns = self.hy.ns;
+        let n = self.q.len();
+        let data = &self.cache.entries[idx];
+        let margin = !self.sys.levels.is_empty() && self.states.iter().any(|st| st.force <= 0.0);
+        for j in 0..n {
+            let row = &self.hy.rows_t[j * ns..(j + 1) * ns];
+            let mut g = 0.0;
+            for (e, st) in row.iter().zip(&self.hy.now) {
+                g -= e * st.p;
+            }
+            self.hy.held[j] = g;
+            let f = &data.infl[j];
+            self.qb[j] += g * f.g0.0;
+            self.vb[j] += g * f.g0.1;
+            if margin {
+                self.amp[j] += data.herm[j].0 * g.abs() * self.gm.inv_w2[j];
+            }
+        }
+    }
+
+    /// The storeys' predictor over a (sub-)step of length h (free flight with the held
+    /// pseudo-forces in (qb, vb), predicted level forces in `fpred`): the end drift and rate
+    /// with every load held, z₁* = z₀ + h ż₀, ż₁* and P₁* there; and the corrector's
+    /// z₁ = z₀ + h/2 (ż₀ + ż₁*) (trapezoidal, as the loads are).
+    fn predict_storeys(&mut self, idx: usize, h: f64) {
+        let sys = self.sys;
+        let nl = sys.levels.len();
+        let ns = self.hy.ns;
+        let nr = nl + ns;
+        let data = &self.cache.entries[idx];
+        let hyst = &sys.hysteresis;
+        for (s, st) in hyst.storeys().iter().enumerate() {
+            let (mut d, mut dd) = hyst.drift(s, &self.qb, &self.vb);
+            self.hy.free[s] = (d, dd);
+            let r = nl + s;
+            for l in 0..nl {
+                let f0 = self.states[l].force;
+                let y = data.y0[r * nr + l];
+                d += f0 * y.0;
+                dd += f0 * y.1;
+            }
+            let now = self.hy.now[s];
+            let z0 = self.hy.z[s];
+            let z1 = z0 + h * now.zd;
+            let zd1 = st.z_rate(dd, z1);
+            self.hy.zpred[s] = z1;
+            self.hy.zdpred[s] = zd1;
+            self.hy.ppred[s] = st.pseudo_force(d, z1);
+            self.hy.zcorr[s] = z0 + 0.5 * h * (now.zd + zd1);
+        }
+    }
+
+    /// Scaled local error estimate of the sub-step about to be completed, with yielding
+    /// storeys: [`Self::estimate`]'s two parts over every load row (levels and storeys), each
+    /// row's load correction acting on every row through the tables [`StepData::y1`],
+    /// [`StepData::y2`] (and the onset/release bound of a level through [`StepData::y0`]), plus
+    /// z's own: the trapezoidal rule's end-rate correction `h/2·(ż₁ − ż₁*)` and its curvature
+    /// term `h³/6·f`, f the second divided difference of ż through the previous step's start,
+    /// this one's start and its corrected end (the rule leaves out `f·τ(τ − h)` of ż, which
+    /// integrates to `−f h³/6`). Scales: a level's δ and δ̇ as in [`Self::estimate`]; a
+    /// storey's drift `atol + rtol·|d|`, its rate `atol·ω₁ + rtol·|ḋ|`, z `atol/d_y + rtol·|z|`
+    /// (an error of atol in the drift, as `adaptive` does).
+    fn estimate_yielding(&mut self, h: f64, idx: usize) -> f64 {
+        let sys = self.sys;
+        let nl = sys.levels.len();
+        let ns = self.hy.ns;
+        let nr = nl + ns;
+        let data = &self.cache.entries[idx];
+        let hp = self.last_h;
+        let hy = &mut self.hy;
+        for l in 0..nl {
+            hy.l0[l] = self.states[l].force;
+            hy.lpred[l] = self.fpred[l];
+        }
+        for s in 0..ns {
+            hy.l0[nl + s] = -hy.now[s].p;
+            hy.lpred[nl + s] = -hy.ppred[s];
+        }
+        // the corrected end's projections along every row, and the loads there
+        let project = |r: usize, base: (f64, f64), l0: &[f64], lp: &[f64]| {
+            let (mut y, mut yd) = base;
+            for b in 0..nr {
+                let (a0, a1) = (data.y0[r * nr + b], data.y1[r * nr + b]);
+                // (the storeys' held loads are in the free flight already)
+                let held = if b < nl { l0[b] } else { 0.0 };
+                let dl = lp[b] - l0[b];
+                y += held * a0.0 + dl * a1.0;
+                yd += held * a0.1 + dl * a1.1;
+            }
+            (y, yd)
+        };
+        for (k, lv) in sys.levels.iter().enumerate() {
+            let (fd, fdd) = self.free_end[k];
+            let (y, yd) = project(k, (-fd - lv.gap, -fdd), &hy.l0, &hy.lpred);
+            let (d, dd) = (-y - lv.gap, -yd);
+            let v0 = if self.onset[k] > 0.0 {
+                self.onset[k]
+            } else {
+                dd
+            };
+            hy.lcorr[k] = lv.force.force(d, dd, v0);
+        }
+        let storeys = sys.hysteresis.storeys();
+        let tol = self.tol;
+        let h2 = h * h;
+        let mut err = 0.0f64;
+        self.kink = false;
+        for (s, st) in storeys.iter().enumerate() {
+            let (d, dd) = project(nl + s, hy.free[s], &hy.l0, &hy.lpred);
+            let z1 = hy.zcorr[s];
+            let zd1 = st.z_rate(dd, z1);
+            hy.lcorr[nl + s] = -st.pseudo_force(d, z1);
+            // z's own error: end-rate correction and curvature of ż
+            let zd0 = hy.now[s].zd;
+            let f = ((zd1 - zd0) / h - (zd0 - hy.last_zd[s]) / hp) / (h + hp);
+            // a kink of ż inside the sub-step (ḋ or z changes sign: ż's slope jumps by Δs
+            // there): the rule's error is then h²θ(1 − θ)|Δs|/2 (θ the kink's place in the
+            // sub-step, ż linear on either side) while the divided difference gives
+            // h³|f|/6 = h³(1 − θ)|Δs|/(6(h + h_p)), so the curvature term is taken
+            // 3(h + h_p)/h times (the worst θ → 1)
+            let now = hy.now[s];
+            let kink = (now.dd * hy.z[s] > 0.0) != (dd * z1 > 0.0);
+            self.kink |= kink;
+            let weight = if kink { 3.0 * (h + hp) / h } else { 1.0 };
+            let mut ez = 0.5 * h * (zd1 - hy.zdpred[s]).abs() + weight * h * h2 * f.abs() / 6.0;
+            if (hy.z[s] > 0.0) != (z1 > 0.0) {
+                // z crosses 0: the term −(ḋ/d_y)|z|ⁿ(β sign(ḋz) + γ) of ż behaves like
+                // |t − t₀|ⁿ there (n ≥ 1 may be 1 or 1.5: no curvature to estimate), so it is
+                // bounded instead: it stays within T = max|ḋ|/d_y·max|z|ⁿ(β + |γ|) over the
+                // sub-step (z is monotone through its zero), and the rule's error from it
+                // within h·T
+                let zmax = hy.z[s].abs().max(z1.abs());
+                let t = now.dd.abs().max(dd.abs()) / st.dy
+                    * zmax.powf(st.n)
+                    * (st.beta + st.gamma.abs());
+                ez += h * t;
+            }
+            let z0 = hy.z[s];
+            err = err.max(ez / (tol.atol / st.dy + tol.rtol * z0.abs().max(z1.abs())));
+        }
+        // the loads' corrections and curvatures, seen along every row
+        for r in 0..nr {
+            let (mut ed, mut ev) = (0.0, 0.0);
+            for b in 0..nr {
+                let (a0, a1, a2) = (
+                    data.y0[r * nr + b],
+                    data.y1[r * nr + b],
+                    data.y2[r * nr + b],
+                );
+                let (l0, l1) = (hy.l0[b], hy.lcorr[b]);
+                let dl = l1 - hy.lpred[b];
+                ed += (dl * a1.0).abs();
+                ev += (dl * a1.1).abs();
+                if b < nl && (l0 == 0.0) != (l1 == 0.0) {
+                    // a level's onset or release inside the sub-step: bounded as in
+                    // `estimate`
+                    let f = l0.max(l1);
+                    self.kink = true;
+                    ed += f * a0.0.abs() / 3.0;
+                    ev += f * a0.1.abs() / 2.0;
+                } else {
+                    let lm = if b < nl {
+                        self.last_force[b]
+                    } else {
+                        -hy.last_p[b - nl]
+                    };
+                    let c = ((l1 - l0) / h - (l0 - lm) / hp) / (h + hp);
+                    ed += (h2 * c * a2.0).abs();
+                    ev += (h2 * c * a2.1).abs();
+                }
+            }
+            if ed == 0.0 && ev == 0.0 {
+                continue;
+            }
+            let (sd, sv) = if r < nl {
+                let st = &self.states[r];
+                (
+                    (st.delta + sys.levels[r].gap).abs(),
+                    st.delta_dot.abs().max(self.onset[r]),
+                )
+            } else {
+                let now = hy.now[r - nl];
+                (now.d.abs(), now.dd.abs())
+            };
+            err = err
+                .max(ed / (tol.atol + tol.rtol * sd))
+                .max(ev / (tol.atol_rate + tol.rtol * sv));
+        }
+        err
     }
 
     /// The predicted end force F₁* of every level (load held at F₀ over the (sub-)step whose
@@ -977,6 +1475,9 @@ impl<O: Observer> Run<'_, O> {
                         g1 += c * (self.fpred[k] - self.states[k].force);
                     }
                 }
+                // yielding storeys: their held load is in (qb, vb) already, their ramp joins
+                // the contact's; the tallies take the whole load
+                let gh = self.hy.ramp(j, &mut g1);
                 let f = &infl[j];
                 let q1 = qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
                 let v1 = vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
@@ -987,7 +1488,7 @@ impl<O: Observer> Run<'_, O> {
                     (q[j], v[j]),
                     (q1, v1),
                     &cpoly[j],
-                    g0,
+                    g0 + gh,
                     g1,
                 );
                 input += w.input;
@@ -1005,6 +1506,7 @@ impl<O: Observer> Run<'_, O> {
                         g1 += c * (self.fpred[k] - self.states[k].force);
                     }
                 }
+                let gh = self.hy.ramp(j, &mut g1);
                 let f = &data.infl[j];
                 let q1 = self.qb[j] + g0 * f.g0.0 + g1 * f.g1.0;
                 let v1 = self.vb[j] + g0 * f.g0.1 + g1 * f.g1.1;
@@ -1020,7 +1522,7 @@ impl<O: Observer> Run<'_, O> {
                     (q1, v1),
                     ground,
                     tm.as_ref(),
-                    g0,
+                    g0 + gh,
                     g1,
                 );
                 input += w.input;
@@ -1045,6 +1547,9 @@ impl<O: Observer> Run<'_, O> {
         match projected {
             Some((cq, cv)) => self.set_state(0, cq, cv),
             None => self.evaluate_states(),
+        }
+        if self.hy.ns > 0 {
+            self.finish_storeys(h);
         }
         let inv_h = self.cache.entries[idx].inv_h;
         // work into the contacts with the law's force (Simpson on the Hermite interpolant of δ)
@@ -1082,6 +1587,9 @@ impl<O: Observer> Run<'_, O> {
             )
         {
             self.evaluate_states();
+            if self.hy.ns > 0 {
+                self.evaluate_storeys();
+            }
             if let Some(ht) = &self.htally {
                 let mut sums = StateSums::default();
                 for j in 0..n {
@@ -1271,6 +1779,109 @@ mod tests {
             for rtol in [1e-4, 1e-6, 1e-8] {
                 assert_estimates_honest(name, &sys, rtol);
             }
+        }
+    }
+
+    /// With yielding storeys (issue 16) every sub-step is estimated, and the estimate holds
+    /// the true local error of z, of every storey's drift and rate and of every level's δ and
+    /// δ̇, across the kinks of ż (unloading, ḋ = 0; z = 0) and the contact onsets and releases,
+    /// none of which is located. The system of `hysteretic`'s own test (two yielding buildings,
+    /// ductility ≈ 5–10, pounding at two floors, harmonic motion); every accepted sub-step with
+    /// a kink and every 7th other one is redone from its start by 1000 RK4 steps of the
+    /// right-hand side in modal coordinates (independent of this scheme), and the true error is
+    /// measured in the estimate's own scaled norm. At rtol 1e-5, 1e-7, 1e-9: true error ≤ 2 ×
+    /// max(estimate, 0.01) (measured ≤ 1.2, across kinks ≤ 0.99: before the kink rules below it
+    /// reached 13), every true error ≤ 1.5 of the tolerance (measured ≤ 0.97), median
+    /// estimate/true ≤ 3 (measured 1.1–1.25: the estimate is sharp, not only safe). The first
+    /// sub-step has no past for its curvature and is only reported (measured ≤ 0.15).
+    #[test]
+    fn estimate_sees_the_true_local_error_with_yielding_storeys() {
+        use crate::integrate::hysteretic::tests::{redo, system};
+        let sys = system();
+        let (n, ns, nl) = (sys.len(), sys.hysteresis.len(), sys.levels.len());
+        let hy = &sys.hysteresis;
+        for rtol in [1e-5, 1e-7, 1e-9] {
+            let settings = SolverSettings::new(Method::ExactModal, 1e-2, 2.0).with_rtol(rtol);
+            let tol = SubstepTolerance::new(&sys, &settings);
+            let mut trace = Vec::new();
+            run_traced(
+                &sys,
+                &settings,
+                &InitialState::default(),
+                &mut Quiet,
+                Some(&mut trace),
+            )
+            .expect("runs");
+            let (mut worst, mut worst_kink, mut kinks, mut max_true) = (0.0f64, 0.0f64, 0, 0.0f64);
+            let mut over = Vec::new();
+            let mut first = 0.0;
+            for (i, tr) in trace.iter().enumerate() {
+                // a kink of ż inside the sub-step: ḋ·z of another sign at its end
+                let kink = (0..ns).any(|s| {
+                    let (_, d0) = hy.drift(s, &tr.q0, &tr.v0);
+                    let (_, d1) = hy.drift(s, &tr.q1, &tr.v1);
+                    (d0 * tr.z0[s]).signum() != (d1 * tr.z1[s]).signum()
+                });
+                assert!(tr.err <= 1.0, "accepted sub-step at {}: {}", tr.t, tr.err);
+                if !(kink || tr.kink || i % 7 == 0) {
+                    continue;
+                }
+                let fine = redo(&sys, tr, 1000);
+                let (fq, rest) = fine.split_at(n);
+                let (fv, fz) = rest.split_at(n);
+                let mut e: f64 = 0.0;
+                for k in 0..nl {
+                    let c = sys.coupling(k);
+                    let (w, rate) = (dot(c, &tr.q0).abs(), dot(c, &tr.v0).abs().max(tr.onset[k]));
+                    let dd = (dot(c, &tr.q1) - dot(c, fq)).abs();
+                    let dv = (dot(c, &tr.v1) - dot(c, fv)).abs();
+                    e = e
+                        .max(dd / (tol.atol + tol.rtol * w))
+                        .max(dv / (tol.atol_rate + tol.rtol * rate));
+                }
+                for (s, st) in hy.storeys().iter().enumerate() {
+                    let (d0, dd0) = hy.drift(s, &tr.q0, &tr.v0);
+                    let (d1, dd1) = hy.drift(s, &tr.q1, &tr.v1);
+                    let (fd, fdd) = hy.drift(s, fq, fv);
+                    let z = tr.z0[s].abs().max(tr.z1[s].abs());
+                    e = e
+                        .max((d1 - fd).abs() / (tol.atol + tol.rtol * d0.abs()))
+                        .max((dd1 - fdd).abs() / (tol.atol_rate + tol.rtol * dd0.abs()))
+                        .max((tr.z1[s] - fz[s]).abs() / (tol.atol / st.dy + tol.rtol * z));
+                }
+                max_true = max_true.max(e);
+                if i == 0 {
+                    // the first sub-step has no past for the curvature (taken from rest)
+                    first = e;
+                    continue;
+                }
+                // (an estimate far below the tolerance need not be sharp: floored at 0.01)
+                let ratio = e / tr.err.max(0.01);
+                if kink || tr.kink {
+                    kinks += 1;
+                    worst_kink = worst_kink.max(ratio);
+                } else {
+                    worst = worst.max(ratio);
+                    if e > 0.01 {
+                        over.push(tr.err / e);
+                    }
+                }
+            }
+            over.sort_by(f64::total_cmp);
+            let median = over[over.len() / 2];
+            eprintln!(
+                "yielding, rtol {rtol:e}: {} sub-steps; true/max(estimate, 0.01) ≤ {worst:.2} \
+                 (smooth), ≤ {worst_kink:.2} over {kinks} across a kink; largest true error \
+                 {max_true:.2} of the tolerance (first sub-step {first:.2}); estimate/true median \
+                 {median:.2}, largest {:.1}",
+                trace.len(),
+                over.last().copied().unwrap_or(0.0)
+            );
+            assert!(kinks > 20, "premise: kinks met ({kinks})");
+            assert!(max_true <= 1.5, "rtol {rtol}: true error {max_true}");
+            assert!(worst <= 2.0, "rtol {rtol}: {worst}");
+            assert!(worst_kink <= 2.0, "rtol {rtol}: {worst_kink}");
+            assert!(median <= 3.0, "rtol {rtol}: {median}");
         }
     }
 }

@@ -120,7 +120,7 @@ struct Work {
 /// states.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn deriv(
+pub(super) fn deriv(
     sys: &System,
     t: f64,
     (n, ns): (usize, usize),
@@ -492,7 +492,7 @@ fn observe<O: Observer>(sys: &System, observer: &mut O, t: f64, w: &Work, tally:
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::integrate::{Method, SolverSettings};
     use crate::scenario::Scenario;
@@ -504,7 +504,7 @@ mod tests {
 
     /// A 3-storey and a 2-storey yielding building pounding at two floors (Hertz), harmonic
     /// motion; small yield drifts (2–3 mm: ductility ≈ 5–10, many unloading kinks per second).
-    fn system() -> System {
+    pub(crate) fn system() -> System {
         let text = "[[structure]]\nname = \"A\"\nkind = \"shear-building\"\n\
             floor_heights = [3.0, 6.0, 9.0]\nfloor_masses = [2.0e5, 2.0e5, 1.5e5]\n\
             storey_stiffnesses = [3.0e8, 2.5e8, 2.0e8]\ndamping_ratio = 0.03\n\
@@ -523,8 +523,8 @@ mod tests {
     }
 
     /// The step `tr` redone in `m` RK4 sub-steps of the same right-hand side: (η, η̇, z) at
-    /// its end.
-    fn redo(sys: &System, tr: &StepTrace, m: usize) -> Vec<f64> {
+    /// its end (also the reference of `exact_modal`'s test of its estimate with yielding).
+    pub(crate) fn redo(sys: &System, tr: &StepTrace, m: usize) -> Vec<f64> {
         let n = sys.len();
         let ns = sys.hysteresis.len();
         let len = 2 * n + ns;

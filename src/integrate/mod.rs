@@ -32,7 +32,8 @@ pub enum Method {
     /// the kink of the contact law.
     Adaptive,
     /// Exact modal propagation over each step (ground load integrated exactly), contact load
-    /// by a trapezoidal predictor–corrector (second order) with dyadic sub-steps in contact.
+    /// (and yielding storeys' pseudo-forces, z) by a trapezoidal predictor–corrector (second
+    /// order) with dyadic sub-steps in contact (and while storeys may yield).
     ExactModal,
 }
 
@@ -158,7 +159,8 @@ pub(crate) struct StepTrace {
     /// The scaled error estimate (≤ 1 for an accepted step).
     pub err: f64,
     /// Whether a level's force starts or ends at zero inside the step (`exact-modal`, which does
-    /// not locate onsets: its estimate is a bound there, not an asymptotic estimate).
+    /// not locate onsets: its estimate is a bound there, not an asymptotic estimate), or (with
+    /// yielding storeys) a storey's ḋz changes sign in it.
     pub kink: bool,
     /// Hysteretic variables at the start and the end (empty without hysteresis).
     pub z0: Vec<f64>,
@@ -347,13 +349,6 @@ pub enum SolveError {
         /// The relative tolerance.
         rtol: f64,
     },
-    /// The method cannot integrate yielding storeys (issue 16).
-    #[error(
-        "method \"{0}\" does not support yielding storeys (a structure's `hysteresis`): use \
-         `adaptive` (the default: error-controlled, its estimate sees the hysteretic variables) \
-         or `rk4` (fixed step)"
-    )]
-    HysteresisUnsupported(&'static str),
 }
 
 impl SolverSettings {
@@ -397,9 +392,6 @@ pub fn integrate<O: Observer>(
         Method::Rk4 => rk4::run(system, settings, initial, observer),
         Method::Adaptive if yielding => hysteretic::run(system, settings, initial, observer),
         Method::Adaptive => adaptive::run(system, settings, initial, observer),
-        Method::ExactModal if yielding => {
-            Err(SolveError::HysteresisUnsupported(Method::ExactModal.name()))
-        }
         Method::ExactModal => exact_modal::run(system, settings, initial, observer),
     }
 }

@@ -1262,20 +1262,6 @@ fn validate(
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
     floors_at_contact(&c, &raw, &structures, &contact)?;
-    if structures.iter().any(|s| s.hysteresis().is_some())
-        && solver.method == Method::ExactModal
-        && let Some(m) = raw
-            .solver
-            .as_ref()
-            .and_then(|s| s.get_ref().method.as_ref())
-    {
-        return Err(c.invalid(
-            m,
-            "solver.method",
-            "does not support yielding storeys (a structure's `hysteresis`): use \"adaptive\" \
-             (the default; its error control sees the hysteretic variables) or \"rk4\"",
-        ));
-    }
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
     for (i, st) in structures.iter().enumerate() {
