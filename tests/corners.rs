@@ -570,3 +570,161 @@ fn stiffness_ends_with_matching_masses_run() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The Bouc–Wen keys of a yielding storey (issue 16) at both ends of their allowed ranges, each
+/// with the others at ordinary values (structure 1 of `SHEAR` yielding): every corner runs with
+/// finite outputs or is refused naming its key; just outside each range it is refused.
+#[test]
+fn bouc_wen_keys_at_both_ends_of_their_ranges() {
+    let dir = temp_dir().join("bouc-wen");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ordinary = "yield_drifts = 0.0175, post_yield_ratio = 0.05, exponent = 2.0, beta = 0.5, \
+                    gamma = 0.5";
+    // the hysteresis of structure 1, with `key = value` put in place of the ordinary one
+    let with = |key: &str, value: &str| {
+        let mut parts: Vec<String> = ordinary.split(", ").map(str::to_string).collect();
+        for (k, v) in key.split(',').zip(value.split(',')) {
+            let p = parts.iter().position(|p| {
+                p.starts_with(&format!("{k} ="))
+                    || p.starts_with("yield_") && k.starts_with("yield_")
+            });
+            let line = format!("{k} = {v}");
+            match p {
+                Some(p) => parts[p] = line,
+                None => parts.push(line),
+            }
+        }
+        set(
+            SHEAR,
+            "damping_ratio = 0.05",
+            &format!(
+                "damping_ratio = 0.05\nhysteresis = {{ model = \"bouc-wen\", {} }}",
+                parts.join(", ")
+            ),
+            false,
+        )
+    };
+    // the ordinary storeys yield in the 1 s of 0.5 g (so the corners exercise the law)
+    let sc = Scenario::from_toml(&with("exponent", "2.0"), "c.toml", &dir).unwrap();
+    assert!(sc.warnings.is_empty(), "{:?}", sc.warnings);
+    let mu = pounding::simulate::simulate(&sc).unwrap().structures[0]
+        .peak_ductility
+        .unwrap();
+    assert!(mu > 1.0, "peak ductility {mu}");
+    let (dlo, dhi, _) = physical_range("yield_drifts").unwrap();
+    // (key(s), lower end, upper end, just below, just above); β, γ at their ends with the other
+    // one inside: γ ∈ (−β, β] (β + γ > 0), β ∈ (0, 100] with γ = 0
+    let tiny = f64::MIN_POSITIVE;
+    let cases: Vec<(&str, String, String, String, String)> = vec![
+        (
+            "yield_drifts",
+            format!("{dlo:e}"),
+            format!("{dhi:e}"),
+            format!("{:e}", dlo / 10.0),
+            format!("{:e}", dhi * 10.0),
+        ),
+        (
+            "post_yield_ratio",
+            "0.0".into(),
+            format!("{:e}", 1.0 - f64::EPSILON),
+            "-0.01".into(),
+            "1.0".into(),
+        ),
+        (
+            "exponent",
+            "1.0".into(),
+            "100.0".into(),
+            "0.99".into(),
+            "100.1".into(),
+        ),
+        (
+            "beta,gamma",
+            format!("{tiny:e},0.0"),
+            "100.0,0.0".into(),
+            "0.0,0.0".into(),
+            "100.1,0.0".into(),
+        ),
+        (
+            "gamma",
+            format!("{:e}", -0.5 + 1e-12),
+            "0.5".into(),
+            "-0.5".into(),
+            "0.51".into(),
+        ),
+        (
+            "beta,gamma",
+            format!("100.0,{:e}", -100.0 + 1e-9),
+            "100.0,100.0".into(),
+            "100.0,-100.0".into(),
+            "100.0,100.1".into(),
+        ),
+    ];
+    let mut ran = Vec::new();
+    for (key, lo, hi, below, above) in &cases {
+        for v in [lo, hi] {
+            let label = format!("{key} = {v}");
+            let t0 = std::time::Instant::now();
+            let outcome = corner(&label, &with(key, v), &dir);
+            eprintln!("{label}: {:.2} s", t0.elapsed().as_secs_f64());
+            if matches!(outcome, Outcome::Ran) {
+                ran.push(label);
+            }
+        }
+        for v in [below, above] {
+            let e = Scenario::from_toml(&with(key, v), "c.toml", &dir)
+                .err()
+                .unwrap_or_else(|| panic!("{key} = {v} (outside) was accepted"))
+                .to_string();
+            let name = key.rsplit(',').next().unwrap();
+            let named = |k: &str| e.contains(&format!("structure[1].hysteresis.{k}"));
+            assert!(
+                named(name) || key.contains(',') && key.split(',').any(named),
+                "{key} = {v}: {e}"
+            );
+            assert!(
+                e.contains("c.toml:") && e.contains('['),
+                "{key} = {v}: no place or range: {e}"
+            );
+        }
+    }
+    // yield forces at their ends, on storeys whose stiffness makes F_y/k a yield drift: 1e-3 N on
+    // 1 N/m storeys (1 kg floors, T₁ ≈ 10 s) yield at 1 mm, 1e14 N on 1e16 N/m storeys (1e10 kg
+    // floors, T₁ ≈ 0.01 s) at 1 cm; the ordinary storeys refuse both (F_y/k outside the drifts')
+    let (flo, fhi, _) = physical_range("yield_forces").unwrap();
+    for (f, m, k) in [(flo, "1.0", "1.0"), (fhi, "1e10", "1e16")] {
+        let text = with("yield_forces", &format!("{f:e}"))
+            .replace("floor_mass = 2.5e5", &format!("floor_mass = {m}"))
+            .replace(
+                "storey_stiffness = 1.2e8",
+                &format!("storey_stiffness = {k}"),
+            )
+            .replace("storey_stiffness = 3e8", &format!("storey_stiffness = {k}"));
+        let label = format!("yield_forces = {f:e} on {k} N/m");
+        assert!(
+            matches!(corner(&label, &text, &dir), Outcome::Ran),
+            "{label} must run"
+        );
+        ran.push(label);
+        let e = Scenario::from_toml(&with("yield_forces", &format!("{f:e}")), "c.toml", &dir)
+            .err()
+            .unwrap_or_else(|| panic!("yield_forces = {f:e} on 1.2e8 N/m was accepted"))
+            .to_string();
+        assert!(
+            e.contains("yield_forces") && e.contains("[1e-6, 1e1] m"),
+            "{e}"
+        );
+        for v in [flo / 10.0, fhi * 10.0] {
+            let e = Scenario::from_toml(&with("yield_forces", &format!("{v:e}")), "c.toml", &dir)
+                .err()
+                .unwrap_or_else(|| panic!("yield_forces = {v:e} (outside) was accepted"))
+                .to_string();
+            assert!(
+                e.contains("yield_forces") && e.contains("[1e-3, 1e14] N"),
+                "{e}"
+            );
+        }
+    }
+    eprintln!("{} Bouc–Wen corners ran: {ran:?}", ran.len());
+    assert!(ran.len() >= 12, "only {} corners ran: {ran:?}", ran.len());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -309,3 +309,98 @@ fn bundled_examples_give_no_warnings() {
         "{scenarios} scenarios, {cases} cases"
     );
 }
+
+/// Issue 16's Bouc–Wen keys: an unusual post-yield ratio, exponent, yield drift (over the storey
+/// height, given as a drift or as a force) or β + γ warns naming the key and the band; the
+/// values of `examples/yielding-frames.toml` and nearby usual ones do not.
+#[test]
+fn unusual_bouc_wen_values_warn_with_key_and_band() {
+    let base = std::fs::read_to_string(examples().join("yielding-frames.toml")).unwrap();
+    let line = "hysteresis = { model = \"bouc-wen\", yield_drifts = 0.0175, post_yield_ratio = 0.05, \
+                exponent = 2.0, beta = 0.5, gamma = 0.5 }";
+    assert!(base.contains(line));
+    let warnings = |keys: &str| {
+        let text = base.replace(
+            line,
+            &format!("hysteresis = {{ model = \"bouc-wen\", {keys} }}"),
+        );
+        Scenario::from_toml(&text, "y.toml", &examples())
+            .unwrap_or_else(|e| panic!("{keys}: must be accepted: {e}"))
+            .warnings
+    };
+    let key = |k: &str| format!("`structure[2].hysteresis.{k}`");
+    // (keys, the key named, its band; or no warning)
+    let cases: [(&str, Option<(&str, &str)>); 14] = [
+        ("yield_drifts = 0.0175, post_yield_ratio = 0.05", None),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.5",
+            Some(("post_yield_ratio", "[0e0, 3e-1]")),
+        ),
+        ("yield_drifts = 0.0175, post_yield_ratio = 0.25", None),
+        ("yield_drifts = 0.0175, post_yield_ratio = 0.0", None),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.05, exponent = 50.0",
+            Some(("exponent", "[1e0, 2e1]")),
+        ),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.05, exponent = 15.0",
+            None,
+        ),
+        // 2 mm and 20 cm of 3.5 m storeys: 0.06 % and 5.7 %
+        (
+            "yield_drifts = 0.002, post_yield_ratio = 0.05",
+            Some(("yield_drifts", "[1e-3, 5e-2]")),
+        ),
+        (
+            "yield_drifts = 0.2, post_yield_ratio = 0.05",
+            Some(("yield_drifts", "[1e-3, 5e-2]")),
+        ),
+        ("yield_drifts = 0.1, post_yield_ratio = 0.05", None),
+        // 1e5 N on 1.2e8 N/m storeys: 0.83 mm, 0.024 % of 3.5 m
+        (
+            "yield_forces = 1e5, post_yield_ratio = 0.05",
+            Some(("yield_forces", "[1e-3, 5e-2]")),
+        ),
+        ("yield_forces = 2.1e6, post_yield_ratio = 0.05", None),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.05, beta = 2.0, gamma = 1.5",
+            Some(("beta", "[5e-1, 2e0]")),
+        ),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.05, beta = 0.2, gamma = 0.1",
+            Some(("gamma", "[5e-1, 2e0]")),
+        ),
+        (
+            "yield_drifts = 0.0175, post_yield_ratio = 0.05, beta = 0.9, gamma = -0.1",
+            None,
+        ),
+    ];
+    for (keys, want) in cases {
+        let w = warnings(keys);
+        match want {
+            None => assert!(w.is_empty(), "{keys}: must not warn: {w:?}"),
+            Some((k, band)) => {
+                assert!(
+                    w.len() == 1 && w[0].contains(&key(k)) && w[0].contains(band),
+                    "{keys}: must warn once naming {} and {band}: {w:?}",
+                    key(k)
+                );
+                eprintln!("{}", w[0]);
+            }
+        }
+    }
+    // a list of drifts warns once, for its first unusual storey
+    let w = warnings(
+        "yield_drifts = [0.0175, 0.0175, 0.001, 0.001, 0.0175, 0.0175, 0.0175, 0.0175], \
+         post_yield_ratio = 0.05",
+    );
+    assert!(w.len() == 1 && w[0].contains("storey 3"), "{w:?}");
+    for k in [
+        "post_yield_ratio",
+        "exponent",
+        "yield_drift_ratio",
+        "beta_plus_gamma",
+    ] {
+        assert!(usual_range(k).is_some(), "{k}");
+    }
+}

@@ -691,6 +691,7 @@ pub(super) fn floor_structure(
             i,
             h,
             &b.storey_stiffnesses,
+            &b.floors.heights,
             defaults,
         )?);
     }

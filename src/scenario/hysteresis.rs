@@ -14,6 +14,7 @@ pub(super) fn bouc_wen(
     i: usize,
     h: &Spanned<super::RawHysteresis>,
     k: &[f64],
+    heights: &[f64],
     defaults: &mut Vec<String>,
 ) -> Result<BoucWen, ScenarioError> {
     let key = |k: &str| format!("structure[{}].hysteresis.{k}", i + 1);
@@ -78,7 +79,28 @@ pub(super) fn bouc_wen(
         (Some(d), None) => per_storey(d, "yield_drifts", "m")?,
         (None, Some(f)) => {
             let forces = per_storey(f, "yield_forces", "N")?;
-            forces.iter().zip(k).map(|(f, k)| f / k).collect()
+            let drifts: Vec<f64> = forces.iter().zip(k).map(|(f, k)| f / k).collect();
+            // the drift F_y/k must itself be a storey's yield drift: F_y = 1e-3 N on 1e8 N/m
+            // storeys would yield at 1e-11 m, F_y = 1e14 N on 1e5 N/m at 1e9 m
+            let (lo, hi, what) = super::physical_range("yield_drifts")
+                .unwrap_or_else(|| unreachable!("yield_drifts has a range"));
+            if let Some(j) = drifts.iter().position(|d| !(lo..=hi).contains(d)) {
+                return Err(list_error(
+                    c,
+                    f,
+                    &key("yield_forces"),
+                    format!(
+                        "storey {} yields at F_y/k = {:e} N / {:e} N/m = {:e} m: the yield \
+                         drift F_y/k must be in [{lo:e}, {hi:e}] m ({what}); check the force and \
+                         its unit (N)",
+                        j + 1,
+                        forces[j],
+                        k[j],
+                        drifts[j]
+                    ),
+                ));
+            }
+            drifts
         }
         (None, None) => {
             return Err(c.missing(
@@ -103,6 +125,7 @@ pub(super) fn bouc_wen(
             "must be in [0, 1) (the post-yield stiffness over the initial one)",
         ));
     }
+    c.usual(post_yield_ratio, &key("post_yield_ratio"), "");
     fn real<'v>(
         c: &Check,
         key: &dyn Fn(&str) -> String,
@@ -131,6 +154,7 @@ pub(super) fn bouc_wen(
              nearly bilinear)",
         ));
     }
+    c.usual(exponent, &key("exponent"), "");
     let (beta, beta_at) = real(c, &key, &r.beta, "beta", DEFAULT_BETA, defaults)?;
     let (gamma, gamma_at) = real(c, &key, &r.gamma, "gamma", DEFAULT_GAMMA, defaults)?;
     // the law is bounded (z → (β + γ)^(−1/n) on loading) and dissipates energy in every cycle
@@ -152,6 +176,15 @@ pub(super) fn bouc_wen(
             ),
         ));
     }
+    unusual_bouc_wen(
+        c,
+        &key,
+        &r.yield_forces,
+        &yield_drifts,
+        heights,
+        beta,
+        gamma,
+    );
     Ok(BoucWen {
         yield_drifts,
         post_yield_ratio,
@@ -159,4 +192,53 @@ pub(super) fn bouc_wen(
         beta,
         gamma,
     })
+}
+
+/// Warnings for the Bouc–Wen values known only together ([`super::usual_range`]): a storey's
+/// yield drift over its height (`yield_drift_ratio`, once per building, the first unusual
+/// storey), and β + γ (`beta_plus_gamma`).
+fn unusual_bouc_wen(
+    c: &Check,
+    key: &dyn Fn(&str) -> String,
+    forces: &Option<Spanned<super::RawZeta>>,
+    drifts: &[f64],
+    heights: &[f64],
+    beta: f64,
+    gamma: f64,
+) {
+    let mut warnings = c.ctx.warnings.borrow_mut();
+    let given = key(if forces.is_some() {
+        "yield_forces"
+    } else {
+        "yield_drifts"
+    });
+    if let Some((lo, hi, why)) = super::usual_range("yield_drift_ratio") {
+        let mut below = 0.0;
+        for (j, (&d, &top)) in drifts.iter().zip(heights).enumerate() {
+            let h = top - below;
+            below = top;
+            let ratio = d / h;
+            if !(lo..=hi).contains(&ratio) {
+                warnings.push(format!(
+                    "`{given}`: storey {} yields at a drift of {d:.4e} m, {ratio:.3e} of its \
+                     {h} m height, outside the usual [{lo:e}, {hi:e}] of the storey height: \
+                     {why}; check the value and its unit (m for yield_drifts, N for \
+                     yield_forces)",
+                    j + 1
+                ));
+                break;
+            }
+        }
+    }
+    if let Some((lo, hi, why)) = super::usual_range("beta_plus_gamma")
+        && !(lo..=hi).contains(&(beta + gamma))
+    {
+        warnings.push(format!(
+            "`{}` + `{}`: β + γ = {beta} + {gamma} = {:.4} is outside the usual [{lo:e}, {hi:e}]: \
+             {why}",
+            key("beta"),
+            key("gamma"),
+            beta + gamma
+        ));
+    }
 }

@@ -921,6 +921,11 @@ pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
 /// it gives with the mass and height, [`USUAL_STRUCTURE_PERIOD`]) and physical damping
 /// (`strain_rate_damping`, `air_damping`: through the first-mode damping ratio,
 /// [`USUAL_DAMPING_RATIO`]). Those keys return `None` here.
+///
+/// Two entries are not keys but what Bouc–Wen keys give together (issue 16, warned about once
+/// per building in `scenario::hysteresis`): `yield_drift_ratio`, a storey's yield drift
+/// (`yield_drifts`, or `yield_forces` over the storey stiffness) over the storey's height, and
+/// `beta_plus_gamma`, β + γ.
 pub fn usual_range(key: &str) -> Option<(f64, f64, &'static str)> {
     let last = key.rsplit('.').next().unwrap_or(key);
     let ground = key.starts_with("ground_motion");
@@ -1008,6 +1013,43 @@ pub fn usual_range(key: &str) -> Option<(f64, f64, &'static str)> {
             0.005,
             USUAL_STRUCTURE_PERIOD.1,
             "a building's modes have periods of about 0.005 s (high modes) to 12 s (the tallest)",
+        ),
+        // Bouc–Wen storeys (issue 16). α: steel and concrete frames harden by 0–10 % after
+        // yield (2–5 % typical), lead-rubber and friction isolators by up to about 20 %; above
+        // 30 % a storey hardly yields at all.
+        "post_yield_ratio" => (
+            0.0,
+            0.3,
+            "storeys harden after yield by about 0–10 % of their initial stiffness (2–5 % \
+             typical; isolators up to about 20 %)",
+        ),
+        // n: 1–2 for a smooth, rounded yield (Wen 1976), about 10–25 for a nearly bilinear
+        // one; beyond 20 the loop is bilinear to plotting accuracy and only stiffens the solver.
+        "exponent" => (
+            1.0,
+            20.0,
+            "the Bouc–Wen literature uses n = 1–2 for a smooth yield and up to about 10–20 for a \
+             sharp, nearly bilinear one",
+        ),
+        // not a key: a storey's yield drift (`yield_drifts`, or `yield_forces`/k) over its
+        // height. Frames and walls yield at drift ratios of about 0.1 % (stiff shear walls,
+        // masonry) to 3 % (flexible steel or timber frames); 0.5–1 % is usual for frames.
+        "yield_drift_ratio" => (
+            1e-3,
+            0.05,
+            "storeys yield at drifts of about 0.1 % (shear walls) to 3 % (flexible frames) of \
+             their height, 0.5–1 % for most frames",
+        ),
+        // not a key: β + γ. The plateau of the storey force is (1 − α) k d_y (β + γ)^(−1/n):
+        // with β + γ = 1 (β = γ = 0.5, the standard choice) d_y is the yield drift; outside
+        // [0.5, 2] the plateau moves by more than a factor of 2^(1/n) (41 % at n = 2) from
+        // k d_y, and `yield_drifts` no longer says where the storey yields.
+        "beta_plus_gamma" => (
+            0.5,
+            2.0,
+            "β + γ = 1 (β = γ = 0.5 is the standard choice) puts the plateau of the storey force \
+             at (1 − α)k·d_y; far from 1 the plateau moves as (β + γ)^(−1/n) and `yield_drifts` \
+             no longer says where the storey yields",
         ),
         _ => return None,
     })
