@@ -144,27 +144,7 @@ impl StepData {
                 })
                 .collect()
         };
-        let mut m0 = vec![(0.0, 0.0); nl * nl];
-        let mut m2 = vec![(0.0, 0.0); nl * nl];
-        let mut m1 = vec![(0.0, 0.0); nl * nl];
-        for k in 0..nl {
-            for l in 0..nl {
-                let (ck, cl) = (sys.coupling(k), sys.coupling(l));
-                let (mut s, mut e, mut r) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-                for (j, (f, g)) in infl.iter().zip(&quad).enumerate() {
-                    let w = ck[j] * cl[j];
-                    s.0 += w * f.g0.0;
-                    s.1 += w * f.g0.1;
-                    e.0 += w * g.0;
-                    e.1 += w * g.1;
-                    r.0 += w * f.g1.0;
-                    r.1 += w * f.g1.1;
-                }
-                m0[k * nl + l] = s;
-                m2[k * nl + l] = e;
-                m1[k * nl + l] = r;
-            }
-        }
+        let [m0, m1, m2] = load_tables(nl, |k| sys.coupling(k), &infl, &quad);
         // the tables over every load row, with yielding storeys only
         let nr = if ns == 0 { 0 } else { nl + ns };
         let row = |r: usize| {
@@ -174,27 +154,7 @@ impl StepData {
                 sys.hysteresis.row(r - nl)
             }
         };
-        let mut y0 = vec![(0.0, 0.0); nr * nr];
-        let mut y1 = vec![(0.0, 0.0); nr * nr];
-        let mut y2 = vec![(0.0, 0.0); nr * nr];
-        for a in 0..nr {
-            for b in 0..nr {
-                let (ra, rb) = (row(a), row(b));
-                let (mut s, mut e, mut r) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-                for (j, (f, g)) in infl.iter().zip(&quad).enumerate() {
-                    let w = ra[j] * rb[j];
-                    s.0 += w * f.g0.0;
-                    s.1 += w * f.g0.1;
-                    e.0 += w * g.0;
-                    e.1 += w * g.1;
-                    r.0 += w * f.g1.0;
-                    r.1 += w * f.g1.1;
-                }
-                y0[a * nr + b] = s;
-                y1[a * nr + b] = r;
-                y2[a * nr + b] = e;
-            }
-        }
+        let [y0, y1, y2] = load_tables(nr, row, &infl, &quad);
         let (rot, half) = big.map_or(((0.0, 1.0), (0.0, 1.0)), |big| {
             ((big * h).sin_cos(), (0.5 * big * h).sin_cos())
         });
@@ -230,6 +190,42 @@ impl StepData {
             half,
         }
     }
+}
+
+/// The response tables of `n` load rows over a step: for rows a, b, `[a·n + b]` is the
+/// response of `row_a · η` (and `row_a · η̇`) to a unit load along row b held over the step
+/// (`Σ_j r_aj r_bj Γ0_j`), ramped as τ/h (`Γ1`) and quadratic as `(τ/h)² − τ/h` (`Γ2 − Γ1`,
+/// given per mode in `quad`): `[held, ramped, quadratic]`.
+fn load_tables<'r>(
+    n: usize,
+    row: impl Fn(usize) -> &'r [f64],
+    infl: &[Influence],
+    quad: &[(f64, f64)],
+) -> [Vec<(f64, f64)>; 3] {
+    let mut tables = [
+        vec![(0.0, 0.0); n * n],
+        vec![(0.0, 0.0); n * n],
+        vec![(0.0, 0.0); n * n],
+    ];
+    for a in 0..n {
+        for b in 0..n {
+            let (ra, rb) = (row(a), row(b));
+            let (mut s, mut r, mut e) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
+            for (j, (f, g)) in infl.iter().zip(quad).enumerate() {
+                let w = ra[j] * rb[j];
+                s.0 += w * f.g0.0;
+                s.1 += w * f.g0.1;
+                r.0 += w * f.g1.0;
+                r.1 += w * f.g1.1;
+                e.0 += w * g.0;
+                e.1 += w * g.1;
+            }
+            tables[0][a * n + b] = s;
+            tables[1][a * n + b] = r;
+            tables[2][a * n + b] = e;
+        }
+    }
+    tables
 }
 
 /// How far a free motion `Re(a e^{λt})` (|λ| = `lam_h`/h) can stray from the cubic Hermite
@@ -794,25 +790,7 @@ impl<O: Observer> Run<'_, O> {
                     rtol: self.tol.rtol,
                 });
             }
-            // (copies only when traced: no allocation per step otherwise)
-            let start = (self.trace.is_some() && contact)
-                .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
-            self.finish_step(ts, h, piece, idx)?;
-            if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
-                trace.push(StepTrace {
-                    t: ts,
-                    h,
-                    q0,
-                    v0,
-                    onset,
-                    q1: self.q.clone(),
-                    v1: self.v.clone(),
-                    err,
-                    kink: self.kink,
-                    z0: Vec::new(),
-                    z1: Vec::new(),
-                });
-            }
+            self.finish_traced(ts, h, piece, idx, err, contact)?;
             pos += FULL >> level;
             // doubling h multiplies k_t·D by about 4 and the estimate (∝ h³ in δ̇) by 8
             if level > MIN_LEVEL
@@ -934,6 +912,44 @@ impl<O: Observer> Run<'_, O> {
                 .max(ev.abs() / (tol.atol_rate + tol.rtol * rate));
         }
         err
+    }
+
+    /// [`Self::finish_step`], recording the (sub-)step in the trace when one is kept and
+    /// `record` (copies only then: no allocation per step otherwise).
+    fn finish_traced(
+        &mut self,
+        t0: f64,
+        h: f64,
+        piece: &Piece,
+        idx: usize,
+        err: f64,
+        record: bool,
+    ) -> Result<(), SolveError> {
+        let start = (self.trace.is_some() && record).then(|| {
+            (
+                self.q.clone(),
+                self.v.clone(),
+                self.onset.clone(),
+                self.hy.z.clone(),
+            )
+        });
+        self.finish_step(t0, h, piece, idx)?;
+        if let (Some(trace), Some((q0, v0, onset, z0))) = (self.trace.as_mut(), start) {
+            trace.push(StepTrace {
+                t: t0,
+                h,
+                q0,
+                v0,
+                onset,
+                q1: self.q.clone(),
+                v1: self.v.clone(),
+                err,
+                kink: self.kink,
+                z0,
+                z1: self.hy.z.clone(),
+            });
+        }
+        Ok(())
     }
 
     /// Complete a (sub-)step whose free flight is in (qb, vb) and predicted end forces in

@@ -134,30 +134,7 @@ impl<O: Observer> Run<'_, O> {
                     rtol: self.tol.rtol,
                 });
             }
-            let start = self.trace.is_some().then(|| {
-                (
-                    self.q.clone(),
-                    self.v.clone(),
-                    self.onset.clone(),
-                    self.hy.z.clone(),
-                )
-            });
-            self.finish_step(ts, h, piece, idx)?;
-            if let (Some(trace), Some((q0, v0, onset, z0))) = (self.trace.as_mut(), start) {
-                trace.push(StepTrace {
-                    t: ts,
-                    h,
-                    q0,
-                    v0,
-                    onset,
-                    q1: self.q.clone(),
-                    v1: self.v.clone(),
-                    err,
-                    kink: self.kink,
-                    z0,
-                    z1: self.hy.z.clone(),
-                });
-            }
+            self.finish_traced(ts, h, piece, idx, err, true)?;
             pos += FULL >> level;
             if level > floor
                 && 4.0 * worst <= 0.5 * limit
