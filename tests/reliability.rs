@@ -166,19 +166,22 @@ fn a_run_killed_mid_way_leaves_no_summary_and_no_partial_history() {
     let short =
         include_str!("../examples/paper-c.toml").replace("duration = 20.0", "duration = 1.0");
     std::fs::write(d.path().join("short.toml"), &short).unwrap();
-    let o = run_within(
-        &[
-            "run",
-            "short.toml",
-            "--out",
-            "out",
-            "--no-plot",
-            "--no-check",
-            "-q",
-        ],
-        d.path(),
-        Duration::from_secs(60),
-    );
+    let run_short = || {
+        run_within(
+            &[
+                "run",
+                "short.toml",
+                "--out",
+                "out",
+                "--no-plot",
+                "--no-check",
+                "-q",
+            ],
+            d.path(),
+            Duration::from_secs(60),
+        )
+    };
+    let o = run_short();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stale_history = std::fs::read(out.join("history.csv")).unwrap();
     assert!(out.join("summary.json").exists());
@@ -216,19 +219,7 @@ fn a_run_killed_mid_way_leaves_no_summary_and_no_partial_history() {
         "history.csv must be the earlier complete file, not a partial one"
     );
     // and a rerun completes
-    let o = run_within(
-        &[
-            "run",
-            "short.toml",
-            "--out",
-            "out",
-            "--no-plot",
-            "--no-check",
-            "-q",
-        ],
-        d.path(),
-        Duration::from_secs(60),
-    );
+    let o = run_short();
     assert!(o.status.success());
     assert!(out.join("summary.json").exists());
     assert_eq!(
