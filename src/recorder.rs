@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::contact::ContactForce;
 use crate::floor_response::{FloorPeaks, FloorRecorder};
-use crate::integrate::linear::hermite_max;
+use crate::integrate::linear::{hermite_abs_max, hermite_max};
 use crate::integrate::{Observer, StepView, onset_speed};
 use crate::storey_record::{StoreyRecord, StoreyTracker};
 use crate::system::System;
@@ -550,27 +550,12 @@ impl Observer for Recorder<'_> {
             l.peak_w2 = l.peak_w2.max(w2.abs());
             l.max_closing = l.max_closing.max(w1 - w2);
             if refine {
-                // an interior extremum needs the slope to change sign (cheap test first)
+                // (every step: an interior extremum does not need the slope to change sign)
                 let [a1, a1d, a2, a2d] = *prev_w;
-                let ext = |y0: f64, d0: f64, y1: f64, d1: f64| {
-                    if d0 * d1 > 0.0 {
-                        0.0
-                    } else if d0 > 0.0 || d1 < 0.0 {
-                        hermite_max(y0, d0, y1, d1, h).0.abs()
-                    } else {
-                        hermite_max(-y0, -d0, -y1, -d1, h).0.abs()
-                    }
-                };
-                if a1d * w1d <= 0.0 {
-                    l.peak_w1 = l.peak_w1.max(ext(a1, a1d, w1, w1d));
-                }
-                if a2d * w2d <= 0.0 {
-                    l.peak_w2 = l.peak_w2.max(ext(a2, a2d, w2, w2d));
-                }
+                l.peak_w1 = l.peak_w1.max(hermite_abs_max(a1, a1d, w1, w1d, h));
+                l.peak_w2 = l.peak_w2.max(hermite_abs_max(a2, a2d, w2, w2d, h));
                 let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);
-                if c0d >= 0.0 && c1d <= 0.0 {
-                    l.max_closing = l.max_closing.max(hermite_max(c0, c0d, c1, c1d, h).0);
-                }
+                l.max_closing = l.max_closing.max(hermite_max(c0, c0d, c1, c1d, h).0);
             }
             *prev_w = [w1, w1d, w2, w2d];
             if k == self.main {

@@ -339,3 +339,36 @@ fn check_peaks(r: &Report) -> Result<(), TestCaseError> {
     }
     Ok(())
 }
+
+/// A case proptest found in CI: a stereomechanical impact at gap 0 leaves end slopes that do not
+/// fit the end values, so the step's interpolant overshoots with slopes of one sign at both ends.
+/// The recorder's old shortcut (an interior extremum only where the slope changes sign) missed
+/// it: a history sample of w2 exceeded the reported peak by 1.8e-5 relative.
+#[test]
+fn peaks_bound_the_samples_after_a_stereomechanical_impact() {
+    let c = Case {
+        a: Building {
+            shear: true,
+            storeys: 2,
+            floor_mass: 432750.3473385328,
+            stiffness: 73286312.12296759,
+            modes: 1,
+            damping: 0.06914047065943885,
+        },
+        b: Building {
+            shear: false,
+            storeys: 2,
+            floor_mass: 261823.98252649553,
+            stiffness: 0.2,
+            modes: 2,
+            damping: 0.014359955245198557,
+        },
+        contact: "law = \"stereomechanical\"\nrestitution = 0.8282447891803252\n".into(),
+        gap: 0.0,
+        pga: 0.1,
+        ground_period: 1.8667131474375291,
+        duration: 2.0,
+    };
+    let r = simulate(&c.scenario(false, c.gap, "")).unwrap();
+    check_peaks(&r).unwrap();
+}

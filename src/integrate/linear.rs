@@ -871,17 +871,47 @@ pub fn hermite(y0: f64, d0: f64, y1: f64, d1: f64, h: f64, th: f64) -> f64 {
 /// (θ = τ/h ∈ [0, 1]).
 #[inline]
 pub fn hermite_max(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> (f64, f64) {
+    let mut best = if y1 > y0 { (y1, 1.0) } else { (y0, 0.0) };
+    hermite_critical_points(y0, d0, y1, d1, h, |th| {
+        let y = hermite(y0, d0, y1, d1, h, th);
+        if y > best.0 {
+            best = (y, th);
+        }
+    });
+    best
+}
+
+/// Largest absolute value over [0, h] of the cubic Hermite interpolant of (y0, d0), (y1, d1).
+/// An interior extremum does not need the end slopes to differ in sign: a cubic whose end
+/// slopes do not fit its end values (after a velocity jump, or over a step long against the
+/// motion) overshoots between them with slopes of one sign at both ends.
+#[inline]
+pub fn hermite_abs_max(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
+    let mut best = y0.abs().max(y1.abs());
+    hermite_critical_points(y0, d0, y1, d1, h, |th| {
+        best = best.max(hermite(y0, d0, y1, d1, h, th).abs());
+    });
+    best
+}
+
+/// Calls `consider(θ)` at the interior critical points θ ∈ (0, 1) of the cubic Hermite
+/// interpolant of (y0, d0), (y1, d1) over a step h (the roots of its derivative, a quadratic).
+#[inline]
+fn hermite_critical_points(
+    y0: f64,
+    d0: f64,
+    y1: f64,
+    d1: f64,
+    h: f64,
+    mut consider: impl FnMut(f64),
+) {
     let (m0, m1) = (h * d0, h * d1);
     let a = 6.0 * y0 + 3.0 * m0 - 6.0 * y1 + 3.0 * m1;
     let b = -6.0 * y0 - 4.0 * m0 + 6.0 * y1 - 2.0 * m1;
     let c = m0;
-    let mut best = if y1 > y0 { (y1, 1.0) } else { (y0, 0.0) };
     let mut consider = |th: f64| {
         if th > 0.0 && th < 1.0 {
-            let y = hermite(y0, d0, y1, d1, h, th);
-            if y > best.0 {
-                best = (y, th);
-            }
+            consider(th);
         }
     };
     if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
@@ -899,7 +929,6 @@ pub fn hermite_max(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> (f64, f64) {
             }
         }
     }
-    best
 }
 
 #[cfg(test)]
