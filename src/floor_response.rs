@@ -20,7 +20,7 @@
 use serde::Serialize;
 
 use crate::integrate::StepView;
-use crate::integrate::linear::hermite_max;
+use crate::integrate::linear::hermite_abs_max;
 use crate::modal::{ModalModel, Shapes};
 use crate::system::System;
 
@@ -292,17 +292,11 @@ impl FloorRecorder {
                     if up.abs().max(u.abs()) + HERMITE_REACH * h * (udp.abs() + ud.abs())
                         > p.displacement
                     {
-                        p.displacement = p
-                            .displacement
-                            .max(hermite_max(up, udp, u, ud, h).0)
-                            .max(hermite_max(-up, -udp, -u, -ud, h).0);
+                        p.displacement = p.displacement.max(hermite_abs_max(up, udp, u, ud, h));
                     }
                     if dp.abs().max(d.abs()) + HERMITE_REACH * h * (ddp.abs() + dd.abs()) > p.drift
                     {
-                        p.drift = p
-                            .drift
-                            .max(hermite_max(dp, ddp, d, dd, h).0)
-                            .max(hermite_max(-dp, -ddp, -d, -dd, h).0);
+                        p.drift = p.drift.max(hermite_abs_max(dp, ddp, d, dd, h));
                     }
                 }
                 abs[f] = ua + ag;

@@ -10,7 +10,7 @@
 use serde::Serialize;
 
 use crate::integrate::StepView;
-use crate::integrate::linear::hermite_max;
+use crate::integrate::linear::hermite_abs_max;
 use crate::system::System;
 
 /// Most (drift, force) pairs kept per storey for the loop figure; beyond, every other one is
@@ -110,10 +110,7 @@ impl StoreyTracker {
             r.peak_force = r.peak_force.max(force.abs());
             if let Some(h) = h {
                 let (d0, dd0) = self.prev[k];
-                r.peak_drift = r
-                    .peak_drift
-                    .max(hermite_max(d0, dd0, d, dd, h).0)
-                    .max(hermite_max(-d0, -dd0, -d, -dd, h).0);
+                r.peak_drift = r.peak_drift.max(hermite_abs_max(d0, dd0, d, dd, h));
             }
             let excess = st.excess(d, z);
             if self.last_t.is_none() {
