@@ -95,6 +95,14 @@ impl Processing {
         parts.join(", ")
     }
 
+    /// The zero pad added at each end by the high-pass filter, s (0 without one): half of
+    /// 1.5·n/f_c, rounded up to whole samples of `dt`.
+    pub fn pad_seconds(&self, dt: f64) -> f64 {
+        self.highpass_hz.map_or(0.0, |fc| {
+            (0.5 * 1.5 * self.order as f64 / fc / dt).ceil() * dt
+        })
+    }
+
     /// Why these settings cannot be applied to a record sampled every `dt` s, if they cannot.
     pub fn check(&self, dt: f64) -> Result<(), String> {
         let nyquist = 0.5 / dt;
@@ -136,9 +144,8 @@ impl Processing {
                 a.iter_mut().for_each(|x| *x -= mean);
             }
         }
-        if let Some(fc) = self.highpass_hz {
-            let pad_total = 1.5 * self.order as f64 / fc;
-            let half = (0.5 * pad_total / dt).ceil() as usize;
+        if self.highpass_hz.is_some() {
+            let half = (self.pad_seconds(dt) / dt).round() as usize;
             let mut padded = vec![0.0; a.len() + 2 * half];
             padded[half..half + a.len()].copy_from_slice(&a);
             a = padded;

@@ -7,7 +7,10 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::ground_motion::record::{Record, STANDARD_GRAVITY};
+use crate::ground_motion::processing::{Baseline, Processing};
+use crate::ground_motion::record::{
+    AccelUnits, Component, Record, RecordOptions, STANDARD_GRAVITY,
+};
 use crate::output::{OutputError, write_atomic};
 
 /// What was read from a record file. The JSON keys `format`, `component`, `dt` (s), `points`,
@@ -66,7 +69,18 @@ impl RecordSummary {
             pga_time: record.pga_time(),
             stated_pga: record.stated_peak.map(|p| p.accel),
             stated_pga_time: record.stated_peak.and_then(|p| p.time),
-            processing: record.processing.map(|p| p.describe()),
+            processing: record.processing.map(|p| {
+                let pad = p.pad_seconds(record.dt);
+                if pad > 0.0 {
+                    format!(
+                        "{}; zero pads of {pad} s kept at both ends (t = 0 is the start of the \
+                         first pad)",
+                        p.describe()
+                    )
+                } else {
+                    p.describe()
+                }
+            }),
             description: record.description.clone(),
             warnings: record.warnings.clone(),
         }
@@ -94,8 +108,10 @@ impl RecordSummary {
             (
                 "PGA",
                 format!(
-                    "{:.4} m/s² = {:.4} g at t = {:.3} s",
-                    self.pga, self.pga_g, self.pga_time
+                    "{} m/s² = {} g at t = {:.3} s",
+                    sig(self.pga),
+                    sig(self.pga_g),
+                    self.pga_time
                 ),
             ),
         ];
@@ -105,7 +121,11 @@ impl RecordSummary {
                 .map_or(String::new(), |t| format!(" at t = {t:.3} s"));
             rows.push((
                 "PGA stated in the file",
-                format!("{:.4} m/s² = {:.4} g{time}", p.abs(), p.abs() / STANDARD_GRAVITY),
+                format!(
+                    "{} m/s² = {} g{time}",
+                    sig(p.abs()),
+                    sig(p.abs() / STANDARD_GRAVITY)
+                ),
             ));
         }
         if let Some(p) = &self.processing {
@@ -128,6 +148,19 @@ impl RecordSummary {
     }
 }
 
+/// `x` to 5 significant digits, without an exponent for ordinary magnitudes.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = 4 - x.abs().log10().floor() as i32;
+    if (0..=12).contains(&digits) {
+        format!("{x:.prec$}", prec = digits as usize)
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
 /// The series in SI as CSV, `t,a` (s, m/s²), one row per sample, every digit kept.
 pub fn csv(record: &Record) -> String {
     let mut out = String::with_capacity(24 * record.num_samples() + 16);
@@ -141,6 +174,49 @@ pub fn csv(record: &Record) -> String {
 /// Writes [`csv`] to `path` atomically (a temporary file, then renamed into place).
 pub fn write_csv(record: &Record, path: &Path) -> Result<(), OutputError> {
     write_atomic(path, csv(record).as_bytes())
+}
+
+/// The reading options of `pounding record`'s arguments: a component (a number or a name),
+/// units by name, a time step, and processing when a baseline or a corner is given.
+pub fn options(
+    component: Option<&str>,
+    units: Option<&str>,
+    dt: Option<f64>,
+    baseline: Option<&str>,
+    highpass_hz: Option<f64>,
+    lowpass_hz: Option<f64>,
+    order: usize,
+) -> Result<RecordOptions, String> {
+    let component = component.map(|c| match c.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Component::Index(n),
+        _ => Component::Name(c.trim().to_string()),
+    });
+    let units = match units {
+        None => None,
+        Some(u) => Some(AccelUnits::from_name(u).ok_or_else(|| {
+            format!("--units {u}: must be g, cm/s2 (gal) or m/s2")
+        })?),
+    };
+    let baseline = match baseline {
+        None => None,
+        Some("linear") => Some(Baseline::Linear),
+        Some("polynomial") => Some(Baseline::Polynomial),
+        Some(b) => return Err(format!("--baseline {b}: must be linear or polynomial")),
+    };
+    let processing = (baseline.is_some() || highpass_hz.is_some() || lowpass_hz.is_some())
+        .then_some(Processing {
+            baseline,
+            highpass_hz,
+            lowpass_hz,
+            order,
+        });
+    Ok(RecordOptions {
+        units,
+        dt,
+        component,
+        processing,
+        ..RecordOptions::default()
+    })
 }
 
 #[cfg(test)]

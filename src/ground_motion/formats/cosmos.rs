@@ -234,14 +234,13 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     }
     if stage == 0 || data_upper.contains("COUNTS") {
         return Ok(done(Err(format!(
-            "{} (raw counts, not in physical units)",
+            "raw counts (V0), not in physical units: {}",
             first.trim()
         ))));
     }
     // units: Int(3), else the data line's `units=…(code)`
-    let code = int(3)
-        .map(|v| v as i64)
-        .or_else(|| units_code(data_line));
+    // (the data line's own code first: it sits with the data)
+    let code = units_code(data_line).or_else(|| int(3).map(|v| v as i64));
     let (units, factor) = match code {
         Some(2) => (AccelUnits::G, 1.0),
         Some(4) | Some(10) => (AccelUnits::Gal, 1.0),

@@ -134,6 +134,14 @@ fn format_in(line: &str) -> Option<FortranFormat> {
     FortranFormat::parse(&line[open..=close])
 }
 
+/// The format of a data line that states none (1980s files): 8 values a line, as wide as the
+/// first data line is long over 8 (8F9 and 8F10 both occur), else 8F10.3.
+fn unstated_format(first_data: Option<&&str>) -> FortranFormat {
+    let len = first_data.map_or(0, |l| l.trim_end().chars().count());
+    let width = if len > 0 && len % 8 == 0 { len / 8 } else { 10 };
+    FortranFormat::fixed(8, width, 3, EditKind::Real)
+}
+
 fn read_v2(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), RecordError> {
     let text = lines
         .get(s..s + V2_TEXT)
@@ -173,7 +181,7 @@ fn read_v2(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
         at: Location::line(file, next + 1),
         found: clip(data_line),
     })?;
-    let fmt = format_in(data_line).unwrap_or_else(|| FortranFormat::fixed(8, 10, 3, EditKind::Real));
+    let fmt = format_in(data_line).unwrap_or_else(|| unstated_format(lines.get(next + 1)));
     // the text header states the count and the time step too
     if let Some(n) = first_number(text[15])
         && text[15].to_ascii_uppercase().contains("POINTS")
@@ -251,9 +259,18 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
             .filter(|n| *n >= 0.0 && n.fract() == 0.0)
             .ok_or_else(|| bad_line(lines, next, file, "the number of points first"))?
             as usize;
+        // `… points at 200 pts/sec …`, or (1980s) `… EQUALLY SPACED AT .005 SEC.`
         let rate = number_after(data_line, "points at")
-            .filter(|r| *r > 0.0)
-            .ok_or_else(|| bad_line(lines, next, file, "\"… points at <rate> pts/sec …\""))?;
+            .or_else(|| number_after(data_line, "spaced at").map(|dt| 1.0 / dt))
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .ok_or_else(|| {
+                bad_line(
+                    lines,
+                    next,
+                    file,
+                    "\"… points at <rate> pts/sec …\" or \"… equally spaced at <dt> sec\"",
+                )
+            })?;
         if count != stated_count {
             return Err(RecordError::TooFewValues {
                 at: Location::line(file, next + 1),
@@ -261,9 +278,10 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
                 found: count,
             });
         }
-        if let Some(r) = number_after(l11, "at")
+        if let Some(r) = number_after(l11, "sec   at")
+            .or_else(|| number_after(l11, "sec at"))
             .filter(|_| l11.to_ascii_uppercase().contains("SAMPLES/SEC"))
-            && (r - rate).abs() > 1e-9 * rate
+            && (r - rate).abs() > 1e-6 * rate
         {
             return Err(RecordError::TimeStepMismatch {
                 at: Location::line(file, next + 1),
@@ -277,8 +295,7 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
             at: Location::line(file, next + 1),
             found: clip(data_line),
         })?;
-        let fmt =
-            format_in(data_line).unwrap_or_else(|| FortranFormat::fixed(8, 9, 6, EditKind::Real));
+        let fmt = format_in(data_line).unwrap_or_else(|| unstated_format(lines.get(next + 1)));
         let (values, _) = read_fixed(lines, next + 1, count, &fmt, file)?;
         return Ok((
             Channel {

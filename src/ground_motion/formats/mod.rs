@@ -72,8 +72,8 @@ pub struct Parsed {
 }
 
 /// Refuses a file that is not text (issue 24): a NUL byte anywhere, a control character
-/// other than tab, line feed, carriage return and form feed in the first [`SNIFF_BYTES`] (a
-/// DOS end-of-file mark, Ctrl-Z, at the very end is allowed), or more than 1 % invalid UTF-8
+/// other than tab, line feed, carriage return and form feed in the first [`SNIFF_BYTES`] (DOS
+/// end-of-file marks, Ctrl-Z, at the very end are allowed), or more than 1 % invalid UTF-8
 /// there (a few Latin-1 letters in a station name are fine).
 pub fn check_text(bytes: &[u8], file: &str) -> Result<(), RecordError> {
     let line_of = |at: usize| bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
@@ -84,7 +84,7 @@ pub fn check_text(bytes: &[u8], file: &str) -> Result<(), RecordError> {
     if let Some(at) = bytes.iter().position(|&b| b == 0) {
         return Err(not_text(at, format!("a NUL byte at byte {}", at + 1)));
     }
-    let body = bytes.strip_suffix(b"\x1a").unwrap_or(bytes);
+    let body = &bytes[..bytes.len() - bytes.iter().rev().take_while(|&&b| b == 0x1a).count()];
     let head = &body[..body.len().min(SNIFF_BYTES)];
     if let Some(at) = head
         .iter()
@@ -145,12 +145,12 @@ pub fn detect(text: &str) -> RecordFormat {
     {
         return RecordFormat::CsmipV2;
     }
-    let starts = |p: &str| head.iter().take(20).any(|l| l.trim_start().starts_with(p));
-    if l1.trim_start().starts_with("Origin Time") && starts("Sampling Freq") && starts("Scale Factor")
-    {
+    let starts = |p: &str| head.iter().any(|l| l.trim_start().starts_with(p));
+    let first = head.first().map_or("", |l| l.trim_start());
+    if first.starts_with("Origin Time") && starts("Sampling Freq") && starts("Scale Factor") {
         return RecordFormat::Knet;
     }
-    if starts("SAMPLING_INTERVAL_S") && head.iter().any(|l| l.starts_with("NDATA")) {
+    if starts("SAMPLING_INTERVAL_S:") && starts("NDATA:") {
         return RecordFormat::Esm;
     }
     if head.get(3).is_some_and(|l| at2::header_fields(l).is_some()) || l1.starts_with("PEER") {
@@ -163,7 +163,8 @@ pub fn detect(text: &str) -> RecordFormat {
 pub(crate) fn read(text: &str, path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
     let file = path.display().to_string();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let text = text.strip_suffix('\u{1a}').unwrap_or(text);
+    // DOS end-of-file marks (Ctrl-Z) after the last line
+    let text = text.trim_end_matches('\u{1a}');
     let at = || Location::file(&file);
     if text.trim().is_empty() {
         return Err(RecordError::Empty { at: at() });
@@ -368,9 +369,16 @@ fn select(
     let index = match want {
         None if n == 1 => 0,
         None => {
+            // a name that is not a number, to show that names work
             let example = channels
                 .get(1)
-                .and_then(|c| c.names.get(1).or(c.names.first()))
+                .and_then(|c| {
+                    c.names
+                        .iter()
+                        .skip(1)
+                        .find(|n| n.parse::<f64>().is_err())
+                        .or(c.names.first())
+                })
                 .cloned()
                 .unwrap_or_else(|| "2".into());
             return Err(RecordError::ComponentNeeded {
