@@ -344,21 +344,14 @@ fn channel_names(text: &[&str], comments: &[&str], azimuth: Option<f64>) -> Vec<
     if let Some(l9) = text.get(8) {
         let upper = l9.to_ascii_uppercase();
         if let Some(at) = upper.find("CHA") {
+            // `Chan   1: 90 Deg (Rcrdr …`, `Cha:  1: 340 deg (…`, `Chan   ?:Other (…`
             let rest = &l9[at..];
-            let after_colon = rest.split_once(':').map(|(_, r)| r).unwrap_or("");
-            // `Chan   1: 90 Deg (Rcrdr …` — the number, then what follows the second colon
-            let number = rest[..rest.find(':').unwrap_or(rest.len())]
-                .split_whitespace()
-                .last()
-                .and_then(|t| t.parse::<u32>().ok());
-            let orient_text = after_colon
-                .split_once(':')
-                .map(|(_, o)| o)
-                .unwrap_or(after_colon)
-                .split('(')
-                .next()
-                .unwrap_or("")
-                .trim();
+            let from = rest
+                .find(|c: char| c.is_ascii_digit() || c == '?')
+                .unwrap_or(rest.len());
+            let (num_text, tail) = rest[from..].split_once(':').unwrap_or(("", ""));
+            let number = num_text.trim().parse::<u32>().ok();
+            let orient_text = tail.split('(').next().unwrap_or("").trim();
             let label = match number {
                 Some(n) => format!("Chan {n}: {orient_text}"),
                 None => orient_text.to_string(),
