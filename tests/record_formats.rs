@@ -12,8 +12,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use pounding::ground_motion::{
-    AccelUnits, Baseline, Component, Processing, Record, RecordError, RecordFormat,
-    RecordOptions, STANDARD_GRAVITY,
+    AccelUnits, Baseline, Component, Processing, Record, RecordError, RecordFormat, RecordOptions,
+    STANDARD_GRAVITY,
 };
 use pounding::scenario::Scenario;
 
@@ -40,7 +40,10 @@ fn read(name: &str, o: &RecordOptions) -> Record {
 
 fn fails(name: &str, o: &RecordOptions) -> RecordError {
     match Record::read(&path(name), o) {
-        Ok(r) => panic!("{name}: expected an error, read {} samples", r.num_samples()),
+        Ok(r) => panic!(
+            "{name}: expected an error, read {} samples",
+            r.num_samples()
+        ),
         Err(e) => e,
     }
 }
@@ -49,7 +52,16 @@ fn fails(name: &str, o: &RecordOptions) -> RecordError {
 /// spike `spike` at `ks` (file units × `to_si`). `tol` is half a unit of the last digit the
 /// layout writes, in m/s² (the rounding of the file), plus any stated reason.
 #[allow(clippy::too_many_arguments)]
-fn check_signal(r: &Record, n: usize, dt: f64, amp: f64, ks: usize, spike: f64, to_si: f64, tol: f64) {
+fn check_signal(
+    r: &Record,
+    n: usize,
+    dt: f64,
+    amp: f64,
+    ks: usize,
+    spike: f64,
+    to_si: f64,
+    tol: f64,
+) {
     assert_eq!(r.num_samples(), n);
     assert!((r.dt - dt).abs() < 1e-12 * dt, "dt {}", r.dt);
     for (k, a) in r.accel.iter().enumerate() {
@@ -60,8 +72,16 @@ fn check_signal(r: &Record, n: usize, dt: f64, amp: f64, ks: usize, spike: f64, 
         } * to_si;
         assert!((a - want).abs() <= tol, "sample {k}: {a} vs {want}");
     }
-    assert!((r.pga() - spike.abs() * to_si).abs() <= tol, "PGA {}", r.pga());
-    assert!((r.pga_time() - ks as f64 * dt).abs() < 1e-9, "{}", r.pga_time());
+    assert!(
+        (r.pga() - spike.abs() * to_si).abs() <= tol,
+        "PGA {}",
+        r.pga()
+    );
+    assert!(
+        (r.pga_time() - ks as f64 * dt).abs() < 1e-9,
+        "{}",
+        r.pga_time()
+    );
 }
 
 // ---------------------------------------------------------------------------- COSMOS
@@ -69,7 +89,11 @@ fn check_signal(r: &Record, n: usize, dt: f64, amp: f64, ks: usize, spike: f64, 
 #[test]
 fn cosmos_v2_channels_by_number_and_name() {
     // (8F10.5): last digit 1e-5 cm/s² → half a unit 5e-6 cm/s² = 5e-8 m/s²
-    for c in [Component::Index(1), Component::Name("EW".into()), Component::Name("90".into())] {
+    for c in [
+        Component::Index(1),
+        Component::Name("EW".into()),
+        Component::Name("90".into()),
+    ] {
         let r = read("cosmos_v2.v2c", &opts(Some(c)));
         assert_eq!(r.format, RecordFormat::CosmosV2);
         assert_eq!(r.file_units, Some(AccelUnits::Gal));
@@ -81,10 +105,23 @@ fn cosmos_v2_channels_by_number_and_name() {
         assert_eq!(p.time, Some(3.21));
     }
     // the second channel is shorter (997 points) and written as (5E15.6): 7 significant digits
-    for c in [Component::Index(2), Component::Name("up".into()), Component::Name("HNZ".into())] {
+    for c in [
+        Component::Index(2),
+        Component::Name("up".into()),
+        Component::Name("HNZ".into()),
+    ] {
         let r = read("cosmos_v2.v2c", &opts(Some(c)));
         assert_eq!(r.component.as_deref(), Some("Chan 2: Up"));
-        check_signal(&r, 997, 0.01, 0.4 * A, 500, 234.56789, GAL, 5e-7 * 60.0 * GAL + 5e-9);
+        check_signal(
+            &r,
+            997,
+            0.01,
+            0.4 * A,
+            500,
+            234.56789,
+            GAL,
+            5e-7 * 60.0 * GAL + 5e-9,
+        );
     }
 }
 
@@ -92,8 +129,14 @@ fn cosmos_v2_channels_by_number_and_name() {
 fn component_errors_list_the_components() {
     let e = fails("cosmos_v2.v2c", &opts(None)).to_string();
     assert!(e.contains("cosmos_v2.v2c"), "{e}");
-    assert!(e.contains("2 components") && e.contains("1: Chan 1: 90 Deg"), "{e}");
-    assert!(e.contains("2: Chan 2: Up") && e.contains("`component`"), "{e}");
+    assert!(
+        e.contains("2 components") && e.contains("1: Chan 1: 90 Deg"),
+        "{e}"
+    );
+    assert!(
+        e.contains("2: Chan 2: Up") && e.contains("`component`"),
+        "{e}"
+    );
     for bad in [Component::Index(3), Component::Name("NS".into())] {
         let e = fails("cosmos_v2.v2c", &opts(Some(bad)));
         assert!(matches!(e, RecordError::NoSuchComponent { .. }), "{e}");
@@ -112,7 +155,10 @@ fn uncorrected_records_are_refused_unless_processed() {
         assert!(matches!(e, RecordError::Uncorrected { .. }), "{name}: {e}");
         let msg = e.to_string();
         assert!(msg.contains(name) && msg.contains(what), "{msg}");
-        assert!(msg.contains("uncorrected") && msg.contains("processing"), "{msg}");
+        assert!(
+            msg.contains("uncorrected") && msg.contains("processing"),
+            "{msg}"
+        );
         // processed when asked: the mean removed, band-passed, pads kept
         let p = Processing {
             baseline: Some(Baseline::Linear),
@@ -130,7 +176,11 @@ fn uncorrected_records_are_refused_unless_processed() {
         assert!(pad > 0.0);
         // the peak survives the band-pass (the spike is one sample: its energy is spread over
         // the band, so the peak drops; the sine's 1.5 Hz is in the pass band, |H|² > 0.999)
-        assert!(r.pga() > 0.9 * A * GAL && r.pga() < 1.05 * S.abs() * GAL, "{}", r.pga());
+        assert!(
+            r.pga() > 0.9 * A * GAL && r.pga() < 1.05 * S.abs() * GAL,
+            "{}",
+            r.pga()
+        );
     }
 }
 
@@ -150,7 +200,11 @@ fn cosmos_v1_in_g_converts_to_si() {
     let n = 600;
     let a: Vec<f64> = (0..n)
         .map(|k| {
-            let x = if k == 100 { S } else { A * (2.0 * PI * F * k as f64 * 0.01).sin() };
+            let x = if k == 100 {
+                S
+            } else {
+                A * (2.0 * PI * F * k as f64 * 0.01).sin()
+            };
             x / 980.665 * STANDARD_GRAVITY
         })
         .collect();
@@ -160,9 +214,9 @@ fn cosmos_v1_in_g_converts_to_si() {
     let c1 = (0..n).map(|k| t(k) * a[k]).sum::<f64>() / (0..n).map(|k| t(k) * t(k)).sum::<f64>();
     // written in g to 6 decimals, ε = 5e-7 g each; the fitted line inherits at most ε in c₀ and
     // ε·Σ|t|/Σt² ≤ 1.5ε/|t|max in c₁, so each sample is within 4ε (ε + ε + 1.5ε)
-    for k in 0..n {
-        let want = a[k] - c0 - c1 * t(k);
-        let err = (r.accel[k] - want).abs();
+    for (k, (ak, rk)) in a.iter().zip(&r.accel).enumerate() {
+        let want = ak - c0 - c1 * t(k);
+        let err = (rk - want).abs();
         assert!(err < 4.0 * 5e-7 * STANDARD_GRAVITY, "{k}: {err}");
     }
 }
@@ -194,14 +248,24 @@ fn cosmos_missing_value_and_damaged_header() {
     let f = dir.path().join("bad.v2c");
     std::fs::write(&f, bad.join("\n")).unwrap();
     let e = Record::read(&f, &opts(None)).unwrap_err().to_string();
-    assert!(e.contains("bad.v2c\", line 14:") && e.contains("COSMOS header"), "{e}");
+    assert!(
+        e.contains("bad.v2c\", line 14:") && e.contains("COSMOS header"),
+        "{e}"
+    );
     // truncated data: the count the header gives
     let cut = lines[..data + 50].join("\n");
     let f = dir.path().join("cut.v2c");
     std::fs::write(&f, cut).unwrap();
     let e = Record::read(&f, &opts(None)).unwrap_err();
     assert!(
-        matches!(e, RecordError::TooFewValues { npts: 1000, found: 392, .. }),
+        matches!(
+            e,
+            RecordError::TooFewValues {
+                npts: 1000,
+                found: 392,
+                ..
+            }
+        ),
         "{e}"
     );
 }
@@ -251,20 +315,32 @@ fn csmip_mixed_time_steps_and_counts() {
     let text = std::fs::read_to_string(path("csmip.V2")).unwrap();
     let dir = tempfile::tempdir().unwrap();
     // the text header says .005 s, the data line .010 s
-    let mixed = text.replacen("At equally-spaced intervals of    .010", "At equally-spaced intervals of    .005", 1);
+    let mixed = text.replacen(
+        "At equally-spaced intervals of    .010",
+        "At equally-spaced intervals of    .005",
+        1,
+    );
     assert_ne!(mixed, text);
     let f = dir.path().join("mixed.V2");
     std::fs::write(&f, mixed).unwrap();
     let e = Record::read(&f, &opts(Some(Component::Index(1)))).unwrap_err();
     assert!(matches!(e, RecordError::TimeStepMismatch { .. }), "{e}");
     let msg = e.to_string();
-    assert!(msg.contains("mixed.V2") && msg.contains("0.005") && msg.contains("0.01"), "{msg}");
+    assert!(
+        msg.contains("mixed.V2") && msg.contains("0.005") && msg.contains("0.01"),
+        "{msg}"
+    );
     // the data line damaged: named with its line
     let broken = text.replacen(" 1000 points of accel data", " 1000 pts of accel", 1);
     let f = dir.path().join("broken.V2");
     std::fs::write(&f, broken).unwrap();
-    let e = Record::read(&f, &opts(Some(Component::Index(1)))).unwrap_err().to_string();
-    assert!(e.contains("broken.V2\", line 46:") && e.contains("CSMIP/DMG header"), "{e}");
+    let e = Record::read(&f, &opts(Some(Component::Index(1))))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("broken.V2\", line 46:") && e.contains("CSMIP/DMG header"),
+        "{e}"
+    );
 }
 
 // ---------------------------------------------------------------------------- K-NET, ESM
@@ -278,16 +354,30 @@ fn knet_counts_scaled_and_mean_removed() {
     // each sample is a − mean(a) to half a count (s/2 gal)
     let s = 3920.0 / 6_182_761.0;
     let a: Vec<f64> = (0..3000)
-        .map(|k| if k == 777 { S } else { A * (2.0 * PI * F * k as f64 * 0.01).sin() })
+        .map(|k| {
+            if k == 777 {
+                S
+            } else {
+                A * (2.0 * PI * F * k as f64 * 0.01).sin()
+            }
+        })
         .collect();
     let mean = a.iter().sum::<f64>() / 3000.0;
     for (k, x) in r.accel.iter().enumerate() {
         let want = (a[k] - mean) * GAL;
-        assert!((x - want).abs() <= 0.5 * s * GAL + 0.5 * s * GAL, "{k}: {x} vs {want}");
+        assert!(
+            (x - want).abs() <= 0.5 * s * GAL + 0.5 * s * GAL,
+            "{k}: {x} vs {want}"
+        );
     }
     let p = r.stated_peak.unwrap();
     // the header's maximum, written to 3 decimals of a gal
-    assert!((p.accel - r.pga()).abs() < 0.0005 * GAL + 1e-12, "{} vs {}", p.accel, r.pga());
+    assert!(
+        (p.accel - r.pga()).abs() < 0.0005 * GAL + 1e-12,
+        "{} vs {}",
+        p.accel,
+        r.pga()
+    );
 }
 
 #[test]
@@ -311,7 +401,11 @@ fn units_key_overrides_with_a_warning() {
     let r = read("esm.ASC", &o);
     assert!((r.pga() - S.abs()).abs() < 1e-9);
     assert_eq!(r.warnings.len(), 1);
-    assert!(r.warnings[0].contains("overrides the file's own units \"cm/s2\""), "{:?}", r.warnings);
+    assert!(
+        r.warnings[0].contains("overrides the file's own units \"cm/s2\""),
+        "{:?}",
+        r.warnings
+    );
     // agreeing with the file: no warning
     let o = RecordOptions {
         units: Some(AccelUnits::Gal),
@@ -328,7 +422,10 @@ fn binary_files_are_not_text_records() {
     let cases: [(&str, Vec<u8>); 3] = [
         ("nul.AT2", b"PEER\n\x00\x01\x02binary".to_vec()),
         ("sub.txt", b"0 1\n0.01 \x1a\x05\n".to_vec()),
-        ("latin.bin", (0..400).map(|i| 0x80 + (i % 100) as u8).collect()),
+        (
+            "latin.bin",
+            (0..400).map(|i| 0x80 + (i % 100) as u8).collect(),
+        ),
     ];
     for (name, bytes) in cases {
         let f = dir.path().join(name);
@@ -336,7 +433,10 @@ fn binary_files_are_not_text_records() {
         let e = Record::read(&f, &RecordOptions::default()).unwrap_err();
         assert!(matches!(e, RecordError::NotText { .. }), "{name}: {e}");
         let msg = e.to_string();
-        assert!(msg.contains("not a text record file") && msg.contains(name), "{msg}");
+        assert!(
+            msg.contains("not a text record file") && msg.contains(name),
+            "{msg}"
+        );
         assert!(!msg.contains("\\u{") && !msg.contains("\\x"), "{msg}");
     }
     // a DOS end-of-file mark (Ctrl-Z) after the last line is fine
@@ -351,8 +451,13 @@ fn a_file_in_no_layout_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let f = dir.path().join("table.csv");
     std::fs::write(&f, "name,x,y,z\n1,2,3,4\n").unwrap();
-    let e = Record::read(&f, &RecordOptions::default()).unwrap_err().to_string();
-    assert!(e.contains("table.csv\", line 2:") && e.contains("none of the layouts"), "{e}");
+    let e = Record::read(&f, &RecordOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("table.csv\", line 2:") && e.contains("none of the layouts"),
+        "{e}"
+    );
 }
 
 // ---------------------------------------------------------------------------- scenario keys
@@ -368,23 +473,43 @@ fn with_ground(ground: &str) -> String {
 fn scenario_component_and_processing_keys() {
     let dir = Path::new(DIR);
     let sc = |g: &str| Scenario::from_toml(&with_ground(g), "s.toml", dir);
-    let ok = sc("[ground_motion]\nkind = \"record\"\nfile = \"csmip.V2\"\ncomponent = \"Up\"")
-        .unwrap();
+    let ok =
+        sc("[ground_motion]\nkind = \"record\"\nfile = \"csmip.V2\"\ncomponent = \"Up\"").unwrap();
     assert!((ok.ground_motion.pga() - 234.56789 * GAL).abs() < 1e-9);
     let ok = sc("[ground_motion]\nkind = \"record\"\nfile = \"csmip.V2\"\ncomponent = 1").unwrap();
     assert!((ok.ground_motion.pga() - S.abs() * GAL).abs() < 1e-9);
-    let ok = sc("[ground_motion]\nkind = \"record\"\nfile = \"esm.ASC\"\nunits = \"m/s2\"\n\
-                 scale_to_pga = 0.3")
+    let ok = sc(
+        "[ground_motion]\nkind = \"record\"\nfile = \"esm.ASC\"\nunits = \"m/s2\"\n\
+                 scale_to_pga = 0.3",
+    )
     .unwrap();
-    assert!(ok.warnings.iter().any(|w| w.contains("overrides")), "{:?}", ok.warnings);
+    assert!(
+        ok.warnings.iter().any(|w| w.contains("overrides")),
+        "{:?}",
+        ok.warnings
+    );
     let ok = sc("[ground_motion]\nkind = \"record\"\nfile = \"csmip.V1\"\n\
                  processing = { baseline = \"polynomial\", highpass_hz = 0.2, lowpass_hz = 30 }")
     .unwrap();
     assert!(ok.ground_motion.pga() > 0.0);
     let cases: &[(&str, &[&str])] = &[
-        ("file = \"csmip.V2\"", &["s.toml:", "ground_motion.file", "2 components", "`component`"]),
-        ("file = \"csmip.V2\"\ncomponent = 0", &["ground_motion.component", "number"]),
-        ("file = \"csmip.V2\"\ncomponent = \"NS2\"", &["no component \"NS2\"", "Chan 2: Up"]),
+        (
+            "file = \"csmip.V2\"",
+            &[
+                "s.toml:",
+                "ground_motion.file",
+                "2 components",
+                "`component`",
+            ],
+        ),
+        (
+            "file = \"csmip.V2\"\ncomponent = 0",
+            &["ground_motion.component", "number"],
+        ),
+        (
+            "file = \"csmip.V2\"\ncomponent = \"NS2\"",
+            &["no component \"NS2\"", "Chan 2: Up"],
+        ),
         ("file = \"csmip.V1\"", &["uncorrected", "processing"]),
         (
             "file = \"csmip.V1\"\nprocessing = { baseline = \"cubic\" }",
@@ -398,7 +523,10 @@ fn scenario_component_and_processing_keys() {
             "file = \"csmip.V1\"\nprocessing = { lowpass_hz = 150.0 }",
             &["Nyquist", "100 Hz"],
         ),
-        ("file = \"csmip.V1\"\nprocessing = { order = 4 }", &["at least one of"]),
+        (
+            "file = \"csmip.V1\"\nprocessing = { order = 4 }",
+            &["at least one of"],
+        ),
         (
             "file = \"csmip.V1\"\nprocessing = { baseline = \"linear\", order = 4.0 }",
             &["ground_motion.processing.order", "whole number"],
@@ -431,7 +559,11 @@ fn pounding_record_prints_text_json_and_csv() {
         .arg(path("csmip.V2"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(j["format"], "csmip-v2");
     assert_eq!(j["component"], "Chan 2: Up");
@@ -452,7 +584,10 @@ fn pounding_record_prints_text_json_and_csv() {
         .output()
         .unwrap();
     let s = String::from_utf8_lossy(&out.stdout);
-    assert!(s.contains("K-NET") && s.contains("3000") && s.contains("PGA stated"), "{s}");
+    assert!(
+        s.contains("K-NET") && s.contains("3000") && s.contains("PGA stated"),
+        "{s}"
+    );
     let bin_file = dir.path().join("x.AT2");
     std::fs::write(&bin_file, [0u8, 1, 2, 0x1a]).unwrap();
     let out = std::process::Command::new(bin)
@@ -462,5 +597,8 @@ fn pounding_record_prints_text_json_and_csv() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let e = String::from_utf8_lossy(&out.stderr);
-    assert!(e.contains("not a text record file") && !e.contains("\\u{"), "{e}");
+    assert!(
+        e.contains("not a text record file") && !e.contains("\\u{"),
+        "{e}"
+    );
 }

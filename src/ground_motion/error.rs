@@ -449,7 +449,10 @@ mod tests {
             at: Location::line("f", 2),
             token: clip("\u{1a}"),
         };
-        assert_eq!(e.to_string(), "record \"f\", line 2: \"\u{fffd}\" is not a number");
+        assert_eq!(
+            e.to_string(),
+            "record \"f\", line 2: \"\u{fffd}\" is not a number"
+        );
         assert!(!e.to_string().contains("\\u"));
     }
 

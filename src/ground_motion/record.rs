@@ -485,7 +485,6 @@ pub(crate) fn max_abs(values: &[f64]) -> f64 {
     values.iter().fold(0.0_f64, |m, a| m.max(a.abs()))
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -676,5 +675,4 @@ mod tests {
             let _ = r.accel_and_velocity_at(t);
         }
     }
-
 }

@@ -94,7 +94,9 @@ impl RecordSummary {
             ("record", self.description.clone()),
             (
                 "component",
-                self.component.clone().unwrap_or_else(|| "(the only one)".into()),
+                self.component
+                    .clone()
+                    .unwrap_or_else(|| "(the only one)".into()),
             ),
             (
                 "units in the file",
@@ -131,7 +133,11 @@ impl RecordSummary {
         if let Some(p) = &self.processing {
             rows.push(("processing", p.clone()));
         }
-        let width = rows.iter().map(|(k, _)| k.chars().count()).max().unwrap_or(0);
+        let width = rows
+            .iter()
+            .map(|(k, _)| k.chars().count())
+            .max()
+            .unwrap_or(0);
         let mut out = String::new();
         for (k, v) in rows {
             out.push_str(&format!("  {k:<width$}  {v}\n"));
@@ -193,9 +199,10 @@ pub fn options(
     });
     let units = match units {
         None => None,
-        Some(u) => Some(AccelUnits::from_name(u).ok_or_else(|| {
-            format!("--units {u}: must be g, cm/s2 (gal) or m/s2")
-        })?),
+        Some(u) => Some(
+            AccelUnits::from_name(u)
+                .ok_or_else(|| format!("--units {u}: must be g, cm/s2 (gal) or m/s2"))?,
+        ),
     };
     let baseline = match baseline {
         None => None,

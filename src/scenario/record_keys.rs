@@ -29,15 +29,13 @@ pub(crate) fn units(
     v: Option<&Spanned<String>>,
 ) -> Result<Option<AccelUnits>, ScenarioError> {
     let Some(u) = v else { return Ok(None) };
-    AccelUnits::from_name(u.get_ref())
-        .map(Some)
-        .ok_or_else(|| {
-            c.invalid(
-                u,
-                "ground_motion.units",
-                "must be \"g\", \"cm/s2\" (gal) or \"m/s2\"",
-            )
-        })
+    AccelUnits::from_name(u.get_ref()).map(Some).ok_or_else(|| {
+        c.invalid(
+            u,
+            "ground_motion.units",
+            "must be \"g\", \"cm/s2\" (gal) or \"m/s2\"",
+        )
+    })
 }
 
 /// `component`: a number from 1 (the position in the file) or a name (`"90"`, `"EW"`, `"HNE"`).
@@ -108,7 +106,9 @@ pub(crate) fn processing(
                 return Err(c.invalid(
                     o,
                     &key("order"),
-                    &format!("must be a whole number from 1 to {MAX_ORDER} (the Butterworth order)"),
+                    &format!(
+                        "must be a whole number from 1 to {MAX_ORDER} (the Butterworth order)"
+                    ),
                 ));
             }
         },

@@ -13,7 +13,10 @@ use crate::ground_motion::record::{AccelUnits, RecordFormat};
 /// The units line 3 states (`… IN UNITS OF G`, `… UNITS: CM/S/S`), if it states them.
 fn stated_units(line3: &str) -> Option<AccelUnits> {
     let upper = line3.to_ascii_uppercase();
-    let at = upper.find("UNITS OF").map(|i| i + 8).or_else(|| upper.find("UNITS:").map(|i| i + 6))?;
+    let at = upper
+        .find("UNITS OF")
+        .map(|i| i + 8)
+        .or_else(|| upper.find("UNITS:").map(|i| i + 6))?;
     let name = upper[at..].split_whitespace().next()?;
     AccelUnits::from_name(name.trim_end_matches([',', '.', ';']))
 }
@@ -158,7 +161,6 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         default_units: AccelUnits::G,
     })
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -477,5 +479,4 @@ mod tests {
             }
         }
     }
-
 }

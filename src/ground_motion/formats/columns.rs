@@ -142,7 +142,6 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
     })
 }
 
-
 #[cfg(test)]
 mod tests {
     use crate::ground_motion::formats::testutil::*;
@@ -310,5 +309,4 @@ mod tests {
             assert!(matches!(e, RecordError::NonFinite { .. }), "{bad}");
         }
     }
-
 }

@@ -130,7 +130,9 @@ fn format_of(line: &str) -> Option<FortranFormat> {
 
 fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordError> {
     let first = lines[start];
-    let n_text = number_after(first, "with").map_or(13, |n| n as usize).max(1);
+    let n_text = number_after(first, "with")
+        .map_or(13, |n| n as usize)
+        .max(1);
     let text_end = start + n_text;
     if text_end > lines.len() {
         return Err(RecordError::BadHeaderLine {
@@ -204,7 +206,11 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     let real = |k: usize| reals.get(k - 1).copied().filter(|v| *v != real_null);
     let line1 = first.to_ascii_uppercase();
     let data_upper = data_line.to_ascii_uppercase();
-    let description = format!("{}; {}", text.get(1).map_or("", |s| s.trim()), text.get(4).map_or("", |s| s.trim()));
+    let description = format!(
+        "{}; {}",
+        text.get(1).map_or("", |s| s.trim()),
+        text.get(4).map_or("", |s| s.trim())
+    );
     let done = |channel| Block {
         channel,
         description: description.clone(),
@@ -213,22 +219,24 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     };
 
     // what the block holds
-    let stage = int(1).map(|v| v as i64).unwrap_or(if line1.contains("UNCORRECTED") {
-        1
-    } else if line1.contains("RAW") {
-        0
-    } else {
-        2
-    });
-    let quantity = int(2).map(|v| v as i64).unwrap_or(
-        if data_upper.contains("VELOC") {
+    let stage = int(1)
+        .map(|v| v as i64)
+        .unwrap_or(if line1.contains("UNCORRECTED") {
+            1
+        } else if line1.contains("RAW") {
+            0
+        } else {
+            2
+        });
+    let quantity = int(2)
+        .map(|v| v as i64)
+        .unwrap_or(if data_upper.contains("VELOC") {
             2
         } else if data_upper.contains("DISPL") {
             3
         } else {
             1
-        },
-    );
+        });
     if stage == 3 || quantity != 1 {
         return Ok(done(Err(first.trim().to_string())));
     }
@@ -251,22 +259,24 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
             _ => {
                 return Err(RecordError::UnsupportedUnits {
                     at: Location::line(file, data_at + 1),
-                    found: clip(&units_name(data_line).unwrap_or_else(|| {
-                        format!("units code {}", code.unwrap_or(-999))
-                    })),
+                    found: clip(
+                        &units_name(data_line)
+                            .unwrap_or_else(|| format!("units code {}", code.unwrap_or(-999))),
+                    ),
                 });
             }
         },
     };
     // the time step: Real(62) in ms
-    let dt = real(62).filter(|v| *v > 0.0).map(|ms| ms / 1000.0).ok_or_else(|| {
-        RecordError::BadHeaderLine {
+    let dt = real(62)
+        .filter(|v| *v > 0.0)
+        .map(|ms| ms / 1000.0)
+        .ok_or_else(|| RecordError::BadHeaderLine {
             at: Location::line(file, text_end + 2),
             format: FORMAT,
             expected: "the time step in ms as real-header value 62".into(),
             found: format!("{}", reals.get(61).copied().unwrap_or(real_null)),
-        }
-    })?;
+        })?;
     // the length Real(63) is n·dt (or (n − 1)·dt in some files); "approx … secs" is rounded
     let length_checks = [
         (real(63), 1.5 * dt, "real-header value 63 (series length)"),
@@ -375,7 +385,12 @@ fn channel_names(text: &[&str], comments: &[&str], azimuth: Option<f64>) -> Vec<
     }
     let scnl = comments.iter().find_map(|c| {
         let at = c.find("<SCNL>")? + 6;
-        c[at..].split_whitespace().next()?.split('.').nth(1).map(str::to_string)
+        c[at..]
+            .split_whitespace()
+            .next()?
+            .split('.')
+            .nth(1)
+            .map(str::to_string)
     });
     if let Some(code) = scnl {
         if orientation.is_none() {

@@ -32,7 +32,9 @@ const V1_REAL_LINES: usize = 7;
 /// Reads every channel of a CSMIP/DMG V1 or V2 file.
 pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let lines: Vec<&str> = text.lines().collect();
-    let first = lines.first().map_or(String::new(), |l| l.to_ascii_uppercase());
+    let first = lines
+        .first()
+        .map_or(String::new(), |l| l.to_ascii_uppercase());
     if first.contains("RESPONSE AND FOURIER AMPLITUDE SPECTRA") {
         return Err(RecordError::NotAcceleration {
             at: Location::line(file, 1),
@@ -80,7 +82,9 @@ fn bad_line(lines: &[&str], i: usize, file: &str, expected: &str) -> RecordError
         at: Location::line(file, (i + 1).min(lines.len().max(1))),
         format: FORMAT,
         expected: expected.into(),
-        found: lines.get(i).map_or_else(|| "the end of the file".into(), |l| clip(l)),
+        found: lines
+            .get(i)
+            .map_or_else(|| "the end of the file".into(), |l| clip(l)),
     }
 }
 
@@ -138,7 +142,11 @@ fn format_in(line: &str) -> Option<FortranFormat> {
 /// first data line is long over 8 (8F9 and 8F10 both occur), else 8F10.3.
 fn unstated_format(first_data: Option<&&str>) -> FortranFormat {
     let len = first_data.map_or(0, |l| l.trim_end().chars().count());
-    let width = if len > 0 && len % 8 == 0 { len / 8 } else { 10 };
+    let width = if len > 0 && len.is_multiple_of(8) {
+        len / 8
+    } else {
+        10
+    };
     FortranFormat::fixed(8, width, 3, EditKind::Real)
 }
 
@@ -228,7 +236,10 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
     let text = lines
         .get(s..s + V1_TEXT)
         .ok_or_else(|| bad_line(lines, lines.len(), file, "13 text header lines"))?;
-    if !text[0].to_ascii_uppercase().contains("UNCORRECTED ACCELEROGRAM") {
+    if !text[0]
+        .to_ascii_uppercase()
+        .contains("UNCORRECTED ACCELEROGRAM")
+    {
         return Err(bad_line(
             lines,
             s,

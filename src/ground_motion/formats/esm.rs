@@ -31,12 +31,22 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         .enumerate()
         .filter_map(|(i, l)| header_line(l).map(|(k, v)| (i + 1, k, v)))
         .collect();
-    let field = |key: &str| header.iter().find(|(_, k, _)| *k == key).map(|(l, _, v)| (*l, *v));
+    let field = |key: &str| {
+        header
+            .iter()
+            .find(|(_, k, _)| *k == key)
+            .map(|(l, _, v)| (*l, *v))
+    };
     let missing = |key: &str, what: &str| RecordError::BadHeaderLine {
         at: Location::line(file, header_end.max(1)),
         format: FORMAT,
         expected: format!("a \"{key}:\" line ({what}) in the header"),
-        found: clip(lines.get(header_end.saturating_sub(1)).copied().unwrap_or("")),
+        found: clip(
+            lines
+                .get(header_end.saturating_sub(1))
+                .copied()
+                .unwrap_or(""),
+        ),
     };
     let bad = |line: usize, expected: &str, found: &str| RecordError::BadHeaderLine {
         at: Location::line(file, line),
@@ -83,8 +93,12 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
             dt_second: d / ndata as f64,
         });
     }
-    let processing = field("PROCESSING").map_or("", |(_, v)| v).to_ascii_lowercase();
-    let baseline = field("BASELINE_CORRECTION").map_or("", |(_, v)| v).to_ascii_uppercase();
+    let processing = field("PROCESSING")
+        .map_or("", |(_, v)| v)
+        .to_ascii_lowercase();
+    let baseline = field("BASELINE_CORRECTION")
+        .map_or("", |(_, v)| v)
+        .to_ascii_uppercase();
     let uncorrected = (processing.trim() == "none" || baseline.contains("NOT REMOVED"))
         .then(|| "ESM, PROCESSING: none".to_string());
 
@@ -123,12 +137,14 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let time = field("TIME_PGA_S").and_then(|(_, v)| first_number(v));
     let stream = field("STREAM").map_or("", |(_, v)| v).to_string();
     let mut names = vec![stream.clone()];
-    names.extend(match stream.chars().last().map(|c| c.to_ascii_uppercase()) {
-        Some('E') => vec!["EW".to_string(), "E".into()],
-        Some('N') => vec!["NS".to_string(), "N".into()],
-        Some('Z') => vec!["UD".to_string(), "UP".into(), "Z".into()],
-        _ => Vec::new(),
-    });
+    names.extend(
+        match stream.chars().last().map(|c| c.to_ascii_uppercase()) {
+            Some('E') => vec!["EW".to_string(), "E".into()],
+            Some('N') => vec!["NS".to_string(), "N".into()],
+            Some('Z') => vec!["UD".to_string(), "UP".into(), "Z".into()],
+            _ => Vec::new(),
+        },
+    );
     let get = |k: &str| field(k).map_or("", |(_, v)| v);
     Ok(Parsed {
         format: RecordFormat::Esm,

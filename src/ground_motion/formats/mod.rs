@@ -21,16 +21,16 @@ pub mod cosmos;
 pub mod dmg;
 pub mod esm;
 pub mod knet;
-pub(crate) mod text;
 #[cfg(test)]
 pub(crate) mod testutil;
+pub(crate) mod text;
 
 use std::path::Path;
 
 use crate::ground_motion::error::{Location, RecordError};
 use crate::ground_motion::record::{
-    AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions,
-    STANDARD_GRAVITY, StatedPeak, build, max_abs,
+    AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY,
+    StatedPeak, build, max_abs,
 };
 
 /// Bytes at the start of a file checked for control characters and invalid UTF-8.
@@ -128,7 +128,10 @@ pub fn check_text(bytes: &[u8], file: &str) -> Result<(), RecordError> {
 /// none of the others: the column reader then says one or two columns, or why not).
 pub fn detect(text: &str) -> RecordFormat {
     let head: Vec<&str> = text.lines().take(80).collect();
-    let upper = |i: usize| head.get(i).map_or(String::new(), |l| l.to_ascii_uppercase());
+    let upper = |i: usize| {
+        head.get(i)
+            .map_or(String::new(), |l| l.to_ascii_uppercase())
+    };
     let (l1, l2) = (upper(0), upper(1));
     if l1.contains("(FORMAT V") && l1.contains("TEXT LINES") {
         return if l1.contains("UNCORRECTED") || l1.contains("RAW") {
@@ -344,12 +347,7 @@ pub fn component_list(channels: &[Channel]) -> Vec<String> {
         .enumerate()
         .map(|(i, c)| {
             let label = c.names.first().map_or("", String::as_str);
-            let also: Vec<String> = c
-                .names
-                .iter()
-                .skip(1)
-                .map(|n| format!("\"{n}\""))
-                .collect();
+            let also: Vec<String> = c.names.iter().skip(1).map(|n| format!("\"{n}\"")).collect();
             if also.is_empty() {
                 format!("{}: {label}", i + 1)
             } else {

@@ -291,7 +291,10 @@ fn cut(line: &str, expected: usize, width: usize) -> Option<Vec<&str>> {
             &body[a..b]
         })
         .collect();
-    fields.iter().all(|f| !f.trim().is_empty()).then_some(fields)
+    fields
+        .iter()
+        .all(|f| !f.trim().is_empty())
+        .then_some(fields)
 }
 
 /// The error of a data line whose fields do not parse: the first bad field, by width.
@@ -397,7 +400,15 @@ mod tests {
         assert_eq!((f.per_line, f.width, f.scale), (5, 15, 1));
         let f = FortranFormat::parse("E15.6").unwrap();
         assert_eq!(f.per_line, 1);
-        for bad in ["", "()", "(8X10)", "(8F)", "(8F10.x)", "(0F10.3)", "(8F10.3,2X)"] {
+        for bad in [
+            "",
+            "()",
+            "(8X10)",
+            "(8F)",
+            "(8F10.x)",
+            "(0F10.3)",
+            "(8F10.3,2X)",
+        ] {
             assert!(FortranFormat::parse(bad).is_none(), "{bad}");
         }
     }
@@ -442,18 +453,31 @@ mod tests {
         let e = read_fixed(&lines, 0, 4, &f, "x").unwrap_err();
         assert!(e.to_string().contains("\"2.0x000\" is not a number"), "{e}");
         let e = read_fixed(&lines, 0, 9, &f, "x").unwrap_err();
-        assert!(matches!(e, RecordError::ShortLine { .. } | RecordError::NotANumber { .. }));
+        assert!(matches!(
+            e,
+            RecordError::ShortLine { .. } | RecordError::NotANumber { .. }
+        ));
         let lines = ["   1.00000   2.00000   3.00000   4.00000"];
         let e = read_fixed(&lines, 0, 9, &f, "x").unwrap_err();
         assert!(
-            matches!(e, RecordError::TooFewValues { npts: 9, found: 4, .. }),
+            matches!(
+                e,
+                RecordError::TooFewValues {
+                    npts: 9,
+                    found: 4,
+                    ..
+                }
+            ),
             "{e}"
         );
     }
 
     #[test]
     fn numbers_in_text() {
-        assert_eq!(number_after("No. of Points =  13200  Record", "points ="), Some(13200.0));
+        assert_eq!(
+            number_after("No. of Points =  13200  Record", "points ="),
+            Some(13200.0)
+        );
         assert_eq!(first_number("at    .005  sec"), Some(0.005));
         assert_eq!(first_number("= -1.5E-3 g"), Some(-1.5e-3));
         assert_eq!(first_number("no number"), None);
