@@ -260,6 +260,44 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         keep: Option<PathBuf>,
     },
+    /// What the program reads from a ground-motion record file: layout (detected from the
+    /// content), component, units in the file, time step, number of points, PGA (m/s² and g)
+    /// and its time, the peak the header states; `--csv` writes the series in SI (t, a).
+    ///
+    /// Layouts: PEER NGA .AT2, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, ESM ASCII,
+    /// one or two columns. Uncorrected records (V1) are refused unless processed (--baseline,
+    /// --highpass, --lowpass).
+    Record {
+        /// The record file.
+        file: PathBuf,
+        /// The component of a multi-channel file: its number (1, 2, …) or name ("90", "EW").
+        #[arg(long)]
+        component: Option<String>,
+        /// Print JSON (keys format, component, dt, points, pga, pga_time, …).
+        #[arg(long)]
+        json: bool,
+        /// Write the series to OUT as CSV: t (s), a (m/s²).
+        #[arg(long, value_name = "OUT")]
+        csv: Option<PathBuf>,
+        /// Units of the values, overriding the file's: g, cm/s2 (gal), m/s2.
+        #[arg(long)]
+        units: Option<String>,
+        /// Time step, s (one-column files; resampling of digitised film records).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Baseline correction: linear or polynomial.
+        #[arg(long, value_parser = ["linear", "polynomial"])]
+        baseline: Option<String>,
+        /// High-pass corner, Hz (zero-phase Butterworth).
+        #[arg(long, value_name = "HZ")]
+        highpass: Option<f64>,
+        /// Low-pass corner, Hz (zero-phase Butterworth).
+        #[arg(long, value_name = "HZ")]
+        lowpass: Option<f64>,
+        /// Butterworth order.
+        #[arg(long, default_value_t = pounding::ground_motion::processing::DEFAULT_ORDER)]
+        order: usize,
+    },
 }
 
 /// Targets of `pounding export`.
@@ -609,6 +647,46 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                             path.display()
                         );
                     }
+                }
+            }
+            Ok(())
+        }
+        Command::Record {
+            file,
+            component,
+            json,
+            csv,
+            units,
+            dt,
+            baseline,
+            highpass,
+            lowpass,
+            order,
+        } => {
+            let opts = pounding::ground_motion::summary::options(
+                component.as_deref(),
+                units.as_deref(),
+                dt,
+                baseline.as_deref(),
+                highpass,
+                lowpass,
+                order,
+            )
+            .map_err(anyhow::Error::msg)?;
+            let record = pounding::ground_motion::Record::read(&file, &opts)?;
+            let name = file.display().to_string();
+            let summary = pounding::ground_motion::summary::RecordSummary::of(&record, &name);
+            if let Some(out) = &csv {
+                pounding::ground_motion::summary::write_csv(&record, out)?;
+            }
+            if json {
+                println!("{}", summary.json());
+            } else {
+                print!("{}", summary.text());
+                if let Some(out) = &csv
+                    && !quiet
+                {
+                    println!("wrote {}", out.display());
                 }
             }
             Ok(())

@@ -1,9 +1,20 @@
 //! Ground motion: the acceleration a_g(t) and velocity v_g(t) that both structures' bases share
-//! (docs/model.md §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file.
+//! (docs/model.md §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file:
+//! [`record`] (the signal model), [`formats`] (one reader per layout, a dispatcher that detects
+//! the layout from the content), [`processing`] (baseline correction and band-pass of
+//! uncorrected records), [`summary`] (what `pounding record` prints), [`error`] (diagnostics).
 
+pub mod error;
+pub mod formats;
+pub mod processing;
 pub mod record;
+pub mod summary;
 
-pub use record::{AccelUnits, Record, RecordError, RecordFormat, RecordOptions, STANDARD_GRAVITY};
+pub use error::{Location, RecordError};
+pub use processing::{Baseline, Processing};
+pub use record::{
+    AccelUnits, Component, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY, StatedPeak,
+};
 
 use std::f64::consts::PI;
 use std::sync::Arc;

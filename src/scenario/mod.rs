@@ -11,7 +11,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::{ContactLaw, HertzDampModel};
-use crate::ground_motion::{AccelUnits, GroundMotion, Harmonic, Record, RecordOptions};
+use crate::ground_motion::{GroundMotion, Harmonic, Record, RecordOptions};
 use crate::integrate::{ATOL_PER_RTOL, MIN_ATOL, MIN_RTOL, Method, SolverSettings};
 use crate::modal::{Cantilever, Damping, Stiffness, Structure};
 use crate::system::{ContactLevel, System};
@@ -19,6 +19,7 @@ use crate::system::{ContactLevel, System};
 mod floors;
 mod hysteresis;
 mod ranges;
+mod record_keys;
 
 pub(crate) use ranges::unusual;
 pub use ranges::{
@@ -271,6 +272,9 @@ pub(crate) struct RawGround {
     pub(crate) units: Option<Spanned<String>>,
     pub(crate) scale_to_pga: Option<Spanned<f64>>,
     pub(crate) dt: Option<Spanned<f64>>,
+    /// kind = "record": checked in `record_keys`.
+    pub(crate) component: Option<Spanned<toml::Value>>,
+    pub(crate) processing: Option<Spanned<record_keys::RawProcessing>>,
     // kind = "spectrum": checked in crate::design
     pub(crate) spectrum: Option<Spanned<String>>,
     pub(crate) sds: Option<Spanned<f64>>,
@@ -360,6 +364,7 @@ const TABLES: &[(&str, &[&str])] = &[
         ],
     ),
     ("[[contact.level]]", &["height", "gap"]),
+    ("ground_motion.processing", record_keys::PROCESSING_KEYS),
     (
         "[ground_motion]",
         &[
@@ -370,6 +375,8 @@ const TABLES: &[(&str, &[&str])] = &[
             "units",
             "scale_to_pga",
             "dt",
+            "component",
+            "processing",
             "spectrum",
             "sds",
             "sd1",
@@ -698,7 +705,8 @@ fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, String, String)>
 }
 
 /// Records already read, shared between scenarios: keyed by the path and the reading options
-/// (units, dt, scale to PGA), so a record scaled differently is read separately.
+/// (units, dt, scale to PGA, component, processing), so a record read differently is read
+/// separately.
 #[derive(Debug, Default)]
 pub struct RecordCache {
     map: std::sync::Mutex<std::collections::HashMap<String, Arc<Record>>>,
@@ -717,11 +725,13 @@ impl RecordCache {
         read: impl FnOnce() -> Result<Arc<Record>, E>,
     ) -> Result<Arc<Record>, E> {
         let key = format!(
-            "{}\u{0}{:?}\u{0}{:?}\u{0}{:?}",
+            "{}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}",
             path.display(),
             opts.units,
             opts.dt.map(f64::to_bits),
-            opts.scale_to_pga.map(f64::to_bits)
+            opts.scale_to_pga.map(f64::to_bits),
+            opts.component,
+            opts.processing
         );
         if let Some(r) = self.lock().get(&key) {
             return Ok(r.clone());
@@ -1661,6 +1671,8 @@ fn ground(
                     ("units", g.units.is_some()),
                     ("scale_to_pga", g.scale_to_pga.is_some()),
                     ("dt", g.dt.is_some()),
+                    ("component", g.component.is_some()),
+                    ("processing", g.processing.is_some()),
                 ],
                 "harmonic",
             )?;
@@ -1694,23 +1706,12 @@ fn ground(
             let file = c.required(
                 &g.file,
                 "ground_motion.file",
-                "the record file (PEER .AT2, two columns `t a`, or one column with `dt`), relative to the scenario",
+                "the record file (PEER .AT2, COSMOS, CSMIP/DMG, K-NET/KiK-net, ESM, two columns `t a`, or one column with `dt`), relative to the scenario",
                 near,
             )?;
-            let units = match g.units.as_ref() {
-                None => None,
-                Some(u) => match u.get_ref().as_str() {
-                    "g" => Some(AccelUnits::G),
-                    "m/s2" | "m/s^2" | "m/s²" => Some(AccelUnits::MetersPerSecond2),
-                    _ => {
-                        return Err(c.invalid(
-                            u,
-                            "ground_motion.units",
-                            "must be \"g\" or \"m/s2\"",
-                        ));
-                    }
-                },
-            };
+            let units = record_keys::units(c, g.units.as_ref())?;
+            let component = record_keys::component(c, g.component.as_ref())?;
+            let processing = record_keys::processing(c, g.processing.as_ref())?;
             let scale_to_pga = match &g.scale_to_pga {
                 Some(v) => Some(c.positive(v, "ground_motion.scale_to_pga", "g")?),
                 None => None,
@@ -1724,6 +1725,8 @@ fn ground(
                 units,
                 dt,
                 scale_to_pga,
+                component,
+                processing,
             };
             let read = || {
                 Record::read(&path, &opts)
@@ -1738,6 +1741,11 @@ fn ground(
                 None => read()?,
                 Some(cache) => cache.get_or_read(&path, &opts, read)?,
             };
+            // what the reader noticed but accepted (a `units` key overriding the file's)
+            c.ctx
+                .warnings
+                .borrow_mut()
+                .extend(record.warnings.iter().cloned());
             // what the file gives is held to the ranges of the keys that could give it
             let g = crate::ground_motion::STANDARD_GRAVITY;
             for (what, x, key, unit) in [

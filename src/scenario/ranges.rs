@@ -29,6 +29,8 @@ pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
         "periods" => (1e-3, 1e3, "a mode's period"),
         "yield_drifts" => (1e-6, 10.0, "a storey's yield drift"),
         "yield_forces" => (1e-3, 1e14, "a storey's yield force"),
+        "highpass_hz" => (1e-4, 100.0, "a high-pass corner of a record's filter"),
+        "lowpass_hz" => (1e-2, 1e5, "a low-pass corner of a record's filter"),
         _ => return None,
     })
 }
@@ -100,6 +102,18 @@ pub fn usual_range(key: &str) -> Option<(f64, f64, &'static str)> {
              of a building and of a record",
         ),
         "duration" => (1.0, 3600.0, "earthquake shaking lasts seconds to minutes"),
+        "highpass_hz" => (
+            0.01,
+            1.0,
+            "strong-motion records are high-pass filtered at about 0.02–0.5 Hz; above 1 Hz the \
+             filter removes motion that buildings respond to",
+        ),
+        "lowpass_hz" => (
+            5.0,
+            100.0,
+            "strong-motion records are low-pass filtered at about 20–50 Hz; below 5 Hz the \
+             filter removes motion that stiff buildings respond to",
+        ),
         "output_interval" => (
             1e-4,
             0.1,
