@@ -5,8 +5,8 @@ use toml::Spanned;
 
 use super::{CodeSpec, ToDesign, per_structure};
 use crate::codes::{
-    Asce7Boundary, Asce7Params, CodeRule, Gb50011Params, GbSystem, Is1893Params, NbccParams,
-    NtcMethod, NtcParams, NtcZone, PartialStep,
+    Asce7Boundary, Asce7Params, CodeRule, Ec8Boundary, Ec8Params, Gb50011Params, GbSystem,
+    Is1893Params, NbccParams, NtcMethod, NtcParams, NtcZone, PartialStep,
 };
 use crate::scenario::{Check, ScenarioError};
 
@@ -19,8 +19,16 @@ pub(crate) struct RawSeparation {
     nbcc: Option<Spanned<RawNbcc>>,
     gb50011: Option<Spanned<RawGb>>,
     ntc: Option<Spanned<RawNtc>>,
-    /// Refused with the reason (EN 1998-1 §4.4.2.7 could not be verified).
-    ec8: Option<Spanned<toml::Value>>,
+    ec8: Option<Spanned<RawEc8>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEc8 {
+    q: Option<Spanned<toml::Value>>,
+    qd: Option<Spanned<toml::Value>>,
+    boundary: Option<Spanned<String>>,
+    floor_reduction: Option<Spanned<toml::Value>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -38,6 +46,7 @@ struct RawAsce7 {
 struct RawIs1893 {
     r: Option<Spanned<toml::Value>>,
     displacement_factor: Option<Spanned<toml::Value>>,
+    floor_reduction: Option<Spanned<toml::Value>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -74,15 +83,6 @@ pub(super) fn codes(
 ) -> Result<Vec<CodeSpec>, ScenarioError> {
     let s = raw.get_ref();
     let mut out = Vec::new();
-    if let Some(e) = &s.ec8 {
-        return Err(c.invalid(
-            e,
-            "separation.ec8",
-            "EN 1998-1 §4.4.2.7 (pounding) could not be verified against a source, so it is not \
-             implemented (docs/codes.md, \"Not implemented\"); use asce7, is1893, nbcc, gb50011 \
-             or ntc",
-        ));
-    }
     const FACTOR: (f64, f64, bool) = (0.0, 10.0, true);
     const FORCE_FACTOR: (f64, f64, bool) = (1.0, 10.0, false);
     let factor = |v: &Option<Spanned<toml::Value>>,
@@ -184,7 +184,7 @@ pub(super) fn codes(
                 return Err(c.invalid(
                     v,
                     "separation.asce7.displacement_factor",
-                    "give either `r` (δ_max = δ_elastic·I_e/R, §12.9.1.4) or \
+                    "give either `r` (δ_max = δ_elastic·I_e/R, §12.9.1.2) or \
                      `displacement_factor`, not both",
                 ));
             }
@@ -192,7 +192,7 @@ pub(super) fn codes(
                 return Err(c.missing(
                     "separation.asce7.r",
                     "R of Table 12.2-1, to obtain δ_max = δ_elastic·I_e/R from the elastic \
-                     displacement computed here (§12.9.1.4); or `displacement_factor` = δ_max / \
+                     displacement computed here (§12.9.1.2); or `displacement_factor` = δ_max / \
                      δ_elastic as you determine it",
                     Some(near),
                 ));
@@ -237,8 +237,18 @@ pub(super) fn codes(
                 "IS 1893 §7.11.3 (Δ under the design lateral force)",
             )
         })?;
+        let floor_reduction = floor_reduction(
+            c,
+            &a.floor_reduction,
+            "separation.is1893.floor_reduction",
+            "R/2",
+            defaults,
+        )?;
         out.push(CodeSpec {
-            rule: CodeRule::Is1893(Is1893Params { r: r[0] }),
+            rule: CodeRule::Is1893(Is1893Params {
+                r: r[0],
+                floor_reduction,
+            }),
             to_design: ToDesign::Factor(f),
         });
     }
@@ -440,5 +450,99 @@ pub(super) fn codes(
             to_design,
         });
     }
+    if let Some(t) = &s.ec8 {
+        let near = t.span().start;
+        let a = t.get_ref();
+        let q = per_structure(
+            c,
+            c.required(
+                &a.q,
+                "separation.ec8.q",
+                "behaviour factor q of each structure (EN 1998-1 §3.2.2.5): d_e, the displacement \
+                 on the design spectrum, is taken as the elastic displacement computed here \
+                 divided by q",
+                Some(near),
+            )?,
+            "separation.ec8.q",
+            FORCE_FACTOR,
+            "q (behaviour factor)",
+        )?;
+        let qd = match &a.qd {
+            Some(v) => per_structure(
+                c,
+                v,
+                "separation.ec8.qd",
+                FORCE_FACTOR,
+                "q_d (displacement behaviour factor, §4.3.4)",
+            )?,
+            None => {
+                defaults.push("separation.ec8.qd = q (§4.3.4)".into());
+                q
+            }
+        };
+        let boundary = match &a.boundary {
+            None => {
+                defaults.push("separation.ec8.boundary = \"same-property\"".into());
+                Ec8Boundary::SameProperty
+            }
+            Some(b) => match b.get_ref().as_str() {
+                "same-property" => Ec8Boundary::SameProperty,
+                "property-line" => Ec8Boundary::PropertyLine,
+                _ => {
+                    return Err(c.invalid(
+                        b,
+                        "separation.ec8.boundary",
+                        "must be \"same-property\" (√(d_s1² + d_s2²), §4.4.2.7(2)b) or \
+                         \"property-line\" (each building its own d_s from the line: d_s1 + d_s2, \
+                         §4.4.2.7(2)a)",
+                    ));
+                }
+            },
+        };
+        let floor_reduction = floor_reduction(
+            c,
+            &a.floor_reduction,
+            "separation.ec8.floor_reduction",
+            "× 0.7",
+            defaults,
+        )?;
+        out.push(CodeSpec {
+            rule: CodeRule::Ec8(Ec8Params {
+                qd,
+                boundary,
+                floor_reduction,
+            }),
+            to_design: ToDesign::Ec8 { q },
+        });
+    }
     Ok(out)
+}
+
+/// `floor_reduction` of EC8 / IS 1893 (`what` the reduction): on unless the scenario turns it
+/// off (recorded as a default when left out).
+fn floor_reduction(
+    c: &Check,
+    v: &Option<Spanned<toml::Value>>,
+    key: &str,
+    what: &str,
+    defaults: &mut Vec<String>,
+) -> Result<bool, ScenarioError> {
+    match v {
+        Some(b) => b.get_ref().as_bool().ok_or_else(|| {
+            c.invalid(
+                b,
+                key,
+                &format!(
+                    "must be true (the {what} where a contact level is a floor of both \
+                     structures) or false (never)"
+                ),
+            )
+        }),
+        None => {
+            defaults.push(format!(
+                "{key} = true (the {what} where a contact level is a floor of both structures)"
+            ));
+            Ok(true)
+        }
+    }
 }

@@ -6,7 +6,7 @@
 //! [`ScenarioError`]s with file:line:col, the key and the allowed range, like the rest of a
 //! scenario. The formulas are in [`crate::spectrum`] and [`crate::codes`] (docs/codes.md);
 //! the conversion of the elastic displacement computed here into the displacement a code
-//! multiplies is [`ToDesign`]: ASCE 7's δ_max = δ_elastic I_e/R (§12.9.1.4, needs `r`), or a
+//! multiplies is [`ToDesign`]: ASCE 7's δ_max = δ_elastic I_e/R (§12.9.1.2, needs `r`), or a
 //! factor the user states (`displacement_factor`). No factor is ever assumed.
 
 mod code_tables;
@@ -25,7 +25,9 @@ pub use spectrum_keys::{read_table, spectrum_from_arg};
 
 /// The codes of `[separation]`, in the order they are reported (keys as in the scenario, the
 /// `--code` flag and the sweep columns `sep_<key>`).
-pub const CODE_KEYS: [&str; 5] = ["asce7", "is1893", "nbcc", "gb50011", "ntc"];
+/// (`ec8` is last so that the five older keys keep their sweep columns, see
+/// [`crate::sweep::results::CODE_FIELDS`].)
+pub const CODE_KEYS: [&str; 6] = ["asce7", "is1893", "nbcc", "gb50011", "ntc", "ec8"];
 
 /// Valid keys of the tables of this module, for the scenario's unknown-key suggestions.
 pub const TABLES: &[(&str, &[&str])] = &[
@@ -37,7 +39,14 @@ pub const TABLES: &[(&str, &[&str])] = &[
         "[separation.asce7]",
         &["cd", "ie", "r", "displacement_factor", "boundary"],
     ),
-    ("[separation.is1893]", &["r", "displacement_factor"]),
+    (
+        "[separation.is1893]",
+        &["r", "displacement_factor", "floor_reduction"],
+    ),
+    (
+        "[separation.ec8]",
+        &["q", "qd", "boundary", "floor_reduction"],
+    ),
     (
         "[separation.nbcc]",
         &["rd", "ro", "ie", "displacement_factor"],
@@ -57,14 +66,14 @@ pub const TABLES: &[(&str, &[&str])] = &[
     ),
 ];
 
-/// How the elastic peak displacement at the contact height computed by `pounding` (from the
-/// time history without pounding, or the CQC of a design spectrum) becomes the displacement a
-/// code multiplies.
+/// How the peak displacement at a contact level computed by `pounding` (from the time history
+/// without pounding — elastic, or inelastic where storeys yield — or the CQC of a design
+/// spectrum) becomes the displacement a code multiplies.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ToDesign {
     /// The code uses no displacement (GB 50011 §6.1.4; NTC-Sismo's simplified method).
     NotUsed,
-    /// ASCE 7-16 §12.9.1.4: the elastic displacement divided by R/I_e, δ_max = δ_e I_e/R, with
+    /// ASCE 7-16 §12.9.1.2: the elastic displacement divided by R/I_e, δ_max = δ_e I_e/R, with
     /// R (Table 12.2-1) of each structure; δ_M = C_d δ_max/I_e is then C_d/R × δ_e.
     Asce7R {
         /// R of structure 1 and 2.
@@ -72,6 +81,14 @@ pub enum ToDesign {
     },
     /// The user's factor: the code's displacement = factor × the elastic displacement.
     Factor([f64; 2]),
+    /// EN 1998-1: d_e, the displacement on the design spectrum of §3.2.2.5, taken as the
+    /// elastic displacement divided by the behaviour factor q of each structure (the design
+    /// spectrum is the elastic one divided by q on its plateau and descending branch at 5 %
+    /// damping; docs/codes.md says where it is not). The rule then forms d_s = q_d d_e.
+    Ec8 {
+        /// q of structure 1 and 2.
+        q: [f64; 2],
+    },
 }
 
 impl ToDesign {
@@ -85,6 +102,7 @@ impl ToDesign {
             // R without I_e is not a rule of any other code
             (ToDesign::Asce7R { r }, _) => [0, 1].map(|i| elastic[i] / r[i]),
             (ToDesign::Factor(f), _) => [0, 1].map(|i| elastic[i] * f[i]),
+            (ToDesign::Ec8 { q }, _) => [0, 1].map(|i| elastic[i] / q[i]),
         }
     }
 
@@ -93,11 +111,15 @@ impl ToDesign {
         match self {
             ToDesign::NotUsed => "no displacement used".into(),
             ToDesign::Asce7R { r } => {
-                format!("δ_max = δ_elastic·I_e/R (§12.9.1.4), R = {}", pair_text(*r))
+                format!("δ_max = δ_elastic·I_e/R (§12.9.1.2), R = {}", pair_text(*r))
             }
             ToDesign::Factor(f) => format!(
                 "displacement = {} × elastic (displacement_factor)",
                 pair_text(*f)
+            ),
+            ToDesign::Ec8 { q } => format!(
+                "d_e = d_elastic/q (design spectrum §3.2.2.5 = elastic/q), q = {}",
+                pair_text(*q)
             ),
         }
     }

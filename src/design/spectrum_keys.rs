@@ -11,8 +11,10 @@ use crate::spectrum::{
 };
 
 /// A spectrum given on the command line (`--spectrum`): `asce7:sds=1.0,sd1=0.6,tl=8`,
-/// `ec8:ag=2.5,ground_type=C,type=1[,units=g]`, `table:FILE[,units=g]` (the file relative to
-/// the working directory). Checked exactly as the scenario keys of the same names.
+/// `ec8:ag=0.25g,ground_type=C,type=1` (a_g with its unit: `0.25g`, `2.45m/s2`, or a bare
+/// number with `units=g` / `units=m/s2` — a bare a_g is refused, since 0.25 read as m/s² is
+/// ten times too small), `table:FILE[,units=g]` (the file relative to the working directory).
+/// Checked exactly as the scenario keys of the same names.
 pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
     let bad = |reason: String| ScenarioError::Invalid {
         at: crate::scenario::Location {
@@ -23,15 +25,17 @@ pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
         value: arg.to_string(),
         reason,
     };
-    let usage = "expected asce7:sds=…,sd1=…,tl=… or ec8:ag=…,ground_type=A…E,type=1|2[,units=g] \
+    let usage = "expected asce7:sds=…,sd1=…,tl=… or ec8:ag=…g|…m/s2,ground_type=A…E,type=1|2 \
                  or table:FILE[,units=g]";
     let (name, rest) = arg.split_once(':').unwrap_or((arg, ""));
     let mut text = format!(
         "kind = \"spectrum\"\nspectrum = {}\n",
         toml_string(name.trim())
     );
+    // a_g's unit: from a suffix of its value or from `units`
+    let (mut ag, mut ag_unit, mut units) = (None, None, false);
     for (i, item) in rest.split(',').filter(|s| !s.trim().is_empty()).enumerate() {
-        let (k, v) = match item.split_once('=') {
+        let (k, mut v) = match item.split_once('=') {
             Some((k, v)) => (k.trim(), v.trim()),
             None if i == 0 && name.trim() == "table" => ("file", item.trim()),
             None => return Err(bad(format!("`{item}` is not key=value; {usage}"))),
@@ -39,12 +43,43 @@ pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
         if !k.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') || k.is_empty() {
             return Err(bad(format!("`{k}` is not a key; {usage}")));
         }
+        units |= k == "units";
+        if k == "ag" {
+            ag = Some(v.to_string());
+            for (suffix, unit) in [
+                ("m/s2", "m/s2"),
+                ("m/s^2", "m/s2"),
+                ("m/s²", "m/s2"),
+                ("g", "g"),
+            ] {
+                if let Some(x) = v.strip_suffix(suffix) {
+                    v = x.trim();
+                    ag_unit = Some(unit);
+                    break;
+                }
+            }
+        }
         let value = match k {
             "file" | "units" | "ground_type" => toml_string(v),
             _ if v.parse::<f64>().is_ok() => v.to_string(),
             _ => return Err(bad(format!("`{k}` = `{v}` is not a number"))),
         };
         text.push_str(&format!("{k} = {value}\n"));
+    }
+    match (ag, ag_unit, units) {
+        (Some(v), Some(_), true) => {
+            return Err(bad(format!(
+                "`ag` = `{v}` has a unit and `units` is given too: give one of them"
+            )));
+        }
+        (Some(_), Some(u), false) => text.push_str(&format!("units = {}\n", toml_string(u))),
+        (Some(v), None, false) => {
+            return Err(bad(format!(
+                "`ag` = `{v}` needs its unit: ag={v}g if a_g is in g, ag={v}m/s2 if in m/s² (as \
+                 EN 1998-1 writes it), or add units=g / units=m/s2"
+            )));
+        }
+        _ => {}
     }
     let ctx = Ctx {
         text: &text,
@@ -68,6 +103,11 @@ pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
         None => Err(bad(usage.into())),
     }
 }
+
+/// Below this a_g (m/s², 0.15 g) without `units` the scenario warns that it is probably in g:
+/// EN 1998-1 a_g values in m/s² are mostly 0.5–5 m/s², while in g they are below 1; a value
+/// under 1.5 m/s² is a low-seismicity site or, more likely, a number in g.
+pub const AG_PROBABLY_IN_G: f64 = 1.5;
 
 fn toml_string(s: &str) -> String {
     toml::Value::String(s.to_string()).to_string()
@@ -212,7 +252,17 @@ pub(super) fn spectrum(
                 near,
             )?;
             let ag_si = if scale == 1.0 {
-                range(ag, "ag", 0.0, 30.0, "m/s² (units = \"g\" to give it in g)")?
+                let x = range(ag, "ag", 0.0, 30.0, "m/s² (units = \"g\" to give it in g)")?;
+                if g.units.is_none() && x < AG_PROBABLY_IN_G {
+                    c.ctx.warnings.borrow_mut().push(format!(
+                        "`{}` = {x} is read in m/s² ({:.3} g), a low design ground acceleration: \
+                         if it is in g, add {}units = \"g\"",
+                        key("ag"),
+                        x / STANDARD_GRAVITY,
+                        prefix
+                    ));
+                }
+                x
             } else {
                 range(ag, "ag", 0.0, 3.0, "g (units = \"g\")")? * scale
             };
