@@ -110,7 +110,7 @@ enum Command {
     Separation {
         /// Scenario file (TOML); the bundled default if omitted.
         scenario: Option<PathBuf>,
-        /// Only these codes (comma-separated or repeated): asce7, is1893, nbcc, gb50011, ntc
+        /// Only these codes (comma-separated or repeated): asce7, is1893, nbcc, gb50011, ntc, ec8
         /// [default: every code whose factors are in the scenario].
         #[arg(long, value_delimiter = ',')]
         code: Vec<String>,
