@@ -3,14 +3,19 @@
 //! Each rule takes the two structures' displacements at the contact level *as the code defines
 //! them* (see each variant) and, where a code needs them, their heights; it returns the
 //! required separation in m with the per-structure terms, the code's name and the clause.
-//! Sources and what could not be verified are in `docs/codes.md`; nothing here goes beyond
-//! what was verified (no Eurocode 8 §4.4.2.7 rule, no IS 1893 R/2 reduction).
+//! Sources, and what could not be verified against a retrievable text, are in `docs/codes.md`.
+//!
+//! Every rule is evaluated at one contact level; [`PairInput::floors_coincide`] says whether
+//! that level is a floor of both structures, which EN 1998-1 §4.4.2.7(3) (× 0.7) and
+//! IS 1893 §7.11.3 (R/2) reward.
 //!
 //! | rule | required separation |
 //! |---|---|
 //! | ASCE 7-16 §12.12.3, same property | `δ_MT = √(δ_M1² + δ_M2²)`, `δ_Mi = C_d,i δ_max,i / I_e,i` |
 //! | ASCE 7-16 §12.12.3, property line | each set back by its own δ_Mi: gap `δ_M1 + δ_M2` |
-//! | IS 1893 (Part 1):2016 §7.11.3 | `R (Δ₁ + Δ₂)` |
+//! | IS 1893 (Part 1):2016 §7.11.3 | `R (Δ₁ + Δ₂)`; R/2 where the floor levels coincide |
+//! | EN 1998-1:2004 §4.4.2.7, same property | `√(d_s1² + d_s2²)`, `d_si = q_d,i d_e,i` (expression 4.23); × 0.7 where the floor elevations coincide |
+//! | EN 1998-1:2004 §4.4.2.7, property line | each set back by its own d_si: gap `d_s1 + d_s2`; × 0.7 likewise |
 //! | NBCC Art. 4.1.8.14 | `√(Δ₁² + Δ₂²)`, `Δ_i = δ_i R_d,i R_o,i / I_E,i` (Sentence 4.1.8.13.(2)) |
 //! | GB 50011-2010 §6.1.4 | joint width by system, the lower height and the intensity |
 //! | NTC-Sismo (Mexico City, 2004) §1.10 | `s₁ + s₂` (half if same height, system, slab levels), `s_i = max(50 mm, d_i + c h)` |
@@ -68,6 +73,10 @@ pub struct PairInput {
     /// Height of the contact level above the ground on each structure, m: used by NTC-Sismo
     /// only.
     pub level: [f64; 2],
+    /// The contact level is a floor of both structures (their floor elevations coincide
+    /// there): EN 1998-1 §4.4.2.7(3) then allows × 0.7 and IS 1893 §7.11.3 R/2, each only when
+    /// its `floor_reduction` is on. Never true where either structure has no floors.
+    pub floors_coincide: bool,
 }
 
 /// Where the ASCE 7 separation is measured (§12.12.3).
@@ -97,6 +106,31 @@ pub struct Is1893Params {
     /// Response reduction factor R (Table 9) that multiplies the sum of the displacements. The
     /// clause names one R; for two systems with different R give the larger.
     pub r: f64,
+    /// Replace R by R/2 where the floor levels coincide ([`PairInput::floors_coincide`]).
+    pub floor_reduction: bool,
+}
+
+/// Where the EN 1998-1 separation is measured (§4.4.2.7(2)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Ec8Boundary {
+    /// Buildings or units on the same property (§4.4.2.7(2)b): the SRSS of the two d_s.
+    SameProperty,
+    /// Not on the same property (§4.4.2.7(2)a): each building's own d_s to the property line,
+    /// so the gap between the two is d_s1 + d_s2.
+    PropertyLine,
+}
+
+/// EN 1998-1:2004 §4.4.2.7 factors, per structure.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ec8Params {
+    /// Displacement behaviour factor q_d of each structure (§4.3.4: q unless otherwise
+    /// specified): d_s = q_d d_e (expression 4.23).
+    pub qd: [f64; 2],
+    /// Same property or property line.
+    pub boundary: Ec8Boundary,
+    /// Reduce by 0.7 where the floor elevations coincide (§4.4.2.7(3),
+    /// [`PairInput::floors_coincide`]).
+    pub floor_reduction: bool,
 }
 
 /// NBCC Article 4.1.8.14 factors, per structure (Sentence 4.1.8.13.(2)).
@@ -191,8 +225,10 @@ pub struct NtcParams {
 ///
 /// The displacements of [`PairInput`] are, per rule:
 /// - `Asce7`: δ_max, the elastic displacement at the critical location under the design
-///   forces (§12.8.6 / §12.9.1.4: the elastic demand × I_e/R), m;
+///   forces (§12.8.6 / §12.9.1.2: the elastic demand × I_e/R), m;
 /// - `Is1893`: Δ, the displacement under the design lateral force (§7.11.1), m;
+/// - `Ec8`: d_e, the displacement from the linear analysis on the design spectrum of
+///   §3.2.2.5 (§4.3.4), m;
 /// - `Nbcc`: the elastic lateral deflection from the linear analysis under the design forces
 ///   (before × R_dR_o/I_E), m;
 /// - `Gb50011`: not used (the joint width depends on system, height and intensity only);
@@ -210,6 +246,8 @@ pub enum CodeRule {
     Gb50011(Gb50011Params),
     /// NTC-Sismo 2004 (Mexico City) §1.10.
     NtcSismo(NtcParams),
+    /// EN 1998-1:2004 §4.4.2.7 with §4.3.4.
+    Ec8(Ec8Params),
 }
 
 /// The separation a code requires, with its terms.
@@ -226,8 +264,11 @@ pub struct CodeSeparation {
     pub required: f64,
     /// Per-structure terms, m: δ_M (ASCE 7), R Δ (IS 1893), R_dR_oΔ/I_E (NBCC), the joint width
     /// each side's own system and height would need (GB 50011), each side's distance to the
-    /// property line s_i (NTC-Sismo).
+    /// property line s_i (NTC-Sismo), d_s = q_d d_e (EN 1998-1) — before any reduction for
+    /// coinciding floors.
     pub terms: [f64; 2],
+    /// The reduction applied for coinciding floor levels, in words (`None`: none applied).
+    pub reduction: Option<&'static str>,
 }
 
 impl CodeRule {
@@ -239,6 +280,7 @@ impl CodeRule {
             CodeRule::Nbcc(_) => "nbcc",
             CodeRule::Gb50011(_) => "gb50011",
             CodeRule::NtcSismo(_) => "ntc",
+            CodeRule::Ec8(_) => "ec8",
         }
     }
 
@@ -250,6 +292,7 @@ impl CodeRule {
             CodeRule::Nbcc(_) => "NBCC",
             CodeRule::Gb50011(_) => "GB 50011-2010",
             CodeRule::NtcSismo(_) => "NTC-Sismo 2004 (Mexico City)",
+            CodeRule::Ec8(_) => "EN 1998-1:2004",
         }
     }
 
@@ -264,12 +307,17 @@ impl CodeRule {
             CodeRule::Nbcc(_) => "Art. 4.1.8.14 with Sentence 4.1.8.13.(2)",
             CodeRule::Gb50011(_) => "§6.1.4 item 1",
             CodeRule::NtcSismo(_) => "§1.10",
+            CodeRule::Ec8(p) => match p.boundary {
+                Ec8Boundary::SameProperty => "§4.4.2.7(2)b, expression (4.23)",
+                Ec8Boundary::PropertyLine => "§4.4.2.7(2)a, expression (4.23), property line",
+            },
         }
     }
 
     /// The required separation for `input`, m.
     pub fn required_separation(&self, input: &PairInput) -> Result<CodeSeparation, CodeError> {
         let key = self.key();
+        let mut reduction = None;
         let (required, terms) = match self {
             CodeRule::Asce7(p) => {
                 let d = displacements(key, input)?;
@@ -289,7 +337,32 @@ impl CodeRule {
                 let d = displacements(key, input)?;
                 factor(key, "R", 0, p.r)?;
                 let t = [p.r * d[0], p.r * d[1]];
-                (t[0] + t[1], t)
+                // §7.11.3: R may be replaced by R/2 where the floor levels coincide
+                let half = p.floor_reduction && input.floors_coincide;
+                if half {
+                    reduction = Some("R/2: the floor levels of both coincide here (§7.11.3)");
+                }
+                let sum = t[0] + t[1];
+                (if half { 0.5 * sum } else { sum }, t)
+            }
+            CodeRule::Ec8(p) => {
+                let d = displacements(key, input)?;
+                let mut ds = [0.0; 2];
+                for i in 0..2 {
+                    factor(key, "q_d", i, p.qd[i])?;
+                    ds[i] = p.qd[i] * d[i];
+                }
+                let distance = match p.boundary {
+                    Ec8Boundary::SameProperty => ds[0].hypot(ds[1]),
+                    Ec8Boundary::PropertyLine => ds[0] + ds[1],
+                };
+                // §4.4.2.7(3): × 0.7 where the floor elevations coincide
+                let reduce = p.floor_reduction && input.floors_coincide;
+                if reduce {
+                    reduction =
+                        Some("× 0.7: the floor elevations of both coincide here (§4.4.2.7(3))");
+                }
+                (if reduce { 0.7 * distance } else { distance }, ds)
             }
             CodeRule::Nbcc(p) => {
                 let d = displacements(key, input)?;
@@ -372,6 +445,7 @@ impl CodeRule {
             clause: self.clause(),
             required,
             terms,
+            reduction,
         })
     }
 }

@@ -97,28 +97,33 @@ enum Command {
         #[arg(long, default_value_t = 0.01)]
         tolerance: f64,
     },
-    /// Required separation by every rule, side by side: ABS, SRSS, DDC, DDC as printed in the
-    /// paper, and the building codes whose factors the scenario's [separation] table gives
-    /// (ASCE 7-16 §12.12.3, IS 1893 §7.11.3, NBCC 4.1.8.14, GB 50011 §6.1.4, NTC-Sismo §1.10),
-    /// each with the gap given and whether it suffices; with a time history, the exact
-    /// time-history separation beside them and each rule's over/under-estimate of it (%).
+    /// Required separation by every rule at every contact level, side by side: ABS, SRSS, DDC,
+    /// DDC as printed in the paper, and the building codes whose factors the scenario's
+    /// [separation] table gives (ASCE 7-16 §12.12.3, IS 1893 §7.11.3, NBCC 4.1.8.14, GB 50011
+    /// §6.1.4, NTC-Sismo §1.10, EN 1998-1 §4.4.2.7), each against the gap given at that level;
+    /// with a time history, the exact time-history separation beside them and each rule's
+    /// over/under-estimate of it (%). The verdict of each rule is its worst level, named.
     ///
-    /// With a design spectrum ([ground_motion] kind = "spectrum", or --spectrum) the rules take
-    /// the spectral peak displacement at the contact height of each structure (CQC of
-    /// Γ_n φ_n(h) S_d(T_n, ζ_n)).
+    /// At each level the rules take each structure's own peak there without pounding: from the
+    /// time history (inelastic where storeys yield), or with a design spectrum ([ground_motion]
+    /// kind = "spectrum", or --spectrum) the CQC of Γ_n φ_n(h) S_d(T_n, ζ_n). Lengths in mm.
     Separation {
         /// Scenario file (TOML); the bundled default if omitted.
         scenario: Option<PathBuf>,
-        /// Only these codes (comma-separated or repeated): asce7, is1893, nbcc, gb50011, ntc
+        /// Only these codes (comma-separated or repeated): asce7, is1893, nbcc, gb50011, ntc, ec8
         /// [default: every code whose factors are in the scenario].
         #[arg(long, value_delimiter = ',')]
         code: Vec<String>,
         /// Use this design spectrum for the rules instead of the time history (which still
         /// gives the exact separation): asce7:sds=1.0,sd1=0.6,tl=8 |
-        /// ec8:ag=2.5,ground_type=C,type=1[,units=g] (a_g in m/s² unless units=g) |
+        /// ec8:ag=0.25g,ground_type=C,type=1 (a_g with its unit: 0.25g or 2.45m/s2) |
         /// table:FILE[,units=g] (T in s, S_a in m/s² unless units=g).
         #[arg(long, value_name = "SPEC")]
         spectrum: Option<String>,
+        /// Write the report as JSON on stdout instead of the tables (SI units, full precision;
+        /// keys in the README, "One report").
+        #[arg(long)]
+        json: bool,
     },
     /// Run a parameter study: every case of a grid over scenario keys, in parallel, resumable.
     ///
@@ -604,6 +609,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             scenario,
             code,
             spectrum,
+            json,
         } => {
             let (sc, _) = load(scenario.as_deref())?;
             let spectrum = spectrum
@@ -612,7 +618,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 .transpose()?;
             let codes = (!code.is_empty()).then_some(code.as_slice());
             let report = pounding::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
-            print_separation(&sc, &report);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                print_separation(&report);
+            }
             Ok(())
         }
         Command::Export {
@@ -1047,116 +1057,161 @@ fn first_sentence(text: &str) -> String {
     }
 }
 
-fn print_separation(sc: &Scenario, r: &pounding::gap_report::GapReport) {
-    println!("{}", sc.title);
-    let source = match (&r.spectrum, r.exact) {
-        (Some(s), Some(_)) => format!(
-            "rules from the design spectrum {} (--spectrum); exact separation from the scenario's time history",
-            s.name
+/// A length in mm with 3 decimals (1 µm: enough to check a code's value by hand).
+fn mm(x: f64) -> String {
+    format!("{:.3}", 1e3 * x)
+}
+
+fn print_separation(r: &pounding::gap_report::GapReport) {
+    println!("{}", r.title);
+    let exact = r.levels.iter().any(|l| l.exact.is_some());
+    let source = match (r.spectrum, exact) {
+        (Some(s), true) => format!(
+            "rules from the design spectrum {s} (--spectrum); exact separation from the scenario's time history"
         ),
-        (Some(s), None) => format!(
-            "design spectrum {}: no time history, so no exact separation",
-            s.name
-        ),
-        (None, _) => "time history of the scenario (peaks without pounding)".to_string(),
+        (Some(s), false) => format!("design spectrum {s}: no time history, so no exact separation"),
+        (None, _) => "time history of the scenario (the run without pounding)".to_string(),
     };
     println!("  ground motion: {source}");
+    println!("  the rules take, at each level, {}", r.peaks_note);
     println!(
-        "  contact height h = {} m, gap given {} m; T1 = {:.4} s, T2 = {:.4} s, ζ1 = {}, ζ2 = {}, ρ12 (CQC, first modes) = {:.5}",
-        r.height,
-        r.gap,
-        r.periods[0],
-        r.periods[1],
-        r.damping_ratios[0],
-        r.damping_ratios[1],
-        r.rho
+        "  T1 = {:.4} s, T2 = {:.4} s, ζ1 = {}, ζ2 = {}, ρ12 (CQC, first modes) = {:.5}; lengths in mm",
+        r.periods[0], r.periods[1], r.damping_ratios[0], r.damping_ratios[1], r.rho
     );
-    if let Some(p) = r.time_history_peaks {
-        println!(
-            "  time history, peaks without pounding at h: w1 = {:.5} m, w2 = {:.5} m",
-            p[0], p[1]
-        );
+    for w in &r.warnings {
+        println!("  warning: {w}");
     }
-    if let Some(s) = &r.spectrum {
-        let (a, b) = (&s.response.structure1, &s.response.structure2);
+    // top level first, as a building is read
+    let mut order: Vec<&pounding::gap_report::LevelCheck> = r.levels.iter().collect();
+    order.sort_by(|a, b| b.height.total_cmp(&a.height));
+    for l in &order {
+        println!();
+        let floors = if l.floors_coincide {
+            "; a floor of both structures"
+        } else {
+            ""
+        };
         println!(
-            "  spectral peak displacement at h [m]: structure 1 SRSS {:.5}, CQC {:.5} ({} modes); structure 2 SRSS {:.5}, CQC {:.5} ({} modes)",
-            a.srss,
-            a.cqc,
-            a.modes.len(),
-            b.srss,
-            b.cqc,
-            b.modes.len()
+            "  contact level h = {} m: gap {} mm{floors}; the rules take w1 = {} mm, w2 = {} mm",
+            l.height,
+            mm(l.gap),
+            mm(l.peaks[0]),
+            mm(l.peaks[1])
         );
-        println!(
-            "  the rules take w1 = {:.5} m, w2 = {:.5} m (CQC)",
-            r.elastic[0], r.elastic[1]
-        );
-        for (i, floors) in s.floors.iter().enumerate() {
-            if floors.is_empty() {
-                continue;
-            }
+        if let Some(s) = &l.spectral {
+            let (a, b) = (&s.structure1, &s.structure2);
             println!(
-                "  spectral peak displacement at every floor of structure {} [m]:",
-                i + 1
+                "    spectral peaks [mm]: structure 1 SRSS {}, CQC {} ({} modes); structure 2 SRSS {}, CQC {} ({} modes)",
+                mm(a.srss),
+                mm(a.cqc),
+                a.modes.len(),
+                mm(b.srss),
+                mm(b.cqc),
+                b.modes.len()
             );
-            println!("    {:>10} {:>12} {:>12}", "height [m]", "SRSS", "CQC");
-            for f in floors.iter().rev() {
-                println!("    {:>10.3} {:>12.5} {:>12.5}", f.height, f.srss, f.cqc);
-            }
+        }
+        let gap_col = format!("gap {} mm", mm(l.gap));
+        let vs_col = if l.exact.is_some() { "vs exact" } else { "" };
+        let head = format!(
+            "    {:<40}{:<42}{:>14}{:>16}{:>12}",
+            "rule", "clause", "required [mm]", gap_col, vs_col
+        );
+        println!("{}", head.trim_end());
+        for row in &l.rules {
+            let ok = if row.sufficient {
+                "suffices"
+            } else {
+                "TOO SMALL"
+            };
+            let vs = row
+                .vs_exact_percent
+                .map_or(String::new(), |p| format!("{p:+.1} %"));
+            let line = format!(
+                "    {:<40}{:<42}{:>14}{:>16}{:>12}",
+                row.label,
+                row.clause.as_deref().unwrap_or(""),
+                mm(row.required),
+                ok,
+                vs
+            );
+            println!("{}", line.trim_end());
+        }
+        for c in &l.codes {
+            let reduced = c.reduction.map_or(String::new(), |x| format!("; {x}"));
+            println!(
+                "      {}: {}; displacements [{}, {}] mm, terms [{}, {}] mm{reduced}",
+                c.key,
+                c.conversion,
+                mm(c.displacements[0]),
+                mm(c.displacements[1]),
+                mm(c.terms[0]),
+                mm(c.terms[1])
+            );
         }
     }
     println!();
-    let gap_col = format!("gap {} m", r.gap);
-    let vs_col = if r.exact.is_some() { "vs exact" } else { "" };
-    let head = format!(
-        "  {:<40}{:<42}{:>12}{:>14}{:>12}",
-        "rule", "clause", "required [m]", gap_col, vs_col
-    );
-    println!("{}", head.trim_end());
-    if let Some(e) = r.exact {
-        let ok = if r.gap >= e { "suffices" } else { "TOO SMALL" };
-        let line = format!(
-            "  {:<40}{:<42}{:>12.5}{:>14}",
-            "time history, max(w1 − w2) (exact)", "", e, ok
+    let v = &r.verdict;
+    if r.levels.len() > 1 {
+        println!("  verdict: each rule at its governing level (the smallest gap − required):");
+        let head = format!(
+            "    {:<40}{:>10}{:>12}{:>16}{:>14}",
+            "rule", "level [m]", "gap [mm]", "required [mm]", "margin [mm]"
         );
-        println!("{}", line.trim_end());
-    }
-    for row in &r.rules {
-        let ok = if row.sufficient {
-            "suffices"
-        } else {
-            "TOO SMALL"
-        };
-        let vs = row
-            .vs_exact_percent
-            .map_or(String::new(), |p| format!("{p:+.1} %"));
-        let line = format!(
-            "  {:<40}{:<42}{:>12.5}{:>14}{:>12}",
-            row.label,
-            row.clause.as_deref().unwrap_or(""),
-            row.value,
-            ok,
-            vs
-        );
-        println!("{}", line.trim_end());
-    }
-    if !r.codes.is_empty() {
-        println!();
-        println!(
-            "  code inputs (elastic displacement at h → the displacement each code multiplies):"
-        );
-        for c in &r.codes {
+        println!("{head}");
+        for g in &v.rules {
+            let ok = if g.sufficient {
+                "suffices"
+            } else {
+                "TOO SMALL"
+            };
             println!(
-                "    {}: {}; displacements [{:.5}, {:.5}] m, terms [{:.5}, {:.5}] m",
-                c.key, c.conversion, c.displacements[0], c.displacements[1], c.terms[0], c.terms[1]
+                "    {:<40}{:>10}{:>12}{:>16}{:>14}  {ok}",
+                g.label,
+                g.height,
+                mm(g.gap),
+                mm(g.required),
+                mm(g.margin)
             );
         }
     }
-    if r.exact.is_some() {
-        println!();
+    let n = v.rules.len();
+    let summary = match v.insufficient {
+        0 => format!("  the gap suffices at every level by all {n} rules"),
+        k => format!("  the gap is TOO SMALL by {k} of {n} rules"),
+    };
+    match &v.governing {
+        Some(g) => println!(
+            "{summary}; the most demanding: {} at h = {} m ({} mm required, gap {} mm)",
+            g.label,
+            g.height,
+            mm(g.required),
+            mm(g.gap)
+        ),
+        None => println!("{summary}"),
+    }
+    if let Some(floors) = &r.spectral_floors {
+        for (i, f) in floors.iter().enumerate() {
+            if f.is_empty() {
+                continue;
+            }
+            println!(
+                "  spectral peak displacement at every floor of structure {} [mm]:",
+                i + 1
+            );
+            println!("    {:>10} {:>12} {:>12}", "height [m]", "SRSS", "CQC");
+            for x in f.iter().rev() {
+                println!(
+                    "    {:>10.3} {:>12} {:>12}",
+                    x.height,
+                    mm(x.srss),
+                    mm(x.cqc)
+                );
+            }
+        }
+    }
+    if exact {
         println!(
-            "  vs exact: 100 (rule − exact)/exact; a negative value is a rule below the exact separation (unsafe)"
+            "  vs exact: 100 (rule − exact)/exact at the same level; a negative value is a rule below the exact separation (unsafe)"
         );
     }
 }

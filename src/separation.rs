@@ -1,7 +1,9 @@
 //! Required separation between the structures (docs/model.md §3, paper §3).
 //!
 //! The design rules combine the two structures' peak displacements at the contact height
-//! without pounding; the time-history value is exact for the given motion.
+//! without pounding; the time-history value is exact for the given motion. [`Separations`]
+//! (summary.json `separation`) holds them at the main (highest) contact level, as it always
+//! has, and beside them every level's checks and the verdict ([`crate::gap_report`]).
 
 use serde::Serialize;
 
@@ -63,7 +65,8 @@ impl PeakPair {
     }
 }
 
-/// Every rule side by side, plus the exact time-history value, m.
+/// Every rule side by side, plus the exact time-history value, m: `abs` … `rho` and `codes` at
+/// the main (highest) contact level; `levels` and `verdict` at every level.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Separations {
     /// ABS, m.
@@ -79,9 +82,20 @@ pub struct Separations {
     pub time_history: f64,
     /// CQC correlation ρ₁₂ used by DDC.
     pub rho: f64,
-    /// The building codes of the scenario's `[separation]` table (empty without it).
+    /// The building codes of the scenario's `[separation]` table at the main contact level
+    /// (empty without it).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub codes: Vec<crate::gap_report::CodeCheck>,
+    /// Where the peaks fed to the rules come from (the run without pounding: elastic, or
+    /// inelastic with yielding storeys).
+    pub peaks_from: crate::gap_report::PeakSource,
+    /// Every rule at every contact level, in the order of the scenario's levels (as the
+    /// report's `levels`); empty when not computed.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub levels: Vec<crate::gap_report::LevelCheck>,
+    /// Each rule at its governing level (the smallest gap − required over the levels).
+    #[serde(skip_serializing_if = "crate::gap_report::Verdict::is_empty")]
+    pub verdict: crate::gap_report::Verdict,
 }
 
 impl Separations {
@@ -95,6 +109,9 @@ impl Separations {
             time_history: exact.max(0.0),
             rho: cqc_correlation(peaks.zeta1, peaks.zeta2, peaks.period_ratio),
             codes: Vec::new(),
+            peaks_from: crate::gap_report::PeakSource::TimeHistory,
+            levels: Vec::new(),
+            verdict: Default::default(),
         }
     }
 }

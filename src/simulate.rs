@@ -520,6 +520,9 @@ fn no_spectrum(scenario: &Scenario) -> Result<(), SolveError> {
 pub struct SeparationReport {
     /// Peak |w₁|, |w₂| without contact at the main contact height, m.
     pub peaks_no_contact: [f64; 2],
+    /// Every contact level of the run without contact (peaks, `max_closing`), in the order of
+    /// the scenario's levels.
+    pub levels: Vec<crate::recorder::LevelRecord>,
     /// First-mode periods of structures 1 and 2, s.
     pub periods: [f64; 2],
     /// First-mode damping ratios of structures 1 and 2.
@@ -542,11 +545,21 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
         scenario.output_interval,
     )?;
     let [m1, m2] = &system.structures;
+    let mut separation = separations(&system, &without);
+    // as in `simulate`; a code that refuses its input is reported by `gap_report`, which
+    // evaluates the codes again
+    let _ = crate::gap_report::complete_run_separation(
+        scenario,
+        &system.structures,
+        &without,
+        &mut separation,
+    );
     Ok(SeparationReport {
         peaks_no_contact: without.peak,
+        levels: without.levels.clone(),
         periods: [m1.periods()[0], m2.periods()[0]],
         damping_ratios: [m1.zeta[0], m2.zeta[0]],
-        separation: separations(&system, &without),
+        separation,
     })
 }
 
@@ -683,18 +696,17 @@ fn simulate_phases(
     let mut separation = separations(&system, &without);
 
     let mut warnings = scenario.warnings.clone();
-    // the building codes of `[separation]`, from the peaks without pounding
-    match crate::gap_report::code_checks(
-        &scenario.design,
-        None,
-        without.peak,
-        [0, 1].map(|i| scenario.structures[i].length()),
-        scenario.main_height(),
-        crate::gap_report::main_gap(scenario),
-        Some(separation.time_history),
+    // the building codes of `[separation]` and every rule at every level, from the peaks
+    // without pounding
+    if let Err(e) = crate::gap_report::complete_run_separation(
+        scenario,
+        &system.structures,
+        &without,
+        &mut separation,
     ) {
-        Ok(codes) => separation.codes = codes,
-        Err(e) => warnings.push(format!("separation.codes left out: {e}")),
+        warnings.push(format!(
+            "separation.codes and separation.levels left out: {e}"
+        ));
     }
     let h = scenario.main_height();
     for s in &structures {

@@ -515,11 +515,11 @@ fn spectral_peaks_at_every_floor_by_hand() {
     let sc = scenario(&text).unwrap();
     let spectrum = DesignSpectrum::Asce7(Asce7Spectrum::new(1.0, 0.6, 8.0).unwrap());
     let r = pounding::gap_report::gap_report(&sc, Some(&spectrum), None).unwrap();
-    let s = r.spectrum.expect("spectral part");
+    let s = r.spectral_floors.expect("spectral part");
     let g = 9.80665;
     let t2 = 2.0 * std::f64::consts::PI / 10.0;
     let want = [g / 400.0, 0.6 / t2 * g / 100.0];
-    for (floors, want) in s.floors.iter().zip(want) {
+    for (floors, want) in s.iter().zip(want) {
         assert_eq!(floors.len(), 1);
         let f = &floors[0];
         assert_eq!(f.height, 3.0);

@@ -1,8 +1,10 @@
-//! Code separation rules against hand computations (issue 13, docs/codes.md).
+//! Code separation rules against hand computations (issue 13, docs/codes.md; EN 1998-1 and
+//! IS 1893's coinciding floors: issue 24).
 
 use pounding::codes::{
-    Asce7Boundary, Asce7Params, CodeError, CodeRule, Gb50011Params, GbSystem, Is1893Params,
-    NbccParams, NtcMethod, NtcParams, NtcZone, PairInput, PartialStep, gb50011_width,
+    Asce7Boundary, Asce7Params, CodeError, CodeRule, Ec8Boundary, Ec8Params, Gb50011Params,
+    GbSystem, Is1893Params, NbccParams, NtcMethod, NtcParams, NtcZone, PairInput, PartialStep,
+    gb50011_width,
 };
 
 fn input(d1: f64, d2: f64) -> PairInput {
@@ -10,7 +12,23 @@ fn input(d1: f64, d2: f64) -> PairInput {
         displacement: [d1, d2],
         height: [20.0, 20.0],
         level: [12.0, 12.0],
+        floors_coincide: false,
     }
+}
+
+/// [`input`] at a level that is a floor of both structures.
+fn at_floors(d1: f64, d2: f64) -> PairInput {
+    PairInput {
+        floors_coincide: true,
+        ..input(d1, d2)
+    }
+}
+
+fn is1893(r: f64) -> CodeRule {
+    CodeRule::Is1893(Is1893Params {
+        r,
+        floor_reduction: true,
+    })
 }
 
 fn asce(boundary: Asce7Boundary) -> CodeRule {
@@ -41,14 +59,111 @@ fn asce7_by_hand() {
     assert!((p.required - 0.296).abs() < 1e-15);
 }
 
-/// IS 1893 (Part 1):2016 §7.11.3: R(Δ₁ + Δ₂) = 5·(0.02 + 0.03) = 0.25 m.
+/// IS 1893 (Part 1):2016 §7.11.3: R(Δ₁ + Δ₂) = 5·(0.02 + 0.03) = 0.25 m; where the floor
+/// levels coincide R/2: 2.5·0.05 = 0.125 m — unless the reduction is turned off.
 #[test]
 fn is1893_by_hand() {
-    let rule = CodeRule::Is1893(Is1893Params { r: 5.0 });
+    let rule = is1893(5.0);
     let s = rule.required_separation(&input(0.02, 0.03)).unwrap();
     assert!((s.required - 0.25).abs() < 1e-15);
     assert!((s.terms[0] - 0.10).abs() < 1e-15 && (s.terms[1] - 0.15).abs() < 1e-15);
+    assert_eq!(s.reduction, None);
     assert_eq!(rule.clause(), "§7.11.3");
+    let f = rule.required_separation(&at_floors(0.02, 0.03)).unwrap();
+    assert!((f.required - 0.125).abs() < 1e-15);
+    // the terms stay R Δ (before the reduction), and the report says what was applied
+    assert!((f.terms[0] - 0.10).abs() < 1e-15 && (f.terms[1] - 0.15).abs() < 1e-15);
+    assert!(f.reduction.unwrap().starts_with("R/2"));
+    let off = CodeRule::Is1893(Is1893Params {
+        r: 5.0,
+        floor_reduction: false,
+    })
+    .required_separation(&at_floors(0.02, 0.03))
+    .unwrap();
+    assert!((off.required - 0.25).abs() < 1e-15);
+    assert_eq!(off.reduction, None);
+}
+
+/// EN 1998-1:2004 §4.4.2.7 with d_s = q_d d_e (4.23). d_e = 0.012 and 0.009 m, q_d = 4 and
+/// 3: d_s = 0.048 and 0.027 m. Same property: √(0.048² + 0.027²) = √(0.002304 + 0.000729) =
+/// √0.003033 = 0.0550727 m; × 0.7 where the floor elevations coincide: 0.0385509 m.
+/// Property line: each its own d_s, 0.048 + 0.027 = 0.075 m; × 0.7: 0.0525 m.
+#[test]
+fn ec8_by_hand() {
+    let rule = |boundary, floor_reduction| {
+        CodeRule::Ec8(Ec8Params {
+            qd: [4.0, 3.0],
+            boundary,
+            floor_reduction,
+        })
+    };
+    let same = rule(Ec8Boundary::SameProperty, true);
+    let s = same.required_separation(&input(0.012, 0.009)).unwrap();
+    assert!((s.terms[0] - 0.048).abs() < 1e-15 && (s.terms[1] - 0.027).abs() < 1e-15);
+    assert!((s.required - 0.003033f64.sqrt()).abs() < 1e-15);
+    assert!((s.required - 0.0550727).abs() < 1e-7);
+    assert_eq!(s.reduction, None);
+    assert_eq!((s.key, s.name), ("ec8", "EN 1998-1:2004"));
+    assert!(s.clause.contains("4.4.2.7(2)b"));
+    let f = same.required_separation(&at_floors(0.012, 0.009)).unwrap();
+    assert!((f.required - 0.7 * 0.003033f64.sqrt()).abs() < 1e-15);
+    assert!((f.required - 0.0385509).abs() < 1e-7);
+    assert!(f.reduction.unwrap().contains("0.7"));
+    let line = rule(Ec8Boundary::PropertyLine, true);
+    let p = line.required_separation(&input(0.012, 0.009)).unwrap();
+    assert!((p.required - 0.075).abs() < 1e-15);
+    assert!(p.clause.contains("4.4.2.7(2)a"));
+    let pf = line.required_separation(&at_floors(0.012, 0.009)).unwrap();
+    assert!((pf.required - 0.0525).abs() < 1e-15);
+    // the reduction may be turned off
+    let off = rule(Ec8Boundary::SameProperty, false)
+        .required_separation(&at_floors(0.012, 0.009))
+        .unwrap();
+    assert_eq!(off.required, s.required);
+    // bad q_d names itself
+    let bad = CodeRule::Ec8(Ec8Params {
+        qd: [4.0, 0.0],
+        boundary: Ec8Boundary::SameProperty,
+        floor_reduction: true,
+    })
+    .required_separation(&input(0.01, 0.01))
+    .unwrap_err();
+    assert!(matches!(
+        bad,
+        CodeError::BadFactor {
+            name: "q_d",
+            structure: 2,
+            ..
+        }
+    ));
+}
+
+/// The other codes do not depend on the floors: the same value at a coinciding floor.
+#[test]
+fn only_ec8_and_is1893_reward_coinciding_floors() {
+    let rules = [
+        asce(Asce7Boundary::SameProperty),
+        CodeRule::Nbcc(NbccParams {
+            rd: [4.0, 2.0],
+            ro: [1.7, 1.3],
+            ie: [1.0, 1.3],
+        }),
+        CodeRule::NtcSismo(NtcParams {
+            zone: NtcZone::II,
+            method: NtcMethod::Analysis,
+            same_height_and_levels: false,
+        }),
+        CodeRule::Gb50011(Gb50011Params {
+            intensity: 8,
+            system: [GbSystem::Frame, GbSystem::Frame],
+            partial_step: PartialStep::RoundUp,
+        }),
+    ];
+    for r in rules {
+        let a = r.required_separation(&input(0.04, 0.03)).unwrap();
+        let b = r.required_separation(&at_floors(0.04, 0.03)).unwrap();
+        assert_eq!(a, b, "{}", r.key());
+    }
 }
 
 /// NBCC 4.1.8.14 with 4.1.8.13.(2): Δ₁ = 0.01·4·1.7/1.0 = 0.068 m,
@@ -106,6 +221,7 @@ fn gb50011_pair_by_hand() {
             displacement: [f64::NAN, f64::NAN], // not used by GB 50011
             height: [30.0, 20.0],
             level: [0.0, 0.0],
+            floors_coincide: false,
         })
         .unwrap();
     assert!((s.required - 0.140).abs() < 1e-15);
@@ -115,6 +231,7 @@ fn gb50011_pair_by_hand() {
         displacement: [0.0, 0.0],
         height: [30.0, -1.0],
         level: [0.0, 0.0],
+        floors_coincide: false,
     });
     assert!(matches!(
         bad,
@@ -178,7 +295,7 @@ fn bad_inputs_are_errors() {
         }
     ));
     assert!(e.to_string().contains("C_d of structure 2"), "{e}");
-    let rule = CodeRule::Is1893(Is1893Params { r: f64::INFINITY });
+    let rule = is1893(f64::INFINITY);
     assert!(rule.required_separation(&input(0.01, 0.03)).is_err());
     let rule = CodeRule::Nbcc(NbccParams {
         rd: [4.0, 2.0],
@@ -194,7 +311,7 @@ fn bad_inputs_are_errors() {
         })
     ));
     assert!(
-        CodeRule::Is1893(Is1893Params { r: 5.0 })
+        is1893(5.0)
             .required_separation(&input(f64::NAN, 0.02))
             .is_err()
     );

@@ -310,7 +310,7 @@ fn every_new_key_is_checked_with_its_place_and_range() {
             ASCE,
             "[separation]\nasce7 = { cd = 5.5, ie = 1 }",
             "missing key `separation.asce7.r`",
-            "§12.9.1.4",
+            "§12.9.1.2",
         ),
         (
             ASCE,
@@ -392,9 +392,27 @@ fn every_new_key_is_checked_with_its_place_and_range() {
         ),
         (
             ASCE,
-            "[separation]\nec8 = { q = 4 }",
-            "`separation.ec8`",
-            "§4.4.2.7",
+            "[separation]\nec8 = { qd = 4 }",
+            "missing key `separation.ec8.q`",
+            "behaviour factor q",
+        ),
+        (
+            ASCE,
+            "[separation]\nec8 = { q = 0.5 }",
+            "`separation.ec8.q` = 0.5",
+            "[1, 10]",
+        ),
+        (
+            ASCE,
+            "[separation]\nec8 = { q = 4, boundary = \"street\" }",
+            "`separation.ec8.boundary` = street",
+            "\"property-line\"",
+        ),
+        (
+            ASCE,
+            "[separation]\nec8 = { q = 4, floor_reduction = 1 }",
+            "hand.toml:30:34: `separation.ec8.floor_reduction` = 1",
+            "must be true",
         ),
         (
             ASCE,
@@ -470,18 +488,19 @@ fn separation_report_of_a_single_mode_spectrum_case_by_hand() {
     let sc = parse(&scenario_text(l, ASCE, &hand_codes(l))).unwrap();
     let r = pounding::gap_report::gap_report(&sc, None, None).unwrap();
     let w = hand_peaks();
-    let s = r.spectrum.as_ref().unwrap();
+    assert_eq!(r.levels.len(), 1);
+    let level = &r.levels[0];
+    let s = level.spectral.as_ref().unwrap();
     // one mode: SRSS = CQC = |S_d Γφ(h)|
-    for (resp, wi) in [
-        (&s.response.structure1, w[0]),
-        (&s.response.structure2, w[1]),
-    ] {
+    for (resp, wi) in [(&s.structure1, w[0]), (&s.structure2, w[1])] {
         assert!(close(resp.srss, wi, 1e-9), "{} vs {wi}", resp.srss);
         assert!(close(resp.cqc, wi, 1e-9));
     }
-    assert!(r.exact.is_none());
+    assert!(level.exact.is_none());
+    // two cantilevers: no floors, so no reduction
+    assert!(!level.floors_coincide);
     let expect = hand_rules(w, l);
-    let by_key = |k: &str| r.rules.iter().find(|x| x.key == k).unwrap().value;
+    let by_key = |k: &str| level.rules.iter().find(|x| x.key == k).unwrap().required;
     for (key, (_, v)) in [
         "abs", "srss", "ddc", "asce7", "is1893", "nbcc", "gb50011", "ntc",
     ]
@@ -498,18 +517,31 @@ fn separation_report_of_a_single_mode_spectrum_case_by_hand() {
     assert!(close(by_key("ddc_modes"), expect[2].1, 1e-9));
     assert_eq!(expect[6].1, 0.16);
     // the gap given (50 mm) suffices for none but … none: check the flags against the values
-    for row in &r.rules {
-        assert_eq!(row.sufficient, 0.05 >= row.value, "{}", row.key);
+    for row in &level.rules {
+        assert_eq!(row.sufficient, 0.05 >= row.required, "{}", row.key);
+        assert_eq!(row.margin, 0.05 - row.required);
         assert!(row.vs_exact_percent.is_none());
+    }
+    // one level: each rule's verdict is that level
+    assert_eq!(r.verdict.rules.len(), level.rules.len());
+    for (g, x) in r.verdict.rules.iter().zip(&level.rules) {
+        assert_eq!(
+            (g.height, g.required, g.sufficient),
+            (l, x.required, x.sufficient)
+        );
     }
     // --code selects; unknown and absent codes are refused
     let only = ["gb50011".to_string()];
     let r = pounding::gap_report::gap_report(&sc, None, Some(&only)).unwrap();
-    assert_eq!(r.codes.len(), 1);
+    assert_eq!(r.levels[0].codes.len(), 1);
     let e = pounding::gap_report::gap_report(&sc, None, Some(&["ec8".to_string()]))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("§4.4.2.7"), "{e}");
+    assert!(e.contains("no [separation.ec8] table"), "{e}");
+    let e = pounding::gap_report::gap_report(&sc, None, Some(&["ec9".to_string()]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("unknown code") && e.contains("ec8"), "{e}");
 }
 
 #[test]
@@ -532,7 +564,8 @@ fn separation_command_prints_the_hand_values() {
             .lines()
             .find(|x| x.trim_start().starts_with(label))
             .unwrap_or_else(|| panic!("no row {label} in\n{text}"));
-        let value = format!("{v:.5}");
+        // mm with 3 decimals
+        let value = format!("{:.3}", 1e3 * v);
         assert!(
             line.contains(&value),
             "{label}: expected {value} in `{line}`"
@@ -541,7 +574,11 @@ fn separation_command_prints_the_hand_values() {
         assert!(line.contains(verdict), "{label}: `{line}`");
     }
     // the spectral peaks of each structure
-    assert!(text.contains(&format!("structure 1 SRSS {:.5}, CQC {:.5}", w[0], w[0])));
+    assert!(text.contains(&format!(
+        "structure 1 SRSS {:.3}, CQC {:.3}",
+        1e3 * w[0],
+        1e3 * w[0]
+    )));
     // --spectrum on a scenario with a time history: the rules from the spectrum, the exact
     // value from the time history beside them
     let harmonic = scenario_text(
@@ -573,7 +610,7 @@ fn separation_command_prints_the_hand_values() {
     );
     let asce = text.lines().find(|x| x.contains("§12.12.3")).unwrap();
     assert!(
-        asce.contains(&format!("{:.5}", hand_rules(w, l)[3].1)),
+        asce.contains(&format!("{:.3}", 1e3 * hand_rules(w, l)[3].1)),
         "{asce}"
     );
     assert!(asce.ends_with('%'), "{asce}");
@@ -871,5 +908,5 @@ fn bundled_study_and_spectrum_examples_are_valid() {
     let sc = Scenario::from_file(&dir.join("design-spectrum.toml")).unwrap();
     assert!(matches!(sc.design.spectrum, Some(DesignSpectrum::Asce7(_))));
     let r = pounding::gap_report::gap_report(&sc, None, None).unwrap();
-    assert_eq!(r.codes.len(), 5);
+    assert_eq!(r.levels[0].codes.len(), 5);
 }

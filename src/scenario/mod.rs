@@ -1132,7 +1132,6 @@ fn validate(
     let mut warnings = structure_warnings;
     warnings.extend(plausibility(&contact, &ground_motion));
     warnings.extend(derived_warnings(&structures));
-    warnings.extend(ctx.warnings.take());
     let design = crate::design::validate(
         &c,
         raw.ground_motion.as_ref(),
@@ -1140,6 +1139,8 @@ fn validate(
         base_dir,
         &mut defaults,
     )?;
+    // (after `design`, which may warn too: a_g probably in g)
+    warnings.extend(ctx.warnings.take());
     let scenario = Scenario {
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
         structures,
