@@ -26,13 +26,26 @@ const DEFAULT_RECORD: (&str, &[u8]) = (
 #[command(
     name = "pounding",
     version,
-    about = "Seismic pounding of two adjacent structures (continuous cantilevers, modal expansion, contact laws)",
+    about = "Seismic pounding of two adjacent structures — cantilevers, shear buildings (elastic or \
+             with yielding storeys) or buildings given by their modes — under harmonic or recorded \
+             ground motion",
     long_about = "Seismic pounding of two adjacent structures.\n\n\
-        Each structure is a continuous Euler–Bernoulli cantilever reduced to its modes; both are shaken by \
-        the same ground motion and hit each other through a contact law (Hertz by default) when the gap \
-        closes. `pounding run` simulates a scenario with and without pounding and reports the peaks, \
-        impacts, forces and the separation needed to avoid pounding.\n\n\
-        Scenario files are TOML; see examples/ and the README. Units are SI (m, kg, s, N); PGA is in g."
+        Each structure is one of: a continuous Euler–Bernoulli cantilever (kind = \"cantilever\", \
+        the default); a shear building with floors (kind = \"shear-building\": floor masses and \
+        storey stiffnesses, elastic or with yielding Bouc–Wen storeys); or a building given by its \
+        own modes (kind = \"modal\": periods and mode shapes, e.g. exported from ETABS, SAP2000 or \
+        OpenSees). Each is reduced to its modes; both are shaken by the same ground motion \
+        (harmonic, or a recorded accelerogram) and hit each other through a contact law (Hertz by \
+        default) at one or more heights — floor against floor — when the gap closes.\n\n\
+        `pounding run` simulates a scenario with and without pounding and reports the peaks at the \
+        contact height and at every floor (displacement, storey drift, absolute acceleration, \
+        storey shear; ductility, residual drift and hysteretic energy of yielding storeys), every \
+        impact, and the separation needed to avoid pounding; every run checks itself against a \
+        100× tighter run. `pounding separation` sets the separation rules and the building codes \
+        side by side.\n\n\
+        Without a scenario file the bundled default runs (examples/default.toml: a 4- and an \
+        8-storey frame 25 mm apart under the Loma Prieta 1989 record scaled to 0.4 g). Scenario \
+        files are TOML; see examples/ and the README. Units are SI (m, kg, s, N); PGA is in g."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -48,22 +61,36 @@ struct Cli {
 enum Command {
     /// Simulate a scenario with and without pounding; print a summary and write results.
     ///
-    /// Writes DIR/summary.json (peaks, change %, impacts, forces, separations, energy balance,
-    /// self-check), DIR/history.csv (t, w1, w2, force, w1_free, w2_free at the contact height),
-    /// DIR/impacts.csv (one row per impact) and the time-history figure DIR/history.png/.svg.
+    /// Writes into DIR (w is a displacement relative to the ground, at the highest contact
+    /// level unless a floor is named):
+    ///
+    ///   history.csv          t, w1, w2, force, w1_free, w2_free (force_1 … with several
+    ///                        contact levels), one row per output interval
+    ///   impacts.csv          one row per impact: level, height, start, end, duration,
+    ///                        peak_force, impulse, max_penetration, approach_speed
+    ///   floors.csv           every floor's (a cantilever's stations') displacement w{i}_{h} and
+    ///                        absolute acceleration a{i}_{h} over time, with and without (_free)
+    ///   history.png/.svg     the displacements with and without pounding, the contact force
+    ///   envelopes.png/.svg   peaks over height: displacement, storey drift ratio, absolute
+    ///                        acceleration (impact pulses marked), storey shear (+ ductility)
+    ///   hysteresis.png/.svg  with yielding storeys: storey force against drift
+    ///   summary.json         written last: peaks, change %, every floor, impacts, forces,
+    ///                        separations, energy balance, self-check, warnings
     ///
     /// Every run checks itself: the scenario is run a second time at a 100× tighter tolerance
     /// (rtol/100 and atol/100; dt/√10 for rk4) and the peaks, peak force, impacts and required
     /// separation are compared. A change above 1 % is a warning naming the setting to tighten,
     /// and the result is reported as NOT converged (summary.json: accuracy).
+    #[command(verbatim_doc_comment)]
     Run {
-        /// Scenario file (TOML). Without it, the bundled default runs: the seed paper's case
-        /// T1/T2 = 0.7 (examples/paper-c.toml).
+        /// Scenario file (TOML). Without it, the bundled default runs (examples/default.toml:
+        /// a 4- and an 8-storey frame under a scaled earthquake record).
         scenario: Option<PathBuf>,
         /// Output directory (created if missing).
         #[arg(short, long, default_value = "out")]
         out: PathBuf,
-        /// Do not draw the figure.
+        /// Draw no pictures (history, envelopes, hysteresis); removes those an earlier run
+        /// left in DIR.
         #[arg(long)]
         no_plot: bool,
         /// Skip the self-check (the second run at a 100× tighter tolerance); summary.json
