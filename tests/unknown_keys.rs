@@ -1,4 +1,4 @@
-//! Issue 24 item 5: every unknown-key message names its table and lists the table's valid keys
+//! Every unknown-key message names its table and lists the table's valid keys
 //! — including tables of one or two keys, whose serde message ("expected `a` or `b`") used to
 //! be left unparsed ("unknown key `gapp` in this table (valid keys: )").
 //!

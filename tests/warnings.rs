@@ -456,7 +456,7 @@ fn expect_warning_headers_are_read() {
     assert_eq!(warning_kind("something new"), "other");
 }
 
-/// Issue 24 item 5: every bundled scenario runs as `pounding run` runs it — with its
+/// Every bundled scenario runs as `pounding run` runs it — with its
 /// self-check — without a run-time warning and converged, unless its header declares the
 /// warnings it exists to show (`# expect-warning: drift, penetration, self-check — why`);
 /// a declared kind must then occur, so that no header outlives its reason. Sweeps are covered
