@@ -103,9 +103,10 @@ pub struct FloorReport {
     pub peak_acceleration_no_contact: f64,
     /// When the peak absolute acceleration with pounding occurred, s.
     pub peak_acceleration_time: f64,
-    /// The impact during which it occurred (`None`: at no impact). During an impact the peak
-    /// is the impact's pulse — as short as the contact, set by the contact stiffness — not a
-    /// floor acceleration to design contents or equipment for.
+    /// The impact during which it occurred (`None`, not written: at no impact). During an
+    /// impact the peak is the impact's pulse — as short as the contact, set by the contact
+    /// stiffness — not a floor acceleration to design contents or equipment for.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_acceleration_impact: Option<ImpactPulse>,
     /// Peak inter-storey drift of the storey below with pounding (the first relative to the
     /// base), m.
