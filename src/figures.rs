@@ -340,7 +340,7 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
                 .collect(),
         });
     }
-    let stations = if report.structures.iter().any(|s| s.floors.len() > 0) && durations.is_empty() {
+    let stations = if durations.is_empty() {
         "peaks at every floor (a cantilever: every tenth of its height and each contact height)"
             .to_string()
     } else {
