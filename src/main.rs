@@ -878,9 +878,9 @@ fn print_acceleration_pulses(r: &Report) {
         };
         let what = match &f.peak_acceleration_impact {
             Some(p) => format!(
-                "the pulse of a {:.1} ms impact at h = {} m",
-                p.duration * 1e3,
-                p.height
+                "the pulse of an impact at h = {} m lasting {:.1} ms",
+                p.height,
+                p.duration * 1e3
             ),
             None => "not during an impact".into(),
         };

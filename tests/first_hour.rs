@@ -656,13 +656,13 @@ fn the_acceleration_pulse_is_named_in_the_summary() {
         let duration = pulse["duration"].as_f64().expect("inside an impact");
         assert!(duration > 1e-3 && duration < 0.2, "{duration} s");
         let line = format!(
-            "    structure {}: {a:.2} m/s² ({:.2} g) at h = {} m, t = {:.3} s: the pulse of a {:.1} ms impact at h = {} m",
+            "    structure {}: {a:.2} m/s² ({:.2} g) at h = {} m, t = {:.3} s: the pulse of an impact at h = {} m lasting {:.1} ms",
             i + 1,
             a / 9.80665,
             top["height"].as_f64().unwrap(),
             top["peak_acceleration_time"].as_f64().unwrap(),
-            duration * 1e3,
             pulse["height"].as_f64().unwrap(),
+            duration * 1e3,
         );
         assert!(printed.contains(&line), "{line}\n{printed}");
     }
