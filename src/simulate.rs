@@ -93,7 +93,7 @@ impl StructureReport {
 pub struct FloorReport {
     /// Height above the base, m.
     pub height: f64,
-    /// Peak |u| relative to the ground with pounding, m.
+    /// Peak |w| (displacement) relative to the ground with pounding, m.
     pub peak_displacement: f64,
     /// The same without pounding, m.
     pub peak_displacement_no_contact: f64,
