@@ -72,10 +72,28 @@ pub fn run_pictures<'a>(
     })
 }
 
-/// The time-history figure (the paper's Figs. 2–4, readable): displacement at the contact
-/// height of each structure with and without pounding, and the contact force of each level in a
-/// panel of its own, every impact drawn at its located peak ([`drawn_force`]). Writes
-/// `<stem>.png` and `<stem>.svg`.
+/// Palette index of structure 1 and 2 in every figure of a run (blue, vermillion): a colour
+/// means a structure; with pounding is solid, without dashed.
+pub const STRUCTURE_COLORS: [usize; 2] = [0, 1];
+
+/// Palette index of the contact force (black): it acts on both structures.
+pub const FORCE_COLOR: usize = 6;
+
+/// "Structure 1" or "Structure 1, A (4 storeys)" for a named structure.
+fn structure_label(report: &Report, i: usize) -> String {
+    let name = &report.structures[i].name;
+    if *name == format!("structure {}", i + 1) {
+        format!("Structure {}", i + 1)
+    } else {
+        format!("Structure {}, {name}", i + 1)
+    }
+}
+
+/// The time-history figure (the paper's Figs. 2–4, readable): the displacement `w` at the
+/// (highest) contact height of each structure with pounding (solid) and without (dashed), in
+/// the structure's colour ([`STRUCTURE_COLORS`]), and the contact force of each level where
+/// impacts occurred in a panel of its own ([`FORCE_COLOR`]), every impact drawn at its located
+/// peak ([`drawn_force`]). Writes `<stem>.png` and `<stem>.svg`.
 pub fn time_history_figure(
     scenario: &Scenario,
     report: &Report,
@@ -85,59 +103,72 @@ pub fn time_history_figure(
     let f = &report.without_contact.history;
     let height = scenario.main_height();
     let titles = [0, 1].map(|i| {
-        let name = &report.structures[i].name;
-        let label = if *name == format!("structure {}", i + 1) {
-            format!("Structure {}", i + 1)
-        } else {
-            format!("Structure {} ({name})", i + 1)
-        };
         format!(
-            "{label}: displacement at h = {height} m, change {:+.1} %",
+            "{}: displacement w{} at h = {height} m, change of the peak {:+.1} %",
+            structure_label(report, i),
+            i + 1,
             report.structures[i].change_percent
         )
     });
-    let forces: Vec<(String, Vec<f64>, Vec<f64>)> = (0..h.force.len())
-        .map(|k| {
+    let impacts = |k: usize| report.levels.get(k).map_or(0, |l| l.impacts);
+    let several = h.force.len() > 1;
+    // levels without an impact get no panel (named in the subtitle), unless none had one
+    let drawn: Vec<usize> = (0..h.force.len())
+        .filter(|&k| impacts(k) > 0 || (0..h.force.len()).all(|j| impacts(j) == 0) && k == 0)
+        .collect();
+    let quiet: Vec<String> = (0..h.force.len())
+        .filter(|k| !drawn.contains(k))
+        .map(|k| format!("{} m", scenario.contact.levels[k].height))
+        .collect();
+    let subtitle = if quiet.is_empty() {
+        String::new()
+    } else {
+        format!("no impact at h = {}", quiet.join(", "))
+    };
+    let forces: Vec<(String, Vec<f64>, Vec<f64>)> = drawn
+        .iter()
+        .map(|&k| {
             let (t, n) = drawn_force(&h.t, &h.force[k], &report.impact_log, k);
-            let (count, peak) = report
-                .levels
-                .get(k)
-                .map_or((0, 0.0), |l| (l.impacts, l.peak_force));
-            let at = if h.force.len() > 1 {
+            let peak = report.levels.get(k).map_or(0.0, |l| l.peak_force);
+            let at = if several {
                 format!(" at h = {} m", scenario.contact.levels[k].height)
             } else {
                 String::new()
             };
+            let count = match impacts(k) {
+                1 => "1 impact".to_string(),
+                n => format!("{n} impacts"),
+            };
             let title = format!(
-                "Contact force{at}: {count} impacts, peak {:.3} MN (each impact drawn at its peak)",
+                "Contact force{at}: {count}, peak {:.3} MN (each impact drawn at its peak)",
                 peak / 1e6
             );
             (title, t, n.iter().map(|x| x / 1e6).collect())
         })
         .collect();
-    let displacement = |title, y_label, with: &'static str, a, b| Panel {
-        title,
-        y_label,
+    let y_labels = ["w1 [m]", "w2 [m]"];
+    let displacement = |i: usize, a, b| Panel {
+        title: &titles[i],
+        y_label: y_labels[i],
         series: vec![
             Series {
-                label: with,
+                label: "with pounding",
                 x: &h.t,
                 y: a,
                 style: LineStyle::Solid,
+                color: Some(STRUCTURE_COLORS[i]),
             },
             Series {
                 label: "without pounding",
                 x: &f.t,
                 y: b,
                 style: LineStyle::Dashed,
+                color: Some(STRUCTURE_COLORS[i]),
             },
         ],
         y_scale: AxisScale::Linear,
     };
-    let mut panels = vec![
-        displacement(&titles[0], "w1 [m]", "with pounding", &h.w1, &f.w1),
-        displacement(&titles[1], "w2 [m]", "with pounding", &h.w2, &f.w2),
-    ];
+    let mut panels = vec![displacement(0, &h.w1, &f.w1), displacement(1, &h.w2, &f.w2)];
     for (title, t, y) in &forces {
         panels.push(Panel {
             title,
@@ -147,6 +178,7 @@ pub fn time_history_figure(
                 x: t,
                 y,
                 style: LineStyle::Solid,
+                color: Some(FORCE_COLOR),
             }],
             y_scale: AxisScale::Linear,
         });
@@ -154,36 +186,50 @@ pub fn time_history_figure(
     let extra = forces.len().saturating_sub(1) as u32;
     let fig = Figure {
         title: &scenario.title,
-        subtitle: "",
+        subtitle: &subtitle,
         x_label: "time t [s]",
         panels,
-        legend_once: true,
+        // each displacement panel's legend in its structure's colour
+        legend_once: false,
         width: 1200,
         height: 900 + 220 * extra.min(8),
     };
     write_figure(&fig, stem)
 }
 
-/// The envelopes over height (the figure of the pounding literature): peak displacement,
-/// storey drift, absolute floor acceleration and storey shear of each structure at every floor
-/// (a cantilever's stations), with pounding (solid) and without (dashed), floors up the page.
-/// Writes `<stem>.png` and `<stem>.svg`.
+/// The envelopes over height (the figure of the pounding literature): peak displacement `w`,
+/// storey drift ratio (%, [`crate::simulate::StructureReport::peak_drift_ratios`]), absolute
+/// floor acceleration and storey shear of each structure at every floor (a cantilever's
+/// stations), in the structure's colour ([`STRUCTURE_COLORS`]), with pounding (solid) and
+/// without (dashed), floors up the page. A floor whose peak acceleration with pounding came
+/// during an impact is drawn as a ring and the subtitle says what it is: the impact's pulse,
+/// lasting as long as the contact (`FloorReport::peak_acceleration_impact`). Writes
+/// `<stem>.png` and `<stem>.svg`.
 pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
-    type Pick = fn(&crate::simulate::FloorReport) -> (f64, f64);
+    type Pick = fn(&crate::simulate::StructureReport) -> Vec<[f64; 2]>;
     let quantities: [(&str, &str, Pick); 4] = [
-        ("Peak displacement", "u [m]", |f| {
-            (f.peak_displacement, f.peak_displacement_no_contact)
+        ("Peak displacement w", "w [m]", |s| {
+            (s.floors.iter())
+                .map(|f| [f.peak_displacement, f.peak_displacement_no_contact])
+                .collect()
         }),
-        ("Peak storey drift", "drift [m]", |f| {
-            (f.peak_drift, f.peak_drift_no_contact)
+        (
+            "Peak storey drift ratio",
+            "drift / storey height [%]",
+            |s| s.peak_drift_ratios(),
+        ),
+        ("Peak absolute acceleration", "a [m/s²]", |s| {
+            (s.floors.iter())
+                .map(|f| [f.peak_acceleration, f.peak_acceleration_no_contact])
+                .collect()
         }),
-        ("Peak absolute acceleration", "a [m/s²]", |f| {
-            (f.peak_acceleration, f.peak_acceleration_no_contact)
-        }),
-        ("Peak storey shear", "V [MN]", |f| {
-            (f.peak_shear / 1e6, f.peak_shear_no_contact / 1e6)
+        ("Peak storey shear", "V [MN]", |s| {
+            (s.floors.iter())
+                .map(|f| [f.peak_shear / 1e6, f.peak_shear_no_contact / 1e6])
+                .collect()
         }),
     ];
+    const ACCELERATION: usize = 2;
     let heights: Vec<Vec<f64>> = report
         .structures
         .iter()
@@ -197,11 +243,26 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
                 .structures
                 .iter()
                 .map(|s| {
-                    let (a, b): (Vec<f64>, Vec<f64>) = s.floors.iter().map(pick).unzip();
+                    let (a, b): (Vec<f64>, Vec<f64>) =
+                        pick(s).into_iter().map(|[a, b]| (a, b)).unzip();
                     [a, b]
                 })
                 .collect()
         })
+        .collect();
+    // the floors whose peak acceleration with pounding is an impact's pulse
+    let pulses: Vec<Vec<bool>> = report
+        .structures
+        .iter()
+        .map(|s| {
+            (s.floors.iter())
+                .map(|f| f.peak_acceleration_impact.is_some())
+                .collect()
+        })
+        .collect();
+    let durations: Vec<f64> = (report.structures.iter())
+        .flat_map(|s| s.floors.iter())
+        .filter_map(|f| f.peak_acceleration_impact.map(|p| p.duration))
         .collect();
     let labels: Vec<[String; 2]> = report
         .structures
@@ -213,6 +274,7 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
             ]
         })
         .collect();
+    let no_rings: &[bool] = &[];
     let mut panels: Vec<ProfilePanel> = quantities
         .iter()
         .zip(&values)
@@ -231,7 +293,12 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
                             values: &v[i][k],
                             heights: &heights[i],
                             style,
-                            color: i,
+                            color: STRUCTURE_COLORS[i],
+                            rings: if q == ACCELERATION && k == 0 {
+                                &pulses[i]
+                            } else {
+                                no_rings
+                            },
                         }
                     })
                 })
@@ -265,17 +332,37 @@ pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, Plo
                             values: &ductility[i][k],
                             heights: &heights[i],
                             style,
-                            color: i,
+                            color: STRUCTURE_COLORS[i],
+                            rings: no_rings,
                         }
                     })
                 })
                 .collect(),
         });
     }
+    let stations = if durations.is_empty() {
+        "peaks at every floor (a cantilever: every tenth of its height and each contact height)"
+            .to_string()
+    } else {
+        let (lo, hi) = durations
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| {
+                (lo.min(d), hi.max(d))
+            });
+        let lasting = if hi - lo < 0.05e-3 {
+            format!("{:.1} ms", hi * 1e3)
+        } else {
+            format!("{:.1}–{:.1} ms", lo * 1e3, hi * 1e3)
+        };
+        format!(
+            "peaks at every floor; ○ an acceleration with pounding that peaks during an impact: \
+             the impact's pulse ({lasting}), not a design floor acceleration"
+        )
+    };
     let width = 400 * panels.len() as u32;
     let fig = ProfileFigure {
         title: &report.title,
-        subtitle: "envelopes over height: peaks at every floor (a cantilever: every tenth of its height and each contact height)",
+        subtitle: &stations,
         y_label: "height [m]",
         panels,
         width,
@@ -297,7 +384,7 @@ pub fn hysteresis_figure(report: &Report, stem: &Path) -> Result<Option<Vec<Path
         return Ok(None);
     }
     // per building: the most demanded storey's (drift mm, force MN) with and without pounding
-    let mut loops: Vec<(String, [Vec<f64>; 4])> = Vec::new();
+    let mut loops: Vec<(usize, String, [Vec<f64>; 4])> = Vec::new();
     for i in 0..2 {
         let Some((k, r)) = with
             .iter()
@@ -314,20 +401,19 @@ pub fn hysteresis_figure(report: &Report, stem: &Path) -> Result<Option<Vec<Path
         let (dx, vy) = split(&r.loop_points);
         let (fx, fy) = split(&free.loop_points);
         let title = format!(
-            "Structure {}, {}: storey {}, μ = {:.2} with pounding, {:.2} without; residual drift {:.1} / {:.1} mm",
-            i + 1,
-            report.structures[i].name,
+            "{}: storey {}, μ = {:.2} with pounding, {:.2} without; residual drift {:.1} / {:.1} mm",
+            structure_label(report, i),
             r.storey + 1,
             r.peak_ductility(),
             free.peak_ductility(),
             r.residual_drift * 1e3,
             free.residual_drift * 1e3
         );
-        loops.push((title, [dx, vy, fx, fy]));
+        loops.push((i, title, [dx, vy, fx, fy]));
     }
     let panels = loops
         .iter()
-        .map(|(title, v)| Panel {
+        .map(|(i, title, v)| Panel {
             title,
             y_label: "storey force V [MN]",
             series: vec![
@@ -336,12 +422,14 @@ pub fn hysteresis_figure(report: &Report, stem: &Path) -> Result<Option<Vec<Path
                     x: &v[0],
                     y: &v[1],
                     style: LineStyle::Solid,
+                    color: Some(STRUCTURE_COLORS[*i]),
                 },
                 Series {
                     label: "without",
                     x: &v[2],
                     y: &v[3],
                     style: LineStyle::Dashed,
+                    color: Some(STRUCTURE_COLORS[*i]),
                 },
             ],
             y_scale: AxisScale::Linear,

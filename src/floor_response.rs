@@ -45,6 +45,8 @@ pub struct FloorPeaks {
     pub displacement: f64,
     /// Peak |ü + a_g|, absolute, m/s².
     pub acceleration: f64,
+    /// The time of that peak, s (the observation it was taken at).
+    pub acceleration_time: f64,
     /// Peak |u_j − u_{j−1}| of the storey below (the first relative to the base), m.
     pub drift: f64,
     /// Peak |V| of the storey below, N.
@@ -205,12 +207,12 @@ impl FloorRecorder {
     }
 
     /// The names of a floor history row's values: for structure i and every station (height
-    /// h, m), `u{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
+    /// h, m), `w{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
     pub fn columns(&self) -> Vec<String> {
         let mut out = Vec::new();
         for (i, st) in self.stations.iter().enumerate() {
             for h in &st.heights {
-                out.push(format!("u{}_{h}", i + 1));
+                out.push(format!("w{}_{h}", i + 1));
                 out.push(format!("a{}_{h}", i + 1));
             }
         }
@@ -300,7 +302,10 @@ impl FloorRecorder {
                     }
                 }
                 abs[f] = ua + ag;
-                raise(&mut p.acceleration, abs[f].abs());
+                if abs[f].abs() > p.acceleration {
+                    p.acceleration = abs[f].abs();
+                    p.acceleration_time = s.t;
+                }
                 st.abs_now[f] = abs[f];
                 st.before[f] = st.prev[f];
                 st.prev[f] = (u, ud);

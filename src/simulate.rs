@@ -70,12 +70,30 @@ pub struct StructureReport {
     pub min_yield_drift: Option<f64>,
 }
 
+impl StructureReport {
+    /// The peak storey drift ratio of every floor (station), with and without pounding, %:
+    /// `100 · peak_drift / (h_j − h_{j−1})`, the storey's drift over its height (the first
+    /// storey's over its height above the base) — the drift ratio engineers read (elastic
+    /// buildings ≈ 0.5–2 %).
+    pub fn peak_drift_ratios(&self) -> Vec<[f64; 2]> {
+        let mut below = 0.0;
+        self.floors
+            .iter()
+            .map(|f| {
+                let storey = f.height - below;
+                below = f.height;
+                [f.peak_drift, f.peak_drift_no_contact].map(|d| 100.0 * d / storey)
+            })
+            .collect()
+    }
+}
+
 /// Peaks at one floor (station), with and without pounding.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FloorReport {
     /// Height above the base, m.
     pub height: f64,
-    /// Peak |u| relative to the ground with pounding, m.
+    /// Peak |w| (displacement) relative to the ground with pounding, m.
     pub peak_displacement: f64,
     /// The same without pounding, m.
     pub peak_displacement_no_contact: f64,
@@ -83,6 +101,13 @@ pub struct FloorReport {
     pub peak_acceleration: f64,
     /// The same without pounding, m/s².
     pub peak_acceleration_no_contact: f64,
+    /// When the peak absolute acceleration with pounding occurred, s.
+    pub peak_acceleration_time: f64,
+    /// The impact during which it occurred (`None`, not written: at no impact). During an
+    /// impact the peak is the impact's pulse — as short as the contact, set by the contact
+    /// stiffness — not a floor acceleration to design contents or equipment for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_acceleration_impact: Option<ImpactPulse>,
     /// Peak inter-storey drift of the storey below with pounding (the first relative to the
     /// base), m.
     pub peak_drift: f64,
@@ -140,6 +165,8 @@ impl FloorReport {
             peak_displacement_no_contact: b.displacement,
             peak_acceleration: a.acceleration,
             peak_acceleration_no_contact: b.acceleration,
+            peak_acceleration_time: a.acceleration_time,
+            peak_acceleration_impact: None,
             peak_drift: a.drift,
             peak_drift_no_contact: b.drift,
             peak_shear: a.shear,
@@ -153,6 +180,41 @@ impl FloorReport {
             yield_drift: None,
         }
     }
+}
+
+/// The impact during which a floor's peak absolute acceleration occurred: the acceleration is
+/// then the impact's pulse, lasting about the contact's duration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ImpactPulse {
+    /// Contact level index (0-based, as in `impact_log`).
+    pub level: usize,
+    /// The level's height, m.
+    pub height: f64,
+    /// Start and end of the contact, s.
+    pub start: f64,
+    /// See `start`.
+    pub end: f64,
+    /// `end − start`, s: how long the pulse lasts.
+    pub duration: f64,
+    /// The impact's peak contact force, N.
+    pub peak_force: f64,
+}
+
+/// The impact in progress at time `t` (start ≤ t ≤ end), the one of largest peak force when
+/// impacts at several levels overlap; `heights[k]` is level k's height.
+pub fn impact_at(impacts: &[Impact], heights: &[f64], t: f64) -> Option<ImpactPulse> {
+    impacts
+        .iter()
+        .filter(|i| i.start <= t && t <= i.end)
+        .max_by(|a, b| a.peak_force.total_cmp(&b.peak_force))
+        .map(|i| ImpactPulse {
+            level: i.level,
+            height: heights.get(i.level).copied().unwrap_or(f64::NAN),
+            start: i.start,
+            end: i.end,
+            duration: i.end - i.start,
+            peak_force: i.peak_force,
+        })
 }
 
 /// Contact results, totals and maxima over the levels.
@@ -623,6 +685,10 @@ fn simulate_phases(
             .zip(&without.floors[i])
             .map(|(a, b)| FloorReport::pair(a, b))
             .collect();
+        for f in &mut floors {
+            f.peak_acceleration_impact =
+                impact_at(&with.impacts, &heights, f.peak_acceleration_time);
+        }
         let mine = |r: &RunRecord| -> Vec<StoreyRecord> {
             r.storeys
                 .iter()

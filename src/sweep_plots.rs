@@ -523,6 +523,7 @@ pub fn plot_table_of(
                             x: &xs,
                             y: &data[fi][k],
                             style: LineStyle::Solid,
+                            color: None,
                         })
                         .collect(),
                     y_scale: match field_scale(fields[fi], &all) {

@@ -635,7 +635,7 @@ fn floors_csv_matches_the_history_and_the_peaks() {
     assert_eq!(floors.len(), history.len());
     assert_eq!(fh.len(), 1 + 2 * columns.len());
     let col = |h: &[String], name: &str| h.iter().position(|c| c == name).unwrap();
-    let (u1, w1) = (col(&fh, "u1_14"), col(&hh, "w1"));
+    let (u1, w1) = (col(&fh, "w1_14"), col(&hh, "w1"));
     let scale = report.structures[0].peak_displacement;
     for (f, h) in floors.iter().zip(&history) {
         assert_eq!(f[0], h[0]);

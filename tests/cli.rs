@@ -26,7 +26,7 @@ fn run_default_writes_the_contract() {
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
     for needle in [
-        "T1/T2 = 0.7",
+        "examples/default.toml (bundled default)",
         "change [%]",
         "impacts",
         "required separation",
@@ -67,16 +67,23 @@ fn run_default_writes_the_contract() {
     let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
     let mut lines = history.lines();
     assert!(lines.next().unwrap().starts_with("t,w1,w2,force"));
-    // 20 s every 0.01 s, both ends included
-    assert_eq!(lines.clone().count(), 2001);
+    // the default's 25 s every 0.01 s, both ends included
+    assert_eq!(lines.clone().count(), 2501);
     let last: Vec<f64> = lines
         .last()
         .unwrap()
         .split(',')
         .map(|x| x.parse().unwrap())
         .collect();
-    assert!((last[0] - 20.0).abs() < 1e-9);
-    for f in ["history.png", "history.svg", "impacts.csv"] {
+    assert!((last[0] - 25.0).abs() < 1e-9);
+    for f in [
+        "history.png",
+        "history.svg",
+        "impacts.csv",
+        "floors.csv",
+        "envelopes.png",
+        "envelopes.svg",
+    ] {
         assert!(res.join(f).exists(), "{f} missing");
     }
     // no temporary files left behind

@@ -508,3 +508,162 @@ fn an_absurd_sweep_is_refused() {
         assert!(err.contains(needle), "`{needle}` missing in: {err}");
     }
 }
+
+/// The README's Quick start shows what `pounding run` (no arguments: the bundled default)
+/// prints today, line for line, and the bundled default is a clean, converged result: nothing
+/// on standard error (no warning), the self-check converged. It runs from any directory (the
+/// default's record is embedded). If this fails after a change of the solver or of the
+/// summary, run the command and paste its output into the README.
+#[test]
+fn readme_quick_start_is_what_the_default_prints() {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let after = readme
+        .split("The first prints:\n\n```\n")
+        .nth(1)
+        .expect("the README's Quick start shows the first command's output");
+    let shown = &after[..after.find("```").unwrap()];
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["run"], dir.path());
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        out.stderr.is_empty(),
+        "the bundled default warns:\n{}",
+        text(&out.stderr)
+    );
+    let printed = text(&out.stdout);
+    assert!(printed.contains("self-check: converged"), "{printed}");
+    for (k, (a, b)) in shown.lines().zip(printed.lines()).enumerate() {
+        assert_eq!(a, b, "README Quick start, line {} of the output", k + 1);
+    }
+    assert_eq!(shown.lines().count(), printed.lines().count(), "{printed}");
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(summary["accuracy"]["converged"], true);
+    assert_eq!(summary["warnings"].as_array().unwrap().len(), 0);
+}
+
+/// `pounding --help` names every kind of structure; `run --help` names every file a run writes
+/// (taken from what runs actually write: an elastic and a yielding one) and `--no-plot` speaks
+/// of the pictures, not "the figure".
+#[test]
+fn help_covers_every_kind_and_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = pounding(&["--help"], dir.path());
+    let help = text(&out.stdout);
+    for needle in [
+        "cantilever",
+        "shear-building",
+        "modal",
+        "yielding",
+        "Bouc–Wen",
+        "record",
+        "harmonic",
+        "floor",
+    ] {
+        assert!(
+            help.contains(needle),
+            "`pounding --help` lacks {needle}:\n{help}"
+        );
+    }
+    let run_help = text(&pounding(&["run", "--help"], dir.path()).stdout);
+    assert!(run_help.contains("--no-plot"), "{run_help}");
+    assert!(!run_help.contains("the figure"), "{run_help}");
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let yielding = std::fs::read_to_string(examples.join("yielding-frames.toml"))
+        .unwrap()
+        .replace("duration = 45.0", "duration = 3.0")
+        .replace("records/", &format!("{}/records/", examples.display()));
+    std::fs::write(dir.path().join("y.toml"), yielding).unwrap();
+    let mut files = std::collections::BTreeSet::new();
+    for args in [
+        &["run", "--out", "a", "--no-check"][..],
+        &["run", "y.toml", "--out", "b", "--no-check"][..],
+    ] {
+        let out = pounding(args, dir.path());
+        assert!(out.status.success(), "{args:?}: {}", text(&out.stderr));
+        let wrote = text(&out.stdout);
+        let list = wrote
+            .lines()
+            .find_map(|l| l.strip_prefix("wrote "))
+            .unwrap_or_else(|| panic!("{wrote}"));
+        for f in list.split(", ") {
+            files.insert(
+                Path::new(f)
+                    .file_name()
+                    .unwrap()
+                    .to_string_lossy()
+                    .to_string(),
+            );
+        }
+    }
+    assert!(
+        files.contains("hysteresis.png") && files.contains("floors.csv"),
+        "{files:?}"
+    );
+    for f in &files {
+        // "history.png/.svg" names both pictures
+        let (stem, ext) = f.rsplit_once('.').unwrap();
+        let named = run_help.contains(f.as_str())
+            || (ext == "svg" && run_help.contains(&format!("{stem}.png/.svg")));
+        assert!(
+            named,
+            "`pounding run --help` does not list {f}:\n{run_help}"
+        );
+    }
+}
+
+/// The peak absolute floor acceleration of the paper's case c (≈ 55 g at the top, during
+/// impacts) is printed with what it is: the line of each structure gives the value of
+/// summary.json, in g too, where and when, and the duration of the impact it fell in.
+#[test]
+fn the_acceleration_pulse_is_named_in_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/paper-c.toml");
+    let out = pounding(
+        &[
+            "run",
+            paper.to_str().unwrap(),
+            "--out",
+            "res",
+            "--no-check",
+            "--no-plot",
+        ],
+        dir.path(),
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let printed = text(&out.stdout);
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("res/summary.json")).unwrap(),
+    )
+    .unwrap();
+    assert!(printed.contains("the impact's pulse"), "{printed}");
+    for (i, s) in summary["structures"].as_array().unwrap().iter().enumerate() {
+        let floors = s["floors"].as_array().unwrap();
+        let top = floors
+            .iter()
+            .max_by(|a, b| {
+                let f = |x: &serde_json::Value| x["peak_acceleration"].as_f64().unwrap();
+                f(a).total_cmp(&f(b))
+            })
+            .unwrap();
+        let a = top["peak_acceleration"].as_f64().unwrap();
+        // the paper's case: tens of g at the top, inside an impact of some milliseconds
+        assert!(a > 20.0 * 9.80665, "structure {}: {a} m/s²", i + 1);
+        let pulse = &top["peak_acceleration_impact"];
+        let duration = pulse["duration"].as_f64().expect("inside an impact");
+        assert!(duration > 1e-3 && duration < 0.2, "{duration} s");
+        let line = format!(
+            "    structure {}: {a:.2} m/s² ({:.2} g) at h = {} m, t = {:.3} s: the pulse of an impact at h = {} m lasting {:.1} ms",
+            i + 1,
+            a / 9.80665,
+            top["height"].as_f64().unwrap(),
+            top["peak_acceleration_time"].as_f64().unwrap(),
+            pulse["height"].as_f64().unwrap(),
+            duration * 1e3,
+        );
+        assert!(printed.contains(&line), "{line}\n{printed}");
+    }
+}

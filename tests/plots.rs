@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use pounding::figures::{drawn_force, time_history_figure};
+use pounding::figures::{drawn_force, envelope_figure, hysteresis_figure, time_history_figure};
 use pounding::plot::ColorScale;
 use pounding::plot::style::{
     NO_DATA, RATIO_HIGH, RATIO_LOW, RATIO_NEUTRAL, ratio_color, ratio_position, viridis,
@@ -161,4 +161,142 @@ fn axes_are_named_as_on_the_command_line() {
         "T2 [s] (structure.2.period)"
     );
     assert_eq!(axis_label("contact.stiffness"), "contact.stiffness");
+}
+
+/// Colours of the lines drawn 2 px wide (data and legend samples) in drawing order, each with
+/// the legend text that follows it: `(stroke, Some(label))` for a legend sample.
+fn strokes(svg: &str) -> Vec<(String, Option<String>)> {
+    let mut out: Vec<(String, Option<String>)> = Vec::new();
+    for part in svg.split('<').skip(1) {
+        if part.starts_with("polyline") && part.contains("stroke-width=\"2\"") {
+            let c = part.split("stroke=\"").nth(1).unwrap();
+            out.push((c[..7].to_string(), None));
+        } else if part.starts_with("text") {
+            let label = part.split('>').nth(1).unwrap_or("").trim().to_string();
+            if let Some(last) = out.last_mut().filter(|l| l.1.is_none()) {
+                last.1 = Some(label);
+            }
+        }
+    }
+    out
+}
+
+const BLUE: &str = "#0072B2";
+const VERMILLION: &str = "#D55E00";
+const BLACK: &str = "#000000";
+
+/// One meaning per colour in every figure of a run: structure 1 blue, structure 2 vermillion
+/// (with pounding solid, without dashed), the contact force black; the history figure's
+/// panels are drawn in that order, and each legend sample has its structure's colour.
+#[test]
+fn a_colour_means_a_structure_in_every_figure() {
+    let (scenario, report) = run("examples/default.toml", None);
+    let dir = tempfile::tempdir().unwrap();
+    let svg = |files: Vec<std::path::PathBuf>| std::fs::read_to_string(&files[1]).unwrap();
+    // history: w1 panel (blue), w2 panel (vermillion), then the force panels (black)
+    let history = svg(time_history_figure(&scenario, &report, &dir.path().join("h")).unwrap());
+    let lines = strokes(&history);
+    let mut runs: Vec<&str> = lines.iter().map(|l| l.0.as_str()).collect();
+    runs.dedup();
+    assert_eq!(runs, [BLUE, VERMILLION, BLACK], "colours in drawing order");
+    let legends: Vec<(&str, &str)> = (lines.iter())
+        .filter_map(|(c, l)| Some((c.as_str(), l.as_deref()?)))
+        .filter(|(_, l)| l.contains("pounding"))
+        .collect();
+    assert_eq!(
+        legends,
+        [
+            (BLUE, "with pounding"),
+            (BLUE, "without pounding"),
+            (VERMILLION, "with pounding"),
+            (VERMILLION, "without pounding"),
+        ]
+    );
+    // envelopes: every line blue or vermillion, and the legend's colour is its structure's
+    let envelopes = svg(envelope_figure(&report, &dir.path().join("e")).unwrap());
+    let lines = strokes(&envelopes);
+    assert!(lines.iter().all(|l| l.0 == BLUE || l.0 == VERMILLION));
+    for (i, colour) in [BLUE, VERMILLION].iter().enumerate() {
+        let name = &report.structures[i].name;
+        for label in [format!("{name}, with pounding"), format!("{name}, without")] {
+            assert!(
+                lines
+                    .iter()
+                    .any(|l| l.0 == *colour && l.1.as_deref() == Some(&label)),
+                "legend {label} not in {colour}"
+            );
+        }
+    }
+    // the hysteresis loops of yielding-frames.toml: only its structure 2 yields — vermillion
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/yielding-frames.toml");
+    let mut sc = Scenario::from_file(&path).unwrap();
+    sc.solver.duration = 4.0;
+    let r = simulate(&sc).unwrap();
+    let loops = svg(hysteresis_figure(&r, &dir.path().join("y"))
+        .unwrap()
+        .unwrap());
+    let lines = strokes(&loops);
+    assert!(!lines.is_empty() && lines.iter().all(|l| l.0 == VERMILLION));
+}
+
+/// The envelope figure speaks the engineer's units: displacement w (as in history.csv),
+/// storey drift as a ratio in %, rings on the floors whose acceleration peak is an impact's
+/// pulse, and the pulse's duration in the subtitle.
+#[test]
+fn envelopes_show_drift_ratios_and_impact_pulses() {
+    let (_, report) = run("examples/paper-c.toml", None);
+    let dir = tempfile::tempdir().unwrap();
+    let files = envelope_figure(&report, &dir.path().join("e")).unwrap();
+    let svg = std::fs::read_to_string(&files[1]).unwrap();
+    // (the SVG escapes the apostrophe)
+    for needle in [
+        "w [m]",
+        "drift / storey height [%]",
+        "impact&apos;s pulse",
+        " ms)",
+    ] {
+        assert!(svg.contains(needle), "{needle}");
+    }
+    for stale in ["u [m]", "drift [m]"] {
+        assert!(!svg.contains(stale), "{stale}");
+    }
+    // a ring (r = 6, not filled) for each floor whose peak with pounding is an impact's pulse
+    let ringed = svg
+        .split("<circle")
+        .skip(1)
+        .filter(|c| c.contains("r=\"6\"") && c.contains("fill=\"none\""))
+        .count();
+    let pulses: usize = (report.structures.iter())
+        .map(|s| {
+            (s.floors.iter())
+                .filter(|f| f.peak_acceleration_impact.is_some())
+                .count()
+        })
+        .sum();
+    assert!(pulses > 0);
+    assert_eq!(ringed, pulses);
+}
+
+/// The storey drift ratio is the peak drift over the storey's height: a first storey of 4 m
+/// and storeys of 3.5 m above it (examples/modal-csv.toml's shear building), and a
+/// cantilever's stations every tenth of its 10 m height (the paper's case).
+#[test]
+fn drift_ratio_is_the_drift_over_the_storey_height() {
+    let (_, report) = run("examples/modal-csv.toml", None);
+    let s = &report.structures[1];
+    let heights: Vec<f64> = s.floors.iter().map(|f| f.height).collect();
+    assert_eq!(heights, [4.0, 7.5, 11.0, 14.5]);
+    for (f, r) in s.floors.iter().zip(s.peak_drift_ratios()) {
+        let storey = if f.height == 4.0 { 4.0 } else { 3.5 };
+        assert!((r[0] - 100.0 * f.peak_drift / storey).abs() < 1e-12 * r[0]);
+        assert!((r[1] - 100.0 * f.peak_drift_no_contact / storey).abs() < 1e-12 * r[1]);
+    }
+    let (_, report) = run("examples/paper-c.toml", None);
+    for s in &report.structures {
+        assert_eq!(s.floors.len(), 10);
+        for (f, r) in s.floors.iter().zip(s.peak_drift_ratios()) {
+            // stations 1 m apart: the ratio in % is 100 × the drift in m
+            assert!((r[0] - 100.0 * f.peak_drift).abs() < 1e-12 * r[0].max(1e-300));
+        }
+    }
 }

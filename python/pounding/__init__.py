@@ -57,7 +57,7 @@ class RunResult:
       ``height``, ``start``, ``end``, ``duration``, ``peak_force``, ``impulse``,
       ``max_penetration``, ``approach_speed`` float64), one entry per impact;
     - ``floors``: dict of 1-D float64 arrays keyed by floors.csv's columns (``t``, then
-      ``u1_<h>``, ``a1_<h>``, … with pounding, then the same with ``_free``);
+      ``w1_<h>``, ``a1_<h>``, … with pounding, then the same with ``_free``);
     - ``warnings``: list of the run's warnings (as ``pounding run`` prints them).
     """
 

@@ -48,6 +48,9 @@ pub struct Series<'a> {
     pub y: &'a [f64],
     /// Solid or dashed.
     pub style: LineStyle,
+    /// Palette index, so that a colour can mean the same thing in every panel and figure
+    /// (e.g. a structure); `None`: by the series' position within its panel.
+    pub color: Option<usize>,
 }
 
 /// One panel (subplot) of a stacked figure, sharing the figure's x axis.
@@ -57,8 +60,9 @@ pub struct Panel<'a> {
     pub title: &'a str,
     /// Y-axis label, including the unit, e.g. `"w1 [m]"`.
     pub y_label: &'a str,
-    /// The lines; colours are assigned by index from a colour-blind-safe palette (Okabe–Ito),
-    /// and the lines are drawn last to first, so the first lies on top.
+    /// The lines; colours are each series' `color`, or assigned by index, from a
+    /// colour-blind-safe palette (Okabe–Ito), and the lines are drawn last to first, so the
+    /// first lies on top.
     pub series: Vec<Series<'a>>,
     /// Linear or logarithmic y axis.
     pub y_scale: AxisScale,
@@ -233,7 +237,7 @@ impl Render for Figure<'_> {
                 for (k, s) in p.series.iter().enumerate() {
                     let (bx, by) = header.get_base_pixel();
                     let pts = [(bx + lx, by + cy), (bx + lx + LEGEND_SAMPLE, by + cy)];
-                    draw_line(root, &pts, color(k), s.style, bitmap)?;
+                    draw_line(root, &pts, color(s.color.unwrap_or(k)), s.style, bitmap)?;
                     lx += LEGEND_SAMPLE + 8;
                     header
                         .draw_text(s.label, &left(f.tick), (lx, cy))
@@ -302,7 +306,7 @@ impl Render for Figure<'_> {
                     match q {
                         Some(c) => run.push(c),
                         None if !run.is_empty() => {
-                            draw_line(root, &run, color(k), s.style, bitmap)?;
+                            draw_line(root, &run, color(s.color.unwrap_or(k)), s.style, bitmap)?;
                             run.clear();
                         }
                         None => {}
@@ -404,7 +408,13 @@ mod tests {
     use super::*;
 
     fn s<'a>(label: &'a str, x: &'a [f64], y: &'a [f64], style: LineStyle) -> Series<'a> {
-        Series { label, x, y, style }
+        Series {
+            label,
+            x,
+            y,
+            style,
+            color: None,
+        }
     }
 
     #[test]

@@ -24,6 +24,9 @@ pub struct ProfileSeries<'a> {
     pub style: LineStyle,
     /// Palette index (the same index, the same colour in every panel).
     pub color: usize,
+    /// Points drawn as open rings instead of dots, one flag per value (e.g. a peak that is an
+    /// impact's pulse); empty: every point a dot.
+    pub rings: &'a [bool],
 }
 
 /// One panel: a quantity over height.
@@ -180,13 +183,21 @@ impl Render for ProfileFigure<'_> {
                 chart
                     .draw_series(pieces.into_iter().map(|p| PathElement::new(p, stroke)))
                     .map_err(draw_err)?;
-                chart
-                    .draw_series(
-                        pts.iter().map(|&(v, h)| {
+                let ring = |k: usize| s.rings.get(k).copied().unwrap_or(false);
+                let marks = s
+                    .values
+                    .iter()
+                    .zip(s.heights)
+                    .enumerate()
+                    .filter(|(_, (v, h))| v.is_finite() && h.is_finite())
+                    .map(|(k, (&v, &h))| {
+                        if ring(k) {
+                            Circle::new((v, h), 6, ShapeStyle::from(&color).stroke_width(2))
+                        } else {
                             Circle::new((v, h), 3, ShapeStyle::from(&color).filled())
-                        }),
-                    )
-                    .map_err(draw_err)?;
+                        }
+                    });
+                chart.draw_series(marks).map_err(draw_err)?;
             }
         }
         let _ = (w, h);

@@ -338,9 +338,9 @@ const TABLES: &[(&str, &[&str])] = &[
             "hysteresis",
         ],
     ),
-    ("structure.rayleigh", &["damping_ratio", "modes"]),
+    ("[structure.rayleigh]", &["damping_ratio", "modes"]),
     (
-        "structure.hysteresis",
+        "[structure.hysteresis]",
         &[
             "model",
             "yield_drifts",
@@ -765,30 +765,14 @@ impl Ctx<'_> {
     pub(crate) fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
         let at = self.at(e.span().map(|s| s.start));
         let msg = e.message().trim().to_string();
-        if let Some(rest) = msg.strip_prefix("unknown field `")
-            && let Some(end) = rest.find('`')
-        {
-            {
-                let key = rest[..end].to_string();
-                let (section, valid) = self.section_for(&msg);
-                let best = valid
-                    .iter()
-                    .map(|v| (strsim::jaro_winkler(&key, v), *v))
-                    .max_by(|a, b| a.0.total_cmp(&b.0));
-                let mut hint = String::new();
-                if let Some((score, v)) = best
-                    && score > 0.75
-                {
-                    hint.push_str(&format!("; did you mean `{v}`?"));
-                }
-                hint.push_str(&format!(" (valid keys: {})", valid.join(", ")));
-                return ScenarioError::UnknownKey {
-                    at,
-                    key,
-                    section,
-                    hint,
-                };
-            }
+        if let Some((key, expected)) = unknown_field(&msg) {
+            let (section, valid) = self.section_for(&expected);
+            return ScenarioError::UnknownKey {
+                at,
+                hint: key_hint(&key, &valid),
+                key,
+                section,
+            };
         }
         // a duplicate: name the table or key and both lines
         if msg.starts_with("duplicate key")
@@ -855,29 +839,67 @@ impl Ctx<'_> {
         ok.then(|| key.to_string())
     }
 
-    /// The table an unknown key sits in: from the expected-key list in serde's message.
-    fn section_for(&self, msg: &str) -> (String, Vec<&'static str>) {
-        let expected: Vec<&str> = msg
-            .split("expected one of ")
-            .nth(1)
-            .or_else(|| msg.split("expected ").nth(1))
-            .map(|s| {
-                s.split(',')
-                    .map(|k| k.trim().trim_matches('`'))
-                    .filter(|k| !k.is_empty())
-                    .collect()
-            })
-            .unwrap_or_default();
+    /// The table an unknown key sits in, and its valid keys: the table whose keys are exactly
+    /// serde's list of expected keys (every table's key set is distinct, tested in
+    /// `tests/unknown_keys.rs`).
+    fn section_for(&self, expected: &[String]) -> (String, Vec<String>) {
         for (name, keys) in TABLES.iter().chain(crate::design::TABLES) {
-            if !expected.is_empty()
-                && keys.len() == expected.len()
-                && expected.iter().all(|k| keys.contains(k))
-            {
-                return (name.to_string(), keys.to_vec());
+            if keys.len() == expected.len() && expected.iter().all(|k| keys.contains(&k.as_str())) {
+                return (
+                    name.to_string(),
+                    keys.iter().map(|k| k.to_string()).collect(),
+                );
             }
         }
-        ("this table".to_string(), Vec::new())
+        // (not reached for the tables of a scenario; a table added without its entry in
+        // TABLES still gets its keys listed)
+        ("this table".to_string(), expected.to_vec())
     }
+}
+
+/// The unknown key and the keys the table accepts, from the message of serde's
+/// `deny_unknown_fields`, in each of its forms: "unknown field `k`, expected one of `a`, `b`,
+/// `c`", "… expected `a` or `b`", "… expected `a`" and "… there are no fields". `None` for
+/// any other message.
+pub(crate) fn unknown_field(msg: &str) -> Option<(String, Vec<String>)> {
+    let rest = msg.strip_prefix("unknown field `")?;
+    let end = rest.find('`')?;
+    let key = rest[..end].to_string();
+    let list = rest[end + 1..]
+        .split_once("expected one of ")
+        .or_else(|| rest[end + 1..].split_once("expected "))
+        .map_or("", |(_, l)| l);
+    let expected = list
+        .split(", ")
+        .flat_map(|part| part.split(" or "))
+        .map(|k| k.trim().trim_matches('`'))
+        .filter(|k| !k.is_empty())
+        .map(str::to_string)
+        .collect();
+    Some((key, expected))
+}
+
+/// What follows "unknown key `key` in TABLE": the closest valid key when one is close
+/// ("; did you mean `period`?") and every valid key ("(valid keys: a, b)"; "(the table takes
+/// no keys)" when there are none).
+pub(crate) fn key_hint<S: AsRef<str>>(key: &str, valid: &[S]) -> String {
+    let best = valid
+        .iter()
+        .map(|v| (strsim::jaro_winkler(key, v.as_ref()), v.as_ref()))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    let mut hint = String::new();
+    if let Some((score, v)) = best
+        && score > 0.75
+    {
+        hint.push_str(&format!("; did you mean `{v}`?"));
+    }
+    if valid.is_empty() {
+        hint.push_str(" (the table takes no keys)");
+    } else {
+        let names: Vec<&str> = valid.iter().map(AsRef::as_ref).collect();
+        hint.push_str(&format!(" (valid keys: {})", names.join(", ")));
+    }
+    hint
 }
 
 fn line_col(text: &str, offset: usize) -> (u32, u32) {

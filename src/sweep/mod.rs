@@ -607,7 +607,19 @@ impl Sweep {
         let ctx = Ctx { text, file: &file };
         let raw: RawSweep = toml::from_str(text).map_err(|e| {
             let mut message = e.message().trim().to_string();
-            if message.starts_with("unknown field") && text.contains("[[structure]]") {
+            // an unknown key: name the table and list its keys, as a scenario's message does
+            if let Some((key, valid)) = crate::scenario::unknown_field(&message) {
+                let table = if valid.iter().any(|k| k == "scenario") {
+                    "the top level of the sweep file"
+                } else {
+                    "[[axis]]"
+                };
+                message = format!(
+                    "unknown key `{key}` in {table}{}",
+                    crate::scenario::key_hint(&key, &valid)
+                );
+            }
+            if message.starts_with("unknown key") && text.contains("[[structure]]") {
                 message.push_str(
                     " — this looks like a scenario file: `pounding run` runs it; a sweep file names one \
                      with `scenario = \"…\"` and adds [[axis]] tables",
@@ -1765,7 +1777,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("s.toml:5:1") && e.contains("unknown field `foo`"),
+            e.contains("s.toml:5:1")
+                && e.contains("unknown key `foo` in [[axis]]")
+                && e.contains("(valid keys: key, values, from, to, steps, scale)"),
             "{e}"
         );
         let e = sweep(
