@@ -136,6 +136,8 @@ fn every_scenario_table_names_itself_and_its_keys() {
         "units",
         "scale_to_pga",
         "dt",
+        "component",
+        "processing",
         "spectrum",
         "sds",
         "sd1",
@@ -220,12 +222,11 @@ fn every_scenario_table_names_itself_and_its_keys() {
             "[separation.asce7]",
             &["cd", "ie", "r", "displacement_factor", "boundary"],
         ),
-        // two keys
         (
             "r = 5",
             "ie",
             "[separation.is1893]",
-            &["r", "displacement_factor"],
+            &["r", "displacement_factor", "floor_reduction"],
         ),
         (
             "rd = 4",
