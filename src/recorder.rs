@@ -253,6 +253,10 @@ pub struct Recorder<'s> {
     end: f64,
     /// Responses over the structures' heights (`None`: not tracked).
     floors: Option<FloorRecorder>,
+    /// The values of the floor rows that go to the sink (`None`: all; see
+    /// [`Recorder::with_floor_stations`]), and a scratch row for them.
+    floor_keep: Option<Vec<usize>>,
+    floor_row: Vec<f64>,
     /// Yielding storeys (`None`: none).
     storeys: Option<StoreyTracker>,
 }
@@ -349,6 +353,8 @@ impl<'s> Recorder<'s> {
             last_energy: [0.0; 6],
             end: duration,
             floors: Some(FloorRecorder::new(system, heights, interval)),
+            floor_keep: None,
+            floor_row: Vec::new(),
             storeys: StoreyTracker::new(system, interval, duration),
         }
     }
@@ -357,6 +363,21 @@ impl<'s> Recorder<'s> {
     /// for runs that need only the contact-height numbers.
     pub fn without_floors(mut self) -> Recorder<'s> {
         self.floors = None;
+        self
+    }
+
+    /// Send to the sink the floor history of the stations `stations` keeps (the peaks over
+    /// the height still cover every station): the rows of `floors.csv`.
+    pub fn with_floor_stations(
+        mut self,
+        system: &System,
+        heights: &[f64],
+        stations: crate::output::FloorStations,
+    ) -> Recorder<'s> {
+        if let Some(f) = &self.floors {
+            self.floor_keep = stations.selection(system, f, heights);
+            self.floor_row = Vec::with_capacity(self.floor_keep.as_ref().map_or(0, Vec::len));
+        }
         self
     }
 
@@ -547,6 +568,26 @@ fn hermite_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
     y0.abs().max(y1.abs()) + HERMITE_REACH * h * up.max(down)
 }
 
+/// A sink that passes on the floor rows' values at `keep` only.
+struct Picked<'a, 'b> {
+    sink: &'a mut (dyn HistorySink + 'b),
+    keep: &'a [usize],
+    row: &'a mut Vec<f64>,
+}
+
+impl HistorySink for Picked<'_, '_> {
+    fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        self.sink.row(t, w, forces);
+    }
+
+    fn floor_row(&mut self, t: f64, values: &[f64]) {
+        self.row.clear();
+        self.row
+            .extend(self.keep.iter().filter_map(|&i| values.get(i).copied()));
+        self.sink.floor_row(t, self.row);
+    }
+}
+
 /// `(φ·η, φ·η̇)` in one pass.
 #[inline(always)]
 fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
@@ -563,7 +604,17 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
         if let Some(f) = &mut self.floors {
-            f.observe(system, s, self.sink.as_deref_mut());
+            match (&self.floor_keep, self.sink.as_deref_mut()) {
+                (Some(keep), Some(sink)) => {
+                    let mut picked = Picked {
+                        sink,
+                        keep,
+                        row: &mut self.floor_row,
+                    };
+                    f.observe(system, s, Some(&mut picked));
+                }
+                (_, sink) => f.observe(system, s, sink),
+            }
         }
         if let Some(st) = &mut self.storeys {
             st.observe(system, s);
