@@ -645,7 +645,7 @@ mod tests {
             for _ in 0..50 {
                 let n = 2000;
                 let pts: Vec<(i32, i32)> = (0..n)
-                    .map(|i| ((i / per_column) as i32, 300 + rnd(7) - 3 + (i % 97) as i32))
+                    .map(|i| (i / per_column, 300 + rnd(7) - 3 + i % 97))
                     .collect();
                 let out = simplify(&pts);
                 assert_eq!(out.first(), pts.first());
