@@ -43,11 +43,24 @@ pub fn estimate_run(scenario: &Scenario) -> Estimate {
     let rows = sample_count(scenario.output_interval, scenario.solver.duration);
     let levels = scenario.contact.levels.len() as u64;
     // history.csv, and floors.csv: t and, per floor (station) of each structure, a displacement
-    // and an acceleration with and without pounding (a cantilever: its tenths and the levels)
-    let stations: u64 = scenario
-        .structures
-        .iter()
-        .map(|s| s.floor_heights().map_or(10 + levels, |h| h.len() as u64))
+    // and an acceleration with and without pounding (a cantilever: the contact heights and its
+    // top, or with `[output] floor_stations = "all"` its tenths and the levels)
+    let contact_stations = |length: f64| {
+        let mut h: Vec<f64> = (scenario.contact.levels.iter())
+            .map(|l| l.height)
+            .filter(|&h| h <= length)
+            .chain([length])
+            .collect();
+        h.sort_by(f64::total_cmp);
+        h.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
+        h.len() as u64
+    };
+    let stations: u64 = (scenario.structures.iter())
+        .map(|s| match (s.floor_heights(), scenario.floor_stations) {
+            (Some(h), _) => h.len() as u64,
+            (None, crate::output::FloorStations::All) => 10 + levels,
+            (None, crate::output::FloorStations::Contact) => contact_stations(s.length()),
+        })
         .sum();
     let numbers = 6 + if levels > 1 { levels } else { 0 } + 1 + 4 * stations;
     Estimate {

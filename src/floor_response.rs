@@ -206,6 +206,12 @@ impl FloorRecorder {
         }
     }
 
+    /// The heights of the stations of structure 1 and 2 (m, lowest first), in the order of
+    /// [`FloorRecorder::columns`].
+    pub fn station_heights(&self) -> [&[f64]; 2] {
+        [&self.stations[0].heights, &self.stations[1].heights]
+    }
+
     /// The names of a floor history row's values: for structure i and every station (height
     /// h, m), `w{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
     pub fn columns(&self) -> Vec<String> {

@@ -6,6 +6,8 @@
 
 use std::fmt::Write as _;
 use std::io::{BufWriter, Write as _};
+
+use crate::output::{push_field, push_number};
 use std::path::{Path, PathBuf};
 
 use crate::row_spool::RowSpool;
@@ -23,7 +25,8 @@ pub struct FloorsCsv {
     n: usize,
     /// t and the values of the spooled row being completed.
     contact: Vec<f64>,
-    line: String,
+    /// Reused text of one CSV line.
+    line: Vec<u8>,
     error: Option<std::io::Error>,
 }
 
@@ -40,10 +43,8 @@ impl FloorsCsv {
     /// Start `dir/floors.csv` with the header `t`, the `columns` (with pounding), then the same
     /// with `_free` (without).
     pub fn create(dir: &Path, columns: &[String]) -> std::io::Result<FloorsCsv> {
-        let tmp = tempfile::Builder::new()
-            .prefix(".pounding-floors-")
-            .suffix(".tmp")
-            .tempfile_in(dir)?;
+        // (the permissions of every other output: an ordinary new file's under the umask)
+        let tmp = crate::output::temp_file(dir, ".pounding-floors-", ".tmp")?;
         let mut csv = BufWriter::with_capacity(1 << 16, tmp);
         let mut head = String::from("t");
         for c in columns {
@@ -59,7 +60,7 @@ impl FloorsCsv {
             spool: RowSpool::new(dir, 1 + columns.len())?,
             n: columns.len(),
             contact: vec![0.0; 1 + columns.len()],
-            line: String::new(),
+            line: Vec::with_capacity(24 * (1 + 2 * columns.len())),
             error: None,
         })
     }
@@ -80,21 +81,27 @@ impl FloorsCsv {
     pub fn free_row(&mut self, _t: f64, values: &[f64]) {
         self.spool.rewind();
         if self.spool.next(&mut self.contact) {
-            self.line.clear();
-            for (i, v) in self.contact.iter().enumerate() {
-                let _ = write!(self.line, "{}{v}", if i == 0 { "" } else { "," });
+            self.contact_part();
+            for &v in values.iter().take(self.n) {
+                push_field(&mut self.line, v);
             }
-            for v in values.iter().take(self.n) {
-                let _ = write!(self.line, ",{v}");
-            }
-            self.line.push('\n');
+            self.line.push(b'\n');
             self.write_line();
+        }
+    }
+
+    /// Start the line with the spooled row (t and the values with contact).
+    fn contact_part(&mut self) {
+        self.line.clear();
+        push_number(&mut self.line, self.contact[0]);
+        for &v in &self.contact[1..] {
+            push_field(&mut self.line, v);
         }
     }
 
     fn write_line(&mut self) {
         if let Some(csv) = self.csv.as_mut()
-            && let Err(e) = csv.write_all(self.line.as_bytes())
+            && let Err(e) = csv.write_all(&self.line)
         {
             self.fail(e);
         }
@@ -105,14 +112,11 @@ impl FloorsCsv {
         // rows with contact that the run without contact did not match (none, normally)
         self.spool.rewind();
         while self.spool.next(&mut self.contact) {
-            self.line.clear();
-            for (i, v) in self.contact.iter().enumerate() {
-                let _ = write!(self.line, "{}{v}", if i == 0 { "" } else { "," });
-            }
+            self.contact_part();
             for _ in 0..self.n {
-                self.line.push_str(",NaN");
+                self.line.extend_from_slice(b",NaN");
             }
-            self.line.push('\n');
+            self.line.push(b'\n');
             self.write_line();
         }
         if let Some(e) = self.error.take().or_else(|| self.spool.take_error()) {

@@ -535,14 +535,15 @@ fn run_phase(
     interval: f64,
     sink: &mut dyn RunSink,
     phase: Phase,
-    floors: bool,
+    floors: Option<crate::output::FloorStations>,
 ) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
-    let mut rec =
-        Recorder::new(system, heights, interval, settings.duration).with_sink(&mut adapter);
-    if !floors {
-        rec = rec.without_floors();
-    }
+    let mut rec = Recorder::new(system, heights, interval, settings.duration);
+    rec = match floors {
+        Some(stations) => rec.with_floor_stations(system, heights, stations),
+        None => rec.without_floors(),
+    };
+    let mut rec = rec.with_sink(&mut adapter);
     let stats = integrate(system, settings, &InitialState::default(), &mut rec)?;
     Ok((rec.finish(), stats))
 }
@@ -657,7 +658,7 @@ fn simulate_phases(
     };
     let interval = scenario.output_interval;
     // (the self-check compares headline numbers only: its runs skip the floors)
-    let floors = floors && !check;
+    let floors = (floors && !check).then_some(scenario.floor_stations);
     let (with, stats) = run_phase(
         &system,
         &scenario.solver,

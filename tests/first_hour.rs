@@ -143,8 +143,8 @@ fn no_plot_removes_stale_pictures() {
 }
 
 /// A run of 10⁶ s at the default 10 ms interval would write 10⁸ rows of history.csv and
-/// floors.csv (6 numbers, and 1 + 4 per station of the two cantilevers, counted as 10 tenths
-/// and the contact level each: 95 numbers of 16 bytes, ≈ 152 GB): refused before it starts,
+/// floors.csv (6 numbers, and 1 + 4 per station of the two cantilevers, by default the contact
+/// height at their top: 15 numbers of 16 bytes, ≈ 24 GB): refused before it starts,
 /// with the size, the keys that change it and the flag that allows it; nothing is written.
 #[test]
 fn a_run_too_large_is_refused_with_the_size_and_the_keys() {
@@ -158,7 +158,7 @@ fn a_run_too_large_is_refused_with_the_size_and_the_keys() {
     assert_eq!(out.status.code(), Some(2));
     let err = text(&out.stderr);
     for needle in [
-        "152 GB",
+        "24 GB",
         "100000001 rows",
         "solver.output_interval",
         "solver.duration",
@@ -171,13 +171,13 @@ fn a_run_too_large_is_refused_with_the_size_and_the_keys() {
         !dir.path().join("res").exists(),
         "a refused run wrote something"
     );
-    // the library's estimate, from the formula: rows = duration/interval + 1, 95 numbers a row
+    // the library's estimate, from the formula: rows = duration/interval + 1, 15 numbers a row
     let sc = short(MINIMAL, 1e6);
     let e = pounding::budget::estimate_run(&sc);
     assert_eq!(e.rows, 100_000_001);
     assert_eq!(
         e.bytes,
-        100_000_001 * (6 + 1 + 4 * 22) * pounding::budget::HISTORY_BYTES_PER_NUMBER
+        100_000_001 * (6 + 1 + 4 * 2) * pounding::budget::HISTORY_BYTES_PER_NUMBER
     );
     assert!(pounding::budget::check_run(&sc, 200_000_000_000).is_ok());
 }

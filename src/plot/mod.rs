@@ -136,13 +136,17 @@ fn write_both<R: Render>(r: &R, stem: &Path, w: u32, h: u32) -> Result<Vec<PathB
     };
     let (png, svg) = (with_ext(".png"), with_ext(".svg"));
 
-    // PNG: plotters encodes by file extension, so draw into a temporary file ending in `.png`.
-    let tmp = temp(".png")?;
+    // PNG: drawn into an RGB buffer, encoded here with fast settings (plotters' own encoder
+    // tries all five row filters on every row, which cost more than the drawing)
+    let mut rgb = vec![0u8; 3 * w as usize * h as usize];
     guard(|| {
-        let root = BitMapBackend::new(tmp.path(), (w, h)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
         r.render(&root, true)?;
         root.present().map_err(draw_err)
     })?;
+    let tmp = temp(".png")?;
+    encode_png(tmp.as_file(), &rgb, w, h)
+        .map_err(|e| PlotError::Draw(format!("PNG encoding: {e}")))?;
     persist(tmp, &png)?;
 
     // SVG: render into a string, then write it atomically.
@@ -160,6 +164,22 @@ fn write_both<R: Render>(r: &R, stem: &Path, w: u32, h: u32) -> Result<Vec<PathB
 
 /// White background, the centred title and an optional subtitle under it; returns the height
 /// they take.
+/// `rgb` (8-bit RGB rows of `w` pixels, `h` rows) encoded as PNG into `file`: fast deflate
+/// and one fixed row filter, Paeth. Measured on the paper case's two figures: the files within
+/// 10 % of plotters' adaptive filter (which tries all five filters on every row) for 20 % fewer
+/// instructions than it; `Sub` or `Up` are cheaper still but give files 2× larger.
+fn encode_png(file: &std::fs::File, rgb: &[u8], w: u32, h: u32) -> image::ImageResult<()> {
+    use image::ImageEncoder as _;
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    let out = std::io::BufWriter::with_capacity(1 << 16, file);
+    PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Paeth).write_image(
+        rgb,
+        w,
+        h,
+        image::ColorType::Rgb8,
+    )
+}
+
 fn draw_titles<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,

@@ -181,6 +181,14 @@ struct RawScenario {
     ground_motion: Option<Spanned<RawGround>>,
     solver: Option<Spanned<RawSolver>>,
     separation: Option<Spanned<crate::design::RawSeparation>>,
+    output: Option<Spanned<RawOutput>>,
+}
+
+/// `[output]`: what the written files hold.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOutput {
+    floor_stations: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -308,8 +316,10 @@ const TABLES: &[(&str, &[&str])] = &[
             "ground_motion",
             "solver",
             "separation",
+            "output",
         ],
     ),
+    ("[output]", &["floor_stations"]),
     (
         "[[structure]]",
         &[
@@ -436,6 +446,8 @@ pub struct Scenario {
     pub solver: SolverSettings,
     /// Sampling interval of the written history, s.
     pub output_interval: f64,
+    /// Which stations' histories floors.csv holds (`[output] floor_stations`).
+    pub floor_stations: crate::output::FloorStations,
     /// Keys the file left out and the defaults used for them, as `key = value`, in file
     /// order (printed in the run summary, `defaults_applied` in summary.json).
     pub defaults_applied: Vec<String>,
@@ -1161,9 +1173,27 @@ fn validate(
         base_dir,
         &mut defaults,
     )?;
+    let floor_stations = match raw
+        .output
+        .as_ref()
+        .and_then(|o| o.get_ref().floor_stations.as_ref())
+    {
+        None => crate::output::FloorStations::default(),
+        Some(v) => crate::output::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
+            c.invalid(
+                v,
+                "output.floor_stations",
+                &format!(
+                    "must be one of {}",
+                    quoted(&crate::output::FloorStations::NAMES)
+                ),
+            )
+        })?,
+    };
     // (after `design`, which may warn too: a_g probably in g)
     warnings.extend(ctx.warnings.take());
     let scenario = Scenario {
+        floor_stations,
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
         structures,
         contact,
