@@ -159,6 +159,7 @@ fn every_scenario_table_names_itself_and_its_keys() {
                 "ground_motion",
                 "solver",
                 "separation",
+                "output",
             ],
         ),
         (
