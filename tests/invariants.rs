@@ -187,11 +187,13 @@ fn config() -> ProptestConfig {
 /// Mirrored results agree to this relative tolerance. Both runs take the same fixed RK4 steps;
 /// they differ only in the order of floating-point sums over the concatenated modes (structure
 /// 1's modes first in one run, structure 2's in the other), a few ulps per step, which impacts
-/// can amplify. Measured: at most 5.6e-11 of the peak (0 in some cases) over 384 cases (six
-/// seeds of 64) with up to 18 impacts; 1e-8 leaves a factor of 180 for amplification by impacts
-/// and still fails by many orders of magnitude when the ground motion is not negated (the test
-/// was checked to fail then).
-const MIRROR_TOL: f64 = 1e-8;
+/// can amplify. Measured: at most 5.6e-11 of the peak in most of 384 cases (six seeds of 64), but
+/// a rare case (about one run of the 64-case test in 30) reaches 1.5e-7: a sequence of impacts
+/// in which a grazing contact decides the next one amplifies the round-off by 10⁴ (the proptest
+/// draws new cases every run, so 1e-8 failed CI now and then). 1e-5 leaves a factor of 60 above
+/// that; a broken mirror (the ground motion not negated, or the force's sign on one structure)
+/// moves the peaks by O(1) and still fails by five orders of magnitude.
+const MIRROR_TOL: f64 = 1e-5;
 
 proptest! {
     #![proptest_config(config())]
