@@ -56,8 +56,10 @@ fn raise(peak: &mut f64, x: f64) {
 /// larger end value (its slope basis functions are at most 4/27 in size).
 #[inline(always)]
 fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
-    if y0.abs().max(y1.abs()) + HERMITE_REACH * h * (d0.abs() + d1.abs()) > *peak {
-        *peak = peak.max(hermite_abs_max(y0, d0, y1, d1, h));
+    // (a plain comparison, not f64::max: one instruction, and the values are finite)
+    let ends = if y0.abs() > y1.abs() { y0.abs() } else { y1.abs() };
+    if ends + HERMITE_REACH * h * (d0.abs() + d1.abs()) > *peak {
+        raise(peak, hermite_abs_max(y0, d0, y1, d1, h));
     }
 }
 
@@ -89,7 +91,7 @@ enum Equilibrium {
     /// every mode (m·kg^−½) and `L − x` (m).
     Continuous {
         m: f64,
-        /// `[station·modes + n]`.
+        /// `[n·stations + station]` (built `[station·modes + n]`, transposed).
         integral: Vec<f64>,
         above: Vec<f64>,
     },
@@ -102,7 +104,8 @@ enum StoreyForce {
     /// drift, formed at the end.
     Springs(Vec<f64>),
     /// `V = r·η` per station, `r_n = ω_n² Σ_{g ≥ j} m_g φ_n(g)` (floors) or `ω_n² m ∫_x^L φ_n
-    /// dx` (a cantilever), N·kg^−½, `[station·modes + n]`; refined between observations.
+    /// dx` (a cantilever), N·kg^−½, `[n·stations + station]` (built `[station·modes + n]`,
+    /// transposed); refined between observations.
     Rows(Vec<f64>),
 }
 
@@ -139,7 +142,7 @@ struct Stations {
     heights: Vec<f64>,
     /// Modes of the structure.
     modes: usize,
-    /// φ_n at every station: `[station·modes + n]`.
+    /// φ_n at every station: `[n·stations + station]`.
     phi: Vec<f64>,
     equilibrium: Equilibrium,
     force: StoreyForce,
@@ -156,8 +159,11 @@ struct Stations {
     /// the samples between them).
     prev: Vec<(f64, f64)>,
     before: Vec<(f64, f64)>,
-    /// (V, V̇) of the storey force (`StoreyForce::Rows`) at the previous observation.
+    /// (V, V̇) of the storey force (`StoreyForce::Rows`, or a yielding storey's) at the
+    /// previous observation.
     prev_force: Vec<(f64, f64)>,
+    /// Per station u, u̇, ü + … (modal part), V, V̇ and the inertia integral (scratch).
+    work: Vec<f64>,
     /// Absolute acceleration at the current observation, and the one of largest size since
     /// the last sample (signed).
     abs_now: Vec<f64>,
@@ -231,6 +237,25 @@ impl Stations {
             },
             Equilibrium::Continuous { .. } => StoreyForce::Rows(rows),
         };
+        // the time loop runs over the stations mode by mode: `[mode·stations + station]`
+        let transpose = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .flat_map(|n| (0..ns).map(move |f| x[f * nm + n]))
+                .collect()
+        };
+        let force = match force {
+            StoreyForce::Rows(r) => StoreyForce::Rows(transpose(&r)),
+            springs => springs,
+        };
+        let equilibrium = match equilibrium {
+            Equilibrium::Continuous { m, integral, above } => Equilibrium::Continuous {
+                m,
+                integral: transpose(&integral),
+                above,
+            },
+            lumped => lumped,
+        };
+        let phi = transpose(&phi);
         let lumped = matches!(equilibrium, Equilibrium::Lumped(_));
         let above = heights
             .iter()
@@ -265,6 +290,7 @@ impl Stations {
             prev: vec![(0.0, 0.0); ns],
             before: vec![(0.0, 0.0); ns],
             prev_force: vec![(0.0, 0.0); ns],
+            work: vec![0.0; 6 * ns],
             abs_now: vec![0.0; ns],
             hold: vec![0.0; ns],
         }
@@ -294,8 +320,6 @@ pub struct FloorRecorder {
     row: Vec<f64>,
     /// Modal accelerations at the current observation (scratch).
     accel: Vec<f64>,
-    /// Absolute accelerations at the stations of the structure being processed (scratch).
-    abs: Vec<f64>,
     last_t: Option<f64>,
 }
 
@@ -314,7 +338,6 @@ impl FloorRecorder {
                 *y = true;
             }
         }
-        let most = stations.iter().map(|s| s.heights.len()).max().unwrap_or(0);
         let cols = 2 * stations.iter().map(|s| s.heights.len()).sum::<usize>();
         FloorRecorder {
             stations,
@@ -322,7 +345,6 @@ impl FloorRecorder {
             next_sample: 0,
             row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
-            abs: vec![0.0; most],
             last_t: None,
         }
     }
@@ -399,18 +421,62 @@ impl FloorRecorder {
                 &s.v[st.offset..st.offset + nm],
                 &self.accel[st.offset..st.offset + nm],
             );
-            let (phi, abs) = (&st.phi[..ns * nm], &mut self.abs[..ns]);
+            // every station's sums over the modes, formed mode by mode: the runs over the
+            // stations are contiguous (`[mode·stations + station]`) and vectorise
+            let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
+            let (ud, rest) = rest.split_at_mut(ns);
+            let (ua, rest) = rest.split_at_mut(ns);
+            let (vf, rest) = rest.split_at_mut(ns);
+            let (vfd, inertia) = rest.split_at_mut(ns);
+            let phi = &st.phi[..ns * nm];
+            {
+                let c = &phi[..ns];
+                let (q0, v0, a0) = (q[0], v[0], a[0]);
+                for f in 0..ns {
+                    u[f] = c[f] * q0;
+                    ud[f] = c[f] * v0;
+                    ua[f] = c[f] * a0;
+                }
+            }
+            for j in 1..nm {
+                let c = &phi[j * ns..(j + 1) * ns];
+                let (qj, vj, aj) = (q[j], v[j], a[j]);
+                for f in 0..ns {
+                    u[f] += c[f] * qj;
+                    ud[f] += c[f] * vj;
+                    ua[f] += c[f] * aj;
+                }
+            }
+            // the storey force from the modes' equivalent static forces (springs: at the end)
+            let rows = match &st.force {
+                StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
+                StoreyForce::Springs(_) => None,
+            };
+            if let Some(rows) = rows {
+                {
+                    let c = &rows[..ns];
+                    for f in 0..ns {
+                        vf[f] = c[f] * q[0];
+                        vfd[f] = c[f] * v[0];
+                    }
+                }
+                for j in 1..nm {
+                    let c = &rows[j * ns..(j + 1) * ns];
+                    let (qj, vj) = (q[j], v[j]);
+                    for f in 0..ns {
+                        vf[f] += c[f] * qj;
+                        vfd[f] += c[f] * vj;
+                    }
+                }
+            }
+            // the previous observation's (u, u̇) become the one before: swap, then overwrite
+            std::mem::swap(&mut st.prev, &mut st.before);
+            let abs = &mut st.abs_now[..ns];
             let (mut below, mut below_rate, mut below_prev, mut below_prev_rate) =
                 (0.0, 0.0, 0.0, 0.0);
             for f in 0..ns {
-                let row = &phi[f * nm..(f + 1) * nm];
-                let (mut u, mut ud, mut ua) = (0.0, 0.0, 0.0);
-                for j in 0..nm {
-                    u += row[j] * q[j];
-                    ud += row[j] * v[j];
-                    ua += row[j] * a[j];
-                }
-                let (up, udp) = st.prev[f];
+                let (u, ud) = (u[f], ud[f]);
+                let (up, udp) = st.before[f];
                 let p = &mut st.peaks[f];
                 let (d, dd, dp, ddp) = (
                     u - below,
@@ -424,33 +490,18 @@ impl FloorRecorder {
                     refine(&mut p.displacement, up, udp, u, ud, h);
                     refine(&mut p.drift, dp, ddp, d, dd, h);
                 }
-                abs[f] = ua + ag;
+                abs[f] = ua[f] + ag;
                 raise(&mut p.acceleration, abs[f].abs());
-                st.abs_now[f] = abs[f];
-                st.before[f] = st.prev[f];
+                if rows.is_some() && !st.yields[f] {
+                    raise(&mut p.shear, vf[f].abs());
+                    if let Some(h) = h {
+                        let (v0, vd0) = st.prev_force[f];
+                        refine(&mut p.shear, v0, vd0, vf[f], vfd[f], h);
+                    }
+                    st.prev_force[f] = (vf[f], vfd[f]);
+                }
                 st.prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
-            }
-            // the storey force from the modes' equivalent static forces (springs: at the end)
-            if let StoreyForce::Rows(rows) = &st.force {
-                let rows = &rows[..ns * nm];
-                for f in 0..ns {
-                    let r = &rows[f * nm..(f + 1) * nm];
-                    let (mut vf, mut vfd) = (0.0, 0.0);
-                    for j in 0..nm {
-                        vf += r[j] * q[j];
-                        vfd += r[j] * v[j];
-                    }
-                    if !st.yields[f] {
-                        let p = &mut st.peaks[f].shear;
-                        raise(p, vf.abs());
-                        if let Some(h) = h {
-                            let (v0, vd0) = st.prev_force[f];
-                            refine(p, v0, vd0, vf, vfd, h);
-                        }
-                    }
-                    st.prev_force[f] = (vf, vfd);
-                }
             }
             // the equilibrium of what is above (storey force and damping forces)
             let nl = st.levels.min(s.levels.len());
@@ -469,14 +520,20 @@ impl FloorRecorder {
                     }
                 }
                 Equilibrium::Continuous { m, integral, above } => {
-                    let integral = &integral[..ns * nm];
+                    let above = &above[..ns];
                     for f in 0..ns {
-                        let row = &integral[f * nm..(f + 1) * nm];
-                        let mut inertia = ag * above[f];
-                        for j in 0..nm {
-                            inertia += row[j] * a[j];
+                        inertia[f] = ag * above[f];
+                    }
+                    let integral = &integral[..ns * nm];
+                    for j in 0..nm {
+                        let c = &integral[j * ns..(j + 1) * ns];
+                        let aj = a[j];
+                        for f in 0..ns {
+                            inertia[f] += c[f] * aj;
                         }
-                        let mut v_sec = -m * inertia;
+                    }
+                    for f in 0..ns {
+                        let mut v_sec = -m * inertia[f];
                         for k in 0..nl {
                             if st.above[f * st.levels + k] {
                                 v_sec += st.sign * s.levels[k].force;
