@@ -135,6 +135,28 @@ pub struct HeightPeaks {
     pub peak_displacement_no_contact: Option<f64>,
 }
 
+/// A storey of a shear building: its link's numbers.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct OsStorey {
+    /// Peak |u_j − u_{j−1}| with contact, m.
+    pub peak_drift: Option<f64>,
+    /// The same without contact, m.
+    pub peak_drift_no_contact: Option<f64>,
+    /// Peak |V| of the storey link with contact (its material's force: k·drift, or Bouc–Wen),
+    /// N.
+    pub peak_force: Option<f64>,
+    /// The same without contact, N.
+    pub peak_force_no_contact: Option<f64>,
+    /// Signed drift at the end with contact, m.
+    pub residual_drift: Option<f64>,
+    /// The same without contact, m.
+    pub residual_drift_no_contact: Option<f64>,
+    /// Energy dissipated by the Bouc–Wen link with contact, J (`None`: elastic).
+    pub hysteretic_energy: Option<f64>,
+    /// The same without contact, J.
+    pub hysteretic_energy_no_contact: Option<f64>,
+}
+
 /// A structure's numbers.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct OsStructure {
@@ -146,6 +168,9 @@ pub struct OsStructure {
     pub peak_displacement_no_contact: Option<f64>,
     /// Peaks at every tracked height (contact heights, or floors).
     pub heights: Vec<HeightPeaks>,
+    /// Every storey of a shear building, lowest first (empty for a cantilever).
+    #[serde(default)]
+    pub storeys: Vec<OsStorey>,
     /// Periods of the FE model's modes that belong to this structure, s (when it is modally
     /// damped).
     #[serde(default)]
@@ -386,17 +411,22 @@ pub struct Row {
     pub program: f64,
     /// OpenSees' value (`None`: that run was not made).
     pub opensees: Option<f64>,
+    /// The size below which a difference is measured against this scale instead of the
+    /// program's value (0: plain relative difference): a residual drift near zero against
+    /// the yield drift, a storey's small hysteretic energy against 0.1 % of the input energy.
+    pub scale: f64,
 }
 
 impl Row {
-    /// (OpenSees − program)/program (`None` without an OpenSees value or with a zero program
-    /// value).
+    /// (OpenSees − program)/max(|program|, scale) (`None` without an OpenSees value, or with
+    /// a zero program value and scale).
     pub fn relative(&self) -> Option<f64> {
         let o = self.opensees?;
-        if self.program == 0.0 {
+        let by = self.program.abs().max(self.scale);
+        if by == 0.0 {
             return (o == 0.0).then_some(0.0);
         }
-        Some((o - self.program) / self.program)
+        Some((o - self.program) / by)
     }
 }
 
@@ -409,6 +439,7 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
         quantity: q,
         program,
         opensees,
+        scale: 0.0,
     };
     for s in 0..2 {
         let os = o.structures.get(s);
@@ -447,6 +478,7 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
             ));
         }
     }
+    rows.extend(storey_rows(p, o));
     let oc = o.contact.as_ref();
     rows.push(row(
         "peak contact force [N]".into(),
@@ -482,6 +514,115 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
         r.separation.time_history,
         o.separation.time_history,
     ));
+    rows
+}
+
+/// The storeys of each shear building: every storey's peak drift and peak storey force
+/// (`floors[].peak_shear`, the force the storey carries: OpenSees' link force) with and without
+/// contact; for a yielding building also its largest ductility, largest |residual drift|
+/// (against its smallest yield drift when smaller) and total hysteretic energy (against 0.1 %
+/// of the input energy when smaller), with and without contact.
+fn storey_rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let r = &p.report;
+    let row = |q: String, program: f64, opensees: Option<f64>, scale: f64| Row {
+        quantity: q,
+        program,
+        opensees,
+        scale,
+    };
+    for (s, st) in r.structures.iter().enumerate() {
+        let Some(os) = o.structures.get(s).filter(|x| !x.storeys.is_empty()) else {
+            continue;
+        };
+        let i = s + 1;
+        for (j, (f, x)) in st.floors.iter().zip(&os.storeys).enumerate() {
+            let j = j + 1;
+            rows.push(row(
+                format!("  storey {j} of {i}: peak drift with contact [m]"),
+                f.peak_drift,
+                x.peak_drift,
+                0.0,
+            ));
+            rows.push(row(
+                format!("  storey {j} of {i}: peak drift without contact [m]"),
+                f.peak_drift_no_contact,
+                x.peak_drift_no_contact,
+                0.0,
+            ));
+            rows.push(row(
+                format!("  storey {j} of {i}: peak storey force with contact [N]"),
+                f.peak_shear,
+                x.peak_force,
+                0.0,
+            ));
+            rows.push(row(
+                format!("  storey {j} of {i}: peak storey force without contact [N]"),
+                f.peak_shear_no_contact,
+                x.peak_force_no_contact,
+                0.0,
+            ));
+        }
+        let (Some(dy), true) = (st.min_yield_drift, st.peak_ductility.is_some()) else {
+            continue;
+        };
+        // OpenSees' side of the structure's summaries, over its storeys
+        let ys: Vec<f64> = st.floors.iter().filter_map(|f| f.yield_drift).collect();
+        let over = |pick: &dyn Fn(&OsStorey) -> Option<f64>, how: &dyn Fn(&[f64]) -> f64| {
+            let v: Option<Vec<f64>> = os.storeys.iter().map(pick).collect();
+            v.map(|v| how(&v))
+        };
+        let largest = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let ductility = |pick: &dyn Fn(&OsStorey) -> Option<f64>| {
+            let v: Option<Vec<f64>> = os.storeys.iter().map(pick).collect();
+            v.map(|v| {
+                v.iter()
+                    .zip(&ys)
+                    .map(|(d, y)| d / y)
+                    .fold(0.0f64, f64::max)
+            })
+        };
+        let energy_scale = 1e-3 * r.energy.input.abs();
+        let total = |v: &[f64]| v.iter().sum::<f64>();
+        rows.extend([
+            row(
+                format!("peak ductility of {i} with contact"),
+                st.peak_ductility.unwrap_or(f64::NAN),
+                ductility(&|x| x.peak_drift),
+                0.0,
+            ),
+            row(
+                format!("peak ductility of {i} without contact"),
+                st.peak_ductility_no_contact.unwrap_or(f64::NAN),
+                ductility(&|x| x.peak_drift_no_contact),
+                0.0,
+            ),
+            row(
+                format!("largest residual drift of {i} with contact [m]"),
+                st.max_residual_drift.unwrap_or(f64::NAN),
+                over(&|x| x.residual_drift, &largest),
+                dy,
+            ),
+            row(
+                format!("largest residual drift of {i} without contact [m]"),
+                st.max_residual_drift_no_contact.unwrap_or(f64::NAN),
+                over(&|x| x.residual_drift_no_contact, &largest),
+                dy,
+            ),
+            row(
+                format!("hysteretic energy of {i} with contact [J]"),
+                st.hysteretic_energy.unwrap_or(f64::NAN),
+                over(&|x| x.hysteretic_energy, &total),
+                energy_scale,
+            ),
+            row(
+                format!("hysteretic energy of {i} without contact [J]"),
+                st.hysteretic_energy_no_contact.unwrap_or(f64::NAN),
+                over(&|x| x.hysteretic_energy_no_contact, &total),
+                energy_scale,
+            ),
+        ]);
+    }
     rows
 }
 
@@ -526,6 +667,13 @@ pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
             .to_string(),
     ]);
     notes.extend(super::damping_notes(scenario));
+    if scenario.structures.iter().any(|s| s.hysteresis().is_some()) {
+        notes.push(format!(
+            "yielding {}; peak storey forces and drifts are taken at OpenSees' step ends, the \
+             hysteretic energy from the work of the link force over the steps (trapezoidal)",
+            super::BOUC_WEN_MAPPING
+        ));
+    }
     notes
 }
 
@@ -652,8 +800,13 @@ impl Crosscheck {
             o.dt,
             o.duration
         ));
+        let width = self
+            .rows
+            .iter()
+            .map(|r| r.quantity.chars().count())
+            .fold(44, usize::max);
         s.push_str(&format!(
-            "  {:<44} {:>14} {:>14} {:>10}\n",
+            "  {:<width$} {:>14} {:>14} {:>10}\n",
             "quantity", "program", "OpenSees", "diff"
         ));
         for r in &self.rows {
@@ -664,7 +817,7 @@ impl Crosscheck {
                 .relative()
                 .map_or_else(|| "—".to_string(), |d| format!("{:+.2} %", 100.0 * d));
             s.push_str(&format!(
-                "  {:<44} {:>14} {:>14} {:>10}\n",
+                "  {:<width$} {:>14} {:>14} {:>10}\n",
                 r.quantity,
                 format!("{:.6e}", r.program),
                 os,

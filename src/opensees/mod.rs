@@ -13,13 +13,15 @@
 //! - a cantilever: `elements` 2-D `elasticBeamColumn` elements with its EI and a consistent
 //!   mass (`-mass m -cMass`), axial DOFs fixed, a node at every contact height ([`mesh`]);
 //! - a shear building: a node per floor with its mass, rotations fixed (rigid floors), storey
-//!   springs as `twoNodeLink` elements in shear; a building given by its modes cannot be
-//!   exported (OpenSees needs stiffnesses);
+//!   springs as `twoNodeLink` elements in shear — `Elastic`, or for yielding storeys OpenSees'
+//!   `BoucWen` material with the program's law mapped onto it ([`bouc_wen_material`]); a
+//!   building given by its modes cannot be exported (OpenSees needs stiffnesses);
 //! - the ground motion as nodal loads `−M r a_g(t)` through a `Plain` pattern with a `Path`
 //!   series (never `UniformExcitation`: in OpenSees 3.7.1 a 2-D `elasticBeamColumn` with element
 //!   mass under `UniformExcitation` receives the ground inertia load twice);
 //! - damping: modal (`modalDampingQ` on every FE mode, each with its structure's ratio for its
-//!   mode number) or Rayleigh (`region … -rayleigh`, never on the contact elements), as the
+//!   mode number) or Rayleigh (`region … -rayleigh` with the *initial* stiffness, as the program's
+//!   damping stays that of the initial stiffness; never on the contact elements), as the
 //!   scenario has it;
 //! - contact at every level: a `zeroLength` element between the two structures' nodes at that
 //!   height, with the law's material ([`contact_material`]);
@@ -32,6 +34,7 @@ use serde::Serialize;
 
 use crate::contact::{ContactForce, ContactLaw};
 use crate::ground_motion::GroundMotion;
+use crate::hysteresis::BoucWen;
 use crate::modal::{Cantilever, Damping, FloorKind, Structure};
 use crate::scenario::Scenario;
 
@@ -227,6 +230,10 @@ pub struct ExportStructure {
     /// Storey stiffnesses, N/m (shear building).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub storey_stiffnesses: Option<Vec<f64>>,
+    /// Yielding storeys (a shear building with `hysteresis`): each storey's `BoucWen` material,
+    /// lowest first.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bouc_wen: Option<Vec<BoucWenMaterial>>,
     /// Air damping c_a, N·s/m² (its ground-velocity load).
     pub air_damping: f64,
     /// Damping.
@@ -253,6 +260,71 @@ pub enum ExportDamping {
         /// β_K, s.
         beta_k: f64,
     },
+}
+
+/// OpenSees' `uniaxialMaterial BoucWen tag alpha ko n gamma beta Ao deltaA deltaNu deltaEta tol
+/// maxIter` for one yielding storey (OpenSees 3.7.1, `BoucWenMaterial`, Haukaas; Baber & Noori
+/// 1985 with degradation): stress `α k₀ ε + (1 − α) k₀ Z` and `dZ/dε = A − |Z|ⁿ ν (γ + β sign(ε̇
+/// Z))` over η, with `A = A₀ − δ_A e`, `ν = 1 + δ_ν e`, `η = 1 + δ_η e` (e the hysteretic
+/// energy). Its Z is in units of ε (m here), the program's z is dimensionless: see
+/// [`bouc_wen_material`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BoucWenMaterial {
+    /// α, post-yield stiffness ratio (the program's α).
+    pub alpha: f64,
+    /// k₀, initial stiffness, N/m (the storey's k).
+    pub ko: f64,
+    /// n (the program's n).
+    pub n: f64,
+    /// OpenSees' γ, m^−n: the program's γ / d_yⁿ.
+    pub gamma: f64,
+    /// OpenSees' β, m^−n: the program's β / d_yⁿ.
+    pub beta: f64,
+    /// A₀ = 1.
+    pub a0: f64,
+    /// δ_A = 0 (no stiffness degradation).
+    pub delta_a: f64,
+    /// δ_ν = 0 (no strength degradation).
+    pub delta_nu: f64,
+    /// δ_η = 0 (no degradation).
+    pub delta_eta: f64,
+    /// Tolerance of OpenSees' Newton iteration on Z, m (1e-10 d_y).
+    pub tolerance: f64,
+    /// Its iterations at most.
+    pub max_iterations: u32,
+    /// The program's yield drift d_y, m (for the record: Z = d_y z).
+    pub yield_drift: f64,
+}
+
+/// What the program's Bouc–Wen parameters are in OpenSees' `BoucWen` material (stated in every
+/// exported script and in the crosscheck's notes).
+pub const BOUC_WEN_MAPPING: &str = "storeys as OpenSees' BoucWen material: the same law, \
+     V = α k d + (1 − α) k Z with OpenSees' Z = d_y z in metres (the program's z is \
+     dimensionless), so A₀ = 1, n and α as given, β and γ divided by d_yⁿ (OpenSees' β, γ are in \
+     m^−n), no degradation (δ_A = δ_ν = δ_η = 0); OpenSees integrates Z over each step by \
+     backward Euler (first order in the drift increment), the program to its tolerance";
+
+/// The `BoucWen` material of a storey of initial stiffness `k` (N/m) and yield drift `dy` (m)
+/// with the law `bw` (docs/model.md §2.6b): the same ODE. With the program's
+/// `ż = (ḋ/d_y)[1 − |z|ⁿ(β sign(ḋz) + γ)]` and OpenSees' `Ż = ḋ[A₀ − |Z|ⁿ(γ' + β' sign(ḋZ))]`,
+/// Z = d_y z gives `A₀ = 1`, `β' = β/d_yⁿ`, `γ' = γ/d_yⁿ`, and the force `α k d + (1 − α) k d_y
+/// z = α k d + (1 − α) k Z` is OpenSees' stress with `k₀ = k`.
+pub fn bouc_wen_material(k: f64, dy: f64, bw: &BoucWen) -> BoucWenMaterial {
+    let scale = dy.powf(bw.exponent);
+    BoucWenMaterial {
+        alpha: bw.post_yield_ratio,
+        ko: k,
+        n: bw.exponent,
+        gamma: bw.gamma / scale,
+        beta: bw.beta / scale,
+        a0: 1.0,
+        delta_a: 0.0,
+        delta_nu: 0.0,
+        delta_eta: 0.0,
+        tolerance: 1e-10 * dy,
+        max_iterations: 50,
+        yield_drift: dy,
+    }
 }
 
 /// A contact level of the exported model.
@@ -501,7 +573,8 @@ pub fn damping_notes(scenario: &Scenario) -> Vec<String> {
             )
         } else {
             format!(
-                "{}: Rayleigh damping, the same C = α_M M + β_K K as the program's ratios",
+                "{}: Rayleigh damping, the same C = α_M M + β_K K₀ as the program's ratios (K₀ \
+                 the initial stiffness, constant in time as in the program)",
                 s.name()
             )
         });
@@ -534,20 +607,6 @@ pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, E
             "{duration} s at dt = {} s is more than 1e8 OpenSees steps",
             opts.dt
         )));
-    }
-    // yielding storeys (issue 16) have no exporter yet: an elastic OpenSees model would be
-    // compared with a yielding one
-    if let Some(s) = scenario
-        .structures
-        .iter()
-        .find(|s| s.hysteresis().is_some())
-    {
-        return Err(ExportError::Structure {
-            name: s.name().to_string(),
-            reason: "its yielding storeys (Bouc–Wen `hysteresis`) are not exported: the OpenSees \
-                     model would be elastic; remove `hysteresis` to export the elastic building"
-                .into(),
-        });
     }
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
     let mut structures = Vec::with_capacity(2);
@@ -609,6 +668,7 @@ fn export_structure(
                 mass_per_length: Some(c.mass_per_length()),
                 floor_masses: None,
                 storey_stiffnesses: None,
+                bouc_wen: None,
                 air_damping: air,
                 damping,
                 tracked_heights: heights.to_vec(),
@@ -669,6 +729,13 @@ fn export_structure(
                 elements: None,
                 floor_masses: Some(b.floors.masses.clone()),
                 storey_stiffnesses: Some(b.storey_stiffnesses.clone()),
+                bouc_wen: f.hysteresis.as_ref().map(|bw| {
+                    b.storey_stiffnesses
+                        .iter()
+                        .zip(&bw.yield_drifts)
+                        .map(|(&k, &dy)| bouc_wen_material(k, dy, bw))
+                        .collect()
+                }),
                 air_damping: 0.0,
                 damping,
                 tracked_heights: b.floors.heights.clone(),
@@ -723,8 +790,13 @@ pub fn script(
                     st.mass_per_length.unwrap_or(0.0)
                 ),
                 _ => format!(
-                    "shear building, {} floors (nodal masses, twoNodeLink storey springs)",
-                    st.node_heights.len() - 1
+                    "shear building, {} floors (nodal masses, twoNodeLink storey springs{})",
+                    st.node_heights.len() - 1,
+                    if st.bouc_wen.is_some() {
+                        ", BoucWen: yielding"
+                    } else {
+                        ""
+                    }
                 ),
             }
         ));
@@ -740,6 +812,9 @@ pub fn script(
     ));
     for n in damping_notes(scenario) {
         out.push_str(&format!("# damping: {}\n", one_line(&n)));
+    }
+    if m.structures.iter().any(|s| s.bouc_wen.is_some()) {
+        out.push_str(&format!("# yielding {BOUC_WEN_MAPPING}\n"));
     }
     out.push_str("import json\n\nMODEL = json.loads(r'''");
     out.push_str(&json);

@@ -1,9 +1,12 @@
 //! Convergence study (issue 4; what the seed paper's §4 did by hand, docs/model.md §4): the run with
 //! pounding repeated for a ladder of mode counts and a ladder of steps (or tolerances), each row
-//! with its peaks, peak force, impacts and change relative to the finest row.
+//! with its peaks, peak force, impacts and change relative to the finest row — and for yielding
+//! buildings (issue 24) their peak ductility, largest residual drift and hysteretic energy
+//! ([`quantities`]).
 //!
 //! A ladder has *converged* when its two finest runs both ran and agree within the tolerance on
-//! both peaks and the peak force; otherwise the study says "not converged", recommends nothing
+//! both peaks and the peak force (and the yielding quantities); otherwise the study says "not
+//! converged", recommends nothing
 //! and says what to try. When both ladders converged it recommends the fewest modes and the
 //! largest step (loosest tolerance) such that every finer row is within the tolerance of the
 //! finest — never the finest alone, and never a row that failed — combined into settings that
@@ -13,6 +16,8 @@
 //! recommended settings are then run once more at a finer step (dt/4; `adaptive`: rtol and
 //! atol/100) and must agree within the tolerance, or nothing is recommended.
 
+pub mod quantities;
+
 use serde::{Serialize, Serializer};
 
 use crate::integrate::{
@@ -20,6 +25,7 @@ use crate::integrate::{
 };
 use crate::scenario::Scenario;
 use crate::simulate::run_system;
+use quantities::{Yielding, headline_changes, named, within, worst, yield_changes};
 
 /// Mode counts tried (per structure), capped at [`MAX_MODES`].
 pub const MODE_LADDER: [usize; 7] = [1, 2, 3, 5, 10, 20, 50];
@@ -81,6 +87,14 @@ pub struct Row {
     pub impacts: usize,
     /// |x − x_finest|/|x_finest| for w₁, w₂ and the force (0 when x_finest = 0).
     pub change: [f64; 3],
+    /// Yielding buildings only (issue 16), per structure: peak ductility, largest |residual
+    /// drift| and hysteretic energy with pounding (`None` for an elastic structure).
+    pub yielding: [Option<Yielding>; 2],
+    /// Their changes relative to the finest row, per structure: ductility relative, residual
+    /// drift in units of the larger of the finest's and the smallest yield drift, hysteretic
+    /// energy in units of the larger of the finest's and 0.1 % of its input energy (as the
+    /// self-check measures them, [`crate::accuracy`]).
+    pub yield_change: [Option<[f64; 3]>; 2],
     /// Steps taken.
     pub steps: usize,
     /// `None`, or why the row could not be computed (beyond RK4's stability limit for the
@@ -89,9 +103,15 @@ pub struct Row {
 }
 
 impl Row {
-    /// Largest of the three relative changes.
+    /// Every change with its name (`peak w1`, `peak w2`, `peak force`, then `peak ductility
+    /// of 2`, `residual drift of 2`, `hysteretic energy of 2` for each yielding structure).
+    pub fn changes(&self) -> Vec<(String, f64)> {
+        named(&self.change, &self.yield_change)
+    }
+
+    /// Largest of the changes (a NaN counts as the largest).
     pub fn worst_change(&self) -> f64 {
-        self.change.iter().fold(0.0, |m, &c| m.max(c))
+        worst(&self.changes()).map_or(0.0, |(_, c)| c)
     }
 
     /// The step setting in words: `dt = … s` or `rtol = …`.
@@ -122,7 +142,8 @@ pub struct Recommended {
     /// What these settings were checked against (the same at dt/4, or at rtol and atol/100)
     /// and the changes found.
     pub check: String,
-    /// Largest relative change of the peaks and peak force in that check (≤ the tolerance).
+    /// Largest change of the peaks and peak force (and the yielding quantities) in that check
+    /// (≤ the tolerance).
     pub check_change: f64,
 }
 
@@ -191,6 +212,8 @@ fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
         peak_force: f64::NAN,
         impacts: 0,
         change: [f64::NAN; 3],
+        yielding: [None, None],
+        yield_change: [None, None],
         steps: 0,
         failure: None,
     }
@@ -229,6 +252,7 @@ fn one_run(scenario: &Scenario, modes: usize, settings: SolverSettings) -> Row {
             row.peak_w2 = rec.peak[1];
             row.peak_force = rec.levels.iter().map(|l| l.peak_force).fold(0.0, f64::max);
             row.impacts = rec.levels.iter().map(|l| l.impacts).sum();
+            row.yielding = quantities::yielding(&rec);
             row.steps = stats.steps;
         }
         Err(e) => row.failure = Some(e.to_string()),
@@ -242,15 +266,8 @@ fn fill_changes(rows: &mut [Row]) {
     };
     for r in rows.iter_mut().filter(|r| r.failure.is_none()) {
         r.change = changes(r, &finest);
+        r.yield_change = yield_changes(&r.yielding, &finest.yielding);
     }
-}
-
-/// `change ≤ tolerance`, false if either is NaN.
-fn within(change: f64, tolerance: f64) -> bool {
-    matches!(
-        change.partial_cmp(&tolerance),
-        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
-    )
 }
 
 /// What a ladder says: the coarsest row from which every row is within the tolerance of the
@@ -282,18 +299,13 @@ fn judge(rows: &[Row], tolerance: f64, label: impl Fn(&Row) -> String) -> Verdic
             label(prev)
         ));
     }
-    let worst = prev.worst_change();
-    if !within(worst, tolerance) {
-        let names = ["peak w1", "peak w2", "peak force"];
-        let i = (0..3)
-            .max_by(|&a, &b| prev.change[a].total_cmp(&prev.change[b]))
-            .unwrap_or(0);
+    let all = prev.changes();
+    if let Some((name, worst)) = worst(&all).filter(|(_, c)| !within(*c, tolerance)) {
         return fail(format!(
-            "the two finest runs ({} and {}) differ by {:.3} % in the {} (tolerance {pct} %)",
+            "the two finest runs ({} and {}) differ by {:.3} % in the {name} (tolerance {pct} %)",
             label(prev),
             label(last),
             100.0 * worst,
-            names[i]
         ));
     }
     let ok = |r: &Row| r.failure.is_none() && within(r.worst_change(), tolerance);
@@ -433,10 +445,15 @@ pub fn convergence_with(
         Some(r) => {
             let finest_modes = modes.last().map_or(0, |r| r.modes);
             let finest_step = steps.last().map_or(String::new(), Row::step_label);
+            let yielding = if modes.iter().chain(&steps).any(|r| r.yielding.iter().any(Option::is_some)) {
+                " (and the yielding buildings' peak ductility, residual drift and hysteretic energy)"
+            } else {
+                ""
+            };
             format!(
-                "{}: both peaks and the peak force within {pct} % of the finest run of each ladder \
-                 ({finest_modes} modes with {}; {finest_step} with {} and {n_modes} modes) and of \
-                 the same settings at {}.",
+                "{}: both peaks and the peak force{yielding} within {pct} % of the finest run of \
+                 each ladder ({finest_modes} modes with {}; {finest_step} with {} and {n_modes} \
+                 modes) and of the same settings at {}.",
                 r.describe(),
                 mode_settings.method.name(),
                 base.method.name(),
@@ -492,18 +509,10 @@ fn finer(settings: SolverSettings) -> SolverSettings {
 
 /// Relative changes of a row's peaks and peak force against a reference row.
 fn changes(row: &Row, reference: &Row) -> [f64; 3] {
-    let ch = |x: f64, f: f64| {
-        if f == 0.0 {
-            if x == 0.0 { 0.0 } else { f64::INFINITY }
-        } else {
-            (x - f).abs() / f.abs()
-        }
-    };
-    [
-        ch(row.peak_w1, reference.peak_w1),
-        ch(row.peak_w2, reference.peak_w2),
-        ch(row.peak_force, reference.peak_force),
-    ]
+    headline_changes(
+        [row.peak_w1, row.peak_w2, row.peak_force],
+        [reference.peak_w1, reference.peak_w2, reference.peak_force],
+    )
 }
 
 /// The recommended settings from the chosen mode row and step row: run (so that `pounding run`
@@ -606,11 +615,21 @@ fn combine(
         ));
         return None;
     }
-    let ch = changes(&row, &fine_row);
-    let worst = ch.iter().fold(0.0, |a: f64, &c| a.max(c));
+    let all = named(
+        &changes(&row, &fine_row),
+        &yield_changes(&row.yielding, &fine_row.yielding),
+    );
+    let worst = worst(&all).map_or(0.0, |(_, c)| c);
     let check = format!(
-        "{what} (relative changes of peak w1, peak w2, peak force: {:.1e}, {:.1e}, {:.1e})",
-        ch[0], ch[1], ch[2]
+        "{what} (changes of {}: {})",
+        all.iter()
+            .map(|(n, _)| n.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        all.iter()
+            .map(|(_, c)| format!("{c:.1e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     if !within(worst, tolerance) {
         notes.push(format!(
@@ -694,7 +713,7 @@ mod tests {
     /// with every finer row, within the tolerance of the finest, and never the finest alone.
     #[test]
     fn study_of_a_short_case_recommends_within_tolerance() {
-        let text = include_str!("../examples/paper-c.toml")
+        let text = include_str!("../../examples/paper-c.toml")
             .replace("duration = 20.0", "duration = 2.0")
             .replace("method = \"rk4\"", "method = \"exact-modal\"");
         let sc = Scenario::from_toml(&text, "t", ".".as_ref()).unwrap();
@@ -769,5 +788,49 @@ mod tests {
         );
         // one run: nothing to compare
         assert_eq!(judge(&rows[..1], 0.01, label).pick, None);
+    }
+
+    /// A yielding building's quantities count in the verdict: headline peaks that agree do
+    /// not make a ladder converged when the hysteretic energy of the two finest runs differs by
+    /// 2 % (named in the reason), and the coarsest row picked must be within on them too.
+    #[test]
+    fn a_ladder_judges_the_yielding_quantities_too() {
+        let label = |r: &Row| format!("{} modes", r.modes);
+        let yielding = |change: [f64; 3]| {
+            let mut r = row(0, 0.0, None);
+            r.yield_change = [None, Some(change)];
+            r
+        };
+        let mut rows = [
+            yielding([0.0; 3]),
+            yielding([0.0, 0.0, 0.02]),
+            yielding([0.0; 3]),
+        ];
+        for (i, r) in rows.iter_mut().enumerate() {
+            r.modes = i + 1;
+        }
+        let v = judge(&rows, 0.01, label);
+        assert_eq!(v.pick, None);
+        let why = v.why.unwrap();
+        assert!(
+            why.contains("2.000 % in the hysteretic energy of 2"),
+            "{why}"
+        );
+        rows[0].yield_change[1] = Some([0.05, 0.0, 0.0]);
+        rows[1].yield_change[1] = Some([0.004, 0.003, 0.002]);
+        assert_eq!(judge(&rows, 0.01, label).pick, Some(1));
+        assert_eq!(rows[0].worst_change(), 0.05);
+        let names: Vec<String> = rows[0].changes().into_iter().map(|(n, _)| n).collect();
+        assert_eq!(
+            names,
+            [
+                "peak w1",
+                "peak w2",
+                "peak force",
+                "peak ductility of 2",
+                "residual drift of 2",
+                "hysteretic energy of 2"
+            ]
+        );
     }
 }
