@@ -57,7 +57,11 @@ fn raise(peak: &mut f64, x: f64) {
 #[inline(always)]
 fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
     // (a plain comparison, not f64::max: one instruction, and the values are finite)
-    let ends = if y0.abs() > y1.abs() { y0.abs() } else { y1.abs() };
+    let ends = if y0.abs() > y1.abs() {
+        y0.abs()
+    } else {
+        y1.abs()
+    };
     if ends + HERMITE_REACH * h * (d0.abs() + d1.abs()) > *peak {
         raise(peak, hermite_abs_max(y0, d0, y1, d1, h));
     }
@@ -118,7 +122,11 @@ fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec
     for f in 0..floors {
         let r = &rows[f * modes..(f + 1) * modes];
         for n in 0..modes {
-            let below = if f == 0 { 0.0 } else { phi[(f - 1) * modes + n] };
+            let below = if f == 0 {
+                0.0
+            } else {
+                phi[(f - 1) * modes + n]
+            };
             e[n] = phi[f * modes + n] - below;
         }
         let (mut re, mut ee, mut big) = (0.0, 0.0, 0.0f64);
@@ -128,7 +136,9 @@ fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec
             big = big.max(r[n].abs());
         }
         let k = re / ee;
-        if !(k.is_finite() && k > 0.0) || (0..modes).any(|n| (r[n] - k * e[n]).abs() > SPRING_MATCH * big) {
+        if !(k.is_finite() && k > 0.0)
+            || (0..modes).any(|n| (r[n] - k * e[n]).abs() > SPRING_MATCH * big)
+        {
             return None;
         }
         ks.push(k);
@@ -214,7 +224,11 @@ impl Stations {
             Equilibrium::Lumped(masses) => {
                 for f in (0..ns).rev() {
                     for n in 0..nm {
-                        let above = if f + 1 < ns { rows[(f + 1) * nm + n] } else { 0.0 };
+                        let above = if f + 1 < ns {
+                            rows[(f + 1) * nm + n]
+                        } else {
+                            0.0
+                        };
                         rows[f * nm + n] =
                             above + masses[f] * m.omega[n] * m.omega[n] * phi[f * nm + n];
                     }

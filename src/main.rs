@@ -955,7 +955,10 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
             return;
         }
         println!("  the yielding buildings in the same runs:");
-        print!("  {:>6} {:>12} {:>10} {:>8}", "modes", "method", "dt [s]", "rtol");
+        print!(
+            "  {:>6} {:>12} {:>10} {:>8}",
+            "modes", "method", "dt [s]", "rtol"
+        );
         for i in &yielding {
             let i = i + 1;
             print!(
@@ -971,7 +974,10 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
         println!();
         for r in rows.iter().filter(|r| r.failure.is_none()) {
             let rtol = r.rtol.map_or("-".to_string(), |x| format!("{x:.0e}"));
-            print!("  {:>6} {:>12} {:>10.2e} {:>8}", r.modes, r.method, r.dt, rtol);
+            print!(
+                "  {:>6} {:>12} {:>10.2e} {:>8}",
+                r.modes, r.method, r.dt, rtol
+            );
             for &i in &yielding {
                 match (r.yielding[i], r.yield_change[i]) {
                     (Some(y), Some(c)) => print!(
@@ -983,7 +989,10 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
                         100.0 * c[1],
                         100.0 * c[2]
                     ),
-                    _ => print!(" {:>7} {:>9} {:>10} {:>8} {:>9} {:>9}", "-", "-", "-", "-", "-", "-"),
+                    _ => print!(
+                        " {:>7} {:>9} {:>10} {:>8} {:>9} {:>9}",
+                        "-", "-", "-", "-", "-", "-"
+                    ),
                 }
             }
             println!();

@@ -188,7 +188,10 @@ fn yielding_quantities_decide_convergence() {
     let t = convergence_with(&base, tol, &ladders, |_| {});
     let (six, all) = (&t.modes[0], &t.modes[1]);
     assert_eq!((six.modes, all.modes), (6, 8));
-    assert!(six.peak_force == 0.0 && all.peak_force == 0.0, "premise: no contact");
+    assert!(
+        six.peak_force == 0.0 && all.peak_force == 0.0,
+        "premise: no contact"
+    );
     assert!(
         six.change.iter().all(|c| *c <= tol),
         "premise: the headline peaks agree within 1 %: {:?}",
@@ -201,7 +204,10 @@ fn yielding_quantities_decide_convergence() {
         "ductility 6 modes {:.4}, 8 modes {:.4} ({dmu:.3}); headline changes {:?}",
         y6.ductility, y8.ductility, six.change
     );
-    assert!(dmu > 2.0 * tol, "premise: 6 modes miss the ductility: {dmu}");
+    assert!(
+        dmu > 2.0 * tol,
+        "premise: 6 modes miss the ductility: {dmu}"
+    );
     assert!(!t.modes_converged && !t.converged && t.recommended.is_none());
     assert!(
         t.notes

@@ -471,8 +471,8 @@ fn export_maps_bouc_wen_storeys() {
 fn yielding_storeys_agree_with_bouc_wen_in_opensees() {
     let Some(py) = opensees_python() else { return };
     let sc = with_duration(&scenario("yielding-frames.toml"), 5.0);
-    let c = crosscheck(&sc, "yielding-frames", &CrosscheckOptions::default(), &py)
-        .expect("crosscheck");
+    let c =
+        crosscheck(&sc, "yielding-frames", &CrosscheckOptions::default(), &py).expect("crosscheck");
     eprintln!("{}", c.table());
     let mut seen = [0; 5];
     for r in &c.rows {

@@ -52,7 +52,11 @@ fn frame() -> (Vec<Vec<f64>>, [f64; 3], Physical) {
         (0..3)
             .map(|r| {
                 (0..3)
-                    .map(|c| (0..3).map(|n| m[r] * phi[n][r] * f(n) * phi[n][c] * m[c]).sum())
+                    .map(|c| {
+                        (0..3)
+                            .map(|n| m[r] * phi[n][r] * f(n) * phi[n][c] * m[c])
+                            .sum()
+                    })
                     .collect()
             })
             .collect()
@@ -125,8 +129,20 @@ fn a_building_given_by_its_modes_carries_k_u_of_the_floors_above() {
     for (f, fl) in r.structures[0].floors.iter().enumerate() {
         let checks = [
             ("storey force", fl.peak_shear, with[0].force[f], 1e-6, 0),
-            ("storey force free", fl.peak_shear_no_contact, free[0].force[f], 1e-6, 0),
-            ("equilibrium", fl.peak_shear_with_damping, with[0].shear[f], 1e-5, 1),
+            (
+                "storey force free",
+                fl.peak_shear_no_contact,
+                free[0].force[f],
+                1e-6,
+                0,
+            ),
+            (
+                "equilibrium",
+                fl.peak_shear_with_damping,
+                with[0].shear[f],
+                1e-5,
+                1,
+            ),
             (
                 "equilibrium free",
                 fl.peak_shear_with_damping_no_contact,
@@ -134,12 +150,22 @@ fn a_building_given_by_its_modes_carries_k_u_of_the_floors_above() {
                 1e-5,
                 1,
             ),
-            ("displacement", fl.peak_displacement, with[0].disp[f], 1e-6, 2),
+            (
+                "displacement",
+                fl.peak_displacement,
+                with[0].disp[f],
+                1e-6,
+                2,
+            ),
         ];
         for (what, got, want, tol, k) in checks {
             let e = rel(got, want);
             worst[k] = worst[k].max(e);
-            assert!(e < tol, "floor {}: {what} {got} vs physical {want} ({e:.1e})", f + 1);
+            assert!(
+                e < tol,
+                "floor {}: {what} {got} vs physical {want} ({e:.1e})",
+                f + 1
+            );
         }
     }
     eprintln!(
@@ -166,10 +192,10 @@ fn harmonic_mode(a: f64, w: f64, z: f64, om: f64, t: f64) -> f64 {
 /// A cantilever's storey force at a station is its section shear `−EI w‴(x)`: the paper's
 /// structure 1 (L = 10 m, M = 2.273e6 kg, T₁ = 0.4203 s, ζ = 1 %, 4 modes) without contact
 /// under a_g = −0.6 g sin(2πt/0.65), against the closed form written here from the textbook
-/// mode shapes: `y_n(ξ) = cosh λξ − cos λξ − σ(sinh λξ − sin λξ)`, σ = (sinh λ − sin λ)/(cosh λ
-/// + cos λ), φ_n = y_n/√(mL), `y‴ = λ³[sinh λξ − sin λξ − σ(cosh λξ + cos λξ)]`, EI = m L⁴
-/// (ω₁/λ₁²)², ω_n = ω₁(λ_n/λ₁)², Γ_n = √(mL)·2σ_n/λ_n, each mode's harmonic response from
-/// rest; `V = −EI Σ φ_n‴ η_n` sampled every 2e-5 s over 3 s. At every station below the top to
+/// mode shapes: `y_n(ξ) = cosh λξ − cos λξ − σ(sinh λξ − sin λξ)`,
+/// `σ = (sinh λ − sin λ)/(cosh λ + cos λ)`, φ_n = y_n/√(mL),
+/// `y‴ = λ³[sinh λξ − sin λξ − σ(cosh λξ + cos λξ)]`, EI = m L⁴ (ω₁/λ₁²)², ω_n = ω₁(λ_n/λ₁)²,
+/// Γ_n = √(mL)·2σ_n/λ_n, each mode's harmonic response from rest; `V = −EI Σ φ_n‴ η_n` sampled every 2e-5 s over 3 s. At every station below the top to
 /// 1e-6 (the program: `adaptive` at rtol 1e-10, steps ≤ 0.2 ms, the peak refined on the
 /// Hermite cubic, whose error (ω₄h)⁴/384 ≈ 3e-7 of the fourth mode's small share; the sampled
 /// reference misses a crest by ~(ω₁·1e-5)²/2 ≈ 1e-8; measured 1e-8); at the free top it is

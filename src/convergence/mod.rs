@@ -445,7 +445,11 @@ pub fn convergence_with(
         Some(r) => {
             let finest_modes = modes.last().map_or(0, |r| r.modes);
             let finest_step = steps.last().map_or(String::new(), Row::step_label);
-            let yielding = if modes.iter().chain(&steps).any(|r| r.yielding.iter().any(Option::is_some)) {
+            let yielding = if modes
+                .iter()
+                .chain(&steps)
+                .any(|r| r.yielding.iter().any(Option::is_some))
+            {
                 " (and the yielding buildings' peak ductility, residual drift and hysteretic energy)"
             } else {
                 ""

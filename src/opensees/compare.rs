@@ -575,12 +575,7 @@ fn storey_rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
         let largest = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let ductility = |pick: &dyn Fn(&OsStorey) -> Option<f64>| {
             let v: Option<Vec<f64>> = os.storeys.iter().map(pick).collect();
-            v.map(|v| {
-                v.iter()
-                    .zip(&ys)
-                    .map(|(d, y)| d / y)
-                    .fold(0.0f64, f64::max)
-            })
+            v.map(|v| v.iter().zip(&ys).map(|(d, y)| d / y).fold(0.0f64, f64::max))
         };
         let energy_scale = 1e-3 * r.energy.input.abs();
         let total = |v: &[f64]| v.iter().sum::<f64>();

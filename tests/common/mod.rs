@@ -227,4 +227,3 @@ pub fn integrate_physical(a: &Physical, b: &Physical, case: &Case) -> ([FloorPea
     }
     (peaks, pf)
 }
-
