@@ -55,7 +55,7 @@ fn raise(peak: &mut f64, x: f64) {
 /// where it could beat the peak: the interpolant lies within (4/27)·h·(|ẏ₀| + |ẏ₁|) of the
 /// larger end value (its slope basis functions are at most 4/27 in size).
 #[inline(always)]
-fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
+pub(crate) fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
     // (a plain comparison, not f64::max: one instruction, and the values are finite)
     let ends = if y0.abs() > y1.abs() {
         y0.abs()
@@ -156,8 +156,9 @@ struct Stations {
     phi: Vec<f64>,
     equilibrium: Equilibrium,
     force: StoreyForce,
-    /// Stations whose storey yields (Bouc–Wen): its force comes from the hysteresis law.
-    yields: Vec<bool>,
+    /// Stations whose storey yields (Bouc–Wen), with the storey's index in the system's
+    /// hysteresis: its force comes from the law.
+    yields: Vec<Option<usize>>,
     /// Which contact levels load the part above each station: `[station·levels + k]` (for
     /// floors: the level acts at that very floor).
     above: Vec<bool>,
@@ -296,7 +297,7 @@ impl Stations {
             phi,
             equilibrium,
             force,
-            yields: vec![false; ns],
+            yields: vec![None; ns],
             above,
             levels: contact_heights.len(),
             offset,
@@ -314,7 +315,7 @@ impl Stations {
     fn finish(mut self) -> Vec<FloorPeaks> {
         if let StoreyForce::Springs(k) = &self.force {
             for ((p, k), y) in self.peaks.iter_mut().zip(k).zip(&self.yields) {
-                if !y {
+                if y.is_none() {
                     p.shear = k * p.drift;
                 }
             }
@@ -347,9 +348,9 @@ impl FloorRecorder {
             Stations::new(s1, contact_heights, 0, -1.0),
             Stations::new(s2, contact_heights, n1, 1.0),
         ];
-        for st in system.hysteresis.storeys() {
+        for (k, st) in system.hysteresis.storeys().iter().enumerate() {
             if let Some(y) = stations[st.structure].yields.get_mut(st.storey) {
-                *y = true;
+                *y = Some(k);
             }
         }
         let cols = 2 * stations.iter().map(|s| s.heights.len()).sum::<usize>();
@@ -403,22 +404,10 @@ impl FloorRecorder {
                 }
             }
             // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::hysteresis)
-            // and their storey force, the Bouc–Wen V, refined between observations as
-            // StoreyTracker does (V is C¹ in time)
             let hy = &system.hysteresis;
             for (k, st) in hy.storeys().iter().enumerate() {
-                let (d, dd) = hy.drift(k, s.q, s.v);
+                let (d, _) = hy.drift(k, s.q, s.v);
                 let z = s.z.get(k).copied().unwrap_or(0.0);
-                let sf = &mut self.stations[st.structure];
-                if let Some(p) = sf.peaks.get_mut(st.storey) {
-                    let (vf, vfd) = (st.force(d, z), st.force_rate(dd, z));
-                    raise(&mut p.shear, vf.abs());
-                    if let Some(h) = h {
-                        let (v0, vd0) = sf.prev_force[st.storey];
-                        refine(&mut p.shear, v0, vd0, vf, vfd, h);
-                    }
-                    sf.prev_force[st.storey] = (vf, vfd);
-                }
                 let f = st.pseudo_force(d, z);
                 if f != 0.0 {
                     for (a, e) in self.accel.iter_mut().zip(hy.row(k)) {
@@ -506,13 +495,23 @@ impl FloorRecorder {
                 }
                 abs[f] = ua[f] + ag;
                 raise(&mut p.acceleration, abs[f].abs());
-                if rows.is_some() && !st.yields[f] {
-                    raise(&mut p.shear, vf[f].abs());
+                // the storey force, refined between observations: a yielding storey's
+                // Bouc–Wen V (C¹ in time) from this drift and its z, or the modal rows' V
+                let force = match st.yields[f] {
+                    Some(k) => {
+                        let law = &system.hysteresis.storeys()[k];
+                        let z = s.z.get(k).copied().unwrap_or(0.0);
+                        Some((law.force(d, z), law.force_rate(dd, z)))
+                    }
+                    None => rows.map(|_| (vf[f], vfd[f])),
+                };
+                if let Some((v1, vd1)) = force {
+                    raise(&mut p.shear, v1.abs());
                     if let Some(h) = h {
                         let (v0, vd0) = st.prev_force[f];
-                        refine(&mut p.shear, v0, vd0, vf[f], vfd[f], h);
+                        refine(&mut p.shear, v0, vd0, v1, vd1, h);
                     }
-                    st.prev_force[f] = (vf[f], vfd[f]);
+                    st.prev_force[f] = (v1, vd1);
                 }
                 st.prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);

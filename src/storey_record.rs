@@ -9,8 +9,8 @@
 
 use serde::Serialize;
 
+use crate::floor_response::refine;
 use crate::integrate::StepView;
-use crate::integrate::linear::hermite_abs_max;
 use crate::system::System;
 
 /// Most (drift, force) pairs kept per storey for the loop figure; beyond, every other one is
@@ -113,10 +113,11 @@ impl StoreyTracker {
             r.peak_drift = r.peak_drift.max(d.abs());
             r.peak_force = r.peak_force.max(force.abs());
             if let Some(h) = h {
+                // on the cubic Hermite interpolants, where they could beat the peaks
                 let (d0, dd0) = self.prev[k];
-                r.peak_drift = r.peak_drift.max(hermite_abs_max(d0, dd0, d, dd, h));
+                refine(&mut r.peak_drift, d0, dd0, d, dd, h);
                 let (v0, vd0) = self.prev_force[k];
-                r.peak_force = r.peak_force.max(hermite_abs_max(v0, vd0, force, rate, h));
+                refine(&mut r.peak_force, v0, vd0, force, rate, h);
             }
             self.prev_force[k] = (force, rate);
             let excess = st.excess(d, z);
