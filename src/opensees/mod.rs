@@ -771,7 +771,8 @@ pub fn script(
     ));
     out.push_str(
         "# prints JSON with the headline numbers of pounding's summary.json (peaks at the contact\n\
-         # heights and at every floor, peak force, impacts, required separation).\n#\n",
+         # heights and at every floor, every storey's peak drift and storey force, a yielding\n\
+         # storey's residual drift and hysteretic energy, peak force, impacts, required separation).\n#\n",
     );
     out.push_str(&format!(
         "# OpenSees step dt = {} s over {} s; Newmark average acceleration, Newton.\n",
