@@ -116,6 +116,13 @@ impl Storey {
         self.alpha * self.k * d + self.kh() * self.dy * z
     }
 
+    /// The storey force's rate `dV/dt = α k ḋ + (1 − α) k d_y ż` for drift rate `dd` (m/s),
+    /// N/s (continuous in time: ż is 0 from both sides where ḋ = 0, and |z|ⁿ is 0 where z = 0).
+    #[inline(always)]
+    pub fn force_rate(&self, dd: f64, z: f64) -> f64 {
+        self.alpha * self.k * dd + self.kh() * self.dy * self.z_rate(dd, z)
+    }
+
     /// The pseudo-force `ΔV = V − k d = (1 − α) k (d_y z − d)`, N.
     #[inline(always)]
     pub fn pseudo_force(&self, d: f64, z: f64) -> f64 {

@@ -1136,8 +1136,75 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
             );
         }
     };
+    // yielding buildings (issue 24): their ductility, residual drift and hysteretic energy
+    let yielding: Vec<usize> = (0..2)
+        .filter(|&i| {
+            t.modes
+                .iter()
+                .chain(&t.steps)
+                .any(|r| r.yielding[i].is_some())
+        })
+        .collect();
+    let print_yielding = |rows: &[pounding::convergence::Row]| {
+        if yielding.is_empty() {
+            return;
+        }
+        println!("  the yielding buildings in the same runs:");
+        print!(
+            "  {:>6} {:>12} {:>10} {:>8}",
+            "modes", "method", "dt [s]", "rtol"
+        );
+        for i in &yielding {
+            let i = i + 1;
+            print!(
+                " {:>7} {:>9} {:>10} {:>8} {:>9} {:>9}",
+                format!("μ{i}"),
+                format!("res{i} [mm]"),
+                format!("E_h{i} [kJ]"),
+                format!("Δμ{i} [%]"),
+                format!("Δres{i} [%]"),
+                format!("ΔE_h{i} [%]")
+            );
+        }
+        println!();
+        for r in rows.iter().filter(|r| r.failure.is_none()) {
+            let rtol = r.rtol.map_or("-".to_string(), |x| format!("{x:.0e}"));
+            print!(
+                "  {:>6} {:>12} {:>10.2e} {:>8}",
+                r.modes, r.method, r.dt, rtol
+            );
+            for &i in &yielding {
+                match (r.yielding[i], r.yield_change[i]) {
+                    (Some(y), Some(c)) => print!(
+                        " {:>7.3} {:>9.2} {:>10.1} {:>8.3} {:>9.3} {:>9.3}",
+                        y.ductility,
+                        1e3 * y.residual_drift,
+                        1e-3 * y.hysteretic_energy,
+                        100.0 * c[0],
+                        100.0 * c[1],
+                        100.0 * c[2]
+                    ),
+                    _ => print!(
+                        " {:>7} {:>9} {:>10} {:>8} {:>9} {:>9}",
+                        "-", "-", "-", "-", "-", "-"
+                    ),
+                }
+            }
+            println!();
+        }
+    };
     print_rows("modes (change vs the most modes):", &t.modes);
+    print_yielding(&t.modes);
     print_rows("step / tolerance (change vs the finest):", &t.steps);
+    print_yielding(&t.steps);
+    if !yielding.is_empty() {
+        println!();
+        println!(
+            "  μ: peak ductility; res: largest |residual drift|, its change in units of the larger \
+             of it and the smallest yield drift; E_h: hysteretic energy, its change in units of the \
+             larger of it and 0.1 % of the input energy"
+        );
+    }
     println!();
     if t.converged {
         println!(

@@ -113,11 +113,17 @@ pub struct FloorReport {
     pub peak_drift: f64,
     /// The same without pounding, m.
     pub peak_drift_no_contact: f64,
-    /// Peak shear of the storey below with pounding, N (a yielding storey: its Bouc–Wen
-    /// storey force V).
+    /// Peak storey shear of the storey below with pounding: the force its structure carries
+    /// (k·drift, a yielding storey's Bouc–Wen force V, the modes' K u, a cantilever's −EI w‴;
+    /// no damping forces; docs/model.md §2.6c), N.
     pub peak_shear: f64,
     /// The same without pounding, N.
     pub peak_shear_no_contact: f64,
+    /// Peak shear of the storey below from the equilibrium of everything above (inertia and
+    /// contact forces): the storey force plus the damping forces above, with pounding, N.
+    pub peak_shear_with_damping: f64,
+    /// The same without pounding, N.
+    pub peak_shear_with_damping_no_contact: f64,
     /// Yielding storeys only (issue 16): peak |drift| / d_y of the storey below, with pounding.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_ductility: Option<f64>,
@@ -171,6 +177,8 @@ impl FloorReport {
             peak_drift_no_contact: b.drift,
             peak_shear: a.shear,
             peak_shear_no_contact: b.shear,
+            peak_shear_with_damping: a.shear_with_damping,
+            peak_shear_with_damping_no_contact: b.shear_with_damping,
             peak_ductility: None,
             peak_ductility_no_contact: None,
             residual_drift: None,

@@ -9,8 +9,8 @@
 
 use serde::Serialize;
 
+use crate::floor_response::refine;
 use crate::integrate::StepView;
-use crate::integrate::linear::hermite_abs_max;
 use crate::system::System;
 
 /// Most (drift, force) pairs kept per storey for the loop figure; beyond, every other one is
@@ -28,7 +28,8 @@ pub struct StoreyRecord {
     pub yield_drift: f64,
     /// Peak |drift|, m (refined between observations on the cubic Hermite interpolant).
     pub peak_drift: f64,
-    /// Peak |V| of the Bouc–Wen storey force, N.
+    /// Peak |V| of the Bouc–Wen storey force, N (refined between observations on the cubic
+    /// Hermite interpolant of V and dV/dt).
     pub peak_force: f64,
     /// Signed drift at the end of the run, m.
     pub residual_drift: f64,
@@ -52,6 +53,8 @@ pub struct StoreyTracker {
     records: Vec<StoreyRecord>,
     /// (d, ḋ) at the previous observation.
     prev: Vec<(f64, f64)>,
+    /// (V, dV/dt) at the previous observation.
+    prev_force: Vec<(f64, f64)>,
     /// `½(1 − α)k(d² − d_y²z²)` at t = 0.
     excess0: Vec<f64>,
     last_t: Option<f64>,
@@ -86,6 +89,7 @@ impl StoreyTracker {
         Some(StoreyTracker {
             records,
             prev: vec![(0.0, 0.0); h.len()],
+            prev_force: vec![(0.0, 0.0); h.len()],
             excess0: vec![0.0; h.len()],
             last_t: None,
             interval,
@@ -105,13 +109,17 @@ impl StoreyTracker {
             let (d, dd) = hy.drift(k, s.q, s.v);
             let z = s.z.get(k).copied().unwrap_or(0.0);
             let r = &mut self.records[k];
-            let force = st.force(d, z);
+            let (force, rate) = (st.force(d, z), st.force_rate(dd, z));
             r.peak_drift = r.peak_drift.max(d.abs());
             r.peak_force = r.peak_force.max(force.abs());
             if let Some(h) = h {
+                // on the cubic Hermite interpolants, where they could beat the peaks
                 let (d0, dd0) = self.prev[k];
-                r.peak_drift = r.peak_drift.max(hermite_abs_max(d0, dd0, d, dd, h));
+                refine(&mut r.peak_drift, d0, dd0, d, dd, h);
+                let (v0, vd0) = self.prev_force[k];
+                refine(&mut r.peak_force, v0, vd0, force, rate, h);
             }
+            self.prev_force[k] = (force, rate);
             let excess = st.excess(d, z);
             if self.last_t.is_none() {
                 self.excess0[k] = excess;

@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use serde::Deserialize;
 
+pub use super::storeys::OsStorey;
 use super::{DRIVER, ExportError, ExportOptions, Mapping, TESTED_OPENSEESPY, law_mapping};
 use crate::integrate::{InitialState, Method, SolveError, SolverSettings};
 use crate::modal::Structure;
@@ -146,6 +147,9 @@ pub struct OsStructure {
     pub peak_displacement_no_contact: Option<f64>,
     /// Peaks at every tracked height (contact heights, or floors).
     pub heights: Vec<HeightPeaks>,
+    /// Every storey of a shear building, lowest first (empty for a cantilever).
+    #[serde(default)]
+    pub storeys: Vec<OsStorey>,
     /// Periods of the FE model's modes that belong to this structure, s (when it is modally
     /// damped).
     #[serde(default)]
@@ -386,17 +390,22 @@ pub struct Row {
     pub program: f64,
     /// OpenSees' value (`None`: that run was not made).
     pub opensees: Option<f64>,
+    /// The size below which a difference is measured against this scale instead of the
+    /// program's value (0: plain relative difference): a residual drift near zero against
+    /// the yield drift, a storey's small hysteretic energy against 0.1 % of the input energy.
+    pub scale: f64,
 }
 
 impl Row {
-    /// (OpenSees − program)/program (`None` without an OpenSees value or with a zero program
-    /// value).
+    /// (OpenSees − program)/max(|program|, scale) (`None` without an OpenSees value, or with
+    /// a zero program value and scale).
     pub fn relative(&self) -> Option<f64> {
         let o = self.opensees?;
-        if self.program == 0.0 {
+        let by = self.program.abs().max(self.scale);
+        if by == 0.0 {
             return (o == 0.0).then_some(0.0);
         }
-        Some((o - self.program) / self.program)
+        Some((o - self.program) / by)
     }
 }
 
@@ -409,6 +418,7 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
         quantity: q,
         program,
         opensees,
+        scale: 0.0,
     };
     for s in 0..2 {
         let os = o.structures.get(s);
@@ -447,6 +457,7 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
             ));
         }
     }
+    rows.extend(super::storeys::storey_rows(p, o));
     let oc = o.contact.as_ref();
     rows.push(row(
         "peak contact force [N]".into(),
@@ -526,6 +537,13 @@ pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
             .to_string(),
     ]);
     notes.extend(super::damping_notes(scenario));
+    if scenario.structures.iter().any(|s| s.hysteresis().is_some()) {
+        notes.push(format!(
+            "yielding {}; peak storey forces and drifts are taken at OpenSees' step ends, the \
+             hysteretic energy from the work of the link force over the steps (trapezoidal)",
+            super::BOUC_WEN_MAPPING
+        ));
+    }
     notes
 }
 
@@ -652,8 +670,13 @@ impl Crosscheck {
             o.dt,
             o.duration
         ));
+        let width = self
+            .rows
+            .iter()
+            .map(|r| r.quantity.chars().count())
+            .fold(44, usize::max);
         s.push_str(&format!(
-            "  {:<44} {:>14} {:>14} {:>10}\n",
+            "  {:<width$} {:>14} {:>14} {:>10}\n",
             "quantity", "program", "OpenSees", "diff"
         ));
         for r in &self.rows {
@@ -664,7 +687,7 @@ impl Crosscheck {
                 .relative()
                 .map_or_else(|| "—".to_string(), |d| format!("{:+.2} %", 100.0 * d));
             s.push_str(&format!(
-                "  {:<44} {:>14} {:>14} {:>10}\n",
+                "  {:<width$} {:>14} {:>14} {:>10}\n",
                 r.quantity,
                 format!("{:.6e}", r.program),
                 os,

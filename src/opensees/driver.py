@@ -49,6 +49,7 @@ class Model:
         self.heights = []  # per structure: node heights (0 = base)
         self.track = []  # per structure: [(height, node)] of every tracked height
         self.fe_periods = [[], []]  # periods of the FE modes (modal damping only), s
+        self.links = [[], []]  # per shear building: (element, node below, node above) per storey
         self.warnings = []
 
     # -- model -------------------------------------------------------------------------------
@@ -86,15 +87,28 @@ class Model:
                 for k in range(1, len(hs)):
                     ops.fix(nodes[k], 0, 1, 1)  # rigid floors: no rotation, no axial motion
                     ops.mass(nodes[k], st["floor_masses"][k - 1], 0.0, 0.0)
+                bw = st.get("bouc_wen")
+                links = []
                 for k in range(1, len(hs)):
                     mat = 1000 + ele
-                    ops.uniaxialMaterial("Elastic", mat, st["storey_stiffnesses"][k - 1])
+                    if bw:
+                        # a yielding storey: OpenSees' BoucWen with the program's law mapped
+                        # onto it (its Z = d_y z in metres: beta and gamma divided by d_y^n)
+                        b = bw[k - 1]
+                        ops.uniaxialMaterial("BoucWen", mat, b["alpha"], b["ko"], b["n"],
+                                             b["gamma"], b["beta"], b["a0"], b["delta_a"],
+                                             b["delta_nu"], b["delta_eta"], b["tolerance"],
+                                             b["max_iterations"])
+                    else:
+                        ops.uniaxialMaterial("Elastic", mat, st["storey_stiffnesses"][k - 1])
                     # local x vertical (node to node), local y = shear: -dir 2; rotations are
                     # fixed, so the link is a pure storey spring k_j
                     ops.element("twoNodeLink", ele, nodes[k - 1], nodes[k], "-mat", mat,
                                 "-dir", 2, "-doRayleigh")
                     eles.append(ele)
+                    links.append((ele, nodes[k - 1], nodes[k]))
                     ele += 1
+                self.links[s] = links
             self.struct_eles.append(eles)
             track = []
             for h in st["tracked_heights"]:
@@ -149,9 +163,11 @@ class Model:
                 continue
             # one region of the structure's elements: a region also sets the factors of the
             # nodes of its elements (so a second region of the nodes alone would be undone);
-            # α_M acts on the element mass (cantilever) and the floor masses (building)
+            # α_M acts on the element mass (cantilever) and the floor masses (building); β_K on
+            # the *initial* stiffness (betaK0): the program's damping is that of the initial
+            # stiffness, constant in time, also when storeys yield (the same for elastic ones)
             ops.region(s + 1, "-ele", *self.struct_eles[s], "-rayleigh",
-                       d["alpha_m"], d["beta_k"], 0.0, 0.0)
+                       d["alpha_m"], 0.0, d["beta_k"], 0.0)
 
     def damping(self):
         """Modal damping, after the analysis is defined (eigen and modalDampingQ act on it)."""
@@ -280,6 +296,7 @@ class Model:
 
     def observe(self):
         ops = self.ops
+        self.observe_storeys()
         w = [[ops.nodeDisp(n, 1) for (_, n) in tr] for tr in self.track]
         for s in range(2):
             for i, x in enumerate(w[s]):
@@ -306,11 +323,44 @@ class Model:
                     lv["open"] = False
         self.last_t = ops.getTime()
 
+    def observe_storeys(self):
+        """Per storey of a shear building: peak |drift| (u above - u below), peak |V| of the
+        link, the signed drift, and the work of V over the drift (trapezoidal between step ends)
+        for the hysteretic energy."""
+        ops = self.ops
+        for s, links in enumerate(self.links):
+            for j, (ele, below, above) in enumerate(links):
+                d = ops.nodeDisp(above, 1) - ops.nodeDisp(below, 1)
+                # the link's own deformation and force (consistent signs: the material's strain
+                # and stress)
+                e = ops.eleResponse(ele, "basicDeformation")[0]
+                v = ops.eleResponse(ele, "basicForce")[0]
+                r = self.storeys[s][j]
+                r["peak_drift"] = max(r["peak_drift"], abs(d))
+                r["peak_force"] = max(r["peak_force"], abs(v))
+                r["residual_drift"] = d
+                r["work"] += 0.5 * (v + r["v"]) * (e - r["e"])
+                r["e"], r["v"] = e, v
+
+    def hysteretic_energy(self, s, j):
+        """E_h = W - 1/2 alpha k e^2 - 1/2 (1 - alpha) k Z^2 with Z = (V - alpha k e)/((1 - alpha) k)
+        (the program's E_h in OpenSees' variables; docs/model.md 2.6b), or None (elastic)."""
+        bw = self.m["structures"][s].get("bouc_wen")
+        if not bw:
+            return None
+        b, r = bw[j], self.storeys[s][j]
+        a, k = b["alpha"], b["ko"]
+        z = (r["v"] - a * k * r["e"]) / ((1.0 - a) * k)
+        return r["work"] - 0.5 * a * k * r["e"] ** 2 - 0.5 * (1.0 - a) * k * z * z
+
     def run(self):
         ops = self.ops
         self.build()
         self.analysis()
         self.damping()  # after the analysis: eigen and modalDamping act on it
+        self.storeys = [[{"peak_drift": 0.0, "peak_force": 0.0, "residual_drift": 0.0,
+                          "work": 0.0, "e": 0.0, "v": 0.0} for _ in links]
+                        for links in self.links]
         self.peaks = [[0.0] * len(tr) for tr in self.track]
         self.levels = [{"peak_w": [0.0, 0.0], "max_closing": -math.inf, "peak_force": 0.0,
                         "max_penetration": 0.0, "impacts": 0, "contact_time": 0.0, "open": False}
@@ -369,9 +419,23 @@ def main():
             heights.append({"height": h,
                            "peak_displacement": c.peaks[s][i] if c else None,
                            "peak_displacement_no_contact": f.peaks[s][i] if f else None})
+        storeys = []
+        for j in range(len((c or f).links[s])):
+            a_ = c.storeys[s][j] if c else None
+            b_ = f.storeys[s][j] if f else None
+            storeys.append({
+                "peak_drift": a_["peak_drift"] if a_ else None,
+                "peak_drift_no_contact": b_["peak_drift"] if b_ else None,
+                "peak_force": a_["peak_force"] if a_ else None,
+                "peak_force_no_contact": b_["peak_force"] if b_ else None,
+                "residual_drift": a_["residual_drift"] if a_ else None,
+                "residual_drift_no_contact": b_["residual_drift"] if b_ else None,
+                "hysteretic_energy": c.hysteretic_energy(s, j) if c else None,
+                "hysteretic_energy_no_contact": f.hysteretic_energy(s, j) if f else None})
         structures.append({"name": st["name"], "peak_displacement": pw,
                            "peak_displacement_no_contact": pf, "change_percent": pct(pw, pf),
-                           "heights": heights, "fe_periods": (c or f).fe_periods[s][:20]})
+                           "heights": heights, "storeys": storeys,
+                           "fe_periods": (c or f).fe_periods[s][:20]})
     levels = []
     for j, lv in enumerate(MODEL["levels"]):
         a_, b_ = (c.levels[j] if c else None), (f.levels[j] if f else None)

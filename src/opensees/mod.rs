@@ -13,13 +13,15 @@
 //! - a cantilever: `elements` 2-D `elasticBeamColumn` elements with its EI and a consistent
 //!   mass (`-mass m -cMass`), axial DOFs fixed, a node at every contact height ([`mesh`]);
 //! - a shear building: a node per floor with its mass, rotations fixed (rigid floors), storey
-//!   springs as `twoNodeLink` elements in shear; a building given by its modes cannot be
-//!   exported (OpenSees needs stiffnesses);
+//!   springs as `twoNodeLink` elements in shear — `Elastic`, or for yielding storeys OpenSees'
+//!   `BoucWen` material with the program's law mapped onto it ([`bouc_wen_material`]); a
+//!   building given by its modes cannot be exported (OpenSees needs stiffnesses);
 //! - the ground motion as nodal loads `−M r a_g(t)` through a `Plain` pattern with a `Path`
 //!   series (never `UniformExcitation`: in OpenSees 3.7.1 a 2-D `elasticBeamColumn` with element
 //!   mass under `UniformExcitation` receives the ground inertia load twice);
 //! - damping: modal (`modalDampingQ` on every FE mode, each with its structure's ratio for its
-//!   mode number) or Rayleigh (`region … -rayleigh`, never on the contact elements), as the
+//!   mode number) or Rayleigh (`region … -rayleigh` with the *initial* stiffness, as the program's
+//!   damping stays that of the initial stiffness; never on the contact elements), as the
 //!   scenario has it;
 //! - contact at every level: a `zeroLength` element between the two structures' nodes at that
 //!   height, with the law's material ([`contact_material`]);
@@ -27,6 +29,10 @@
 //!   sub-steps halved down to dt/64, then the same with ModifiedNewton, then KrylovNewton.
 
 pub mod compare;
+mod storeys;
+mod yielding;
+
+pub use yielding::{BOUC_WEN_MAPPING, BoucWenMaterial, bouc_wen_material};
 
 use serde::Serialize;
 
@@ -227,6 +233,10 @@ pub struct ExportStructure {
     /// Storey stiffnesses, N/m (shear building).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub storey_stiffnesses: Option<Vec<f64>>,
+    /// Yielding storeys (a shear building with `hysteresis`): each storey's `BoucWen` material,
+    /// lowest first.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bouc_wen: Option<Vec<BoucWenMaterial>>,
     /// Air damping c_a, N·s/m² (its ground-velocity load).
     pub air_damping: f64,
     /// Damping.
@@ -501,7 +511,8 @@ pub fn damping_notes(scenario: &Scenario) -> Vec<String> {
             )
         } else {
             format!(
-                "{}: Rayleigh damping, the same C = α_M M + β_K K as the program's ratios",
+                "{}: Rayleigh damping, the same C = α_M M + β_K K₀ as the program's ratios (K₀ \
+                 the initial stiffness, constant in time as in the program)",
                 s.name()
             )
         });
@@ -534,20 +545,6 @@ pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, E
             "{duration} s at dt = {} s is more than 1e8 OpenSees steps",
             opts.dt
         )));
-    }
-    // yielding storeys (issue 16) have no exporter yet: an elastic OpenSees model would be
-    // compared with a yielding one
-    if let Some(s) = scenario
-        .structures
-        .iter()
-        .find(|s| s.hysteresis().is_some())
-    {
-        return Err(ExportError::Structure {
-            name: s.name().to_string(),
-            reason: "its yielding storeys (Bouc–Wen `hysteresis`) are not exported: the OpenSees \
-                     model would be elastic; remove `hysteresis` to export the elastic building"
-                .into(),
-        });
     }
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
     let mut structures = Vec::with_capacity(2);
@@ -609,6 +606,7 @@ fn export_structure(
                 mass_per_length: Some(c.mass_per_length()),
                 floor_masses: None,
                 storey_stiffnesses: None,
+                bouc_wen: None,
                 air_damping: air,
                 damping,
                 tracked_heights: heights.to_vec(),
@@ -669,6 +667,13 @@ fn export_structure(
                 elements: None,
                 floor_masses: Some(b.floors.masses.clone()),
                 storey_stiffnesses: Some(b.storey_stiffnesses.clone()),
+                bouc_wen: f.hysteresis.as_ref().map(|bw| {
+                    b.storey_stiffnesses
+                        .iter()
+                        .zip(&bw.yield_drifts)
+                        .map(|(&k, &dy)| bouc_wen_material(k, dy, bw))
+                        .collect()
+                }),
                 air_damping: 0.0,
                 damping,
                 tracked_heights: b.floors.heights.clone(),
@@ -704,7 +709,8 @@ pub fn script(
     ));
     out.push_str(
         "# prints JSON with the headline numbers of pounding's summary.json (peaks at the contact\n\
-         # heights and at every floor, peak force, impacts, required separation).\n#\n",
+         # heights and at every floor, every storey's peak drift and storey force, a yielding\n\
+         # storey's residual drift and hysteretic energy, peak force, impacts, required separation).\n#\n",
     );
     out.push_str(&format!(
         "# OpenSees step dt = {} s over {} s; Newmark average acceleration, Newton.\n",
@@ -723,8 +729,13 @@ pub fn script(
                     st.mass_per_length.unwrap_or(0.0)
                 ),
                 _ => format!(
-                    "shear building, {} floors (nodal masses, twoNodeLink storey springs)",
-                    st.node_heights.len() - 1
+                    "shear building, {} floors (nodal masses, twoNodeLink storey springs{})",
+                    st.node_heights.len() - 1,
+                    if st.bouc_wen.is_some() {
+                        ", BoucWen: yielding"
+                    } else {
+                        ""
+                    }
                 ),
             }
         ));
@@ -740,6 +751,9 @@ pub fn script(
     ));
     for n in damping_notes(scenario) {
         out.push_str(&format!("# damping: {}\n", one_line(&n)));
+    }
+    if m.structures.iter().any(|s| s.bouc_wen.is_some()) {
+        out.push_str(&format!("# yielding {BOUC_WEN_MAPPING}\n"));
     }
     out.push_str("import json\n\nMODEL = json.loads(r'''");
     out.push_str(&json);

@@ -1,9 +1,12 @@
 //! Convergence study (issue 4; what the seed paper's §4 did by hand, docs/model.md §4): the run with
 //! pounding repeated for a ladder of mode counts and a ladder of steps (or tolerances), each row
-//! with its peaks, peak force, impacts and change relative to the finest row.
+//! with its peaks, peak force, impacts and change relative to the finest row — and for yielding
+//! buildings (issue 24) their peak ductility, largest residual drift and hysteretic energy
+//! ([`quantities`]).
 //!
 //! A ladder has *converged* when its two finest runs both ran and agree within the tolerance on
-//! both peaks and the peak force; otherwise the study says "not converged", recommends nothing
+//! both peaks and the peak force (and the yielding quantities); otherwise the study says "not
+//! converged", recommends nothing
 //! and says what to try. When both ladders converged it recommends the fewest modes and the
 //! largest step (loosest tolerance) such that every finer row is within the tolerance of the
 //! finest — never the finest alone, and never a row that failed — combined into settings that
@@ -13,6 +16,8 @@
 //! recommended settings are then run once more at a finer step (dt/4; `adaptive`: rtol and
 //! atol/100) and must agree within the tolerance, or nothing is recommended.
 
+pub mod quantities;
+
 use serde::{Serialize, Serializer};
 
 use crate::integrate::{
@@ -20,6 +25,7 @@ use crate::integrate::{
 };
 use crate::scenario::Scenario;
 use crate::simulate::run_system;
+use quantities::{Yielding, headline_changes, named, within, worst, yield_changes};
 
 /// Mode counts tried (per structure), capped at [`MAX_MODES`].
 pub const MODE_LADDER: [usize; 7] = [1, 2, 3, 5, 10, 20, 50];
@@ -81,6 +87,14 @@ pub struct Row {
     pub impacts: usize,
     /// |x − x_finest|/|x_finest| for w₁, w₂ and the force (0 when x_finest = 0).
     pub change: [f64; 3],
+    /// Yielding buildings only (issue 16), per structure: peak ductility, largest |residual
+    /// drift| and hysteretic energy with pounding (`None` for an elastic structure).
+    pub yielding: [Option<Yielding>; 2],
+    /// Their changes relative to the finest row, per structure: ductility relative, residual
+    /// drift in units of the larger of the finest's and the smallest yield drift, hysteretic
+    /// energy in units of the larger of the finest's and 0.1 % of its input energy (as the
+    /// self-check measures them, [`crate::accuracy`]).
+    pub yield_change: [Option<[f64; 3]>; 2],
     /// Steps taken.
     pub steps: usize,
     /// `None`, or why the row could not be computed (beyond RK4's stability limit for the
@@ -89,9 +103,15 @@ pub struct Row {
 }
 
 impl Row {
-    /// Largest of the three relative changes.
+    /// Every change with its name (`peak w1`, `peak w2`, `peak force`, then `peak ductility
+    /// of 2`, `residual drift of 2`, `hysteretic energy of 2` for each yielding structure).
+    pub fn changes(&self) -> Vec<(String, f64)> {
+        named(&self.change, &self.yield_change)
+    }
+
+    /// Largest of the changes (a NaN counts as the largest).
     pub fn worst_change(&self) -> f64 {
-        self.change.iter().fold(0.0, |m, &c| m.max(c))
+        worst(&self.changes()).map_or(0.0, |(_, c)| c)
     }
 
     /// The step setting in words: `dt = … s` or `rtol = …`.
@@ -122,7 +142,8 @@ pub struct Recommended {
     /// What these settings were checked against (the same at dt/4, or at rtol and atol/100)
     /// and the changes found.
     pub check: String,
-    /// Largest relative change of the peaks and peak force in that check (≤ the tolerance).
+    /// Largest change of the peaks and peak force (and the yielding quantities) in that check
+    /// (≤ the tolerance).
     pub check_change: f64,
 }
 
@@ -191,6 +212,8 @@ fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
         peak_force: f64::NAN,
         impacts: 0,
         change: [f64::NAN; 3],
+        yielding: [None, None],
+        yield_change: [None, None],
         steps: 0,
         failure: None,
     }
@@ -229,6 +252,7 @@ fn one_run(scenario: &Scenario, modes: usize, settings: SolverSettings) -> Row {
             row.peak_w2 = rec.peak[1];
             row.peak_force = rec.levels.iter().map(|l| l.peak_force).fold(0.0, f64::max);
             row.impacts = rec.levels.iter().map(|l| l.impacts).sum();
+            row.yielding = quantities::yielding(&rec);
             row.steps = stats.steps;
         }
         Err(e) => row.failure = Some(e.to_string()),
@@ -242,15 +266,8 @@ fn fill_changes(rows: &mut [Row]) {
     };
     for r in rows.iter_mut().filter(|r| r.failure.is_none()) {
         r.change = changes(r, &finest);
+        r.yield_change = yield_changes(&r.yielding, &finest.yielding);
     }
-}
-
-/// `change ≤ tolerance`, false if either is NaN.
-fn within(change: f64, tolerance: f64) -> bool {
-    matches!(
-        change.partial_cmp(&tolerance),
-        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
-    )
 }
 
 /// What a ladder says: the coarsest row from which every row is within the tolerance of the
@@ -282,18 +299,13 @@ fn judge(rows: &[Row], tolerance: f64, label: impl Fn(&Row) -> String) -> Verdic
             label(prev)
         ));
     }
-    let worst = prev.worst_change();
-    if !within(worst, tolerance) {
-        let names = ["peak w1", "peak w2", "peak force"];
-        let i = (0..3)
-            .max_by(|&a, &b| prev.change[a].total_cmp(&prev.change[b]))
-            .unwrap_or(0);
+    let all = prev.changes();
+    if let Some((name, worst)) = worst(&all).filter(|(_, c)| !within(*c, tolerance)) {
         return fail(format!(
-            "the two finest runs ({} and {}) differ by {:.3} % in the {} (tolerance {pct} %)",
+            "the two finest runs ({} and {}) differ by {:.3} % in the {name} (tolerance {pct} %)",
             label(prev),
             label(last),
             100.0 * worst,
-            names[i]
         ));
     }
     let ok = |r: &Row| r.failure.is_none() && within(r.worst_change(), tolerance);
@@ -433,10 +445,19 @@ pub fn convergence_with(
         Some(r) => {
             let finest_modes = modes.last().map_or(0, |r| r.modes);
             let finest_step = steps.last().map_or(String::new(), Row::step_label);
+            let yielding = if modes
+                .iter()
+                .chain(&steps)
+                .any(|r| r.yielding.iter().any(Option::is_some))
+            {
+                " (and the yielding buildings' peak ductility, residual drift and hysteretic energy)"
+            } else {
+                ""
+            };
             format!(
-                "{}: both peaks and the peak force within {pct} % of the finest run of each ladder \
-                 ({finest_modes} modes with {}; {finest_step} with {} and {n_modes} modes) and of \
-                 the same settings at {}.",
+                "{}: both peaks and the peak force{yielding} within {pct} % of the finest run of \
+                 each ladder ({finest_modes} modes with {}; {finest_step} with {} and {n_modes} \
+                 modes) and of the same settings at {}.",
                 r.describe(),
                 mode_settings.method.name(),
                 base.method.name(),
@@ -492,18 +513,10 @@ fn finer(settings: SolverSettings) -> SolverSettings {
 
 /// Relative changes of a row's peaks and peak force against a reference row.
 fn changes(row: &Row, reference: &Row) -> [f64; 3] {
-    let ch = |x: f64, f: f64| {
-        if f == 0.0 {
-            if x == 0.0 { 0.0 } else { f64::INFINITY }
-        } else {
-            (x - f).abs() / f.abs()
-        }
-    };
-    [
-        ch(row.peak_w1, reference.peak_w1),
-        ch(row.peak_w2, reference.peak_w2),
-        ch(row.peak_force, reference.peak_force),
-    ]
+    headline_changes(
+        [row.peak_w1, row.peak_w2, row.peak_force],
+        [reference.peak_w1, reference.peak_w2, reference.peak_force],
+    )
 }
 
 /// The recommended settings from the chosen mode row and step row: run (so that `pounding run`
@@ -606,11 +619,21 @@ fn combine(
         ));
         return None;
     }
-    let ch = changes(&row, &fine_row);
-    let worst = ch.iter().fold(0.0, |a: f64, &c| a.max(c));
+    let all = named(
+        &changes(&row, &fine_row),
+        &yield_changes(&row.yielding, &fine_row.yielding),
+    );
+    let worst = worst(&all).map_or(0.0, |(_, c)| c);
     let check = format!(
-        "{what} (relative changes of peak w1, peak w2, peak force: {:.1e}, {:.1e}, {:.1e})",
-        ch[0], ch[1], ch[2]
+        "{what} (changes of {}: {})",
+        all.iter()
+            .map(|(n, _)| n.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        all.iter()
+            .map(|(_, c)| format!("{c:.1e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     if !within(worst, tolerance) {
         notes.push(format!(
@@ -686,88 +709,4 @@ fn advice_steps(rows: &[Row], base: &SolverSettings) -> String {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A cheap scenario: 2 s of the paper's case. Whatever the study concludes, it is
-    /// consistent: a recommendation only with both ladders converged, made of rows that are,
-    /// with every finer row, within the tolerance of the finest, and never the finest alone.
-    #[test]
-    fn study_of_a_short_case_recommends_within_tolerance() {
-        let text = include_str!("../examples/paper-c.toml")
-            .replace("duration = 20.0", "duration = 2.0")
-            .replace("method = \"rk4\"", "method = \"exact-modal\"");
-        let sc = Scenario::from_toml(&text, "t", ".".as_ref()).unwrap();
-        let tol = 0.05;
-        let t = convergence(&sc, tol, |_| {});
-        assert_eq!(t.modes.len(), MODE_LADDER.len());
-        assert_eq!(t.steps.len(), DT_LADDER.len());
-        let last = t.steps.last().unwrap();
-        assert_eq!(last.change, [0.0; 3]);
-        assert_eq!(t.converged, t.modes_converged && t.steps_converged);
-        assert_eq!(t.converged, t.recommended.is_some());
-        match t.recommended {
-            Some(r) => {
-                let i = t.modes.iter().position(|x| x.modes == r.modes).unwrap();
-                assert!(i + 1 < t.modes.len(), "never the most modes alone");
-                assert!(t.modes[i..].iter().all(|x| x.worst_change() <= tol));
-                let j = t.steps.iter().position(|x| x.dt == r.dt).unwrap();
-                assert!(j + 1 < t.steps.len(), "never the finest step alone");
-                assert!(t.steps[j..].iter().all(|x| x.worst_change() <= tol));
-                assert_eq!(r.method, Method::ExactModal);
-            }
-            None => assert!(!t.notes.is_empty()),
-        }
-        assert!(!t.recommendation.is_empty());
-    }
-
-    fn row(modes: usize, change: f64, failure: Option<&str>) -> Row {
-        let mut r = empty_row(modes, &SolverSettings::new(Method::ExactModal, 1e-3, 1.0));
-        r.change = [0.0, change, 0.0];
-        r.failure = failure.map(str::to_string);
-        r
-    }
-
-    /// The verdict of a ladder, on rows built by hand.
-    #[test]
-    fn a_ladder_converges_only_when_its_two_finest_runs_agree() {
-        let label = |r: &Row| format!("{} modes", r.modes);
-        // the two finest differ by 2 % > 1 %: not converged, even though the finest agrees
-        // with itself and a coarse row happens to agree with it
-        let rows = [row(1, 0.001, None), row(2, 0.02, None), row(3, 0.0, None)];
-        let v = judge(&rows, 0.01, label);
-        assert_eq!(v.pick, None);
-        let why = v.why.unwrap();
-        assert!(
-            why.contains("2 modes and 3 modes") && why.contains("2.000 %"),
-            "{why}"
-        );
-        assert!(why.contains("peak w2"), "{why}");
-        // the coarsest row from which all are within: index 1, not 0 (row 0 is 5 % off)
-        let rows = [row(1, 0.05, None), row(2, 0.004, None), row(3, 0.0, None)];
-        assert_eq!(judge(&rows, 0.01, label).pick, Some(1));
-        // a row that agrees but has a failed row after it is not picked
-        let rows = [
-            row(1, 0.001, None),
-            row(2, f64::NAN, Some("refused")),
-            row(3, 0.0, None),
-        ];
-        let v = judge(&rows, 0.01, label);
-        assert_eq!(v.pick, None);
-        assert!(
-            v.why
-                .unwrap()
-                .contains("second finest run (2 modes) failed")
-        );
-        // a failed finest run
-        let rows = [row(1, 0.0, None), row(2, f64::NAN, Some("refused"))];
-        assert!(
-            judge(&rows, 0.01, label)
-                .why
-                .unwrap()
-                .contains("finest run (2 modes) failed")
-        );
-        // one run: nothing to compare
-        assert_eq!(judge(&rows[..1], 0.01, label).pick, None);
-    }
-}
+mod tests;

@@ -1,0 +1,229 @@
+//! An integration of buildings in physical coordinates, `M ü + C u̇ + K u = −M 1 a_g + F`, by
+//! RK4 at a small fixed step: the independent reference of the floor-response tests (it shares
+//! nothing with the program but the equations of motion). Used by `tests/buildings.rs` and
+//! `tests/storey_force.rs`.
+
+// (each test file uses part of it)
+#![allow(dead_code)]
+
+/// M, K, C (Rayleigh through modes i, j of the generalised problem, computed here by the
+/// characteristic polynomial's roots) of a shear building, for the independent integration.
+pub struct Physical {
+    /// Floor masses, kg.
+    pub m: Vec<f64>,
+    /// Stiffness matrix, N/m.
+    pub k: Vec<Vec<f64>>,
+    /// Damping matrix, N·s/m.
+    pub c: Vec<Vec<f64>>,
+    /// Storey springs k_j (a shear building): the storey force is `k_j (u_j − u_{j−1})`;
+    /// otherwise it is `Σ_{g ≥ j} (K u)_g`, the equivalent static forces of the floors above.
+    pub springs: Option<Vec<f64>>,
+}
+
+pub fn physical(masses: &[f64], ks: &[f64], zeta: f64) -> Physical {
+    let n = masses.len();
+    let mut k = vec![vec![0.0; n]; n];
+    for j in 0..n {
+        k[j][j] = ks[j] + ks.get(j + 1).copied().unwrap_or(0.0);
+        if j + 1 < n {
+            k[j][j + 1] = -ks[j + 1];
+            k[j + 1][j] = -ks[j + 1];
+        }
+    }
+    // Rayleigh through the two lowest modes, found on K and M alone
+    let mut p = Physical {
+        m: masses.to_vec(),
+        k,
+        c: Vec::new(),
+        springs: Some(ks.to_vec()),
+    };
+    let (wi, wj) = lowest_two(&p);
+    let a0 = 2.0 * zeta * wi * wj / (wi + wj);
+    let a1 = 2.0 * zeta / (wi + wj);
+    let c = (0..n)
+        .map(|r| {
+            (0..n)
+                .map(|s| a1 * p.k[r][s] + if r == s { a0 * masses[r] } else { 0.0 })
+                .collect()
+        })
+        .collect();
+    p.c = c;
+    p
+}
+
+/// The two lowest ω of `K φ = ω² M φ` for a 2- or 3-DOF shear building by bisection on
+/// det(K − ω²M) (a tridiagonal determinant by recurrence): independent of the program's
+/// eigen-solver.
+pub fn lowest_two(p: &Physical) -> (f64, f64) {
+    let det = |l: f64| {
+        let n = p.m.len();
+        let (mut d0, mut d1) = (1.0, p.k[0][0] - l * p.m[0]);
+        for j in 1..n {
+            let d2 = (p.k[j][j] - l * p.m[j]) * d1 - p.k[j][j - 1] * p.k[j - 1][j] * d0;
+            (d0, d1) = (d1, d2);
+        }
+        d1
+    };
+    let mut roots = Vec::new();
+    let (mut l, step) = (1e-6, 0.05);
+    let mut f = det(l);
+    while roots.len() < 2 {
+        let l2 = l * (1.0 + step);
+        let f2 = det(l2);
+        if f.signum() != f2.signum() {
+            let (mut a, mut b) = (l, l2);
+            for _ in 0..200 {
+                let mid = 0.5 * (a + b);
+                if det(mid).signum() == det(a).signum() {
+                    a = mid;
+                } else {
+                    b = mid;
+                }
+            }
+            roots.push((0.5 * (a + b)).sqrt());
+        }
+        (l, f) = (l2, f2);
+    }
+    (roots[0], roots[1])
+}
+
+/// Peaks at every floor of one building in the physical integration.
+#[derive(Debug, Default, Clone)]
+pub struct FloorPeaks {
+    /// |u|, m.
+    pub disp: Vec<f64>,
+    /// |ü + a_g|, m/s².
+    pub acc: Vec<f64>,
+    /// |u_j − u_{j−1}|, m.
+    pub drift: Vec<f64>,
+    /// The storey force of the storey below (restoring, no damping): see [`Physical::springs`], N.
+    pub force: Vec<f64>,
+    /// The storey shear from the equilibrium of the floors above, `Σ_{f ≥ j} (F_f − m_f a_f)`
+    /// (the storey force plus the damping forces above), N.
+    pub shear: Vec<f64>,
+}
+
+/// What the physical integration runs: Hertz contact `kh` at common floors (`levels`: floor
+/// index in A and in B, gap) under a_g = −`pga`·sin(Ω t) (the program's harmonic motion is the
+/// displacement y = A sin Ωt, docs/model.md §2.8), over `duration` at step `dt`.
+pub struct Case<'a> {
+    /// (floor index in the first building, in the second, gap m).
+    pub levels: &'a [(usize, usize, f64)],
+    /// Hertz k_h, N/m^1.5.
+    pub kh: f64,
+    /// m/s².
+    pub pga: f64,
+    /// rad/s.
+    pub omega: f64,
+    /// s.
+    pub duration: f64,
+    /// s.
+    pub dt: f64,
+}
+
+/// RK4 in physical coordinates of both buildings, `M ü + C u̇ + K u = −M 1 a_g + F`; returns
+/// every floor's peaks (displacement, absolute acceleration ü + a_g, storey drift, storey force
+/// — `k_j d_j` of a storey spring, else `Σ_{g ≥ j} (K u)_g` — and the storey shear from the
+/// equilibrium of the floors above, `V_j = Σ_{f ≥ j} (F_f − m_f a_f)`) of both buildings and
+/// the largest contact force of any level, sampled at every step.
+pub fn integrate_physical(a: &Physical, b: &Physical, case: &Case) -> ([FloorPeaks; 2], f64) {
+    let (na, nb) = (a.m.len(), b.m.len());
+    let n = na + nb;
+    // state derivative and the contact forces on every dof
+    let deriv = |t: f64, y: &[f64], out: &mut [f64], fext: &mut [f64]| -> f64 {
+        let a_g = -case.pga * (case.omega * t).sin();
+        let (u, v) = y.split_at(n);
+        fext.iter_mut().for_each(|x| *x = 0.0);
+        let mut fmax = 0.0f64;
+        for &(fa, fb, gap) in case.levels {
+            let delta = u[fa] - u[na + fb] - gap;
+            if delta > 0.0 {
+                let fc = case.kh * delta.powf(1.5);
+                fext[fa] -= fc;
+                fext[na + fb] += fc;
+                fmax = fmax.max(fc);
+            }
+        }
+        for (off, p, nn) in [(0, a, na), (na, b, nb)] {
+            for r in 0..nn {
+                let mut s = fext[off + r] - p.m[r] * a_g;
+                for c in 0..nn {
+                    s -= p.k[r][c] * u[off + c] + p.c[r][c] * v[off + c];
+                }
+                out[off + r] = v[off + r];
+                out[n + off + r] = s / p.m[r];
+            }
+        }
+        fmax
+    };
+    let mut y = vec![0.0; 2 * n];
+    let mut k = [
+        vec![0.0; 2 * n],
+        vec![0.0; 2 * n],
+        vec![0.0; 2 * n],
+        vec![0.0; 2 * n],
+    ];
+    let mut tmp = vec![0.0; 2 * n];
+    let mut fext = vec![0.0; n];
+    let mut peaks = [FloorPeaks::default(), FloorPeaks::default()];
+    for (p, nn) in peaks.iter_mut().zip([na, nb]) {
+        *p = FloorPeaks {
+            disp: vec![0.0; nn],
+            acc: vec![0.0; nn],
+            drift: vec![0.0; nn],
+            force: vec![0.0; nn],
+            shear: vec![0.0; nn],
+        };
+    }
+    let mut pf = 0.0f64;
+    let steps = (case.duration / case.dt).round() as usize;
+    let dt = case.dt;
+    for s in 0..=steps {
+        let t = s as f64 * dt;
+        // the state at t: its accelerations and forces, and the peaks
+        let f0 = deriv(t, &y, &mut k[0], &mut fext);
+        pf = pf.max(f0);
+        let a_g = -case.pga * (case.omega * t).sin();
+        for (bi, (off, p, nn)) in [(0, a, na), (na, b, nb)].into_iter().enumerate() {
+            let pk = &mut peaks[bi];
+            let mut v_above = 0.0;
+            for f in (0..nn).rev() {
+                let acc = k[0][n + off + f] + a_g;
+                v_above += fext[off + f] - p.m[f] * acc;
+                let below = if f == 0 { 0.0 } else { y[off + f - 1] };
+                pk.disp[f] = pk.disp[f].max(y[off + f].abs());
+                pk.acc[f] = pk.acc[f].max(acc.abs());
+                pk.drift[f] = pk.drift[f].max((y[off + f] - below).abs());
+                pk.shear[f] = pk.shear[f].max(v_above.abs());
+                let force = match &p.springs {
+                    Some(ks) => ks[f] * (y[off + f] - below),
+                    None => (f..nn)
+                        .map(|g| (0..nn).map(|c| p.k[g][c] * y[off + c]).sum::<f64>())
+                        .sum(),
+                };
+                pk.force[f] = pk.force[f].max(force.abs());
+            }
+        }
+        if s == steps {
+            break;
+        }
+        for i in 0..2 * n {
+            tmp[i] = y[i] + 0.5 * dt * k[0][i];
+        }
+        let (k0, rest) = k.split_at_mut(1);
+        let _ = k0;
+        deriv(t + 0.5 * dt, &tmp, &mut rest[0], &mut fext);
+        for i in 0..2 * n {
+            tmp[i] = y[i] + 0.5 * dt * rest[0][i];
+        }
+        deriv(t + 0.5 * dt, &tmp, &mut rest[1], &mut fext);
+        for i in 0..2 * n {
+            tmp[i] = y[i] + dt * rest[1][i];
+        }
+        deriv(t + dt, &tmp, &mut rest[2], &mut fext);
+        for i in 0..2 * n {
+            y[i] += dt / 6.0 * (k[0][i] + 2.0 * k[1][i] + 2.0 * k[2][i] + k[3][i]);
+        }
+    }
+    (peaks, pf)
+}
