@@ -821,7 +821,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 .map(|t| rs::PeriodRange::from_first_modes(&t));
             let pairs: Vec<(&str, &pounding::ground_motion::Record)> =
                 read.iter().map(|(n, r)| (n.as_str(), r)).collect();
-            let report = rs::report::SpectrumReport::new(&pairs, &periods, damping, target.as_ref(), range)?;
+            let report =
+                rs::report::SpectrumReport::new(&pairs, &periods, damping, target.as_ref(), range)?;
             if json {
                 println!("{}", report.json());
             } else {
@@ -949,7 +950,9 @@ fn parse_list(text: &str, option: &str) -> anyhow::Result<Vec<f64>> {
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite() && *v > 0.0)
-                .ok_or_else(|| anyhow::anyhow!("{option} {text}: `{}` is not a positive number", s.trim()))
+                .ok_or_else(|| {
+                    anyhow::anyhow!("{option} {text}: `{}` is not a positive number", s.trim())
+                })
         })
         .collect::<anyhow::Result<_>>()?;
     Ok(values)

@@ -127,6 +127,9 @@ fn rgb(c: LineColor) -> RGBColor {
 
 const BAND: RGBColor = RGBColor(255, 236, 179);
 
+/// A legend entry: its text and its line (none for a band).
+type Entry<'a> = (&'a str, Option<&'a XyLine<'a>>);
+
 impl Render for XyFigure<'_> {
     fn render<DB: DrawingBackend>(
         &self,
@@ -138,7 +141,7 @@ impl Render for XyFigure<'_> {
         let (w, h) = (self.width as i32, self.height as i32);
         // legend rows under the title: as many entries per row as fit
         let sample = 34;
-        let entries: Vec<(&str, Option<&XyLine>)> = (self.bands.iter().map(|b| (b.label, None)))
+        let entries: Vec<Entry> = (self.bands.iter().map(|b| (b.label, None)))
             .chain(
                 self.lines
                     .iter()
@@ -147,7 +150,7 @@ impl Render for XyFigure<'_> {
             )
             .collect();
         let line_h = (f.tick * 1.7) as i32;
-        let mut rows: Vec<Vec<(i32, &(&str, Option<&XyLine>))>> = vec![Vec::new()];
+        let mut rows: Vec<Vec<(i32, &Entry)>> = vec![Vec::new()];
         let mut x = 0;
         for e in &entries {
             let ew = sample + 8 + text_width(e.0, f.tick) + 22;
@@ -197,7 +200,10 @@ impl Render for XyFigure<'_> {
             }
         }
 
-        let body = root.clone().shrink((0, top + legend_h), (w as u32, (h - top - legend_h).max(10) as u32));
+        let body = root.clone().shrink(
+            (0, top + legend_h),
+            (w as u32, (h - top - legend_h).max(10) as u32),
+        );
         let xs = self
             .lines
             .iter()
@@ -214,13 +220,27 @@ impl Render for XyFigure<'_> {
                 .filter(|(x, _)| to_plot(**x, self.x_scale).is_some())
                 .filter_map(|(_, y)| to_plot(*y, self.y_scale))
         });
-        let y_pad = if self.y_scale == AxisScale::Log { 0.04 } else { 0.05 };
+        let y_pad = if self.y_scale == AxisScale::Log {
+            0.04
+        } else {
+            0.05
+        };
         let y_range = style::finite_range(ys).map(|(lo, hi)| match self.y_scale {
             AxisScale::Linear => (lo.min(0.0), hi),
             AxisScale::Log => (lo, hi),
         });
-        let (ybody_h, _) = (body.dim_in_pixel().1 as f64, 0);
-        let y_axis = axis(y_range, y_pad, self.y_scale, (ybody_h / (f.tick * 2.6)) as usize);
+        let ybody_h = body.dim_in_pixel().1 as f64;
+        let mut y_axis = axis(
+            y_range,
+            y_pad,
+            self.y_scale,
+            (ybody_h / (f.tick * 2.6)) as usize,
+        );
+        // a quantity that is never negative starts at 0 exactly
+        if self.y_scale == AxisScale::Linear && y_range.is_some_and(|(lo, _)| lo >= 0.0) {
+            y_axis.lo = 0.0;
+            y_axis.ticks.retain(|t| *t >= 0.0);
+        }
         let x_area = (f.tick * 1.4 + f.text * 1.6) as u32 + 10;
         let y_area = (f.tick * 3.9 + f.text * 0.9) as u32 + 14;
         let desc_room = (f.text * 0.7) as u32;
@@ -234,7 +254,8 @@ impl Render for XyFigure<'_> {
             .map_err(draw_err)?;
         // bands first, under the grid
         for b in &self.bands {
-            if let (Some(a), Some(c)) = (to_plot(b.from, self.x_scale), to_plot(b.to, self.x_scale)) {
+            if let (Some(a), Some(c)) = (to_plot(b.from, self.x_scale), to_plot(b.to, self.x_scale))
+            {
                 let (a, c) = (a.clamp(x_axis.lo, x_axis.hi), c.clamp(x_axis.lo, x_axis.hi));
                 chart
                     .draw_series([Rectangle::new(
@@ -285,7 +306,10 @@ impl Render for XyFigure<'_> {
         let plain = chart.plotting_area().strip_coord_spec();
         let (pw, ph) = plain.dim_in_pixel();
         plain
-            .draw(&Rectangle::new([(0, 0), (pw as i32 - 1, ph as i32 - 1)], AXIS))
+            .draw(&Rectangle::new(
+                [(0, 0), (pw as i32 - 1, ph as i32 - 1)],
+                AXIS,
+            ))
             .map_err(draw_err)?;
         Ok(())
     }
@@ -408,7 +432,10 @@ mod tests {
             lines: vec![],
             ..fig.clone()
         };
-        assert!(matches!(write_xy(&empty, &dir.join("e")), Err(PlotError::NoData(_))));
+        assert!(matches!(
+            write_xy(&empty, &dir.join("e")),
+            Err(PlotError::NoData(_))
+        ));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

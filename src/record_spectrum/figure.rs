@@ -91,7 +91,11 @@ pub fn spectrum_figure(report: &SpectrumReport, stem: &Path) -> Result<Vec<PathB
         n,
         if n == 1 { "" } else { "s" },
         crate::plot::style::fmt_num(100.0 * report.damping),
-        if n > COLOURED { " (records in grey)" } else { "" }
+        if n > COLOURED {
+            " (records in grey)"
+        } else {
+            ""
+        }
     );
     let fig = XyFigure {
         title: "Pseudo-acceleration response spectra",

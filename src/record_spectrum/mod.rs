@@ -29,8 +29,8 @@ use serde::Serialize;
 use crate::ground_motion::Record;
 
 pub use scaling::{
-    PeriodRange, ScaledRecord, ScaledSuite, ScalingError, ScalingOptions, ScalingRule,
-    SuiteMember, SuiteScaling, Target,
+    PeriodRange, ScaledRecord, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember,
+    SuiteScaling, Target,
 };
 
 /// The damping ratio of the codes' spectra and of `pounding spectrum` by default: 5 %.
@@ -207,7 +207,7 @@ pub fn scale_to_sa(
     }
     check_input(&record.description, record.dt, &[period], damping)?;
     let psa = spectral_point(&record.accel, record.dt, period, damping).psa;
-    if !(psa > 0.0) {
+    if psa.is_nan() || psa <= 0.0 {
         return Err(ScalingError::NoResponse {
             record: record.description.clone(),
             period,

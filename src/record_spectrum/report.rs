@@ -99,7 +99,10 @@ impl SpectrumReport {
         }
         let curve = |description: String, psa: Vec<Option<f64>>| Curve {
             description,
-            psa_g: psa.iter().map(|a| a.map(|a| a / STANDARD_GRAVITY)).collect(),
+            psa_g: psa
+                .iter()
+                .map(|a| a.map(|a| a / STANDARD_GRAVITY))
+                .collect(),
             psa,
         };
         let mean = (entries.len() > 1).then(|| {
@@ -131,7 +134,10 @@ impl SpectrumReport {
             fmt(100.0 * self.damping)
         );
         for (i, r) in self.records.iter().enumerate() {
-            let comp = r.component.as_deref().map_or(String::new(), |c| format!(", {c}"));
+            let comp = r
+                .component
+                .as_deref()
+                .map_or(String::new(), |c| format!(", {c}"));
             out.push_str(&format!(
                 "  [{}] {}{comp}: dt = {} s, PGA = {:.4} g\n",
                 i + 1,
@@ -201,7 +207,10 @@ impl ScaledSuite {
         let mut out = String::new();
         let t1: Vec<String> = self.first_mode_periods.iter().map(|t| fmt(*t)).collect();
         out.push_str(&format!("  rule              {}\n", self.rule_name));
-        out.push_str(&format!("  target            {}\n", self.target_description));
+        out.push_str(&format!(
+            "  target            {}\n",
+            self.target_description
+        ));
         out.push_str(&format!(
             "  first-mode T       {} s → code range {} to {} s",
             t1.join(", "),
@@ -273,4 +282,3 @@ impl ScaledSuite {
 fn fmt(x: f64) -> String {
     crate::plot::style::fmt_num(x).replace('−', "-")
 }
-

@@ -160,7 +160,11 @@ impl Target {
     /// `factor` (> 0) × the spectrum.
     pub fn scaled(spectrum: DesignSpectrum, factor: f64) -> Target {
         let mut t = Target::as_given(spectrum);
-        t.description = format!("{} × the {}", crate::plot::style::fmt_num(factor), t.description);
+        t.description = format!(
+            "{} × the {}",
+            crate::plot::style::fmt_num(factor),
+            t.description
+        );
         t.scale = factor;
         t
     }
@@ -431,9 +435,8 @@ impl SuiteScaling {
         }
         let code_range = rule.period_range(t1);
         let range = opts.range.unwrap_or(code_range);
-        if !(range.lo > 0.0 && range.hi > range.lo && range.hi.is_finite())
-            || !range.covers(&code_range)
-        {
+        let ordered = range.lo > 0.0 && range.hi > range.lo && range.hi.is_finite();
+        if !(ordered && range.covers(&code_range)) {
             return Err(ScalingError::RangeTooNarrow {
                 lo: range.lo,
                 hi: range.hi,
@@ -486,7 +489,7 @@ impl SuiteScaling {
                 .iter()
                 .map(|&t| super::spectral_point(&r.accel, r.dt, t, DEFAULT_DAMPING).psa)
                 .collect();
-            if let Some(k) = s.iter().position(|v| !(*v > 0.0)) {
+            if let Some(k) = s.iter().position(|v| v.is_nan() || *v <= 0.0) {
                 return Err(ScalingError::NoResponse {
                     record: m.name.to_string(),
                     period: periods[k],

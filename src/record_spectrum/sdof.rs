@@ -118,7 +118,8 @@ impl Coefficients {
             let mut next = [[0.0; 4]; 4];
             for i in 0..4 {
                 for j in 0..4 {
-                    next[i][j] = (0..4).map(|l| term[i][l] * n[l][j]).sum::<f64>() * theta / k as f64;
+                    next[i][j] =
+                        (0..4).map(|l| term[i][l] * n[l][j]).sum::<f64>() * theta / k as f64;
                 }
             }
             term = next;
@@ -189,7 +190,11 @@ pub fn peaks(accel: &[f64], dt: f64, omega: f64, zeta: f64) -> Peaks {
         let da = (a1 - a0) / m as f64;
         let mut s0 = a0;
         for j in 0..m {
-            let s1 = if j + 1 == m { a1 } else { a0 + da * (j + 1) as f64 };
+            let s1 = if j + 1 == m {
+                a1
+            } else {
+                a0 + da * (j + 1) as f64
+            };
             let (u1, v1) = c.step(u, v, s0, s1);
             let y1 = -(two_zw * v1 + w2 * u1);
             let au1 = u1.abs();
@@ -380,9 +385,12 @@ mod tests {
                 (u, v) = c.step(u, v, a, a);
                 let t = k as f64 * h;
                 let e = (-zeta * omega * t).exp();
-                let exact =
-                    -a / (omega * omega) * (1.0 - e * ((wd * t).cos() + zeta * omega / wd * (wd * t).sin()));
-                assert!((u - exact).abs() < 1e-12 * a / (omega * omega), "h {h} t {t}: {u} vs {exact}");
+                let exact = -a / (omega * omega)
+                    * (1.0 - e * ((wd * t).cos() + zeta * omega / wd * (wd * t).sin()));
+                assert!(
+                    (u - exact).abs() < 1e-12 * a / (omega * omega),
+                    "h {h} t {t}: {u} vs {exact}"
+                );
             }
         }
     }
@@ -391,8 +399,8 @@ mod tests {
     /// dense sampling of the closed form.
     #[test]
     fn free_vibration_peak() {
-        let omega = 3.0;
-        let (u, v) = (0.2, -1.1);
+        let omega = 3.0_f64;
+        let (u, v) = (0.2_f64, -1.1_f64);
         let amp = (u * u + (v / omega) * (v / omega)).sqrt();
         let got = free_peak(u, v / omega, omega, 0.0);
         assert!((got - amp).abs() < 1e-14, "{got} vs {amp}");
@@ -406,6 +414,9 @@ mod tests {
                 ((-zeta * omega * t).exp() * (u * (wd * t).cos() + c2 * (wd * t).sin())).abs()
             })
             .fold(0.0_f64, f64::max);
-        assert!((got - dense).abs() < 1e-9 && got >= dense - 1e-15, "{got} vs {dense}");
+        assert!(
+            (got - dense).abs() < 1e-9 && got >= dense - 1e-15,
+            "{got} vs {dense}"
+        );
     }
 }
