@@ -9,9 +9,10 @@ use crate::plot::{AxisScale, Band, LineColor, LineStyle, PlotError, XyFigure, Xy
 use crate::record_spectrum::report::SpectrumReport;
 use crate::record_spectrum::scaling::ScaledSuite;
 
-/// Records drawn each in its own colour up to this many; more are grey (the mean carries
-/// the message).
-const COLOURED: usize = 7;
+/// Palette colours of the records, up to five (not the target's vermillion, not black, not the
+/// pale yellow); more records are drawn in grey (the mean carries the message).
+const RECORD_COLOURS: [usize; 5] = [0, 2, 3, 5, 4];
+const COLOURED: usize = RECORD_COLOURS.len();
 
 fn in_g(v: &[f64]) -> Vec<f64> {
     v.iter().map(|a| a / STANDARD_GRAVITY).collect()
@@ -50,7 +51,7 @@ pub fn spectrum_figure(report: &SpectrumReport, stem: &Path) -> Result<Vec<PathB
             y,
             style: LineStyle::Solid,
             color: if n <= COLOURED {
-                LineColor::Palette(i + 2)
+                LineColor::Palette(RECORD_COLOURS[i % COLOURED])
             } else {
                 LineColor::Grey
             },
@@ -173,10 +174,8 @@ pub fn scaling_figure(suite: &ScaledSuite, stem: &Path) -> Result<Vec<PathBuf>, 
     });
     let title = format!("Suite scaled by {}", suite.rule_name);
     let subtitle = format!(
-        "{} records; lowest mean/target {:.3} at T = {} s; governs: {}",
+        "{} records, 5 % damping; governs: {}",
         suite.records.len(),
-        suite.min_ratio,
-        crate::plot::style::fmt_num(suite.min_ratio_period),
         suite.governs
     );
     let fig = XyFigure {
