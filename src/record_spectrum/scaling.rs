@@ -74,7 +74,7 @@ impl ScalingRule {
     fn count_clause(self) -> &'static str {
         match self {
             ScalingRule::Asce7 => "ASCE 7-16 §16.2.2",
-            ScalingRule::Ec8 => "EN 1998-1 §3.2.3.1.1(4)a (by §3.2.3.1.2(3))",
+            ScalingRule::Ec8 => "EN 1998-1 §3.2.3.1.1(4)a (by §3.2.3.1.2)",
         }
     }
 
