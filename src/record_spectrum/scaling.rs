@@ -621,7 +621,7 @@ impl SuiteScaling {
         } else {
             match pga_check {
                 Some(p) if p.ratio / 1.0 <= o.min_ratio / required => format!(
-                    "the mean PGA: {:.4} g = a_g·S = {:.4} g (EN 1998-1 §3.2.3.1.1(4)b)",
+                    "the mean PGA: {:.4} g = the target at T = 0 (a_g·S) = {:.4} g (EN 1998-1 §3.2.3.1.1(4)b)",
                     p.mean_pga / STANDARD_GRAVITY,
                     p.required / STANDARD_GRAVITY
                 ),
@@ -718,7 +718,7 @@ fn infeasible_reason(top: &Outcome, required: f64, zero_period: Option<f64>, hi:
         && top.mean_pga < z
     {
         parts.push(format!(
-            "the mean PGA reaches only {:.4} g against a_g·S = {:.4} g",
+            "the mean PGA reaches only {:.4} g against the target at T = 0 (a_g·S) = {:.4} g",
             top.mean_pga / STANDARD_GRAVITY,
             z / STANDARD_GRAVITY
         ));
