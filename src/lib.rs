@@ -36,6 +36,7 @@ pub mod modal;
 pub mod opensees;
 pub mod output;
 pub mod plot;
+pub mod record_spectrum;
 pub mod recorder;
 pub mod restitution;
 pub mod row_spool;

@@ -337,6 +337,105 @@ enum Command {
         #[arg(long, default_value_t = pounding::ground_motion::processing::DEFAULT_ORDER)]
         order: usize,
     },
+    /// 5 %-damped pseudo-acceleration response spectra of records (exact for an acceleration
+    /// linear between samples, Nigam–Jennings): a table of PSA in g per period and record,
+    /// their mean, and the figure DIR/spectrum.png/.svg (log period axis).
+    ///
+    /// With --target the design spectrum is drawn and tabulated beside them, and with --t1
+    /// the period range 0.2·T1 … 2·T1 is shaded. --json gives per record `periods` (s), `psa`
+    /// (m/s²), `psa_g`, `sd` (m), `psv` (m/s), `sa_abs` (m/s²).
+    Spectrum {
+        /// Record files (any layout `pounding record` reads).
+        #[arg(required = true)]
+        records: Vec<PathBuf>,
+        /// The component of multi-channel files: a number (1, 2, …) or a name ("90", "EW"),
+        /// the same for every file.
+        #[arg(long)]
+        component: Option<String>,
+        /// Damping ratio of the oscillators, in [0, 1).
+        #[arg(long, default_value_t = pounding::record_spectrum::DEFAULT_DAMPING)]
+        damping: f64,
+        /// Periods, s: a list (0,0.1,0.2,0.5,1) or FROM:TO:N (N periods equally spaced in log
+        /// T). Default: 0 (the PGA) and 0.01 to 10 s, 20 a decade.
+        #[arg(long)]
+        periods: Option<String>,
+        /// A design spectrum to show beside the records, as `pounding separation --spectrum`:
+        /// asce7:sds=…,sd1=…,tl=… | ec8:ag=…,ground_type=…,type=… | table:FILE.
+        #[arg(long, value_name = "SPEC")]
+        target: Option<String>,
+        /// First-mode periods of the structures, s (one or two): shade 0.2·min … 2·max.
+        #[arg(long, value_name = "T1[,T2]")]
+        t1: Option<String>,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Directory for the figure (created if missing).
+        #[arg(short, long, default_value = "out")]
+        out: PathBuf,
+        /// Do not draw the figure.
+        #[arg(long)]
+        no_plot: bool,
+        /// Units of the values, overriding the files': g, cm/s2 (gal), m/s2.
+        #[arg(long)]
+        units: Option<String>,
+        /// Time step, s (one-column files).
+        #[arg(long)]
+        dt: Option<f64>,
+    },
+    /// Scale a suite of records to a target spectrum by a code's rule: one factor per record so
+    /// that the suite's mean 5 %-damped spectrum is at least 90 % of the target over the code's
+    /// period range (0.2·T1 … 2·T1) — ASCE 7-16 §16.2.3 (≥ 11 records, target MCE_R = 1.5 × an
+    /// ASCE 7 design spectrum) or EN 1998-1 §3.2.3.1.2 (≥ 3 records, and mean PGA ≥ a_g·S).
+    ///
+    /// Prints each record's factor, the lowest mean-to-target ratio and where, and what governs;
+    /// refuses, with the reason, a suite that cannot meet the rule. Draws DIR/scaling.png/.svg.
+    Scale {
+        /// Record files.
+        #[arg(required = true)]
+        records: Vec<PathBuf>,
+        /// The target spectrum: asce7:sds=…,sd1=…,tl=… | ec8:ag=…,ground_type=…,type=… |
+        /// table:FILE (as `pounding separation --spectrum`).
+        #[arg(long, value_name = "SPEC")]
+        target: String,
+        /// The code's rule.
+        #[arg(long, value_parser = ["asce7", "ec8"])]
+        rule: String,
+        /// First-mode periods of the structures, s (one or two).
+        #[arg(long, value_name = "T1[,T2]")]
+        t1: String,
+        /// A wider period range than the code's, s (e.g. to include the modes of 90 % mass
+        /// participation, ASCE 7-16 §16.2.3.1).
+        #[arg(long, value_name = "LO,HI")]
+        range: Option<String>,
+        /// The mean-to-target ratio to reach (at least the code's 0.9).
+        #[arg(long, default_value_t = 0.9)]
+        ratio: f64,
+        /// Smallest and largest factor allowed per record.
+        #[arg(long, value_name = "MIN,MAX")]
+        factor_limits: Option<String>,
+        /// Multiply the target by this instead of the rule's factor (1.5 for an ASCE 7 design
+        /// spectrum under asce7, else 1).
+        #[arg(long)]
+        target_scale: Option<f64>,
+        /// The component of multi-channel files, the same for every file.
+        #[arg(long)]
+        component: Option<String>,
+        /// Print JSON (factors, grid, target, mean, ratios) instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Directory for the figure (created if missing).
+        #[arg(short, long, default_value = "out")]
+        out: PathBuf,
+        /// Do not draw the figure.
+        #[arg(long)]
+        no_plot: bool,
+        /// Units of the values, overriding the files': g, cm/s2 (gal), m/s2.
+        #[arg(long)]
+        units: Option<String>,
+        /// Time step, s (one-column files).
+        #[arg(long)]
+        dt: Option<f64>,
+    },
 }
 
 /// Targets of `pounding export`.
@@ -743,6 +842,108 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             Ok(())
         }
+        Command::Spectrum {
+            records,
+            component,
+            damping,
+            periods,
+            target,
+            t1,
+            json,
+            out,
+            no_plot,
+            units,
+            dt,
+        } => {
+            use pounding::record_spectrum as rs;
+            let read = read_records(&records, component.as_deref(), units.as_deref(), dt)?;
+            let periods = match periods {
+                Some(text) => rs::parse_periods(&text)?,
+                None => rs::default_periods(),
+            };
+            let target = target
+                .as_deref()
+                .map(pounding::design::spectrum_from_arg)
+                .transpose()?
+                .map(rs::Target::as_given);
+            let range = t1
+                .as_deref()
+                .map(|t| parse_list(t, "--t1"))
+                .transpose()?
+                .map(|t| rs::PeriodRange::from_first_modes(&t));
+            let pairs: Vec<(&str, &pounding::ground_motion::Record)> =
+                read.iter().map(|(n, r)| (n.as_str(), r)).collect();
+            let report =
+                rs::report::SpectrumReport::new(&pairs, &periods, damping, target.as_ref(), range)?;
+            if json {
+                println!("{}", report.json());
+            } else {
+                print!("{}", report.text());
+            }
+            if !no_plot {
+                std::fs::create_dir_all(&out)?;
+                let written = rs::figure::spectrum_figure(&report, &out.join("spectrum"))?;
+                if !quiet && !json {
+                    println!("wrote {}", list_paths(&written));
+                }
+            }
+            Ok(())
+        }
+        Command::Scale {
+            records,
+            target,
+            rule,
+            t1,
+            range,
+            ratio,
+            factor_limits,
+            target_scale,
+            component,
+            json,
+            out,
+            no_plot,
+            units,
+            dt,
+        } => {
+            use pounding::record_spectrum as rs;
+            let rule = rs::ScalingRule::from_name(&rule)
+                .ok_or_else(|| anyhow::anyhow!("--rule {rule}: must be asce7 or ec8"))?;
+            let spectrum = pounding::design::spectrum_from_arg(&target)?;
+            let target = match target_scale {
+                None => rs::Target::for_rule(spectrum, rule),
+                Some(f) if f.is_finite() && f > 0.0 => rs::Target::scaled(spectrum, f),
+                Some(f) => anyhow::bail!("--target-scale {f}: must be a positive number"),
+            };
+            let mut opts = rs::ScalingOptions::new(rule, &parse_list(&t1, "--t1")?);
+            opts.required_ratio = ratio;
+            if let Some(r) = range {
+                let (lo, hi) = parse_pair(&r, "--range")?;
+                opts.range = Some(rs::PeriodRange { lo, hi });
+            }
+            opts.factor_limits = factor_limits
+                .as_deref()
+                .map(|l| parse_pair(l, "--factor-limits"))
+                .transpose()?;
+            let read = read_records(&records, component.as_deref(), units.as_deref(), dt)?;
+            let members: Vec<rs::SuiteMember> = read
+                .iter()
+                .map(|(name, record)| rs::SuiteMember { name, record })
+                .collect();
+            let suite = rs::SuiteScaling::compute(&members, &target, &opts)?;
+            if json {
+                println!("{}", suite.json());
+            } else {
+                print!("{}", suite.text());
+            }
+            if !no_plot {
+                std::fs::create_dir_all(&out)?;
+                let written = rs::figure::scaling_figure(&suite, &out.join("scaling"))?;
+                if !quiet && !json {
+                    println!("wrote {}", list_paths(&written));
+                }
+            }
+            Ok(())
+        }
         Command::Crosscheck {
             scenario,
             elements,
@@ -772,6 +973,57 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
     }
+}
+
+/// Reads every record file with the same options; the error names the file.
+fn read_records(
+    files: &[PathBuf],
+    component: Option<&str>,
+    units: Option<&str>,
+    dt: Option<f64>,
+) -> anyhow::Result<Vec<(String, pounding::ground_motion::Record)>> {
+    let opts = pounding::ground_motion::summary::options(component, units, dt, None, None, None, 4)
+        .map_err(anyhow::Error::msg)?;
+    files
+        .iter()
+        .map(|f| {
+            let r = pounding::ground_motion::Record::read(f, &opts)?;
+            Ok((f.display().to_string(), r))
+        })
+        .collect()
+}
+
+/// Comma-separated positive numbers of an option.
+fn parse_list(text: &str, option: &str) -> anyhow::Result<Vec<f64>> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    anyhow::anyhow!("{option} {text}: `{}` is not a positive number", s.trim())
+                })
+        })
+        .collect::<anyhow::Result<_>>()?;
+    Ok(values)
+}
+
+/// Two positive numbers `A,B` of an option.
+fn parse_pair(text: &str, option: &str) -> anyhow::Result<(f64, f64)> {
+    match parse_list(text, option)?.as_slice() {
+        [a, b] => Ok((*a, *b)),
+        _ => anyhow::bail!("{option} {text}: expected two numbers A,B"),
+    }
+}
+
+fn list_paths(paths: &[PathBuf]) -> String {
+    paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn print_summary(sc: &Scenario, name: &str, r: &Report) {

@@ -4,6 +4,7 @@
 //! - [`lines`]: [`Figure`]s of stacked [`Panel`]s over one x axis, linear or logarithmic y;
 //! - [`heatmap`]: a [`Heatmap`] of a grid with its colour bar, ticked at the grid values;
 //! - [`profile`]: envelopes over height, panels side by side ([`ProfileFigure`]);
+//! - [`xy`]: one panel over a linear or logarithmic x axis with shaded bands ([`XyFigure`]);
 //! - [`style`]: the font, palette, number labels and the colour scales ([`ColorScale`]).
 //!
 //! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, each atomically (rendered
@@ -29,11 +30,13 @@ pub mod heatmap;
 pub mod lines;
 pub mod profile;
 pub mod style;
+pub mod xy;
 
 pub use heatmap::{Heatmap, write_heatmap};
 pub use lines::{AxisScale, Figure, LineStyle, Panel, Series, write_figure};
 pub use profile::{ProfileFigure, ProfilePanel, ProfileSeries, write_profile};
 pub use style::ColorScale;
+pub use xy::{Band, LineColor, XyFigure, XyLine, write_xy};
 
 /// Largest accepted picture side in pixels.
 const MAX_SIDE: u32 = 16_384;
