@@ -476,7 +476,7 @@ fn cli_spectrum_and_scale() {
         .args(&recs)
         .args([
             "--target",
-            "ec8:ag=3,ground_type=C,type=1",
+            "ec8:ag=3m/s2,ground_type=C,type=1",
             "--rule",
             "ec8",
             "--t1",
@@ -530,7 +530,7 @@ fn cli_spectrum_and_scale() {
         .args(&recs)
         .args([
             "--target",
-            "ec8:ag=3,ground_type=C,type=1",
+            "ec8:ag=3m/s2,ground_type=C,type=1",
             "--rule",
             "ec8",
             "--t1",
