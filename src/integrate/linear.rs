@@ -473,6 +473,14 @@ impl GroundModes {
         }
     }
 
+    /// Harmonic load coefficients (α, β) of mode j: load = α sin Ωt + β cos Ωt, m/s²·kg^½
+    /// ((0, 0) without harmonic motion).
+    #[inline(always)]
+    pub(crate) fn harmonic_coefficients(&self, j: usize) -> (f64, f64) {
+        let [a, b, ..] = self.hcoef[j];
+        (a, b)
+    }
+
     /// Harmonic load coefficients (α, β) of mode j: load = α sin Ωt + β cos Ωt; and Ω.
     #[inline(always)]
     fn harmonic_load(&self, j: usize) -> (f64, f64, f64) {

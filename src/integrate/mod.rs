@@ -11,6 +11,7 @@
 //! the last two share the exact propagator and particular solutions of [`linear`].
 
 mod adaptive;
+mod collocation;
 mod exact_modal;
 mod hysteretic;
 pub mod linear;
@@ -84,7 +85,7 @@ pub const MIN_RTOL: f64 = 1e-12;
 /// Smallest absolute tolerance accepted, m ([`MIN_RTOL`] × [`ATOL_PER_RTOL`]).
 pub const MIN_ATOL: f64 = MIN_RTOL * ATOL_PER_RTOL;
 /// Default relative tolerance of `exact-modal`'s contact sub-steps.
-pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 5e-5;
+pub const EXACT_MODAL_DEFAULT_RTOL: f64 = 1e-8;
 /// Absolute tolerance that goes with a relative one when `atol` is not given, m per unit of
 /// rtol: `atol = rtol × 1 cm` at a structure's top. Scaling it with rtol keeps rtol the one
 /// knob: with a fixed atol, rtol below ~1e-9 would change nothing (the modal amplitudes times
@@ -166,6 +167,9 @@ pub(crate) struct StepTrace {
     pub z0: Vec<f64>,
     /// See `z0`.
     pub z1: Vec<f64>,
+    /// `exact-modal`'s contact steps: every level's (δ, δ̇) at the end by the estimate's
+    /// companion scheme (empty otherwise).
+    pub companion: Vec<(f64, f64)>,
 }
 
 /// Initial modal state (default: at rest relative to the ground, docs/model.md §2.8).
