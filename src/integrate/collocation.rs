@@ -55,6 +55,9 @@ pub(super) const WEIGHTS8: [f64; 5] = [
     49.0 / 180.0,
     1.0 / 20.0,
 ];
+/// Lobatto weights of the 4-node scheme on [0, 1] (nodes 0, A1, A2, 1): exact for polynomials
+/// of degree 5.
+pub(super) const WEIGHTS6: [f64; 4] = [1.0 / 12.0, 5.0 / 12.0, 5.0 / 12.0, 1.0 / 12.0];
 /// The 5-node scheme's nodes on [0, 1], start included.
 pub(super) const THETA8: [f64; 5] = [0.0, B1, 0.5, B3, 1.0];
 /// The 4-node scheme's nodes on [0, 1], start included.
@@ -111,6 +114,8 @@ pub(super) struct Bases {
     /// `partial[i][p] = ∫₀^{θ_{i+1}} ℓ8_p(x) dx`: the quadrature of the 5 nodal values from the
     /// start to the interior node i (B1, ½, B3), exact for quartics (tallies at dense output).
     pub partial: [[f64; 5]; 3],
+    /// `first[p] = ∫₀¹ x ℓ8_p(x) dx`: the first moment of a quartic from its nodal values.
+    pub first: [f64; 5],
 }
 
 /// See [`Bases`].
@@ -134,12 +139,14 @@ pub(super) fn bases() -> &'static Bases {
                     .sum()
             })
         });
+        let first = std::array::from_fn(|p| (0..5).map(|m| l8[m][p] / (m + 2) as f64).sum());
         Bases {
             l8,
             l6: lagrange(&THETA6),
             at6,
             den8,
             partial,
+            first,
         }
     })
 }
@@ -244,32 +251,45 @@ fn monomial_responses(
     }
 }
 
+/// One mode's part of a [`Table`]: what an accepted step needs of it, in one place.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct ModeStep {
+    /// `P(h)`.
+    pub end: Prop,
+    /// (η, η̇) at the step's end from rest under the 5-node scheme's Lagrange load ℓ_p.
+    pub end8: [(f64, f64); 5],
+    /// `P(θh)` at the 5-node scheme's interior nodes (B1, ½, B3), for dense output.
+    pub mid: [Prop; 3],
+    /// (η, η̇) there under ℓ_p.
+    pub mid8: [[(f64, f64); 5]; 3],
+}
+
 /// Everything of a step of length h that does not depend on the state.
 pub(super) struct Table {
     /// Step length, s.
     pub h: f64,
     /// Modes.
     n: usize,
-    /// `P(θ h)` of every mode at every node of [`NODES`]: `[node·n + j]`.
-    pub props: Vec<Prop>,
-    /// The same times the coupling: `c_kj·(p11, p12, p21, p22)` at `[(node·L + k)·n + j]`, so
-    /// that the free flight's δ, δ̇ at the nodes are two dot products per node and level.
+    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], at
+    /// `[(node·L + k)·n + j]`: the free flight's δ, δ̇ at the nodes are two dot products per
+    /// node and level.
     pub cprop: Vec<[f64; 4]>,
-    /// (η, η̇) at the step's end from rest under the 5-node scheme's Lagrange load ℓ_p:
-    /// `[p·n + j]`.
-    pub end8: Vec<(f64, f64)>,
-    /// η̇ at the 5-node scheme's interior nodes (B1, ½, B3) under ℓ_p: `[(i·5 + p)·n + j]`.
-    pub vel8: Vec<f64>,
-    /// η at the same nodes (dense output): `[(i·5 + p)·n + j]`.
-    pub pos8: Vec<f64>,
+    /// Per mode, see [`ModeStep`].
+    pub modes: Vec<ModeStep>,
     /// Level tables of the 5-node scheme: the response of `c_k·η` (and `c_k·η̇`) at its node i
     /// (B1, ½, B3, end) to a unit force at level l shaped as ℓ_p,
     /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[((k·L + l)·4 + i)·5 + p]`.
     pub w8: Vec<(f64, f64)>,
     /// The same for the 4-node companion at its nodes (A1, A2, end): `[((k·L + l)·3 + i)·4 + p]`.
     pub w6: Vec<(f64, f64)>,
+    /// The 5-node scheme's response at the companion's interior nodes (A1, A2), for the work
+    /// of the contacts along the computed motion: `[((k·L + l)·2 + i)·5 + p]`.
+    pub w86: Vec<(f64, f64)>,
     /// Harmonic motion: (sin Ωθh, cos Ωθh) at every node of [`NODES`].
     pub rot: [(f64, f64); 6],
+    /// Harmonic motion: `(∫₀ʰ ℓ_p(τ/h) cos Ωτ dτ, ∫₀ʰ ℓ_p(τ/h) sin Ωτ dτ)` of the 5-node
+    /// scheme's Lagrange loads (s), for the ground's exact work under a contact load.
+    pub hmom: [(f64, f64); 5],
 }
 
 impl Table {
@@ -278,14 +298,13 @@ impl Table {
         let mut t = Table {
             h: f64::NAN,
             n: 0,
-            props: Vec::new(),
             cprop: Vec::new(),
-            end8: Vec::new(),
-            vel8: Vec::new(),
-            pos8: Vec::new(),
+            modes: Vec::new(),
             w8: Vec::new(),
             w6: Vec::new(),
+            w86: Vec::new(),
             rot: [(0.0, 1.0); 6],
+            hmom: [(0.0, 0.0); 5],
         };
         t.fill(sys, big, h);
         t
@@ -298,28 +317,32 @@ impl Table {
         let nl = sys.levels.len();
         self.h = h;
         self.n = n;
+        let Bases { l8, l6, .. } = bases();
         if let Some(big) = big {
             self.rot = NODES.map(|x| (big * x * h).sin_cos());
+            let moments = trig_moments(big * h);
+            self.hmom = std::array::from_fn(|p| {
+                let (mut a, mut b) = (0.0, 0.0);
+                for m in 0..5 {
+                    a += l8[m][p] * moments[m].0;
+                    b += l8[m][p] * moments[m].1;
+                }
+                (h * a, h * b)
+            });
         }
-        let Bases { l8, l6, .. } = bases();
-        self.props.clear();
-        self.props.resize(6 * n, Prop::IDENTITY);
         self.cprop.clear();
         self.cprop.resize(6 * nl * n, [0.0; 4]);
-        self.end8.clear();
-        self.end8.resize(5 * n, (0.0, 0.0));
-        self.vel8.clear();
-        self.vel8.resize(15 * n, 0.0);
-        self.pos8.clear();
-        self.pos8.resize(15 * n, 0.0);
+        self.modes.clear();
+        self.modes.resize(n, ModeStep::default());
         self.w8.clear();
         self.w8.resize(nl * nl * 20, (0.0, 0.0));
         self.w6.clear();
         self.w6.resize(nl * nl * 12, (0.0, 0.0));
+        self.w86.clear();
+        self.w86.resize(nl * nl * 10, (0.0, 0.0));
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
             for (i, p) in props.iter().enumerate() {
-                self.props[i * n + j] = *p;
                 for k in 0..nl {
                     let c = sys.coupling(k)[j];
                     self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
@@ -327,53 +350,52 @@ impl Table {
             }
             let mut mono = [[(0.0, 0.0); 5]; 6];
             monomial_responses(omega[j], damp[j], h, &props, &mut mono);
-            // this mode's responses to the Lagrange loads: the 5-node scheme's at its 4 nodes,
-            // the companion's at its 3
-            let mut g8 = [[(0.0, 0.0); 5]; 4];
-            for (i, &node) in NODES8.iter().enumerate() {
-                for p in 0..5 {
+            // this mode's responses to the Lagrange loads: the 5-node scheme's at its 4 nodes
+            // and at the companion's 2 interior ones, the companion's at its 3
+            let lagrange8 = |node: usize| -> [(f64, f64); 5] {
+                std::array::from_fn(|p| {
                     let (mut a, mut b) = (0.0, 0.0);
                     for m in 0..5 {
                         a += l8[m][p] * mono[node][m].0;
                         b += l8[m][p] * mono[node][m].1;
                     }
-                    g8[i][p] = (a, b);
-                }
-            }
-            let mut g6 = [[(0.0, 0.0); 4]; 3];
-            for (i, &node) in NODES6.iter().enumerate() {
-                for p in 0..4 {
+                    (a, b)
+                })
+            };
+            let g8: [[(f64, f64); 5]; 4] = NODES8.map(lagrange8);
+            let g86: [[(f64, f64); 5]; 2] = [lagrange8(0), lagrange8(1)];
+            let g6: [[(f64, f64); 4]; 3] = NODES6.map(|node| {
+                std::array::from_fn(|p| {
                     let (mut a, mut b) = (0.0, 0.0);
                     for m in 0..4 {
                         a += l6[m][p] * mono[node][m].0;
                         b += l6[m][p] * mono[node][m].1;
                     }
-                    g6[i][p] = (a, b);
-                }
-            }
-            for p in 0..5 {
-                self.end8[p * n + j] = g8[3][p];
-                for i in 0..3 {
-                    self.vel8[(i * 5 + p) * n + j] = g8[i][p].1;
-                    self.pos8[(i * 5 + p) * n + j] = g8[i][p].0;
-                }
-            }
+                    (a, b)
+                })
+            });
+            self.modes[j] = ModeStep {
+                end: props[END],
+                end8: g8[3],
+                mid: [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]],
+                mid8: [g8[0], g8[1], g8[2]],
+            };
             for k in 0..nl {
                 for l in 0..nl {
                     let w = sys.coupling(k)[j] * sys.coupling(l)[j];
                     if w == 0.0 {
                         continue;
                     }
-                    let t8 = &mut self.w8[(k * nl + l) * 20..(k * nl + l + 1) * 20];
-                    for (e, g) in t8.iter_mut().zip(g8.iter().flatten()) {
-                        e.0 += w * g.0;
-                        e.1 += w * g.1;
-                    }
-                    let t6 = &mut self.w6[(k * nl + l) * 12..(k * nl + l + 1) * 12];
-                    for (e, g) in t6.iter_mut().zip(g6.iter().flatten()) {
-                        e.0 += w * g.0;
-                        e.1 += w * g.1;
-                    }
+                    let kl = k * nl + l;
+                    let add = |t: &mut [(f64, f64)], g: &[(f64, f64)]| {
+                        for (e, g) in t.iter_mut().zip(g) {
+                            e.0 += w * g.0;
+                            e.1 += w * g.1;
+                        }
+                    };
+                    add(&mut self.w8[kl * 20..(kl + 1) * 20], g8.as_flattened());
+                    add(&mut self.w6[kl * 12..(kl + 1) * 12], g6.as_flattened());
+                    add(&mut self.w86[kl * 10..(kl + 1) * 10], g86.as_flattened());
                 }
             }
         }
@@ -383,6 +405,45 @@ impl Table {
     pub(super) fn modes(&self) -> usize {
         self.n
     }
+}
+
+/// `(∫₀¹ x^m cos ax dx, ∫₀¹ x^m sin ax dx)` for m = 0..4: a series for |a| < 2, else the
+/// recursion `I_m = (e^{ia} − m I_{m−1})/(ia)` (each step divides the error by |a|/m).
+fn trig_moments(a: f64) -> [(f64, f64); 5] {
+    let mut out = [(0.0, 0.0); 5];
+    if a.abs() < 2.0 {
+        // Σ_r (ia)^r/(r!·(m + r + 1)): real parts from even r, imaginary from odd
+        for (m, o) in out.iter_mut().enumerate() {
+            let (mut re, mut im) = (0.0, 0.0);
+            let mut term = 1.0; // a^r/r!
+            for r in 0..40 {
+                let x = term / (m + r + 1) as f64;
+                match r % 4 {
+                    0 => re += x,
+                    1 => im += x,
+                    2 => re -= x,
+                    _ => im -= x,
+                }
+                term *= a / (r + 1) as f64;
+                if term.abs() < 1e-18 {
+                    break;
+                }
+            }
+            *o = (re, im);
+        }
+    } else {
+        let (s, c) = a.sin_cos();
+        // I_0 = (e^{ia} − 1)/(ia) = (sin a + i(1 − cos a))/a
+        let mut prev = (s / a, (1.0 - c) / a);
+        out[0] = prev;
+        for (m, o) in out.iter_mut().enumerate().skip(1) {
+            // (e^{ia} − m·I)/(ia) = (Im(e^{ia} − mI) − i Re(e^{ia} − mI))/a
+            let (re, im) = (c - m as f64 * prev.0, s - m as f64 * prev.1);
+            prev = (im / a, -re / a);
+            *o = prev;
+        }
+    }
+    out
 }
 
 /// Scratch of the Newton iterations on the nodal forces.
@@ -713,6 +774,33 @@ mod tests {
             let lhs = acc + damp * yd + omega * omega * y;
             assert!((lhs - 1.0).abs() < 1e-5, "ω {omega}: {lhs}");
         }
+    }
+
+    /// The Lagrange loads' trigonometric moments against a fine midpoint rule, on both sides
+    /// of the switch between series and recursion.
+    #[test]
+    fn trig_moments_match_quadrature() {
+        for a in [1e-3, 0.7, 1.99, 2.01, 5.0, 40.0] {
+            let m = trig_moments(a);
+            let n = 200_000;
+            for (k, &(c, s)) in m.iter().enumerate() {
+                let (mut qc, mut qs) = (0.0, 0.0);
+                for i in 0..n {
+                    let x = (i as f64 + 0.5) / n as f64;
+                    qc += x.powi(k as i32) * (a * x).cos() / n as f64;
+                    qs += x.powi(k as i32) * (a * x).sin() / n as f64;
+                }
+                // (midpoint rule: error ~ a²/(24 n²) of the integrand's scale)
+                let tol = 1e-10 * (1.0 + a * a);
+                assert!(
+                    (c - qc).abs() < tol && (s - qs).abs() < tol,
+                    "a {a} m {k}: {c} {s} vs {qc} {qs}"
+                );
+            }
+        }
+        let w = bases().first;
+        let q: f64 = w.iter().zip(THETA8).map(|(w, x)| w * x * x * x).sum();
+        assert!((q - 0.2).abs() < 1e-14, "∫x·x³ = 1/5: {q}");
     }
 
     /// `lu_solve` solves a pivoting-needing system.

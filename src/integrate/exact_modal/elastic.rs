@@ -34,11 +34,11 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::super::collocation::{
-    self, END, NODES, NODES6, NODES8, Newton, NoConvergence, THETA8, Table, WEIGHTS8,
+    self, NODES, NODES6, NODES8, Newton, NoConvergence, THETA8, Table, WEIGHTS6, WEIGHTS8,
 };
 use super::super::linear::{
     GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
-    mode_work, poly_coefficients, poly_mode_work, propagator,
+    mode_work, poly_coefficients, poly_ground_work, propagator,
 };
 use super::super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
@@ -56,6 +56,12 @@ const QUANT: f64 = 4.0;
 const MAX_K: usize = 160;
 /// The estimate's local order (the companion is of order 6: error ∝ h⁷).
 const ORDER: f64 = 7.0;
+/// Under a recorded motion contact steps are dyadic parts hh/2^m of the grid step hh, aligned
+/// to their own length (so that they end on the record's samples); their tables follow the
+/// quantised ones in the cache, at `DYADIC + m`.
+const DYADIC: usize = MAX_K + 1;
+/// Deepest dyadic level (hh·2^-48).
+const MAX_LEVEL: usize = 48;
 /// Free-flight step lengths kept (grid steps and their dyadic parts).
 const FREE_CACHE: usize = 24;
 /// Depth of the dyadic search for an onset inside a free step.
@@ -149,8 +155,8 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// Search state of the onset scan.
     qs: Vec<f64>,
     vs: Vec<f64>,
+    /// Each mode's Hermite margin over the last free step (see [`hermite_gap_factor`]).
     amp: Vec<f64>,
-    cabs: Vec<Vec<f64>>,
     /// sin Ωt, cos Ωt at the current time (harmonic), carried by rotations along the grid.
     trig_now: Trig,
     since_sync: u32,
@@ -165,6 +171,11 @@ pub(super) struct Elastic<'a, O: Observer> {
     scratch_table: Option<Box<Table>>,
     k_step: usize,
     k_onset: Option<usize>,
+    /// Recorded motion: the grid step the dyadic tables were made for, the current level and
+    /// the level the last onset needed.
+    dyadic_hh: f64,
+    m_step: usize,
+    m_onset: Option<usize>,
     /// Free flight's (δ, δ̇) at the table's nodes: `[k·6 + node]`.
     dfree: Vec<(f64, f64)>,
     d8free: Vec<(f64, f64)>,
@@ -196,6 +207,22 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// Per level (δ, δ̇) at a search point, and the end state's projections (scratch).
     at: Vec<(f64, f64)>,
     proj: Vec<(f64, f64)>,
+    /// The free flight's pass (see [`Self::free_prop`]): every level's projections of the end
+    /// state and margin, the harmonic sums, the ground's work and the modal energy at the end.
+    fproj: Vec<(f64, f64)>,
+    fmargin: Vec<f64>,
+    fsums: StateSums,
+    finput: f64,
+    fenergy: f64,
+    /// The modal energy at the current state, J.
+    energy: f64,
+    /// `|c_kj|`, level by level: `[k·n + j]`.
+    cabs_t: Vec<f64>,
+    /// Per level, the contact quartic's (∫F dτ, ∫τF dτ) over the step being accepted.
+    moments: Vec<(f64, f64)>,
+    /// Per level, the coefficients of the ground's extra work under a load along it
+    /// ([`HarmonicTally::row_extra`]; harmonic motion).
+    kextra: Vec<(f64, f64)>,
     /// Dense output of a step (its interior nodes' modal states, level states, tallies).
     dense_q: Vec<f64>,
     dense_v: Vec<f64>,
@@ -247,6 +274,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let gm = GroundModes::new(sys);
         let big = gm.harmonic_plain().map(|h| h.0);
         let htally = HarmonicTally::new(&gm);
+        let kextra = match &htally {
+            Some(ht) => (0..nl).map(|k| ht.row_extra(sys.coupling(k))).collect(),
+            None => vec![(0.0, 0.0); nl],
+        };
         let mut r = Elastic {
             sys,
             obs: observer,
@@ -276,16 +307,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
             qs: vec![0.0; n],
             vs: vec![0.0; n],
             amp: vec![0.0; n],
-            cabs: (0..nl)
-                .map(|k| sys.coupling(k).iter().map(|c| c.abs()).collect())
-                .collect(),
             trig_now: gm.trig(t0),
             since_sync: 0,
             htally,
             sums: StateSums::default(),
             cpoly: vec![[0.0; 3]; n],
             pcoef: vec![[0.0; 3]; n],
-            tables: (0..=MAX_K).map(|_| None).collect(),
+            tables: (0..DYADIC + MAX_LEVEL + 1).map(|_| None).collect(),
+            dyadic_hh: f64::NAN,
+            m_step: 2,
+            m_onset: None,
             scratch_table: None,
             k_step: 8,
             k_onset: None,
@@ -317,6 +348,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
             at: vec![(0.0, 0.0); nl],
             proj: vec![(0.0, 0.0); nl],
             force_contact: false,
+            fproj: vec![(0.0, 0.0); nl],
+            fmargin: vec![0.0; nl],
+            fsums: StateSums::default(),
+            finput: 0.0,
+            fenergy: 0.0,
+            energy: 0.0,
+            cabs_t: (0..nl)
+                .flat_map(|k| sys.coupling(k).iter().map(|c| c.abs()))
+                .collect(),
+            moments: vec![(0.0, 0.0); nl],
+            kextra,
             dense_q: vec![0.0; 3 * n],
             dense_v: vec![0.0; 3 * n],
             dense_states: vec![LevelState::default(); nl],
@@ -327,6 +369,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             gm,
         };
         r.resync_sums();
+        r.energy = r.modal_energy();
         if let Some(onset) = onset {
             r.onset.copy_from_slice(onset);
         }
@@ -457,8 +500,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
-    /// (qs, vs), else (q, v)) into (qb, vb); with `margin`, each mode's Hermite margin into
-    /// `amp`. `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
+    /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
+    /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
+    /// (`amp`) and every level's (`fmargin`), and what the step's exact tallies need (`fsums`,
+    /// `finput`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
     #[allow(clippy::too_many_arguments)]
     fn free_prop(
         &mut self,
@@ -470,13 +515,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         from_search: bool,
         margin: bool,
     ) -> Trig {
-        let n = self.n;
+        let (n, nl) = (self.n, self.nl);
         let fd = match fd {
             Some(i) => &self.free[i],
             None => self.scratch_free.as_ref().expect("scratch free flight"),
         };
         debug_assert_eq!(fd.h, h);
-        let _ = t0;
         let (sh, ch) = fd.rot;
         let tr1 = match self.big {
             // sin, cos at the end by rotating those at the start (one ulp per step; re-synced
@@ -495,8 +539,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         };
         let (qb, vb, amp) = (&mut self.qb[..n], &mut self.vb[..n], &mut self.amp[..n]);
         let (props, herm) = (&fd.props[..n], &fd.herm[..n]);
-        match (piece, self.gm.harmonic_plain()) {
-            (Piece::Harmonic, Some((big, g_re, g_im))) => {
+        let gm = &self.gm;
+        let w2 = &gm.w2[..n];
+        let mut sums = StateSums::default();
+        let mut input = 0.0;
+        match (piece, gm.harmonic_plain(), &self.htally) {
+            (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
                 let hp = fd.herm_part;
                 let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
                 for j in 0..n {
@@ -505,12 +553,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     let (e1, d1) = (gr * tr1.s + gi * tr1.c, big * (gr * tr1.c - gi * tr1.s));
                     let (x0, y0) = (q[j] - e0, v[j] - d0);
                     let (x, y) = props[j].apply(x0, y0);
-                    qb[j] = x + e1;
-                    vb[j] = y + d1;
-                    if margin {
-                        amp[j] = herm[j].0 * x0.abs()
-                            + herm[j].1 * y0.abs()
-                            + hp * (gr.abs() + gi.abs());
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs() + hp * (gr.abs() + gi.abs())
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
+                    if let Some(ht) = ht {
+                        ht.add(&mut sums, j, w2[j], x, y);
                     }
                 }
             }
@@ -522,12 +575,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     v0,
                 },
                 _,
+                _,
             ) => {
                 // a recorded motion: each mode's load c0 + c1τ + c2τ² from t0 on, its
-                // particular solution A + Bτ + Cτ² (exact under the cubic Hermite)
+                // particular solution A + Bτ + Cτ² (exact under the cubic Hermite), and the
+                // ground's exact work from the moments of its equation of motion
                 let tau = t0 - start;
                 let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
-                let gm = &self.gm;
                 let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
                 let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
                 let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
@@ -543,16 +597,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     let (e1, d1) = (pa + h * (pb + h * pc), pb + 2.0 * h * pc);
                     let (x0, y0) = (q[j] - pa, v[j] - pb);
                     let (x, y) = props[j].apply(x0, y0);
-                    qb[j] = x + e1;
-                    vb[j] = y + d1;
-                    if margin {
-                        amp[j] = herm[j].0 * x0.abs() + herm[j].1 * y0.abs();
-                    }
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs()
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
+                    input +=
+                        poly_ground_work((damp[j], iw2[j]), h, (q[j], v[j]), (x, y), &c, 0.0, 0.0);
                 }
             }
             _ => {
-                // no ground load, or harmonic motion with a mode at undamped resonance
-                let gm = &self.gm;
+                // no ground load, or harmonic motion with a mode at undamped resonance (its
+                // tallies mode by mode in commit_free)
                 let (tr_start, tr_end) = (gm.trig(t0), gm.trig(t0 + h));
                 for j in 0..n {
                     let c = [0.0; 3];
@@ -561,30 +621,54 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     let (e1, d1) = gm.particular(j, piece, &c, h, &tr_end);
                     let (x0, y0) = (q[j] - e0, v[j] - d0);
                     let (x, y) = props[j].apply(x0, y0);
-                    qb[j] = x + e1;
-                    vb[j] = y + d1;
-                    if margin {
-                        amp[j] = herm[j].0 * x0.abs()
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs()
                             + herm[j].1 * y0.abs()
-                            + fd.herm_part * (e0.abs().max(e1.abs()) + d0.abs().max(d1.abs()));
-                    }
+                            + fd.herm_part * (e0.abs().max(e1.abs()) + d0.abs().max(d1.abs()))
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
                 }
             }
         }
+        // every level's projections and margin, and the modal energy, at the end
+        for k in 0..nl {
+            let c = self.sys.coupling(k);
+            self.fproj[k] = (dot(c, &self.qb), dot(c, &self.vb));
+            self.fmargin[k] = if margin {
+                dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp)
+            } else {
+                0.0
+            };
+        }
+        self.fenergy = match &self.htally {
+            Some(_) if matches!(piece, Piece::Harmonic) => sums.energy,
+            _ => {
+                let (qb, vb) = (&self.qb[..n], &self.vb[..n]);
+                let mut e = 0.0;
+                for j in 0..n {
+                    e += vb[j] * vb[j] + w2[j] * qb[j] * qb[j];
+                }
+                0.5 * e
+            }
+        };
+        self.fsums = sums;
+        self.finput = input;
         tr1
     }
 
-    /// (δ, δ̇) of level k at the state (qb, vb).
+    /// (δ, δ̇) of level k at the state (qb, vb) (from the free flight's projections).
     fn level_at_end(&self, k: usize) -> (f64, f64) {
-        let c = self.sys.coupling(k);
-        (
-            -dot(c, &self.qb) - self.sys.levels[k].gap,
-            -dot(c, &self.vb),
-        )
+        let (cq, cv) = self.fproj[k];
+        (-cq - self.sys.levels[k].gap, -cv)
     }
 
     /// The largest penetration any level can reach over a free step of length h from the
-    /// levels' (δ, δ̇) in `at` to the state in (qb, vb) (margin in `amp`): the cubic
+    /// levels' (δ, δ̇) in `at` to the state in (qb, vb) (margins in `fmargin`): the cubic
     /// Hermite's maximum plus the modes' margin. Negative: no level can touch.
     ///
     /// `sharp`: the margin weighted as Hermite's remainder is, `16 x²(1 − x)²` of its value at
@@ -595,7 +679,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         for k in 0..self.nl {
             let (d1, dd1) = self.level_at_end(k);
             let (d0, dd0) = self.at[k];
-            let margin = dot(&self.cabs[k], &self.amp);
+            let margin = self.fmargin[k];
             let m = if sharp {
                 quartic_bound(d0, dd0, d1, dd1, h, margin)
             } else {
@@ -615,77 +699,58 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
-    /// free data `fd`): exact tallies, the new state (no observation).
+    /// free data `fd`, the pass's sums in `fsums`, `finput`, `fenergy`, `fproj`): exact
+    /// tallies (the ground's work; the dissipation from the modal energy balance), the new
+    /// state (no observation).
     fn commit_free(&mut self, fd: Option<usize>, piece: &Piece, h: f64, t_end: f64, tr1: Trig) {
         let n = self.n;
         let tr0 = self.trig_now;
-        let (mut input, mut damping) = (0.0, 0.0);
-        match (piece, &self.htally, self.big) {
+        let input = match (piece, &self.htally, self.big) {
             (Piece::Harmonic, Some(ht), Some(big)) => {
                 let half = self.free_data(fd).half;
                 let tm = TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (tr1.s, tr1.c), half);
-                let mut sums = StateSums::default();
-                let (qb, vb, w2) = (&self.qb[..n], &self.vb[..n], &self.gm.w2[..n]);
-                for j in 0..n {
-                    ht.add(&mut sums, j, w2[j], qb[j], vb[j]);
-                }
-                input = ht.input(&tm, &self.sums, &sums);
-                damping = input - (sums.energy - self.sums.energy);
-                self.sums = sums;
+                let input = ht.input(&tm, &self.sums, &self.fsums);
+                self.sums = self.fsums;
+                input
             }
-            (Piece::Poly { .. }, _, _) => {
-                let inv_h = 1.0 / h;
-                let gm = &self.gm;
-                let (w2, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
-                for j in 0..n {
-                    let w = poly_mode_work(
-                        (w2[j], damp[j], iw2[j]),
-                        h,
-                        inv_h,
-                        (self.q[j], self.v[j]),
-                        (self.qb[j], self.vb[j]),
-                        &self.cpoly[j],
-                        0.0,
-                        0.0,
-                    );
-                    input += w.input;
-                    damping += w.damping;
-                }
-            }
+            (Piece::Poly { .. }, _, _) => self.finput,
+            (Piece::Zero, _, _) => 0.0,
             _ => {
-                let tm = match (piece, self.gm.harmonic_omega()) {
-                    (Piece::Harmonic, Some(big)) => Some(TrigMoments::new(big, self.t, h)),
-                    _ => None,
-                };
-                for j in 0..n {
-                    let ground = match piece {
-                        Piece::Harmonic => None,
-                        _ => Some(&self.cpoly[j]),
-                    };
-                    let w = mode_work(
-                        &self.gm,
-                        j,
-                        h,
-                        (self.q[j], self.v[j]),
-                        (self.qb[j], self.vb[j]),
-                        ground,
-                        tm.as_ref(),
-                        0.0,
-                        0.0,
-                    );
-                    input += w.input;
-                    damping += w.damping;
-                }
+                // harmonic motion with a mode at undamped resonance
+                let tm = self
+                    .gm
+                    .harmonic_omega()
+                    .map(|big| TrigMoments::new(big, self.t, h));
+                (0..n)
+                    .map(|j| {
+                        mode_work(
+                            &self.gm,
+                            j,
+                            h,
+                            (self.q[j], self.v[j]),
+                            (self.qb[j], self.vb[j]),
+                            None,
+                            tm.as_ref(),
+                            0.0,
+                            0.0,
+                        )
+                        .input
+                    })
+                    .sum()
             }
-        }
+        };
         self.tally.input += input;
-        self.tally.damping += damping;
+        self.tally.damping += input - (self.fenergy - self.energy);
+        self.energy = self.fenergy;
         std::mem::swap(&mut self.q, &mut self.qb);
         std::mem::swap(&mut self.v, &mut self.vb);
         self.t = t_end;
         self.trig_now = Trig { t: t_end, ..tr1 };
         self.prev_states.copy_from_slice(&self.states);
-        self.evaluate_states();
+        for k in 0..self.nl {
+            let (cq, cv) = self.fproj[k];
+            self.set_state(k, cq, cv);
+        }
         update_onsets(&mut self.onset, &self.prev_states, &self.states, h);
         for k in 0..self.nl {
             if self.onset[k] == 0.0 && Self::at_onset(&self.states[k]) {
@@ -708,11 +773,21 @@ impl<'a, O: Observer> Elastic<'a, O> {
         {
             self.evaluate_states();
             self.resync_sums();
+            self.energy = self.modal_energy();
         }
+    }
+
+    /// The modal energy `Σ ½(η̇² + ω²η²)` at the current state, J.
+    fn modal_energy(&self) -> f64 {
+        let w2 = &self.gm.w2;
+        (0..self.n)
+            .map(|j| 0.5 * (self.v[j] * self.v[j] + w2[j] * self.q[j] * self.q[j]))
+            .sum()
     }
 
     /// The free flight from the current time to the next grid point, or to the first onset
     /// before it (located on the exact free flight).
+    #[inline(never)]
     fn free_segment(&mut self) -> Result<(), SolveError> {
         let (piece, start, seg_end) = self.piece();
         let len = seg_end - start;
@@ -743,10 +818,26 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             if self.free_bound(h, false) > 0.0 {
                 if let Some(tau) = self.find_onset(&piece, h, on_grid) {
+                    // under a recorded motion contact steps are dyadic parts of the grid step
+                    // (see DYADIC): the free flight ends on that grid just before the onset,
+                    // and the first contact step holds it (an onset inside a step is seen by
+                    // the estimate); no step of a one-off length is needed to realign
+                    let tau = match piece {
+                        Piece::Poly { .. } => {
+                            let m = self.m_onset.unwrap_or(self.m_step).min(MAX_LEVEL);
+                            let unit = hh / (1u64 << m) as f64;
+                            let x = (self.t + tau - start) / unit;
+                            (start + x.floor() * unit - self.t).max(0.0)
+                        }
+                        _ => tau,
+                    };
                     if tau <= 1e-12 * h {
-                        // touching now, not yet approaching: contact starts here
+                        // the onset is within reach now: contact starts here
                         self.force_contact = true;
                         return Ok(());
+                    }
+                    if matches!(piece, Piece::Poly { .. }) {
+                        self.force_contact = true;
                     }
                     // jump to the onset: the exact free flight from the segment's start
                     let fd1 = self.free_index(tau, false);
@@ -919,7 +1010,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let (d1, dd1) = self.level_at_end(k);
             let (d0, dd0) = self.at[k];
             let (m, th) = hermite_max(d0, dd0, d1, dd1, len);
-            if m + dot(&self.cabs[k], &self.amp) < 0.0 || th <= 0.0 || th >= 1.0 {
+            if m + self.fmargin[k] < 0.0 || th <= 0.0 || th >= 1.0 {
                 continue;
             }
             let (d, dd) = self.probe(piece, tr_a, a, th * len, k);
@@ -935,6 +1026,39 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     // ---------------------------------------------------------------- contact
+
+    /// Whether the current time is a multiple of hh/2^m from the piece's start (to 1e-9 of it).
+    fn aligned(&self, pstart: f64, hh: f64, m: usize) -> bool {
+        let unit = hh / (1u64 << m) as f64;
+        let x = (self.t - pstart) / unit;
+        (x - x.round()).abs() <= 1e-9 * x.abs().max(1.0)
+    }
+
+    /// A recorded motion's next contact step: hh/2^m at the current level when the time is
+    /// aligned to it (cached table `DYADIC + m`), else the step to the next multiple of it (a
+    /// one-off length, after an onset or an event).
+    fn dyadic_length(&self, pstart: f64, hh: f64, span_end: f64) -> (Option<usize>, f64) {
+        // (the current level, or a finer one at which the time is aligned: a step from a
+        // point of a finer grid needs no one-off length)
+        let mut m = self.m_step.min(MAX_LEVEL);
+        while !self.aligned(pstart, hh, m) && m < MAX_LEVEL.min(self.m_step + 20) {
+            m += 1;
+        }
+        let unit = hh / (1u64 << m) as f64;
+        if self.aligned(pstart, hh, m) {
+            let rem = span_end - self.t;
+            // (a step ending on the piece's end: its length within rounding of the level's)
+            if rem >= unit * (1.0 - 1e-9) {
+                return (Some(DYADIC + m), unit);
+            }
+            return (None, rem);
+        }
+        let m = self.m_step.min(MAX_LEVEL);
+        let unit = hh / (1u64 << m) as f64;
+        let x = (self.t - pstart) / unit;
+        let next = (pstart + (x.floor() + 1.0) * unit).min(span_end);
+        (None, next - self.t)
+    }
 
     /// Quantised step length `dt·2^(−k/4)`.
     fn length(&self, k: usize) -> f64 {
@@ -1347,25 +1471,50 @@ impl<'a, O: Observer> Elastic<'a, O> {
 
     /// One accepted contact step from the current state, retried shorter until its estimate
     /// passes; a step in which a level's δ changes sign (an onset, a release) ends there.
+    #[inline(never)]
     fn contact_step(&mut self) -> Result<(), SolveError> {
-        let (piece, _, span_end) = self.piece();
+        let (piece, pstart, span_end) = self.piece();
         let limit = span_end - self.t;
         if limit <= 0.0 {
             self.t = span_end;
             return Ok(());
+        }
+        // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
+        let dyadic = matches!(piece, Piece::Poly { .. });
+        let hh = {
+            let len = span_end - pstart;
+            len / ((len / self.dt) - 1e-9).ceil().max(1.0)
+        };
+        // (a record's sample intervals are equal to rounding: their tables are the same)
+        if dyadic && (hh - self.dyadic_hh).abs() > 1e-12 * hh || self.dyadic_hh.is_nan() {
+            self.dyadic_hh = hh;
+            for t in &mut self.tables[DYADIC..] {
+                *t = None;
+            }
         }
         // the first step of an episode starts near the size the last onset needed
         let starting = self.last_h == 0.0;
         if starting && let Some(k) = self.k_onset {
             self.k_step = k.saturating_sub(1);
         }
+        if starting && let Some(m) = self.m_onset {
+            self.m_step = m.saturating_sub(1);
+        }
         let mut rejected = false;
         loop {
-            let hq = self.length(self.k_step);
-            let (k, h) = if hq >= limit * (1.0 - 1e-9) {
-                (None, limit)
+            let (k, h) = if dyadic {
+                let (id, h) = self.dyadic_length(pstart, hh, span_end);
+                if let Some(id) = id {
+                    self.m_step = id - DYADIC;
+                }
+                (id, h)
             } else {
-                (Some(self.k_step), hq)
+                let hq = self.length(self.k_step);
+                if hq >= limit * (1.0 - 1e-9) {
+                    (None, limit)
+                } else {
+                    (Some(self.k_step), hq)
+                }
             };
             let mut trial = self.trial(k, h, &piece).unwrap_or(Trial {
                 err: f64::INFINITY,
@@ -1390,9 +1539,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 && th > 1e-6
             {
                 // (the largest cached length short of it: no table to compute, and the next
-                // step straddles the event by at most a fifth of this one)
-                let kq = self.quantise(th * h);
-                let s = self.length(kq);
+                // step straddles the event by at most a fifth (dyadic: a half) of this one)
+                let (kq, s) = if dyadic && k.is_some() {
+                    let more = (1.0 / th).log2().ceil().max(1.0) as usize;
+                    let m = (self.m_step + more).min(MAX_LEVEL);
+                    (DYADIC + m, hh / (1u64 << m) as f64)
+                } else {
+                    let kq = self.quantise(th * h);
+                    (kq, self.length(kq))
+                };
                 trial = self.trial(Some(kq), s, &piece).unwrap_or(Trial {
                     err: f64::INFINITY,
                     h: s,
@@ -1411,6 +1566,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 } else {
                     0.5
                 };
+                if dyadic {
+                    // (halvings as many as the factor asks for, at least one)
+                    let more = (1.0 / fac).log2().ceil().max(1.0) as usize;
+                    let m = match trial.k {
+                        Some(id) if id >= DYADIC => id - DYADIC,
+                        _ => self.m_step,
+                    };
+                    self.m_step = (m.max(self.m_step) + more).min(MAX_LEVEL + 1);
+                    if self.m_step > MAX_LEVEL {
+                        return Err(self.unreachable(trial.err, trial.h));
+                    }
+                    continue;
+                }
                 let next = self.quantise(trial.h * fac).max(self.k_step + 1);
                 if next >= MAX_K {
                     return Err(self.unreachable(trial.err, trial.h));
@@ -1420,9 +1588,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             if starting {
                 self.k_onset = Some(self.quantise(trial.h));
+                self.m_onset = Some(self.m_step);
             }
             let t_end = if trial.h == limit {
                 span_end
+            } else if dyadic && let Some(id) = trial.k.filter(|&id| id >= DYADIC) {
+                // (on the dyadic grid: the end's time from the grid, not by accumulation)
+                let unit = hh / (1u64 << (id - DYADIC)) as f64;
+                let end = pstart + ((self.t + trial.h - pstart) / unit).round() * unit;
+                if (end - span_end).abs() <= 1e-9 * unit {
+                    span_end
+                } else {
+                    end
+                }
             } else {
                 self.t + trial.h
             };
@@ -1436,35 +1614,42 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 if rejected {
                     fac = fac.min(1.0);
                 }
-                self.k_step = self.quantise(trial.h * fac);
+                if dyadic {
+                    // the level for the new length, coarser only where the end is aligned
+                    let want = (hh / (trial.h * fac)).log2().ceil().max(0.0) as usize;
+                    let mut m = self.m_step;
+                    if want > m {
+                        m = want.min(MAX_LEVEL);
+                    } else {
+                        while m > want && self.aligned(pstart, hh, m - 1) {
+                            m -= 1;
+                        }
+                    }
+                    self.m_step = m;
+                } else {
+                    self.k_step = self.quantise(trial.h * fac);
+                }
             }
             return self.check_finite();
         }
     }
 
     /// Observe the step being accepted (start `t0`, length h) at its three interior nodes, from
-    /// the states the accepted pass left in `dense_q`, `dense_v`, the nodal (δ, δ̇) and the
-    /// tallies integrated up to each node from the nodal powers (`pw_*`: ground, damping,
-    /// contact) and forces, exactly for their quartics.
-    fn observe_dense(
-        &mut self,
-        h: f64,
-        t0: f64,
-        pw_in: &[f64; 5],
-        pw_d: &[f64; 5],
-        pw_c: &[f64; 5],
-    ) {
+    /// the states the accepted pass left in `dense_q`, `dense_v` and the nodal (δ, δ̇); the
+    /// impulses integrated exactly up to each node (the force quartic), the energy flows
+    /// (`flows`: the step's ground work, dissipation and contact work) in proportion.
+    fn observe_dense(&mut self, h: f64, t0: f64, flows: (f64, f64, f64)) {
         let (n, nl) = (self.n, self.nl);
         let bases = collocation::bases();
         for i in 0..3 {
-            let w = &bases.partial[i];
-            let part = |pw: &[f64; 5]| h * (0..5).map(|p| w[p] * pw[p]).sum::<f64>();
-            self.dense_tally.input = self.tally.input + part(pw_in);
-            self.dense_tally.damping = self.tally.damping + part(pw_d);
-            self.dense_tally.contact = self.tally.contact + part(pw_c);
+            let x = THETA8[i + 1];
+            self.dense_tally.input = self.tally.input + x * flows.0;
+            self.dense_tally.damping = self.tally.damping + x * flows.1;
+            self.dense_tally.contact = self.tally.contact + x * flows.2;
             for k in 0..nl {
-                let f: [f64; 5] = std::array::from_fn(|p| self.f8[k * 5 + p]);
-                self.dense_tally.impulse[k] = self.tally.impulse[k] + part(&f);
+                let w = &bases.partial[i];
+                let imp: f64 = (0..5).map(|p| w[p] * self.f8[k * 5 + p]).sum();
+                self.dense_tally.impulse[k] = self.tally.impulse[k] + h * imp;
                 let (delta, delta_dot) = self.nodal8[k * 4 + i];
                 let v0 = if self.onset[k] > 0.0 {
                     self.onset[k]
@@ -1480,7 +1665,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.obs.observe(
                 self.sys,
                 &StepView {
-                    t: t0 + THETA8[i + 1] * h,
+                    t: t0 + x * h,
                     q: &self.dense_q[i * n..(i + 1) * n],
                     v: &self.dense_v[i * n..(i + 1) * n],
                     levels: &self.dense_states,
@@ -1491,11 +1676,21 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
     }
 
-    /// Commit the trial in the work arrays (table of its length): the end state, tallies, the
-    /// level states, observation.
+    /// Commit the trial in the work arrays (table of its length): the end state, the tallies,
+    /// the level states, the observation (and dense output when the force peaks inside).
+    ///
+    /// Tallies: the ground's work exact for the computed motion (harmonic: the closed forms
+    /// of [`HarmonicTally`] with the contact quartic's extra term; records: the moments of
+    /// each mode's equation of motion), the work of the contact load on the modes by the
+    /// 5-node Lobatto rule on the nodal values (exact to degree 7), the dissipation from the
+    /// modal energy balance; the work into the contacts with the law itself along the computed
+    /// motion at the companion's Lobatto nodes, so that the energy balance measures the
+    /// collocation's residual (the law against the force quartic between the nodes).
+    #[inline(never)]
     fn accept(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         let (n, nl) = (self.n, self.nl);
         let h = trial.h;
+        let bases = collocation::bases();
         let tab: &Table = match trial.k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -1506,31 +1701,21 @@ impl<'a, O: Observer> Elastic<'a, O> {
             .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
         let t0 = self.t;
         let tr0 = self.gm.trig(t0);
+        // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
         let trs: [Trig; 5] = std::array::from_fn(|p| {
             if p == 0 {
                 tr0
-            } else {
+            } else if self.big.is_some() {
                 let (sh, ch) = tab.rot[NODES8[p - 1]];
                 Trig {
                     t: t0 + THETA8[p] * h,
                     s: tr0.s * ch + tr0.c * sh,
                     c: tr0.c * ch - tr0.s * sh,
                 }
+            } else {
+                self.gm.trig(t0 + THETA8[p] * h)
             }
         });
-        let trs = if self.big.is_some() {
-            trs
-        } else {
-            std::array::from_fn(|p| self.gm.trig(t0 + THETA8[p] * h))
-        };
-        let gm = &self.gm;
-        let damp = &gm.damp[..n];
-        let mut sums = StateSums::default();
-        let (mut input, mut damping) = (0.0, 0.0);
-        let proj = &mut self.proj;
-        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
-        let harmonic = gm.harmonic_plain();
-        let zero = [0.0; 3];
         // dense output: a step whose nodal forces peak inside it is also observed at its
         // interior nodes, so that the recorder's interpolant around the peak is 4× denser
         let dense = (0..nl).any(|kk| {
@@ -1538,29 +1723,43 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let inner = f[1].max(f[2]).max(f[3]);
             inner > 0.0 && inner > f[0].max(f[4])
         });
-        let (mut pw_in, mut pw_d) = ([0.0; 5], [0.0; 5]);
+        // per level, the contact quartic's integral and first moment (records' ground work)
+        for kk in 0..nl {
+            let f = &self.f8[kk * 5..kk * 5 + 5];
+            let (mut a, mut b) = (0.0, 0.0);
+            for p in 0..5 {
+                a += WEIGHTS8[p] * f[p];
+                b += bases.first[p] * f[p];
+            }
+            self.moments[kk] = (h * a, h * h * b);
+        }
+        let gm = &self.gm;
+        let harmonic = gm.harmonic_plain();
+        let zero = [0.0; 3];
+        let mut sums = StateSums::default();
+        let (mut input, mut d_energy) = (0.0, 0.0);
+        let proj = &mut self.proj;
+        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
+        let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
+        let modes = &tab.modes[..n];
         for j in 0..n {
-            // the particular solution at the 5-node scheme's nodes (start excluded)
-            let part: [(f64, f64); 4] = match (piece, harmonic) {
-                (Piece::Harmonic, Some((big, g_re, g_im))) => {
-                    let (gr, gi) = (g_re[j], g_im[j]);
-                    std::array::from_fn(|p| {
-                        let tr = &trs[p + 1];
+            let ms = &modes[j];
+            // the particular solution at the end (and at the interior nodes for dense output)
+            let part = |p: usize| -> (f64, f64) {
+                match (piece, harmonic) {
+                    (Piece::Harmonic, Some((big, g_re, g_im))) => {
+                        let (gr, gi, tr) = (g_re[j], g_im[j], &trs[p]);
                         (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
-                    })
-                }
-                (Piece::Poly { .. }, _) => {
-                    let [pa, pb, pc] = self.pcoef[j];
-                    std::array::from_fn(|p| {
-                        let tau = THETA8[p + 1] * h;
+                    }
+                    (Piece::Poly { .. }, _) => {
+                        let [pa, pb, pc] = self.pcoef[j];
+                        let tau = THETA8[p] * h;
                         (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
-                    })
+                    }
+                    (Piece::Zero, _) => (0.0, 0.0),
+                    _ => gm.particular(j, piece, &zero, THETA8[p] * h, &trs[p]),
                 }
-                (Piece::Zero, _) => [(0.0, 0.0); 4],
-                _ => std::array::from_fn(|p| {
-                    gm.particular(j, piece, &zero, THETA8[p + 1] * h, &trs[p + 1])
-                }),
             };
             let (x0, y0) = (x0s[j], y0s[j]);
             let mut g = [0.0; 5];
@@ -1570,52 +1769,66 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     g[p] += c * self.f8[kk * 5 + p];
                 }
             }
-            let (xe, ye) = tab.props[END * n + j].apply(x0, y0);
-            let (mut q1, mut v1) = (xe + part[3].0, ye + part[3].1);
+            let (xe, ye) = ms.end.apply(x0, y0);
+            let pe = part(4);
+            let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
             for p in 0..5 {
-                let e = tab.end8[p * n + j];
-                q1 += g[p] * e.0;
-                v1 += g[p] * e.1;
+                q1 += g[p] * ms.end8[p].0;
+                v1 += g[p] * ms.end8[p].1;
             }
-            // the modal velocity at the nodes, for the quadrature of the powers
-            let mut vel = [self.v[j], 0.0, 0.0, 0.0, v1];
-            for i in 0..3 {
-                let pr = &tab.props[NODES8[i] * n + j];
-                let mut x = pr.p21 * x0 + pr.p22 * y0 + part[i].1;
-                for p in 0..5 {
-                    x += g[p] * tab.vel8[(i * 5 + p) * n + j];
-                }
-                vel[i + 1] = x;
-                if dense {
-                    let mut e = pr.p11 * x0 + pr.p12 * y0 + part[i].0;
+            if dense {
+                for i in 0..3 {
+                    let (x, y) = ms.mid[i].apply(x0, y0);
+                    let pi = part(i + 1);
+                    let (mut e, mut d) = (x + pi.0, y + pi.1);
                     for p in 0..5 {
-                        e += g[p] * tab.pos8[(i * 5 + p) * n + j];
+                        e += g[p] * ms.mid8[i][p].0;
+                        d += g[p] * ms.mid8[i][p].1;
                     }
                     self.dense_q[i * n + j] = e;
-                    self.dense_v[i * n + j] = x;
+                    self.dense_v[i * n + j] = d;
                 }
             }
-            let loads: [f64; 5] = match piece {
-                Piece::Harmonic => {
-                    let (a, b) = gm.harmonic_coefficients(j);
-                    std::array::from_fn(|p| a * trs[p].s + b * trs[p].c)
+            let (q0, v0) = (self.q[j], self.v[j]);
+            match (piece, &self.htally) {
+                (Piece::Harmonic, Some(ht)) => ht.add(&mut sums, j, w2s[j], q1, v1),
+                (Piece::Poly { .. }, _) => {
+                    let (mut gi, mut gt) = (0.0, 0.0);
+                    for kk in 0..nl {
+                        let c = self.cpl_t[j * nl + kk];
+                        gi += c * self.moments[kk].0;
+                        gt += c * self.moments[kk].1;
+                    }
+                    input += poly_ground_work(
+                        (damp[j], iw2[j]),
+                        h,
+                        (q0, v0),
+                        (q1, v1),
+                        &self.cpoly[j],
+                        gi,
+                        gt,
+                    );
                 }
-                Piece::Poly { .. } => {
-                    let c = &self.cpoly[j];
-                    std::array::from_fn(|p| {
-                        let tau = THETA8[p] * h;
-                        c[0] + tau * (c[1] + tau * c[2])
-                    })
+                (Piece::Zero, _) => {}
+                _ => {
+                    // harmonic motion with a mode at undamped resonance: its exact work for
+                    // the contact load's chord (rare; mode_work's own trapezoid at resonance)
+                    let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
+                    input += mode_work(
+                        gm,
+                        j,
+                        h,
+                        (q0, v0),
+                        (q1, v1),
+                        None,
+                        tm.as_ref(),
+                        g[0],
+                        g[4] - g[0],
+                    )
+                    .input;
                 }
-                Piece::Zero => [0.0; 5],
-            };
-            for p in 0..5 {
-                pw_in[p] += loads[p] * vel[p];
-                pw_d[p] += damp[j] * vel[p] * vel[p];
             }
-            if let Some(ht) = &self.htally {
-                ht.add(&mut sums, j, gm.w2[j], q1, v1);
-            }
+            d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
             for kk in 0..nl {
                 let c = self.cpl_t[j * nl + kk];
                 proj[kk].0 += c * q1;
@@ -1624,30 +1837,70 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.q[j] = q1;
             self.v[j] = v1;
         }
-        // the contact's power at the nodes
-        let mut pw_c = [0.0; 5];
-        for kk in 0..nl {
-            pw_c[0] += self.f8[kk * 5] * self.states[kk].delta_dot;
-            for p in 1..5 {
-                pw_c[p] += self.f8[kk * 5 + p] * self.nodal8[kk * 4 + p - 1].1;
+        if let (Piece::Harmonic, Some(ht), Some(big)) = (piece, &self.htally, self.big) {
+            // the ground's work: the state sums at both ends, and the contact quartic's extra
+            let tm =
+                TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (trs[4].s, trs[4].c), tab.rot[3]);
+            input = ht.input(&tm, &self.sums, &sums);
+            for kk in 0..nl {
+                let (k4, k5) = self.kextra[kk];
+                for p in 0..5 {
+                    let (a, b) = tab.hmom[p];
+                    let (sp, cp) = (tr0.s * a + tr0.c * b, tr0.c * a - tr0.s * b);
+                    input += self.f8[kk * 5 + p] * (k4 * sp + k5 * cp);
+                }
             }
+            d_energy = sums.energy - self.sums.energy;
         }
-        if dense {
-            self.observe_dense(h, t0, &pw_in, &pw_d, &pw_c);
-        }
-        for p in 0..5 {
-            input += WEIGHTS8[p] * pw_in[p];
-            damping += WEIGHTS8[p] * pw_d[p];
-        }
-        self.tally.input += h * input;
-        self.tally.damping += h * damping;
-        // contact work and impulses by the same quadrature at the nodes
-        for kk in 0..nl {
-            let imp: f64 = (0..5).map(|p| WEIGHTS8[p] * self.f8[kk * 5 + p]).sum();
-            self.tally.impulse[kk] += h * imp;
-        }
-        self.tally.contact += h * (0..5).map(|p| WEIGHTS8[p] * pw_c[p]).sum::<f64>();
         self.sums = sums;
+        // the contact load's work on the modes (Lobatto, 5 nodes), and the work into the
+        // contacts with the law along the motion (Lobatto at the companion's 4 nodes)
+        let mut modal = 0.0;
+        let mut law = 0.0;
+        for kk in 0..nl {
+            let f = &self.f8[kk * 5..kk * 5 + 5];
+            let mut pw = WEIGHTS8[0] * f[0] * self.states[kk].delta_dot;
+            for p in 1..5 {
+                pw += WEIGHTS8[p] * f[p] * self.nodal8[kk * 4 + p - 1].1;
+            }
+            modal -= h * pw;
+            let lv = &self.sys.levels[kk];
+            let v0 = |dd: f64| {
+                if self.onset[kk] > 0.0 {
+                    self.onset[kk]
+                } else {
+                    dd
+                }
+            };
+            let mut lw = WEIGHTS6[0] * f[0] * self.states[kk].delta_dot;
+            for i in 0..2 {
+                let (mut d, mut dd) = self.dfree[kk * 6 + i];
+                for l in 0..nl {
+                    let base = ((kk * nl + l) * 2 + i) * 5;
+                    for p in 0..5 {
+                        let (a, b) = tab.w86[base + p];
+                        d -= a * self.f8[l * 5 + p];
+                        dd -= b * self.f8[l * 5 + p];
+                    }
+                }
+                lw += WEIGHTS6[i + 1] * lv.force.force(d, dd, v0(dd)) * dd;
+            }
+            let (de, dde) = self.nodal8[kk * 4 + 3];
+            lw += WEIGHTS6[3] * lv.force.force(de, dde, v0(dde)) * dde;
+            law += h * lw;
+        }
+        let damping = input + modal - d_energy;
+        self.energy += d_energy;
+        if dense {
+            self.observe_dense(h, t0, (input, damping, law));
+        }
+        self.tally.input += input;
+        self.tally.damping += damping;
+        self.tally.contact += law;
+        // (the impulse: the force quartic's integral, exact)
+        for kk in 0..nl {
+            self.tally.impulse[kk] += self.moments[kk].0;
+        }
         self.last_f8.copy_from_slice(&self.f8);
         self.t = t_end;
         self.prev_states.copy_from_slice(&self.states);
