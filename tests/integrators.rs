@@ -8,7 +8,8 @@ use std::sync::Arc;
 use pounding::contact::ContactLaw;
 use pounding::ground_motion::{GroundMotion, Harmonic, Record};
 use pounding::integrate::{
-    InitialState, Method, Observer, SolverSettings, Stats, StepView, integrate,
+    EXACT_MODAL_DEFAULT_RTOL, InitialState, Method, Observer, SolverSettings, Stats, StepView,
+    integrate,
 };
 use pounding::modal::{Cantilever, Damping, Stiffness};
 use pounding::recorder::RunRecord;
@@ -548,11 +549,39 @@ fn solver_keys_are_validated() {
         (Method::Adaptive, 1e-9, 1e-11)
     );
     let sc = parse("method = \"rk4\"\n", "").unwrap();
-    assert_eq!(sc.solver.method, Method::Adaptive, "the default method");
+    assert_eq!(sc.solver.method, Method::ExactModal, "the default method");
+    assert_eq!(
+        (sc.solver.rtol, sc.solver.atol),
+        (
+            EXACT_MODAL_DEFAULT_RTOL,
+            EXACT_MODAL_DEFAULT_RTOL * pounding::integrate::ATOL_PER_RTOL
+        )
+    );
+    let sc = parse("method = \"rk4\"", "method = \"adaptive\"").unwrap();
     assert_eq!(
         (sc.solver.rtol, sc.solver.atol),
         (DEFAULT_RTOL, DEFAULT_ATOL)
     );
+    // with yielding storeys the default is `adaptive` (README, *Solver methods and speed*),
+    // and the defaults listed name it and its tolerance
+    let yielding = Scenario::from_toml(
+        &include_str!("../examples/yielding-frames.toml").replace("records/", "examples/records/"),
+        "y.toml",
+        ".".as_ref(),
+    )
+    .unwrap();
+    assert_eq!(yielding.solver.method, Method::Adaptive);
+    assert_eq!(
+        (yielding.solver.rtol, yielding.solver.atol),
+        (DEFAULT_RTOL, DEFAULT_ATOL)
+    );
+    for key in ["solver.method = \"adaptive\"", "solver.rtol = 1e-10"] {
+        assert!(
+            yielding.defaults_applied.iter().any(|d| d == key),
+            "{key} in {:?}",
+            yielding.defaults_applied
+        );
+    }
     let e = parse("method = \"rk4\"", "method = \"rk45\"").unwrap_err();
     assert!(
         e.contains("solver.method") && e.contains("exact-modal"),

@@ -31,7 +31,7 @@ use super::linear::{Prop, propagator};
 use crate::system::{LevelState, System};
 
 /// The two interior nodes of the 4-node companion, ½ ∓ 1/(2√5).
-const A1: f64 = 0.276_393_202_250_021_03;
+const A1: f64 = 0.276_393_202_250_021;
 const A2: f64 = 0.723_606_797_749_978_9;
 /// The interior nodes of the 5-node scheme, ½ ∓ √(3/7)/2 and ½.
 const B1: f64 = 0.172_673_164_646_011_43;
@@ -55,9 +55,6 @@ pub(super) const WEIGHTS8: [f64; 5] = [
     49.0 / 180.0,
     1.0 / 20.0,
 ];
-/// Lobatto weights of the 4-node scheme on [0, 1] (nodes 0, A1, A2, 1): exact for polynomials
-/// of degree 5.
-pub(super) const WEIGHTS6: [f64; 4] = [1.0 / 12.0, 5.0 / 12.0, 5.0 / 12.0, 1.0 / 12.0];
 /// The 5-node scheme's nodes on [0, 1], start included.
 pub(super) const THETA8: [f64; 5] = [0.0, B1, 0.5, B3, 1.0];
 /// The 4-node scheme's nodes on [0, 1], start included.
@@ -67,7 +64,7 @@ const THETA6: [f64; 4] = [0.0, A1, A2, 1.0];
 /// of the Vandermonde matrix, by Gauss–Jordan with partial pivoting; at most 5×5 and well
 /// conditioned).
 fn lagrange<const S: usize>(theta: &[f64; S]) -> [[f64; S]; S] {
-    let mut a = [[0.0; 10]; 5];
+    let mut a = [[0.0; 14]; 7];
     for i in 0..S {
         for m in 0..S {
             a[i][m] = theta[i].powi(m as i32);
@@ -116,7 +113,15 @@ pub(super) struct Bases {
     pub partial: [[f64; 5]; 3],
     /// `first[p] = ∫₀¹ x ℓ8_p(x) dx`: the first moment of a quartic from its nodal values.
     pub first: [f64; 5],
+    /// The interpolatory quadrature on every point a step knows the state at,
+    /// [`SEVEN`] (exact to degree 7: symmetric): the work of the contacts with the law along the
+    /// motion, whose defect against the force quartic vanishes at the 5 nodes and, to leading
+    /// order, integrates to 0 against any quadratic weight.
+    pub seven: [f64; 7],
 }
+
+/// 0, B1, A1, ½, A2, B3, 1: the nodes of both schemes.
+pub(super) const SEVEN: [f64; 7] = [0.0, B1, A1, 0.5, A2, B3, 1.0];
 
 /// See [`Bases`].
 pub(super) fn bases() -> &'static Bases {
@@ -140,6 +145,8 @@ pub(super) fn bases() -> &'static Bases {
             })
         });
         let first = std::array::from_fn(|p| (0..5).map(|m| l8[m][p] / (m + 2) as f64).sum());
+        let l7 = lagrange(&SEVEN);
+        let seven = std::array::from_fn(|p| (0..7).map(|m| l7[m][p] / (m + 1) as f64).sum());
         Bases {
             l8,
             l6: lagrange(&THETA6),
@@ -147,6 +154,7 @@ pub(super) fn bases() -> &'static Bases {
             den8,
             partial,
             first,
+            seven,
         }
     })
 }
@@ -801,6 +809,18 @@ mod tests {
         let w = bases().first;
         let q: f64 = w.iter().zip(THETA8).map(|(w, x)| w * x * x * x).sum();
         assert!((q - 0.2).abs() < 1e-14, "∫x·x³ = 1/5: {q}");
+        for deg in 0..=7 {
+            let q: f64 = bases()
+                .seven
+                .iter()
+                .zip(SEVEN)
+                .map(|(w, x)| w * x.powi(deg))
+                .sum();
+            assert!(
+                (q - 1.0 / (deg + 1) as f64).abs() < 1e-13,
+                "seven, degree {deg}: {q}"
+            );
+        }
     }
 
     /// `lu_solve` solves a pivoting-needing system.

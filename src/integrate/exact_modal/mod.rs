@@ -1084,7 +1084,6 @@ impl<O: Observer> Run<'_, O> {
 mod tests {
     use super::*;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {
