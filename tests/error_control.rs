@@ -539,7 +539,7 @@ fn shear(law: &str, stiffness: &str, solver: &str) -> Scenario {
 /// Shear buildings pounding at four floors (the bundled 4- and 8-storey buildings, Loma Prieta
 /// at 0.6 g, 15 s) on stiff contacts of every damped law: at the default (`exact-modal`) within
 /// 0.5 % of the converged run (`adaptive`, rtol 1e-12). Measured: Jankowski (2.75e11, 100× the
-/// example's) 4.3e-8, damped Hertz (2.75e12) 2e-7, Kelvin (1e10) 1.9e-5 on the peak force —
+/// example's) 1.7e-8, damped Hertz (2.75e12) 2e-7, Kelvin (1e10) 1.9e-5 on the peak force —
 /// the last not set by the tolerance but by how finely a damped law's peak between
 /// observations is found.
 #[test]
