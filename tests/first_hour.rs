@@ -191,7 +191,7 @@ fn minimal_scenario_runs_with_listed_defaults() {
     assert_eq!(sc.structures[1].modes(), DEFAULT_MODES);
     let m = sc.structures[0].modal();
     assert!(m.zeta.iter().all(|&z| z == DEFAULT_DAMPING_RATIO));
-    assert_eq!(sc.solver.method, pounding::integrate::Method::Adaptive);
+    assert_eq!(sc.solver.method, pounding::integrate::Method::DEFAULT);
     assert_eq!(
         sc.solver.duration,
         pounding::scenario::DEFAULT_HARMONIC_DURATION
@@ -199,7 +199,7 @@ fn minimal_scenario_runs_with_listed_defaults() {
     for key in [
         "structure[1].modes = 20",
         "structure[2].damping_ratio = 0.05",
-        "solver.method = \"adaptive\"",
+        "solver.method = \"exact-modal\"",
         "solver.duration = 20",
         "solver.dt = 0.001",
         "solver.output_interval = 0.01",

@@ -785,7 +785,7 @@ fn energy_balance_closes_with_yielding_and_pounding() {
     let (a, b) = (building_a(), building_b());
     let (ground, _) = harmonic(0.5, 0.8);
     let text = format!(
-        "{}{}{CONTACT}{ground}[solver]\nduration = 3.0\n",
+        "{}{}{CONTACT}{ground}[solver]\nmethod = \"adaptive\"\nduration = 3.0\n",
         a.toml("A", &HEIGHTS_A),
         b.toml("B", &HEIGHTS_B)
     );
@@ -1077,7 +1077,7 @@ fn the_tolerance_controls_ductility_residual_drift_and_energy() {
     let (ground, _) = harmonic(0.5, 0.8);
     let run_at = |rtol: f64| {
         run(&format!(
-            "{}{}{CONTACT}{ground}[solver]\nduration = 3.0\ndt = 1e-3\nrtol = {rtol:e}\n",
+            "{}{}{CONTACT}{ground}[solver]\nmethod = \"adaptive\"\nduration = 3.0\ndt = 1e-3\nrtol = {rtol:e}\n",
             a.toml("A", &HEIGHTS_A),
             b.toml("B", &HEIGHTS_B)
         ))

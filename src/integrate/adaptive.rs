@@ -825,6 +825,7 @@ pub(crate) fn run_traced<O: Observer>(
                 kink: false,
                 z0: Vec::new(),
                 z1: Vec::new(),
+                companion: Vec::new(),
             });
         }
         if starts_contact && !tr.free {

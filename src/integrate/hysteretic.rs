@@ -311,6 +311,7 @@ pub(crate) fn run_traced<O: Observer>(
                 kink: false,
                 z0: w.y[2 * n..].to_vec(),
                 z1: w.y1[2 * n..].to_vec(),
+                companion: Vec::new(),
             });
         }
         // accept: tallies with the fifth-order weights

@@ -610,6 +610,32 @@ pub fn poly_mode_work(
     }
 }
 
+/// Exact work of a recorded motion's ground load `c0 + c1τ + c2τ²` on one mode over a step of
+/// length h (its 2ζω and 1/ω² in `mode`) whose other load `g(τ)` (any shape) enters only
+/// through its moments `∫g dτ` (`g_int`) and `∫τ g dτ` (`g_tint`), from the exact end states:
+/// `[cη] − c1∫η − 2c2∫τη`, the moments of η from the equation of motion.
+#[inline(always)]
+pub fn poly_ground_work(
+    (d, iw2): (f64, f64),
+    h: f64,
+    (e0, v0): (f64, f64),
+    (e1, v1): (f64, f64),
+    c: &[f64; 3],
+    g_int: f64,
+    g_tint: f64,
+) -> f64 {
+    const THIRD: f64 = 1.0 / 3.0;
+    if c[1] == 0.0 && c[2] == 0.0 {
+        return c[0] * (e1 - e0);
+    }
+    let int_f = g_int + h * (c[0] + h * (0.5 * c[1] + h * c[2] * THIRD));
+    let i0 = (int_f - (v1 - v0) - d * (e1 - e0)) * iw2;
+    let int_tf = g_tint + h * h * (0.5 * c[0] + h * (c[1] * THIRD + 0.25 * h * c[2]));
+    let i1 = (int_tf - (h * v1 - (e1 - e0)) - d * (h * e1 - i0)) * iw2;
+    let ph = c[0] + h * (c[1] + h * c[2]);
+    ph * e1 - c[0] * e0 - c[1] * i0 - 2.0 * c[2] * i1
+}
+
 /// Exact work over a step of length h of one mode whose load is the ground load plus a contact
 /// load linear in τ (`g0 + g1 τ/h`), given the exact end states y0 = (η0, v0), y1 = (η1, v1).
 /// `ground` is the polynomial ground load (records) or `None` for harmonic (then `tm` is used).
@@ -755,6 +781,17 @@ impl HarmonicTally {
         let i0 = (int_f - (y1.1 - y0.1) - gm.damp[j] * (y1.0 - y0.0)) * gm.inv_w2[j];
         let contact = (g0 + slope * h) * y1.0 - g0 * y0.0 - slope * i0;
         (extra, contact)
+    }
+
+    /// The coefficients of the extra ground work that a load along `row` (one contact level's
+    /// coupling) causes: `(Σ_j row_j κ4_j, Σ_j row_j κ5_j)`. A load `f(τ)` along the row adds
+    /// `K4·∫f sin Ωt dt + K5·∫f cos Ωt dt` to the ground's work over a step (the sum over the
+    /// modes of [`Self::with_contact`]'s extra term, for any load shape).
+    pub fn row_extra(&self, row: &[f64]) -> (f64, f64) {
+        self.kappa
+            .iter()
+            .zip(row)
+            .fold((0.0, 0.0), |(a, b), (k, r)| (a + r * k[4], b + r * k[5]))
     }
 
     /// Ground work over the step [t₀, t₁] from the sums at both ends.

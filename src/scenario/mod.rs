@@ -1146,7 +1146,14 @@ fn validate(
     let min_length = structures[0].length().min(structures[1].length());
     let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
     let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
-    let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
+    let yielding = structures.iter().any(|s| s.hysteresis().is_some());
+    let (solver, output_interval) = solver(
+        &c,
+        raw.solver.as_ref(),
+        &ground_motion,
+        yielding,
+        &mut defaults,
+    )?;
     floors_at_contact(&c, &raw, &structures, &contact)?;
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
@@ -1836,6 +1843,7 @@ fn solver(
     c: &Check,
     raw: Option<&Spanned<RawSolver>>,
     ground: &GroundMotion,
+    yielding: bool,
     defaults: &mut Vec<String>,
 ) -> Result<(SolverSettings, f64), ScenarioError> {
     let empty = RawSolver {
@@ -1849,8 +1857,9 @@ fn solver(
     let s = raw.map_or(&empty, |r| r.get_ref());
     let method = match s.method.as_ref() {
         None => {
-            defaults.push("solver.method = \"adaptive\"".into());
-            Method::Adaptive
+            let method = Method::default_for(yielding);
+            defaults.push(format!("solver.method = \"{}\"", method.name()));
+            method
         }
         Some(m) => match Method::from_name(m.get_ref()) {
             Some(method) => method,
@@ -1866,7 +1875,7 @@ fn solver(
     };
     let rtol = match &s.rtol {
         None => {
-            if method == Method::Adaptive {
+            if method.has_tolerance() {
                 defaults.push(format!("solver.rtol = {:e}", method.default_rtol()));
             }
             method.default_rtol()

@@ -73,6 +73,7 @@ use super::{
 };
 use crate::system::{LevelState, System, dot};
 
+mod elastic;
 mod storeys;
 use storeys::{StoreyState, Yield};
 
@@ -98,17 +99,10 @@ struct StepData {
     /// `M0[k·L + l] = Σ_j c_kj c_lj Γ0_j` (η and η̇ components): the response of level k's
     /// displacement to a unit constant force at level l, for the predictor.
     m0: Vec<(f64, f64)>,
-    /// `M2[k·L + l] = Σ_j c_kj c_lj (Γ2_j − Γ1_j)`: the response of level k's displacement
-    /// to the unit load `(τ/h)² − τ/h` at level l (the part of a quadratic force that the
-    /// linear load leaves out), for the error estimate.
-    m2: Vec<(f64, f64)>,
-    /// `M1[k·L + l] = Σ_j c_kj c_lj Γ1_j`: the response of level k's displacement to the unit
-    /// ramp τ/h at level l (the corrector's end-force term), for the error estimate.
-    m1: Vec<(f64, f64)>,
     /// With yielding storeys, the same three tables over every *load row* r of the system:
     /// the contact levels' coupling rows c_k (r < L) and then the storeys' drift rows e_s
     /// (r = L + s), `[r·N + r']`, N = L + S: the response of `row_r · η` (and `row_r · η̇`) to
-    /// a unit load along row r' held (`y0`), ramped (`y1`) or quadratic (`y2`, as `m2`).
+    /// a unit load along row r' held (`y0`), ramped (`y1`) or quadratic as `(τ/h)² − τ/h` (`y2`).
     y0: Vec<(f64, f64)>,
     y1: Vec<(f64, f64)>,
     y2: Vec<(f64, f64)>,
@@ -144,7 +138,7 @@ impl StepData {
                 })
                 .collect()
         };
-        let [m0, m1, m2] = load_tables(nl, |k| sys.coupling(k), &infl, &quad);
+        let [m0, _, _] = load_tables(nl, |k| sys.coupling(k), &infl, &quad);
         // the tables over every load row, with yielding storeys only
         let nr = if ns == 0 { 0 } else { nl + ns };
         let row = |r: usize| {
@@ -180,8 +174,6 @@ impl StepData {
             herm_part,
             infl,
             m0,
-            m1,
-            m2,
             y0,
             y1,
             y2,
@@ -302,10 +294,6 @@ struct Run<'a, O: Observer> {
     /// length: the third point of the force's second divided difference.
     last_force: Vec<f64>,
     last_h: f64,
-    /// Scratch: every level's second divided difference of the force, N/s², and its force at
-    /// the corrected end state, N.
-    curv: Vec<f64>,
-    fcorr: Vec<f64>,
     /// Whether the last estimate met an onset or a release (for the trace).
     kink: bool,
     trace: Option<&'a mut Vec<StepTrace>>,
@@ -391,8 +379,6 @@ impl<'a, O: Observer> Run<'a, O> {
             tol: SubstepTolerance::new(sys, settings),
             last_force: vec![0.0; nl],
             last_h: settings.dt,
-            curv: vec![0.0; nl],
-            fcorr: vec![0.0; nl],
             kink: false,
             trace,
             gm: GroundModes::new(sys),
@@ -499,6 +485,9 @@ pub(crate) fn run_traced<'a, O: Observer>(
     observer: &'a mut O,
     trace: Option<&'a mut Vec<StepTrace>>,
 ) -> Result<Stats, SolveError> {
+    if sys.hysteresis.is_empty() {
+        return elastic::run(sys, settings, initial, observer, trace);
+    }
     let (q0, v0) = initial.resolved(sys.len());
     let mut r = Run::new(sys, settings, observer, trace, 0.0, q0, v0, None);
     r.observe(0.0);
@@ -735,73 +724,15 @@ impl<O: Observer> Run<'_, O> {
         i
     }
 
+    /// One base step of a system with yielding storeys ([`Self::base_step_yielding`]; elastic
+    /// systems take [`elastic`]).
     fn base_step(&mut self, t0: f64, hh: f64, piece: &Piece) -> Result<(), SolveError> {
-        let sys = self.sys;
         if self.since_sync == 0 {
             self.trig_now = self.gm.trig(t0);
             self.sync_particular();
         }
         self.since_sync = (self.since_sync + 1) % SYNC_EVERY;
-        if self.hy.ns > 0 {
-            return self.base_step_yielding(t0, hh, piece);
-        }
-        let idx = self.cache.index(sys, self.big, hh);
-        self.free_flight(t0, hh, piece, idx);
-        // Could any level touch within this step? (in contact now, or the free flight's δ, or
-        // the cubic through its ends, goes positive)
-        if sys.levels.is_empty() || self.contact_bound(hh, idx).0 < 0.0 {
-            self.predict(idx, false);
-            return self.finish_step(t0, hh, piece, idx);
-        }
-        // Contact: walk the step in dyadic sub-steps hh/2^m, m ≥ MIN_LEVEL, each as long as
-        // `k_t·D(h) ≤ α²/2` allows at the penetration bound of its own free flight (so the
-        // sub-steps follow the contact stiffness through the impact, and the free flight up to
-        // the onset is not cut finer than needed). A sub-step starts at a multiple of its own
-        // length, so the walk ends exactly at t0 + hh; it is refined when the rule fails and
-        // coarsened by one level when aligned and the last sub-step had room to spare.
-        const FULL: u64 = 1 << MAX_LEVEL;
-        let limit = 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA;
-        let mut pos: u64 = 0;
-        let mut level = MIN_LEVEL;
-        while pos < FULL {
-            let h = hh / (1u64 << level) as f64;
-            let ts = t0 + hh * (pos as f64 / FULL as f64);
-            let idx = self.level_index(hh, level, h);
-            self.free_flight(ts, h, piece, idx);
-            let (bound, worst) = self.contact_bound(h, idx);
-            if worst > limit && level < MAX_LEVEL {
-                level += 1;
-                continue;
-            }
-            let contact = bound >= 0.0;
-            self.predict(idx, contact);
-            let err = if contact { self.estimate(h, idx) } else { 0.0 };
-            if err > 1.0 {
-                if level < MAX_LEVEL {
-                    // the estimate goes like h³: as many halvings as that asks for at once
-                    let more = (err.log2() / 3.0).ceil().clamp(1.0, 8.0) as i32;
-                    level = (level + more).min(MAX_LEVEL);
-                    self.stats.rejected += 1;
-                    continue;
-                }
-                return Err(SolveError::ToleranceUnreachable {
-                    t: ts,
-                    h,
-                    rtol: self.tol.rtol,
-                });
-            }
-            self.finish_traced(ts, h, piece, idx, err, contact)?;
-            pos += FULL >> level;
-            // doubling h multiplies k_t·D by about 4 and the estimate (∝ h³ in δ̇) by 8
-            if level > MIN_LEVEL
-                && 4.0 * worst <= 0.5 * limit
-                && 8.0 * err <= 0.5
-                && pos.is_multiple_of(FULL >> (level - 1))
-            {
-                level -= 1;
-            }
-        }
-        Ok(())
+        self.base_step_yielding(t0, hh, piece)
     }
 
     /// The predicted end force F₁* of every level (load held at F₀ over the (sub-)step whose
@@ -828,90 +759,6 @@ impl<O: Observer> Run<'_, O> {
         } else {
             self.fpred.iter_mut().for_each(|f| *f = 0.0);
         }
-    }
-
-    /// Scaled local error estimate of the sub-step about to be completed (predicted forces in
-    /// `fpred`). The corrector's load is linear in time from F₀ to the predicted F₁*; its error
-    /// is the response to what it leaves out of the true force, in two parts, both exact per
-    /// mode through the step's tables:
-    /// - the end force: the law at the corrected end state, F₁ (formed here from the level
-    ///   tables [`StepData::m0`], [`StepData::m1`], without a pass over the modes), against
-    ///   F₁*: `(F₁ − F₁*)·M1`;
-    /// - the curvature: a quadratic through the force at the previous step's start, this one's
-    ///   start and F₁ adds `f·τ(τ − h)`, f the second divided difference: `f h²·M2`.
-    ///
-    /// Measured against [`SubstepTolerance`] on δ and δ̇ of every level; ≤ 1 passes. (The
-    /// curvature comes from the past, as in an Adams method; the kink at an onset or a release
-    /// shows as a large divided difference, so those sub-steps are refined.)
-    fn estimate(&mut self, h: f64, idx: usize) -> f64 {
-        let sys = self.sys;
-        let nl = sys.levels.len();
-        let data = &self.cache.entries[idx];
-        let hp = self.last_h;
-        for (k, lv) in sys.levels.iter().enumerate() {
-            let (mut d, mut dd) = self.free_end[k];
-            for l in 0..nl {
-                let (f0, f1) = (self.states[l].force, self.fpred[l]);
-                let (a, b) = (data.m0[k * nl + l], data.m1[k * nl + l]);
-                d -= f0 * a.0 + (f1 - f0) * b.0;
-                dd -= f0 * a.1 + (f1 - f0) * b.1;
-            }
-            let v0 = if self.onset[k] > 0.0 {
-                self.onset[k]
-            } else {
-                dd
-            };
-            self.fcorr[k] = lv.force.force(d, dd, v0);
-        }
-        for l in 0..nl {
-            let (fm, f0, f1) = (self.last_force[l], self.states[l].force, self.fcorr[l]);
-            self.curv[l] = ((f1 - f0) / h - (f0 - fm) / hp) / (h + hp);
-        }
-        let tol = self.tol;
-        let h2 = h * h;
-        let mut err = 0.0f64;
-        self.kink = false;
-        for k in 0..nl {
-            let (mut ed, mut ev) = (0.0, 0.0);
-            for l in 0..nl {
-                let (m0, m1, m2) = (
-                    data.m0[k * nl + l],
-                    data.m1[k * nl + l],
-                    data.m2[k * nl + l],
-                );
-                let (f0, f1) = (self.states[l].force, self.fcorr[l]);
-                let df = f1 - self.fpred[l];
-                // (the parts added in size: they are errors of different kinds, and a sum
-                // could cancel where neither is small)
-                ed += (df * m1.0).abs();
-                ev += (df * m1.1).abs();
-                if (f0 == 0.0) != (f1 == 0.0) {
-                    // an onset or a release inside the sub-step: the force is zero over part
-                    // of it and grows (or falls) from zero like (t − t_on)^p, p = 0 … 3/2 by
-                    // the law, which no polynomial through the ends follows. Bounded instead:
-                    // the true and the linear load both lie in [0, F] (F the end that is not
-                    // zero), so their difference integrates to at most F·h/2 (F·h²/6 against
-                    // (h − τ)): for a point mass, F·M0/2 on δ̇ and F·M0/3 on δ.
-                    let f = f0.max(f1);
-                    self.kink = true;
-                    ed += f * m0.0.abs() / 3.0;
-                    ev += f * m0.1.abs() / 2.0;
-                } else {
-                    ed += (h2 * self.curv[l] * m2.0).abs();
-                    ev += (h2 * self.curv[l] * m2.1).abs();
-                }
-            }
-            if ed == 0.0 && ev == 0.0 {
-                continue;
-            }
-            let st = &self.states[k];
-            let w = (st.delta + sys.levels[k].gap).abs();
-            let rate = st.delta_dot.abs().max(self.onset[k]);
-            err = err
-                .max(ed.abs() / (tol.atol + tol.rtol * w))
-                .max(ev.abs() / (tol.atol_rate + tol.rtol * rate));
-        }
-        err
     }
 
     /// [`Self::finish_step`], recording the (sub-)step in the trace when one is kept and
@@ -947,6 +794,7 @@ impl<O: Observer> Run<'_, O> {
                 kink: self.kink,
                 z0,
                 z1: self.hy.z.clone(),
+                companion: Vec::new(),
             });
         }
         Ok(())
@@ -1236,165 +1084,10 @@ impl<O: Observer> Run<'_, O> {
 mod tests {
     use super::*;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {
         fn observe(&mut self, _: &System, _: &StepView) {}
-    }
-
-    /// Two cantilevers (T1 = 0.3 s, T2 = 0.6 s, 3 modes), contact `contact` at the top,
-    /// harmonic motion 0.5 g at Tg = 0.8 s.
-    fn system(contact: &str) -> System {
-        let text = format!(
-            "[[structure]]\nlength = 10.0\nmass = 2.273e6\nperiod = 0.3\nmodes = 3\n\
-             damping_ratio = 0.01\n[[structure]]\nlength = 10.0\nmass = 2.273e6\n\
-             period = 0.6\nmodes = 3\ndamping_ratio = 0.01\n[contact]\n{contact}\n\
-             gap = 0.0127\n[ground_motion]\nkind = \"harmonic\"\npga = 0.5\nperiod = 0.8\n\
-             [solver]\nmethod = \"exact-modal\"\ndt = 1e-3\nduration = 1.0\n"
-        );
-        Scenario::from_toml(&text, "case.toml", std::path::Path::new("."))
-            .expect("valid scenario")
-            .system()
-    }
-
-    /// The sub-step `tr` redone in `m` equal sub-steps of the same scheme.
-    fn redo(
-        sys: &System,
-        settings: &SolverSettings,
-        tr: &StepTrace,
-        m: usize,
-    ) -> (Vec<f64>, Vec<f64>) {
-        let mut quiet = Quiet;
-        let (q0, v0) = (tr.q0.clone(), tr.v0.clone());
-        let mut r = Run::new(
-            sys,
-            settings,
-            &mut quiet,
-            None,
-            tr.t,
-            q0,
-            v0,
-            Some(&tr.onset),
-        );
-        let (piece, _) = r.gm.piece_at(tr.t);
-        let h = tr.h / m as f64;
-        for i in 0..m {
-            let ts = tr.t + i as f64 * h;
-            let idx = r.cache.index(sys, r.big, h);
-            r.free_flight(ts, h, &piece, idx);
-            let (bound, _) = r.contact_bound(h, idx);
-            r.predict(idx, bound >= 0.0);
-            r.finish_step(ts, h, &piece, idx).expect("finite");
-        }
-        (r.q, r.v)
-    }
-
-    /// (t, estimate, true error) of every accepted contact sub-step of a run, the true error
-    /// measured on δ and δ̇ of every level with the estimate's own scales.
-    fn error_ratios(sys: &System, rtol: f64, dt: f64, duration: f64) -> Vec<(f64, f64, f64, bool)> {
-        let settings = SolverSettings::new(Method::ExactModal, dt, duration).with_rtol(rtol);
-        let mut trace = Vec::new();
-        let mut quiet = Quiet;
-        run_traced(
-            sys,
-            &settings,
-            &InitialState::default(),
-            &mut quiet,
-            Some(&mut trace),
-        )
-        .expect("runs");
-        let tol = SubstepTolerance::new(sys, &settings);
-        trace
-            .iter()
-            .map(|tr| {
-                let (q, v) = redo(sys, &settings, tr, 256);
-                let mut e: f64 = 0.0;
-                for k in 0..sys.levels.len() {
-                    let c = sys.coupling(k);
-                    let (w, rate) = (dot(c, &tr.q0).abs(), dot(c, &tr.v0).abs().max(tr.onset[k]));
-                    let dd = (dot(c, &tr.q1) - dot(c, &q)).abs();
-                    let dv = (dot(c, &tr.v1) - dot(c, &v)).abs();
-                    e = e
-                        .max(dd / (tol.atol + tol.rtol * w))
-                        .max(dv / (tol.atol_rate + tol.rtol * rate));
-                }
-                (tr.t, tr.err, e, tr.kink)
-            })
-            .collect()
-    }
-
-    /// Every accepted contact sub-step's estimate against its true local error (the sub-step
-    /// redone in 256 sub-steps, whose own error is 256⁻³ of it where the force is smooth and
-    /// 256⁻¹ across an onset or a release): the true error is never more than 3× the estimate
-    /// (the estimate is not blind: measured ≤ 2.4), and inside contact the estimate is at most
-    /// 100× the true error (measured ≤ 48; across an onset or a release it is a bound, and the
-    /// true error can be far smaller by cancellation). Errors below 1 % of the tolerance are
-    /// not judged (no sub-step length depends on them).
-    fn assert_estimates_honest(name: &str, sys: &System, rtol: f64) {
-        let r = error_ratios(sys, rtol, 1e-3, 1.0);
-        assert!(r.len() > 20, "{name}: only {} contact sub-steps", r.len());
-        let floor = 0.01;
-        let (mut under, mut over_kink) = (0.0f64, 0.0f64);
-        let mut over = Vec::new();
-        for &(t, est, tru, kink) in &r {
-            assert!(
-                est <= 1.0,
-                "{name} rtol {rtol}: accepted sub-step at {t}: {est}"
-            );
-            if est.max(tru) <= floor {
-                continue;
-            }
-            assert!(
-                tru <= 3.0 * est,
-                "{name} rtol {rtol}: sub-step at t = {t} s: true error {tru:.3e} > 3 × estimate {est:.3e}"
-            );
-            under = under.max(tru / est);
-            if kink {
-                over_kink = over_kink.max(est / tru);
-            } else {
-                over.push(est / tru);
-            }
-        }
-        over.sort_by(f64::total_cmp);
-        let pick = |q: f64| over[((over.len() - 1) as f64 * q) as usize];
-        let (median, p90) = (pick(0.5), pick(0.9));
-        assert!(
-            median <= 3.0,
-            "{name} rtol {rtol}: median est/true {median}"
-        );
-        assert!(
-            p90 <= 10.0,
-            "{name} rtol {rtol}: 90th percentile est/true {p90}"
-        );
-        eprintln!(
-            "{name} rtol {rtol}: {} contact sub-steps; worst true/est {under:.2}; est/true median \
-             {median:.2}, 90th percentile {p90:.2}, largest {:.2} (at onsets and releases {over_kink:.2e})",
-            r.len(),
-            over.last().copied().unwrap_or(0.0)
-        );
-    }
-
-    #[test]
-    fn estimate_sees_the_true_local_error_of_contact_substeps() {
-        let cases = [
-            ("stiff hertz", "law = \"hertz\"\nstiffness = 2.808e13"),
-            ("paper hertz", "law = \"hertz\"\nstiffness = 2.808e10"),
-            (
-                "hertzdamp",
-                "law = \"hertzdamp\"\nstiffness = 2.808e11\nrestitution = 0.6",
-            ),
-            (
-                "kelvin",
-                "law = \"kelvin\"\nstiffness = 1e10\nrestitution = 0.6",
-            ),
-        ];
-        for (name, contact) in cases {
-            let sys = system(contact);
-            for rtol in [1e-4, 1e-6, 1e-8] {
-                assert_estimates_honest(name, &sys, rtol);
-            }
-        }
     }
 
     /// With yielding storeys (issue 16) every sub-step is estimated, and the estimate holds

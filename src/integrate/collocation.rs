@@ -1,0 +1,842 @@
+//! Exponential Lobatto collocation of the contact forces over a step: the embedded pair that
+//! `exact-modal` integrates contact with (docs/model.md §2.9; README, *Solver methods and speed*).
+//!
+//! Over a step of length h every level's contact force is the polynomial through its values at
+//! the Lobatto nodes; each mode's response to a polynomial load is exact (the tables below,
+//! per mode and step length), so the penetrations at the nodes are an affine function of the
+//! nodal forces through small level×level tables, and the nodal forces solve the contact law at
+//! the nodal states (Newton's method in those few unknowns, with the law's exact Jacobian).
+//! Two such schemes on one step:
+//!
+//! - **the propagated one**: 5 Lobatto nodes θ = 0, ½ ∓ √(3/7)/2, ½, 1, the force a quartic —
+//!   order 8 at the step's end (Lobatto IIIA, s = 5: 2s − 2; exact without contact);
+//! - **its companion**: 4 nodes θ = 0, ½ ∓ 1/(2√5), 1, the force a cubic — order 6.
+//!
+//! The distance between the two ends is the companion's local error to within the propagated
+//! one's (O(h⁹) against O(h⁷)), and it is what the step size is chosen by: an estimate that,
+//! unlike a formula on one solution, solves the contact law itself, so it sees the contact's
+//! stiffness, its onset and release and any kink of the law. The state kept is the eighth-order
+//! one (local extrapolation, as in the Dormand–Prince pair): its error is the estimate's at
+//! most and far below it on a smooth stretch — an upper bound, tested against the true local
+//! error of both solutions (`exact_modal::elastic` tests).
+//!
+//! Everything that depends on the step length only is in [`Table`] (propagators to the nodes,
+//! every mode's response to the Lagrange loads, the level tables); steps take lengths from a
+//! quantised set so that the tables are computed once per length.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::linear::{Prop, propagator};
+use crate::system::{LevelState, System};
+
+/// The two interior nodes of the 4-node companion, ½ ∓ 1/(2√5).
+const A1: f64 = 0.276_393_202_250_021;
+const A2: f64 = 0.723_606_797_749_978_9;
+/// The interior nodes of the 5-node scheme, ½ ∓ √(3/7)/2 and ½.
+const B1: f64 = 0.172_673_164_646_011_43;
+const B3: f64 = 0.827_326_835_353_988_6;
+
+/// Every node a table holds, as fractions of the step: the companion's interior nodes, the
+/// propagated scheme's interior nodes, the end.
+pub(super) const NODES: [f64; 6] = [A1, A2, B1, 0.5, B3, 1.0];
+/// The end node's index in [`NODES`].
+pub(super) const END: usize = 5;
+/// The propagated scheme: its nodes after the start, as indices into [`NODES`].
+pub(super) const NODES8: [usize; 4] = [2, 3, 4, END];
+/// The companion: its nodes after the start, as indices into [`NODES`].
+pub(super) const NODES6: [usize; 3] = [0, 1, END];
+/// Lobatto weights of the 5-node scheme on [0, 1] (nodes 0, B1, ½, B3, 1): exact for
+/// polynomials of degree 7.
+pub(super) const WEIGHTS8: [f64; 5] = [
+    1.0 / 20.0,
+    49.0 / 180.0,
+    16.0 / 45.0,
+    49.0 / 180.0,
+    1.0 / 20.0,
+];
+/// The 5-node scheme's nodes on [0, 1], start included.
+pub(super) const THETA8: [f64; 5] = [0.0, B1, 0.5, B3, 1.0];
+/// The 4-node scheme's nodes on [0, 1], start included.
+const THETA6: [f64; 4] = [0.0, A1, A2, 1.0];
+
+/// Coefficients of the Lagrange basis of `theta`: `ℓ_p(x) = Σ_m out[m][p] x^m` (the inverse
+/// of the Vandermonde matrix, by Gauss–Jordan with partial pivoting; at most 5×5 and well
+/// conditioned).
+fn lagrange<const S: usize>(theta: &[f64; S]) -> [[f64; S]; S] {
+    let mut a = [[0.0; 14]; 7];
+    for i in 0..S {
+        for m in 0..S {
+            a[i][m] = theta[i].powi(m as i32);
+        }
+        a[i][S + i] = 1.0;
+    }
+    for col in 0..S {
+        let p = (col..S)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap_or(col);
+        a.swap(col, p);
+        let d = a[col][col];
+        for x in a[col].iter_mut() {
+            *x /= d;
+        }
+        for r in 0..S {
+            if r != col {
+                let f = a[r][col];
+                let row = a[col];
+                for (x, y) in a[r].iter_mut().zip(row) {
+                    *x -= f * y;
+                }
+            }
+        }
+    }
+    let mut inv = [[0.0; S]; S];
+    for i in 0..S {
+        for j in 0..S {
+            inv[i][j] = a[i][S + j];
+        }
+    }
+    inv
+}
+
+/// The coefficients of both schemes' Lagrange bases (computed once), and the weights that give
+/// the 5-node scheme's quartic at the companion's interior nodes.
+pub(super) struct Bases {
+    l8: [[f64; 5]; 5],
+    l6: [[f64; 4]; 4],
+    /// `at6[i][p] = ℓ8_p(A_i)`: the quartic through the 5-node values at A1, A2.
+    pub at6: [[f64; 5]; 2],
+    /// `1/Π_{q≠p}(θ_p − θ_q)` over the 5 nodes (Lagrange form at any point).
+    den8: [f64; 5],
+    /// `partial[i][p] = ∫₀^{θ_{i+1}} ℓ8_p(x) dx`: the quadrature of the 5 nodal values from the
+    /// start to the interior node i (B1, ½, B3), exact for quartics (tallies at dense output).
+    pub partial: [[f64; 5]; 3],
+    /// `first[p] = ∫₀¹ x ℓ8_p(x) dx`: the first moment of a quartic from its nodal values.
+    pub first: [f64; 5],
+    /// The interpolatory quadrature on every point a step knows the state at,
+    /// [`SEVEN`] (exact to degree 7: symmetric): the work of the contacts with the law along the
+    /// motion, whose defect against the force quartic vanishes at the 5 nodes and, to leading
+    /// order, integrates to 0 against any quadratic weight.
+    pub seven: [f64; 7],
+}
+
+/// 0, B1, A1, ½, A2, B3, 1: the nodes of both schemes.
+pub(super) const SEVEN: [f64; 7] = [0.0, B1, A1, 0.5, A2, B3, 1.0];
+
+/// See [`Bases`].
+pub(super) fn bases() -> &'static Bases {
+    static B: std::sync::OnceLock<Bases> = std::sync::OnceLock::new();
+    B.get_or_init(|| {
+        let l8 = lagrange(&THETA8);
+        let at6 = [A1, A2]
+            .map(|x| std::array::from_fn(|p| (0..5).map(|m| l8[m][p] * x.powi(m as i32)).sum()));
+        let den8 = std::array::from_fn(|p| {
+            1.0 / (0..5)
+                .filter(|&q| q != p)
+                .map(|q| THETA8[p] - THETA8[q])
+                .product::<f64>()
+        });
+        let partial = std::array::from_fn(|i| {
+            let x = THETA8[i + 1];
+            std::array::from_fn(|p| {
+                (0..5)
+                    .map(|m| l8[m][p] * x.powi(m as i32 + 1) / (m + 1) as f64)
+                    .sum()
+            })
+        });
+        let first = std::array::from_fn(|p| (0..5).map(|m| l8[m][p] / (m + 2) as f64).sum());
+        let l7 = lagrange(&SEVEN);
+        let seven = std::array::from_fn(|p| (0..7).map(|m| l7[m][p] / (m + 1) as f64).sum());
+        Bases {
+            l8,
+            l6: lagrange(&THETA6),
+            at6,
+            den8,
+            partial,
+            first,
+            seven,
+        }
+    })
+}
+
+impl Bases {
+    /// The value at x of the quartic through `values` at the 5-node scheme's nodes.
+    #[inline]
+    pub(super) fn quartic_at(&self, values: &[f64; 5], x: f64) -> f64 {
+        let d: [f64; 5] = std::array::from_fn(|q| x - THETA8[q]);
+        let mut sum = 0.0;
+        for p in 0..5 {
+            let mut l = self.den8[p];
+            for q in 0..5 {
+                if q != p {
+                    l *= d[q];
+                }
+            }
+            sum += l * values[p];
+        }
+        sum
+    }
+}
+
+/// 1/k for k < 70 (the series' factorials without divisions).
+fn reciprocals() -> &'static [f64; 70] {
+    static R: std::sync::OnceLock<[f64; 70]> = std::sync::OnceLock::new();
+    R.get_or_init(|| std::array::from_fn(|k| if k == 0 { 0.0 } else { 1.0 / k as f64 }))
+}
+
+/// Exact response (η, η̇) at times `s_i = θ_i h` from rest of one mode (ω rad/s, damp = 2ζω
+/// 1/s) to the loads (τ/h)^m, m = 0..4, with the propagators `props[i] = P(s_i)`: into
+/// `out[i][m]`. A series in `sA` (shared by the five loads) where `s(ω + damp)` is small, the
+/// polynomial particular solution otherwise (no cancellation either way).
+fn monomial_responses(
+    omega: f64,
+    damp: f64,
+    h: f64,
+    props: &[Prop; 6],
+    out: &mut [[(f64, f64); 5]; 6],
+) {
+    let w2 = omega * omega;
+    for (i, &th) in NODES.iter().enumerate() {
+        let s = th * h;
+        let o = &mut out[i];
+        if s * (omega + damp) < 1.0 {
+            // Σ_r (m!/h^m) s^{r+m+1}/(r+m+1)! A^r e₂, A = [[0, 1], [−ω², −damp]]
+            let inv = reciprocals();
+            let mut coef = [0.0; 5];
+            let mut fact = 1.0; // m!/h^m
+            for (m, c) in coef.iter_mut().enumerate() {
+                if m > 0 {
+                    fact *= m as f64 / h;
+                }
+                let mut x = fact;
+                for q in 1..=(m + 1) {
+                    x *= s / q as f64;
+                }
+                *c = x;
+            }
+            let (mut x, mut y) = (0.0, 1.0);
+            let mut acc = [(0.0, 0.0); 5];
+            for r in 0..60 {
+                for m in 0..5 {
+                    acc[m].0 += coef[m] * x;
+                    acc[m].1 += coef[m] * y;
+                    coef[m] *= s * inv[r + m + 2];
+                }
+                let (nx, ny) = (y, -w2 * x - damp * y);
+                x = nx;
+                y = ny;
+                // (the m = 0 series converges slowest)
+                if coef[0] * (x.abs() + y.abs())
+                    < 1e-17 * (acc[0].0.abs() * w2.max(1.0) + acc[0].1.abs())
+                {
+                    break;
+                }
+            }
+            *o = acc;
+        } else {
+            for m in 0..5 {
+                // particular polynomial Σ u_r τ^r of the load τ^m/h^m
+                let mut u = [0.0; 7];
+                let cm = 1.0 / h.powi(m as i32);
+                for r in (0..=m).rev() {
+                    let c = if r == m { cm } else { 0.0 };
+                    u[r] = (c
+                        - damp * (r + 1) as f64 * u[r + 1]
+                        - ((r + 2) * (r + 1)) as f64 * u[r + 2])
+                        / w2;
+                }
+                let (mut e, mut d) = (0.0, 0.0);
+                for r in (0..=m).rev() {
+                    e = e * s + u[r];
+                }
+                for r in (1..=m).rev() {
+                    d = d * s + r as f64 * u[r];
+                }
+                let (a, b) = props[i].apply(u[0], u[1]);
+                o[m] = (e - a, d - b);
+            }
+        }
+    }
+}
+
+/// One mode's part of a [`Table`]: what an accepted step needs of it, in one place.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct ModeStep {
+    /// `P(h)`.
+    pub end: Prop,
+    /// (η, η̇) at the step's end from rest under the 5-node scheme's Lagrange load ℓ_p.
+    pub end8: [(f64, f64); 5],
+    /// `P(θh)` at the 5-node scheme's interior nodes (B1, ½, B3), for dense output.
+    pub mid: [Prop; 3],
+    /// (η, η̇) there under ℓ_p.
+    pub mid8: [[(f64, f64); 5]; 3],
+}
+
+/// Everything of a step of length h that does not depend on the state.
+pub(super) struct Table {
+    /// Step length, s.
+    pub h: f64,
+    /// Modes.
+    n: usize,
+    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], at
+    /// `[(node·L + k)·n + j]`: the free flight's δ, δ̇ at the nodes are two dot products per
+    /// node and level.
+    pub cprop: Vec<[f64; 4]>,
+    /// Per mode, see [`ModeStep`].
+    pub modes: Vec<ModeStep>,
+    /// Level tables of the 5-node scheme: the response of `c_k·η` (and `c_k·η̇`) at its node i
+    /// (B1, ½, B3, end) to a unit force at level l shaped as ℓ_p,
+    /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[((k·L + l)·4 + i)·5 + p]`.
+    pub w8: Vec<(f64, f64)>,
+    /// The same for the 4-node companion at its nodes (A1, A2, end): `[((k·L + l)·3 + i)·4 + p]`.
+    pub w6: Vec<(f64, f64)>,
+    /// The 5-node scheme's response at the companion's interior nodes (A1, A2), for the work
+    /// of the contacts along the computed motion: `[((k·L + l)·2 + i)·5 + p]`.
+    pub w86: Vec<(f64, f64)>,
+    /// Harmonic motion: (sin Ωθh, cos Ωθh) at every node of [`NODES`].
+    pub rot: [(f64, f64); 6],
+    /// Harmonic motion: `(∫₀ʰ ℓ_p(τ/h) cos Ωτ dτ, ∫₀ʰ ℓ_p(τ/h) sin Ωτ dτ)` of the 5-node
+    /// scheme's Lagrange loads (s), for the ground's exact work under a contact load.
+    pub hmom: [(f64, f64); 5],
+}
+
+impl Table {
+    /// The table of step length `h` for `sys` (Ω of a harmonic motion in `big`).
+    pub(super) fn new(sys: &System, big: Option<f64>, h: f64) -> Table {
+        let mut t = Table {
+            h: f64::NAN,
+            n: 0,
+            cprop: Vec::new(),
+            modes: Vec::new(),
+            w8: Vec::new(),
+            w6: Vec::new(),
+            w86: Vec::new(),
+            rot: [(0.0, 1.0); 6],
+            hmom: [(0.0, 0.0); 5],
+        };
+        t.fill(sys, big, h);
+        t
+    }
+
+    /// Recompute for step length `h` (the buffers are reused).
+    pub(super) fn fill(&mut self, sys: &System, big: Option<f64>, h: f64) {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let n = sys.len();
+        let nl = sys.levels.len();
+        self.h = h;
+        self.n = n;
+        let Bases { l8, l6, .. } = bases();
+        if let Some(big) = big {
+            self.rot = NODES.map(|x| (big * x * h).sin_cos());
+            let moments = trig_moments(big * h);
+            self.hmom = std::array::from_fn(|p| {
+                let (mut a, mut b) = (0.0, 0.0);
+                for m in 0..5 {
+                    a += l8[m][p] * moments[m].0;
+                    b += l8[m][p] * moments[m].1;
+                }
+                (h * a, h * b)
+            });
+        }
+        self.cprop.clear();
+        self.cprop.resize(6 * nl * n, [0.0; 4]);
+        self.modes.clear();
+        self.modes.resize(n, ModeStep::default());
+        self.w8.clear();
+        self.w8.resize(nl * nl * 20, (0.0, 0.0));
+        self.w6.clear();
+        self.w6.resize(nl * nl * 12, (0.0, 0.0));
+        self.w86.clear();
+        self.w86.resize(nl * nl * 10, (0.0, 0.0));
+        for j in 0..n {
+            let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+            for (i, p) in props.iter().enumerate() {
+                for k in 0..nl {
+                    let c = sys.coupling(k)[j];
+                    self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                }
+            }
+            let mut mono = [[(0.0, 0.0); 5]; 6];
+            monomial_responses(omega[j], damp[j], h, &props, &mut mono);
+            // this mode's responses to the Lagrange loads: the 5-node scheme's at its 4 nodes
+            // and at the companion's 2 interior ones, the companion's at its 3
+            let lagrange8 = |node: usize| -> [(f64, f64); 5] {
+                std::array::from_fn(|p| {
+                    let (mut a, mut b) = (0.0, 0.0);
+                    for m in 0..5 {
+                        a += l8[m][p] * mono[node][m].0;
+                        b += l8[m][p] * mono[node][m].1;
+                    }
+                    (a, b)
+                })
+            };
+            let g8: [[(f64, f64); 5]; 4] = NODES8.map(lagrange8);
+            let g86: [[(f64, f64); 5]; 2] = [lagrange8(0), lagrange8(1)];
+            let g6: [[(f64, f64); 4]; 3] = NODES6.map(|node| {
+                std::array::from_fn(|p| {
+                    let (mut a, mut b) = (0.0, 0.0);
+                    for m in 0..4 {
+                        a += l6[m][p] * mono[node][m].0;
+                        b += l6[m][p] * mono[node][m].1;
+                    }
+                    (a, b)
+                })
+            });
+            self.modes[j] = ModeStep {
+                end: props[END],
+                end8: g8[3],
+                mid: [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]],
+                mid8: [g8[0], g8[1], g8[2]],
+            };
+            for k in 0..nl {
+                for l in 0..nl {
+                    let w = sys.coupling(k)[j] * sys.coupling(l)[j];
+                    if w == 0.0 {
+                        continue;
+                    }
+                    let kl = k * nl + l;
+                    let add = |t: &mut [(f64, f64)], g: &[(f64, f64)]| {
+                        for (e, g) in t.iter_mut().zip(g) {
+                            e.0 += w * g.0;
+                            e.1 += w * g.1;
+                        }
+                    };
+                    add(&mut self.w8[kl * 20..(kl + 1) * 20], g8.as_flattened());
+                    add(&mut self.w6[kl * 12..(kl + 1) * 12], g6.as_flattened());
+                    add(&mut self.w86[kl * 10..(kl + 1) * 10], g86.as_flattened());
+                }
+            }
+        }
+    }
+
+    /// Modes the table was made for.
+    pub(super) fn modes(&self) -> usize {
+        self.n
+    }
+}
+
+/// `(∫₀¹ x^m cos ax dx, ∫₀¹ x^m sin ax dx)` for m = 0..4: a series for |a| < 2, else the
+/// recursion `I_m = (e^{ia} − m I_{m−1})/(ia)` (each step divides the error by |a|/m).
+fn trig_moments(a: f64) -> [(f64, f64); 5] {
+    let mut out = [(0.0, 0.0); 5];
+    if a.abs() < 2.0 {
+        // Σ_r (ia)^r/(r!·(m + r + 1)): real parts from even r, imaginary from odd
+        for (m, o) in out.iter_mut().enumerate() {
+            let (mut re, mut im) = (0.0, 0.0);
+            let mut term = 1.0; // a^r/r!
+            for r in 0..40 {
+                let x = term / (m + r + 1) as f64;
+                match r % 4 {
+                    0 => re += x,
+                    1 => im += x,
+                    2 => re -= x,
+                    _ => im -= x,
+                }
+                term *= a / (r + 1) as f64;
+                if term.abs() < 1e-18 {
+                    break;
+                }
+            }
+            *o = (re, im);
+        }
+    } else {
+        let (s, c) = a.sin_cos();
+        // I_0 = (e^{ia} − 1)/(ia) = (sin a + i(1 − cos a))/a
+        let mut prev = (s / a, (1.0 - c) / a);
+        out[0] = prev;
+        for (m, o) in out.iter_mut().enumerate().skip(1) {
+            // (e^{ia} − m·I)/(ia) = (Im(e^{ia} − mI) − i Re(e^{ia} − mI))/a
+            let (re, im) = (c - m as f64 * prev.0, s - m as f64 * prev.1);
+            prev = (im / a, -re / a);
+            *o = prev;
+        }
+    }
+    out
+}
+
+/// Scratch of the Newton iterations on the nodal forces.
+#[derive(Default)]
+pub(super) struct Newton {
+    jac: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+/// Why a collocation solve failed (the step is then retried shorter).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct NoConvergence;
+
+/// The nodal forces of an S-node scheme (S = 5: the propagated one, S = 4: the companion) over
+/// one step: Newton's method on `F_kp = φ_k(δ_kp, δ̇_kp)` at the nodes p = 1..S−1 with
+/// `δ_kp = dfree[k·(S−1) + p − 1] − Σ_l Σ_q w[((k·L + l)·(S−1) + p − 1)·S + q] F_lq`.
+///
+/// `force[k·S + p]`: on entry `p = 0` the start force (fixed) and `p ≥ 1` the first guess; on
+/// return the solution. `nodal[k·(S−1) + p − 1]` receives (δ, δ̇) at the nodes. `onset`: the
+/// approach speed of each level's episode (the damped laws' v₀; 0 when none). Converged when a
+/// Newton update moves no force by more than `tol` of the largest (the caller ties `tol` to its
+/// tolerance, far below it: an error ΔF of the forces moves the state by the response to ΔF);
+/// the nodal states are then those of the forces before that last, negligible update. Returns
+/// the number of law evaluations.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn solve<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    scratch: &mut Newton,
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    let nl = sys.levels.len();
+    if nl == 1 {
+        return solve_one::<S>(sys, w, dfree, onset, force, nodal, tol);
+    }
+    let m = S - 1;
+    let dim = nl * m;
+    scratch.jac.resize(dim * dim, 0.0);
+    scratch.rhs.resize(dim, 0.0);
+    let w = &w[..nl * nl * m * S];
+    let mut last = f64::INFINITY;
+    for iter in 1..=30 {
+        // nodal states from the current forces, the residual and the Jacobian
+        let mut scale: f64 = 0.0;
+        for k in 0..nl {
+            let law = &sys.levels[k].force;
+            let fk = &force[k * S..(k + 1) * S];
+            for p in 0..m {
+                let (mut d, mut dd) = dfree[k * m + p];
+                for l in 0..nl {
+                    let base = ((k * nl + l) * m + p) * S;
+                    let (row, fl) = (&w[base..base + S], &force[l * S..(l + 1) * S]);
+                    for q in 0..S {
+                        d -= row[q].0 * fl[q];
+                        dd -= row[q].1 * fl[q];
+                    }
+                }
+                nodal[k * m + p] = (d, dd);
+                let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+                let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
+                let r = k * m + p;
+                let f = fk[p + 1];
+                scratch.rhs[r] = phi - f;
+                scale = scale.max(phi.abs()).max(f.abs());
+                // the system solved is (I + kd·w.0 + kv·w.1)·ΔF = φ − F (δ falls as F grows)
+                let jrow = &mut scratch.jac[r * dim..(r + 1) * dim];
+                for l in 0..nl {
+                    let base = ((k * nl + l) * m + p) * S;
+                    let row = &w[base + 1..base + S];
+                    let out = &mut jrow[l * m..(l + 1) * m];
+                    for q in 0..m {
+                        out[q] = kd * row[q].0 + kv * row[q].1;
+                    }
+                }
+                jrow[r] += 1.0;
+            }
+        }
+        let residual = scratch.rhs.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if !residual.is_finite() {
+            return Err(NoConvergence);
+        }
+        if residual <= tol * scale || residual <= 1e-300 {
+            return Ok(iter);
+        }
+        if !lu_solve(&mut scratch.jac, &mut scratch.rhs, dim) {
+            return Err(NoConvergence);
+        }
+        let mut change: f64 = 0.0;
+        for k in 0..nl {
+            for p in 0..m {
+                let d = scratch.rhs[k * m + p];
+                force[k * S + p + 1] += d;
+                change = change.max(d.abs());
+            }
+        }
+        // converged: the update is below the tolerance (the residual after it is of the order
+        // of its square), or it stalls at round-off
+        if change <= tol * scale || (change <= 1e-11 * scale && change >= 0.5 * last) {
+            return Ok(iter);
+        }
+        last = change;
+    }
+    Err(NoConvergence)
+}
+
+/// [`solve`] for a single contact level (the common case): the same iterations on stack
+/// arrays, the elimination unrolled by the compiler for the scheme's S − 1 unknowns.
+fn solve_one<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    const MAX: usize = 4;
+    let m = S - 1;
+    let law = &sys.levels[0].force;
+    let w = &w[..m * S];
+    let (dfree, nodal, force) = (&dfree[..m], &mut nodal[..m], &mut force[..S]);
+    let mut last = f64::INFINITY;
+    for iter in 1..=30 {
+        let mut jac = [[0.0; MAX]; MAX];
+        let mut rhs = [0.0; MAX];
+        let mut scale: f64 = 0.0;
+        for p in 0..m {
+            let row = &w[p * S..(p + 1) * S];
+            let (mut d, mut dd) = dfree[p];
+            for q in 0..S {
+                d -= row[q].0 * force[q];
+                dd -= row[q].1 * force[q];
+            }
+            nodal[p] = (d, dd);
+            let v0 = if onset[0] > 0.0 { onset[0] } else { dd };
+            let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
+            let f = force[p + 1];
+            rhs[p] = phi - f;
+            scale = scale.max(phi.abs()).max(f.abs());
+            for q in 0..m {
+                jac[p][q] = kd * row[q + 1].0 + kv * row[q + 1].1;
+            }
+            jac[p][p] += 1.0;
+        }
+        let residual = rhs[..m].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if !residual.is_finite() {
+            return Err(NoConvergence);
+        }
+        if residual <= tol * scale || residual <= 1e-300 {
+            return Ok(iter);
+        }
+        // elimination with partial pivoting
+        for col in 0..m {
+            let mut piv = col;
+            for r in col + 1..m {
+                if jac[r][col].abs() > jac[piv][col].abs() {
+                    piv = r;
+                }
+            }
+            if jac[piv][col] == 0.0 || !jac[piv][col].is_finite() {
+                return Err(NoConvergence);
+            }
+            jac.swap(col, piv);
+            rhs.swap(col, piv);
+            let inv = 1.0 / jac[col][col];
+            for r in col + 1..m {
+                let f = jac[r][col] * inv;
+                for c in col + 1..m {
+                    jac[r][c] -= f * jac[col][c];
+                }
+                rhs[r] -= f * rhs[col];
+            }
+        }
+        let mut change: f64 = 0.0;
+        for r in (0..m).rev() {
+            let mut x = rhs[r];
+            for c in r + 1..m {
+                x -= jac[r][c] * rhs[c];
+            }
+            rhs[r] = x / jac[r][r];
+            force[r + 1] += rhs[r];
+            change = change.max(rhs[r].abs());
+        }
+        if change <= tol * scale || (change <= 1e-11 * scale && change >= 0.5 * last) {
+            return Ok(iter);
+        }
+        last = change;
+    }
+    Err(NoConvergence)
+}
+
+/// Solve `a·x = b` in place (b becomes x; `a` is destroyed) by Gaussian elimination with
+/// partial pivoting; false if singular.
+fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    for col in 0..n {
+        let mut piv = col;
+        let mut best = a[col * n + col].abs();
+        for r in col + 1..n {
+            let x = a[r * n + col].abs();
+            if x > best {
+                (piv, best) = (r, x);
+            }
+        }
+        if best == 0.0 || !best.is_finite() {
+            return false;
+        }
+        if piv != col {
+            for c in col..n {
+                a.swap(col * n + c, piv * n + c);
+            }
+            b.swap(col, piv);
+        }
+        let inv = 1.0 / a[col * n + col];
+        let (top, rest) = a.split_at_mut((col + 1) * n);
+        let prow = &top[col * n + col + 1..col * n + n];
+        let bc = b[col];
+        for (i, row) in rest.chunks_exact_mut(n).enumerate() {
+            let f = row[col] * inv;
+            if f != 0.0 {
+                for (x, y) in row[col + 1..].iter_mut().zip(prow) {
+                    *x -= f * y;
+                }
+                b[col + 1 + i] -= f * bc;
+            }
+        }
+    }
+    for r in (0..n).rev() {
+        let mut s = b[r];
+        for c in r + 1..n {
+            s -= a[r * n + c] * b[c];
+        }
+        b[r] = s / a[r * n + r];
+    }
+    true
+}
+
+/// The law's force at the start of a step at every level: the state's own, or at a located
+/// onset (δ within `event_tol` below 0, approaching) the law's right limit there (c·δ̇ for
+/// Kelvin), not the 0 of δ ≤ 0.
+pub(super) fn start_force(sys: &System, k: usize, st: &LevelState, onset: f64, tol: f64) -> f64 {
+    if st.delta <= 0.0 && st.delta >= -tol && st.delta_dot > 0.0 {
+        let v0 = if onset > 0.0 { onset } else { st.delta_dot };
+        sys.levels[k]
+            .force
+            .force(f64::MIN_POSITIVE, st.delta_dot, v0)
+    } else {
+        st.force
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::linear::monomial_influence;
+
+    /// The Lagrange coefficients reproduce the nodes' cardinal property, and the weights
+    /// integrate x⁷ exactly (5-node Lobatto: degree 2·5 − 3).
+    #[test]
+    fn nodes_and_weights() {
+        let l = lagrange(&THETA8);
+        for p in 0..5 {
+            for (i, &x) in THETA8.iter().enumerate() {
+                let v: f64 = (0..5).map(|m| l[m][p] * x.powi(m as i32)).sum();
+                let want = if i == p { 1.0 } else { 0.0 };
+                assert!((v - want).abs() < 1e-13, "ℓ_{p}({x}) = {v}");
+            }
+        }
+        for deg in 0..=7 {
+            let q: f64 = WEIGHTS8
+                .iter()
+                .zip(THETA8)
+                .map(|(w, x)| w * x.powi(deg))
+                .sum();
+            assert!(
+                (q - 1.0 / (deg + 1) as f64).abs() < 1e-15,
+                "degree {deg}: {q}"
+            );
+        }
+        assert!((A1 - 0.5 * (1.0 - 1.0 / 5f64.sqrt())).abs() < 1e-16);
+        assert!((B1 - 0.5 * (1.0 - (3.0f64 / 7.0).sqrt())).abs() < 1e-16);
+        assert!((bases().quartic_at(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.5) - 3.0).abs() < 1e-14);
+        let v = [0.3, -1.0, 2.0, 0.7, 1.1];
+        for (i, x) in [A1, A2].iter().enumerate() {
+            let direct = bases().quartic_at(&v, *x);
+            let weights: f64 = (0..5).map(|p| bases().at6[i][p] * v[p]).sum();
+            assert!((direct - weights).abs() < 1e-13);
+        }
+    }
+
+    /// The shared series and the closed form agree with the linear module's per-load
+    /// influences (m ≤ 3) on both sides of the switch, and the quartic load's response solves
+    /// the equation of motion (checked by the response's own second derivative, from a finer
+    /// pair of evaluations).
+    #[test]
+    fn monomial_responses_match_the_single_load_influences() {
+        for &(omega, zeta, h) in &[(3.0, 0.02, 0.1), (40.0, 0.05, 0.02), (900.0, 0.01, 0.01)] {
+            let damp = 2.0 * zeta * omega;
+            let props = NODES.map(|x| propagator(omega, damp, x * h));
+            let mut out = [[(0.0, 0.0); 5]; 6];
+            monomial_responses(omega, damp, h, &props, &mut out);
+            for (i, &x) in NODES.iter().enumerate() {
+                let want = monomial_influence(omega, damp, x * h, h, &props[i]);
+                for m in 0..4 {
+                    let (a, b) = (out[i][m], want[m]);
+                    let tol = 1e-11 * (a.0.abs() * omega + a.1.abs()).max(1e-300);
+                    assert!(
+                        (a.0 - b.0).abs() * omega + (a.1 - b.1).abs() <= tol,
+                        "ω {omega} node {x} m {m}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+            // the m = 4 response: η̈ = (τ/h)⁴ − damp·η̇ − ω²η at the end, by differences of η̇
+            let e = 1e-4 * h;
+            let at = |s: f64| {
+                let p: [Prop; 6] = [propagator(omega, damp, s); 6];
+                let mut o = [[(0.0, 0.0); 5]; 6];
+                monomial_responses(omega, damp, s, &p, &mut o);
+                // (node END is s itself; rescale the load (τ/s)⁴ to (τ/h)⁴)
+                let r = (s / h).powi(4);
+                (o[END][4].0 * r, o[END][4].1 * r)
+            };
+            let (y, yd) = at(h);
+            let acc = (at(h + e).1 - at(h - e).1) / (2.0 * e);
+            let lhs = acc + damp * yd + omega * omega * y;
+            assert!((lhs - 1.0).abs() < 1e-5, "ω {omega}: {lhs}");
+        }
+    }
+
+    /// The Lagrange loads' trigonometric moments against a fine midpoint rule, on both sides
+    /// of the switch between series and recursion.
+    #[test]
+    fn trig_moments_match_quadrature() {
+        for a in [1e-3, 0.7, 1.99, 2.01, 5.0, 40.0] {
+            let m = trig_moments(a);
+            let n = 200_000;
+            for (k, &(c, s)) in m.iter().enumerate() {
+                let (mut qc, mut qs) = (0.0, 0.0);
+                for i in 0..n {
+                    let x = (i as f64 + 0.5) / n as f64;
+                    qc += x.powi(k as i32) * (a * x).cos() / n as f64;
+                    qs += x.powi(k as i32) * (a * x).sin() / n as f64;
+                }
+                // (midpoint rule: error ~ a²/(24 n²) of the integrand's scale)
+                let tol = 1e-10 * (1.0 + a * a);
+                assert!(
+                    (c - qc).abs() < tol && (s - qs).abs() < tol,
+                    "a {a} m {k}: {c} {s} vs {qc} {qs}"
+                );
+            }
+        }
+        let w = bases().first;
+        let q: f64 = w.iter().zip(THETA8).map(|(w, x)| w * x * x * x).sum();
+        assert!((q - 0.2).abs() < 1e-14, "∫x·x³ = 1/5: {q}");
+        for deg in 0..=7 {
+            let q: f64 = bases()
+                .seven
+                .iter()
+                .zip(SEVEN)
+                .map(|(w, x)| w * x.powi(deg))
+                .sum();
+            // The weights come from inverting a 7×7 Vandermonde matrix on [0, 1] (condition
+            // ~1e5): ~1e-13 of round-off (measured 1.8e-13 on degree 0), far below any effect.
+            assert!(
+                (q - 1.0 / (deg + 1) as f64).abs() < 1e-12,
+                "seven, degree {deg}: {q}"
+            );
+        }
+    }
+
+    /// `lu_solve` solves a pivoting-needing system.
+    #[test]
+    fn lu_solves() {
+        let mut a = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let mut b = vec![5.0, 3.0, 7.0];
+        assert!(lu_solve(&mut a, &mut b, 3));
+        // (the first pivot is zero without the row exchange)
+        let a0 = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let b0 = [5.0, 3.0, 7.0];
+        for r in 0..3 {
+            let s: f64 = (0..3).map(|c| a0[r * 3 + c] * b[c]).sum();
+            assert!((s - b0[r]).abs() < 1e-12, "row {r}: {s}");
+        }
+    }
+}
