@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
 
 /// The stiff case of issue 9: T1 = 0.3 s, T2 = 0.6 s, equal masses 2.273e6 kg, L = 10 m,
 /// 3 modes, ζ = 0.01, Hertz k_h = 2.808e13 N/m^1.5 (1000× the paper's), gap 12.7 mm, harmonic
@@ -434,7 +434,7 @@ fn exact_modal_does_not_miss_short_impacts_inside_a_long_step() {
 /// sub-steps followed rtol, the check run was bit-identical and could see nothing.)
 #[test]
 fn exact_modal_on_the_stiff_case_is_flagged_not_converged() {
-    use pounding::simulate::simulate_checked;
+    use pounding::analysis::simulate::simulate_checked;
     let reference = run(&stiff(0.5, 6.0, "adaptive", 1e-4, "rtol = 1e-12"));
     for (dt, solver) in [(1e-3, ""), (1e-2, ""), (1e-3, "rtol = 1e-10")] {
         let s = stiff(0.5, 6.0, "exact-modal", dt, solver);

@@ -9,8 +9,8 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
 
 mod common;
 use common::{Case, Physical, integrate_physical, physical};

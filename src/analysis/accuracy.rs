@@ -1,7 +1,7 @@
 //! Every run checks itself (issue 9, item 4): the headline numbers of a run compared with a
 //! second run of the same scenario at a 100× tighter tolerance ([`tightened`]).
 //!
-//! The check is a second, independent [`simulate`](crate::simulate::simulate) call with the
+//! The check is a second, independent [`simulate`](crate::analysis::simulate::simulate) call with the
 //! settings of [`tightened`]; it adds nothing to the integrators or to their time loop. It
 //! compares the peak displacements with and without pounding of each structure (at the main
 //! contact height), the peak contact force, the number of impacts and the time-history
@@ -19,8 +19,8 @@
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
+use crate::analysis::simulate::Report;
 use crate::integrate::{Method, SolveError, SolverSettings};
-use crate::simulate::Report;
 
 /// Largest relative change of any checked quantity for a run to count as converged (1 %).
 pub const CHECK_THRESHOLD: f64 = 0.01;

@@ -8,25 +8,25 @@
 //! At contact level h the rules are fed each structure's own peak at h without pounding: from
 //! the time history (`max_t |w_i(h, t)|` of the run without contact — elastic, or inelastic
 //! when storeys yield), or, with a design spectrum, the CQC of the modal peaks
-//! `Γ_n φ_n(h) S_d(T_n, ζ_n)` ([`crate::spectrum`]). The exact separation at h is
+//! `Γ_n φ_n(h) S_d(T_n, ζ_n)` ([`crate::codes::spectrum`]). The exact separation at h is
 //! `max_t [w₁(h, t) − w₂(h, t)]` of the run without contact. The codes multiply their own
 //! displacements, obtained from those peaks as the scenario states
-//! ([`crate::design::ToDesign`]); EN 1998-1 and IS 1893 reduce theirs where the level is a floor
+//! ([`crate::input::scenario::design::ToDesign`]); EN 1998-1 and IS 1893 reduce theirs where the level is a floor
 //! of both structures ([`floors_coincide`]).
 
 use serde::Serialize;
 
-use crate::codes::{CodeError, PairInput};
-use crate::design::{CODE_KEYS, DesignInputs};
-use crate::integrate::SolveError;
-use crate::modal::{ModalModel, Structure};
-use crate::recorder::RunRecord;
-use crate::scenario::Scenario;
-use crate::separation::{PeakPair, Rule, Separations};
-use crate::spectrum::{
+use crate::analysis::separation::{PeakPair, Rule, Separations};
+use crate::codes::rules::{CodeError, PairInput};
+use crate::codes::spectrum::{
     DesignSpectrum, RelativeResponse, SpectralResponse, SpectrumError, peak_displacements,
     relative_peak,
 };
+use crate::input::scenario::Scenario;
+use crate::input::scenario::design::{CODE_KEYS, DesignInputs};
+use crate::integrate::SolveError;
+use crate::model::structure::{ModalModel, Structure};
+use crate::recording::recorder::RunRecord;
 
 /// One code's required separation at one contact level (`separation.codes` of summary.json at
 /// the main level; `levels[].codes` at each).
@@ -40,7 +40,7 @@ pub struct CodeCheck {
     pub clause: &'static str,
     /// Required separation, m.
     pub required: f64,
-    /// Per-structure terms, m (see [`crate::codes::CodeSeparation::terms`]).
+    /// Per-structure terms, m (see [`crate::codes::rules::CodeSeparation::terms`]).
     pub terms: [f64; 2],
     /// The displacements the code multiplied, m (0 when it uses none).
     pub displacements: [f64; 2],
@@ -78,13 +78,13 @@ pub fn main_gap(scenario: &Scenario) -> f64 {
 /// Whether contact height `h` (m) is a floor of both structures — their floor elevations
 /// coincide there, which EN 1998-1 §4.4.2.7(3) and IS 1893 §7.11.3 reward. A cantilever has
 /// no floors, so a level on it never qualifies. Heights are compared with
-/// [`crate::building::same_height`] (1e-9 of the height), the rule by which a scenario's
+/// [`crate::model::building::same_height`] (1e-9 of the height), the rule by which a scenario's
 /// contact height is accepted as a floor at all: the numbers are the scenario's own, so only
 /// round-off can separate them.
 pub fn floors_coincide(structures: &[Structure; 2], h: f64) -> bool {
     structures.iter().all(|s| {
         s.floor_heights()
-            .is_some_and(|f| f.iter().any(|&x| crate::building::same_height(x, h)))
+            .is_some_and(|f| f.iter().any(|&x| crate::model::building::same_height(x, h)))
     })
 }
 
@@ -548,7 +548,7 @@ pub fn gap_report(
         scenario.structures[1].modal(),
     ];
     let time_history = if scenario.design.spectrum.is_none() {
-        Some(crate::simulate::separation(scenario)?)
+        Some(crate::analysis::simulate::separation(scenario)?)
     } else {
         None
     };
@@ -621,7 +621,11 @@ pub fn gap_report(
         yielding,
         periods: [m1.periods()[0], m2.periods()[0]],
         damping_ratios: [m1.zeta[0], m2.zeta[0]],
-        rho: crate::separation::cqc_correlation(m1.zeta[0], m2.zeta[0], m2.omega[0] / m1.omega[0]),
+        rho: crate::analysis::separation::cqc_correlation(
+            m1.zeta[0],
+            m2.zeta[0],
+            m2.omega[0] / m1.omega[0],
+        ),
         verdict: verdict(&levels),
         levels,
         spectral_floors,

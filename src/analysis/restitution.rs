@@ -6,14 +6,14 @@
 //! Kelvin damping coefficient for a spring-dashpot that may pull), so the restitution they achieve
 //! differs from the `restitution` they are given; this measures it.
 
-use crate::contact::{ContactLaw, HertzDampModel};
-use crate::ground_motion::GroundMotion;
 use crate::integrate::{
     InitialState, Method, Observer, SolveError, SolverSettings, StepView, integrate,
 };
-use crate::modal::{Cantilever, Damping, Stiffness};
-use crate::recorder::Recorder;
-use crate::system::{ContactLevel, System};
+use crate::model::contact::{ContactLaw, HertzDampModel};
+use crate::model::ground_motion::GroundMotion;
+use crate::model::structure::{Cantilever, Damping, Stiffness};
+use crate::model::system::{ContactLevel, System};
+use crate::recording::recorder::Recorder;
 
 /// What an isolated impact gave.
 #[derive(Debug, Clone, Copy, PartialEq)]

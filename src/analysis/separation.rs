@@ -3,7 +3,7 @@
 //! The design rules combine the two structures' peak displacements at the contact height
 //! without pounding; the time-history value is exact for the given motion. [`Separations`]
 //! (summary.json `separation`) holds them at the main (highest) contact level, as it always
-//! has, and beside them every level's checks and the verdict ([`crate::gap_report`]).
+//! has, and beside them every level's checks and the verdict ([`crate::analysis::gap_report`]).
 
 use serde::Serialize;
 
@@ -85,17 +85,17 @@ pub struct Separations {
     /// The building codes of the scenario's `[separation]` table at the main contact level
     /// (empty without it).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub codes: Vec<crate::gap_report::CodeCheck>,
+    pub codes: Vec<crate::analysis::gap_report::CodeCheck>,
     /// Where the peaks fed to the rules come from (the run without pounding: elastic, or
     /// inelastic with yielding storeys).
-    pub peaks_from: crate::gap_report::PeakSource,
+    pub peaks_from: crate::analysis::gap_report::PeakSource,
     /// Every rule at every contact level, in the order of the scenario's levels (as the
     /// report's `levels`); empty when not computed.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub levels: Vec<crate::gap_report::LevelCheck>,
+    pub levels: Vec<crate::analysis::gap_report::LevelCheck>,
     /// Each rule at its governing level (the smallest gap − required over the levels).
-    #[serde(skip_serializing_if = "crate::gap_report::Verdict::is_empty")]
-    pub verdict: crate::gap_report::Verdict,
+    #[serde(skip_serializing_if = "crate::analysis::gap_report::Verdict::is_empty")]
+    pub verdict: crate::analysis::gap_report::Verdict,
 }
 
 impl Separations {
@@ -109,7 +109,7 @@ impl Separations {
             time_history: exact.max(0.0),
             rho: cqc_correlation(peaks.zeta1, peaks.zeta2, peaks.period_ratio),
             codes: Vec::new(),
-            peaks_from: crate::gap_report::PeakSource::TimeHistory,
+            peaks_from: crate::analysis::gap_report::PeakSource::TimeHistory,
             levels: Vec::new(),
             verdict: Default::default(),
         }

@@ -1,17 +1,17 @@
 //! One scenario, end to end: the run with contact, the same run without, the comparison and the
 //! required separations — `simulate(&Scenario) -> Report` — and the same with its self-check,
-//! `simulate_checked(&Scenario, true)` (see [`crate::accuracy`]).
+//! `simulate_checked(&Scenario, true)` (see [`crate::analysis::accuracy`]).
 
 use serde::Serialize;
 
-use crate::accuracy::{AccuracyCheck, limited_tightening, tightened};
-use crate::floor_response::FloorPeaks;
+use crate::analysis::accuracy::{AccuracyCheck, limited_tightening, tightened};
+use crate::analysis::separation::{PeakPair, Separations};
+use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
-use crate::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
-use crate::scenario::Scenario;
-use crate::separation::{PeakPair, Separations};
-use crate::storey_record::StoreyRecord;
-use crate::system::System;
+use crate::model::system::System;
+use crate::recording::floor_response::FloorPeaks;
+use crate::recording::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
+use crate::recording::storey_record::StoreyRecord;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
 pub const ENERGY_WARNING_THRESHOLD: f64 = 1e-3;
@@ -41,7 +41,7 @@ pub struct StructureReport {
     /// 100·(with − without)/without, %.
     pub change_percent: f64,
     /// Peaks at every floor (a cantilever: every tenth of its height and each contact
-    /// height), lowest first, with and without pounding (see [`crate::floor_response`]).
+    /// height), lowest first, with and without pounding (see [`crate::recording::floor_response`]).
     pub floors: Vec<FloorReport>,
     /// A yielding building only (issue 16): the largest peak ductility demand over its storeys
     /// with pounding, and without.
@@ -339,7 +339,7 @@ pub trait RunSink {
         let _ = (t, w);
     }
     /// A floor sample of the run with contact (every station's displacement and absolute
-    /// acceleration, [`crate::floor_response::FloorRecorder::columns`]); all come before any
+    /// acceleration, [`crate::recording::floor_response::FloorRecorder::columns`]); all come before any
     /// of the run without contact.
     fn contact_floor_row(&mut self, t: f64, values: &[f64]) {
         let _ = (t, values);
@@ -371,7 +371,7 @@ pub fn require_time_history(scenario: &Scenario) -> Result<(), SolveError> {
 
 /// A [`RunSink`] that keeps every streamed sample of the two runs in memory, in the order
 /// they came, so that a run can be looked at as arrays and written later, exactly as if it
-/// had been streamed ([`RunCapture::replay`] into an [`crate::output::RunWriter`]). Used by
+/// had been streamed ([`RunCapture::replay`] into an [`crate::output::run::RunWriter`]). Used by
 /// the Python package (`pounding.run`); memory grows with the duration (the CLI streams
 /// instead).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -419,7 +419,7 @@ impl RunCapture {
         }
     }
 
-    /// The columns of `history.csv` ([`crate::output::history_header`]): `t, w1, w2, force,
+    /// The columns of `history.csv` ([`crate::output::run::history_header`]): `t, w1, w2, force,
     /// w1_free, w2_free` and, with several levels, `force_1 … force_k`; the same numbers the
     /// file holds (`force` summed as the file sums it; a row the run without contact did not
     /// reach is NaN there, as in the file).
@@ -449,7 +449,7 @@ impl RunCapture {
     }
 
     /// The columns of `floors.csv` for the floor `columns` of the run
-    /// ([`crate::output::floor_columns`]): `t`, each column with pounding, then each with
+    /// ([`crate::output::run::floor_columns`]): `t`, each column with pounding, then each with
     /// `_free` (without); empty when the run recorded no floor rows.
     pub fn floor_columns(&self, columns: &[String]) -> Vec<(String, Vec<f64>)> {
         let width = self.floor_width;
@@ -543,7 +543,7 @@ fn run_phase(
     interval: f64,
     sink: &mut dyn RunSink,
     phase: Phase,
-    floors: Option<crate::output::FloorStations>,
+    floors: Option<crate::output::run::FloorStations>,
 ) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
     let mut rec = Recorder::new(system, heights, interval, settings.duration);
@@ -593,7 +593,7 @@ pub struct SeparationReport {
     pub peaks_no_contact: [f64; 2],
     /// Every contact level of the run without contact (peaks, `max_closing`), in the order of
     /// the scenario's levels.
-    pub levels: Vec<crate::recorder::LevelRecord>,
+    pub levels: Vec<crate::recording::recorder::LevelRecord>,
     /// First-mode periods of structures 1 and 2, s.
     pub periods: [f64; 2],
     /// First-mode damping ratios of structures 1 and 2.
@@ -619,7 +619,7 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
     let mut separation = separations(&system, &without);
     // as in `simulate`; a code that refuses its input is reported by `gap_report`, which
     // evaluates the codes again
-    let _ = crate::gap_report::complete_run_separation(
+    let _ = crate::analysis::gap_report::complete_run_separation(
         scenario,
         &system.structures,
         &without,
@@ -773,7 +773,7 @@ fn simulate_phases(
     let mut warnings = scenario.warnings.clone();
     // the building codes of `[separation]` and every rule at every level, from the peaks
     // without pounding
-    if let Err(e) = crate::gap_report::complete_run_separation(
+    if let Err(e) = crate::analysis::gap_report::complete_run_separation(
         scenario,
         &system.structures,
         &without,
@@ -859,7 +859,7 @@ pub fn simulate_checked(scenario: &Scenario, check: bool) -> Result<Report, Solv
 /// [`simulate_checked`], streaming the history of both runs and the progress of every run to
 /// `sink` as they are computed (the self-check's runs report progress only). This is how a
 /// long run is written without holding its history in memory (see
-/// [`crate::output::RunWriter`]).
+/// [`crate::output::run::RunWriter`]).
 pub fn simulate_streaming(
     scenario: &Scenario,
     check: bool,
@@ -893,8 +893,8 @@ fn simulate_run(
              tolerances are {:e} and {:e} m): its changes understate the error",
             scenario.solver.rtol,
             scenario.solver.atol,
-            crate::accuracy::MIN_RTOL,
-            crate::accuracy::MIN_ATOL
+            crate::analysis::accuracy::MIN_RTOL,
+            crate::analysis::accuracy::MIN_ATOL
         ));
     }
     Ok(report)

@@ -15,13 +15,13 @@
 //! Response-spectrum analysis: the peak of mode n at height x is
 //! `u_n(x) = Γ_n φ_n(x) S_d(T_n, ζ_n)` (Γ_n in kg^½, φ_n in kg^-½: u in m), combined by SRSS
 //! `√Σ u_n²` and by CQC `√ΣΣ ρ_ij u_i u_j` with Der Kiureghian's correlation
-//! ([`crate::separation::cqc_correlation`], general form for different damping ratios).
+//! ([`crate::analysis::separation::cqc_correlation`], general form for different damping ratios).
 //! [`relative_peak`] combines the modes of both structures at their contact heights into the
 //! peak of w₁ − w₂ (the spectral form of DDC).
 
-use crate::ground_motion::STANDARD_GRAVITY;
-use crate::modal::ModalModel;
-use crate::separation::cqc_correlation;
+use crate::analysis::separation::cqc_correlation;
+use crate::model::ground_motion::STANDARD_GRAVITY;
+use crate::model::structure::ModalModel;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -503,8 +503,8 @@ fn check_model(model: &ModalModel) -> Result<(), SpectrumError> {
         return Err(SpectrumError::BadModel("no modes".into()));
     }
     let shapes = match &model.shapes {
-        crate::modal::Shapes::Cantilever(m) => m.len(),
-        crate::modal::Shapes::Floors { values, .. } => values.len(),
+        crate::model::structure::Shapes::Cantilever(m) => m.len(),
+        crate::model::structure::Shapes::Floors { values, .. } => values.len(),
     };
     if model.zeta.len() != n || model.participation.len() != n || shapes != n {
         return Err(SpectrumError::BadModel(format!(

@@ -2,13 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::analysis::simulate::Report;
+use crate::input::scenario::Scenario;
 use crate::plot::{
     AxisScale, Figure, LineStyle, Panel, PlotError, ProfileFigure, ProfilePanel, ProfileSeries,
     Series, write_figure, write_profile,
 };
-use crate::recorder::Impact;
-use crate::scenario::Scenario;
-use crate::simulate::Report;
+use crate::recording::recorder::Impact;
 
 /// The contact force of one level as the time-history figure draws it, N: the history's
 /// samples `(t, force)` merged with every impact's located start and end (force 0) and its peak
@@ -50,11 +50,11 @@ pub fn drawn_force(
 /// figure (`history.png/.svg`, [`time_history_figure`]) and the envelopes over height
 /// (`envelopes.png/.svg`, [`envelope_figure`]) and, with yielding storeys, the hysteresis loops
 /// (`hysteresis.png/.svg`, [`hysteresis_figure`]; removed after an elastic run so that no stale
-/// loops sit beside its summary); for [`crate::output::RunWriter::finish`].
+/// loops sit beside its summary); for [`crate::output::run::RunWriter::finish`].
 pub fn run_pictures<'a>(
     scenario: &'a Scenario,
     report: &'a Report,
-) -> Box<crate::output::DrawPictures<'a>> {
+) -> Box<crate::output::run::DrawPictures<'a>> {
     Box::new(move |dir: &Path| {
         let mut files = time_history_figure(scenario, report, &dir.join("history"))
             .map_err(|e| e.to_string())?;
@@ -198,7 +198,7 @@ pub fn time_history_figure(
 }
 
 /// The envelopes over height (the figure of the pounding literature): peak displacement `w`,
-/// storey drift ratio (%, [`crate::simulate::StructureReport::peak_drift_ratios`]), absolute
+/// storey drift ratio (%, [`crate::analysis::simulate::StructureReport::peak_drift_ratios`]), absolute
 /// floor acceleration and storey shear of each structure at every floor (a cantilever's
 /// stations), in the structure's colour ([`STRUCTURE_COLORS`]), with pounding (solid) and
 /// without (dashed), floors up the page. A floor whose peak acceleration with pounding came
@@ -206,7 +206,7 @@ pub fn time_history_figure(
 /// lasting as long as the contact (`FloorReport::peak_acceleration_impact`). Writes
 /// `<stem>.png` and `<stem>.svg`.
 pub fn envelope_figure(report: &Report, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
-    type Pick = fn(&crate::simulate::StructureReport) -> Vec<[f64; 2]>;
+    type Pick = fn(&crate::analysis::simulate::StructureReport) -> Vec<[f64; 2]>;
     let quantities: [(&str, &str, Pick); 4] = [
         ("Peak displacement w", "w [m]", |s| {
             (s.floors.iter())

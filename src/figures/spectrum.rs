@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::ground_motion::STANDARD_GRAVITY;
+use crate::analysis::record_spectrum::scaling::ScaledSuite;
+use crate::model::ground_motion::STANDARD_GRAVITY;
+use crate::output::spectrum_report::SpectrumReport;
 use crate::plot::{AxisScale, Band, LineColor, LineStyle, PlotError, XyFigure, XyLine, write_xy};
-use crate::record_spectrum::report::SpectrumReport;
-use crate::record_spectrum::scaling::ScaledSuite;
 
 /// Palette colours of the records, up to five (not the target's vermillion, not black, not the
 /// pale yellow); more records are drawn in grey (the mean carries the message).

@@ -15,8 +15,8 @@ use crate::plot::{
     AxisScale, ColorScale, Figure, Heatmap, LineStyle, Panel, PlotError, Series, write_figure,
     write_heatmap,
 };
-use crate::sweep::SweepError;
-use crate::sweep::results::{FIELDS, Table, TableRow};
+use crate::study::sweep::SweepError;
+use crate::study::sweep::results::{FIELDS, Table, TableRow};
 
 /// The fields drawn when none is asked for.
 pub const DEFAULT_FIELDS: [&str; 5] = [

@@ -65,9 +65,9 @@ mod tests {
             if made {
                 let e = read_text(&fifo, 10).unwrap_err().to_string();
                 assert!(e.contains("FIFO"), "{e}");
-                let r = crate::ground_motion::record::Record::read(
+                let r = crate::model::ground_motion::record::Record::read(
                     &fifo,
-                    &crate::ground_motion::RecordOptions::default(),
+                    &crate::model::ground_motion::RecordOptions::default(),
                 );
                 let e = r.unwrap_err().to_string();
                 assert!(e.contains("FIFO"), "{e}");

@@ -106,7 +106,7 @@ impl ContactLaw {
     }
 
     /// The force law for a contact point whose two sides have effective mass `m_star` (kg):
-    /// `1/m* = Σ_n φ₁ₙ(h)² + Σ_n φ₂ₙ(h)²` (see [`crate::system`]).
+    /// `1/m* = Σ_n φ₁ₙ(h)² + Σ_n φ₂ₙ(h)²` (see [`crate::model::system`]).
     pub fn resolve(&self, m_star: f64) -> ContactForce {
         match *self {
             ContactLaw::Linear { stiffness } => ContactForce::Linear { k: stiffness },

@@ -30,8 +30,8 @@
 //! the pseudo-force's work `W_j = ∫ ΔV_j ḋ_j dt` (what the integrators tally, and what enters the
 //! modal energy balance): `E_h = W + ½ (1 − α) k (d² − d_y² z²)` (from rest).
 
-use crate::modal::{ModalModel, Shapes, Structure};
-use crate::system::dot;
+use crate::model::structure::{ModalModel, Shapes, Structure};
+use crate::model::system::dot;
 
 /// The Bouc–Wen parameters of one building's storeys, checked (`hysteresis = { model =
 /// "bouc-wen", … }` of a `shear-building`).

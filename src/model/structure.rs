@@ -1,9 +1,9 @@
 //! One structure reduced to its modes: frequencies, damping ratios, participation factors and
 //! mode shapes (docs/model.md §2.3–§2.6). [`Structure`] is the paper's uniform cantilever;
-//! buildings with floors are in [`crate::building`]. Whatever the kind, the result is a
+//! buildings with floors are in [`crate::model::building`]. Whatever the kind, the result is a
 //! [`ModalModel`]: the integrators see only modes, couplings at contact heights and ground loads.
 
-use crate::cantilever::Mode;
+use crate::model::cantilever::Mode;
 
 /// How the structure's stiffness is given (docs/model.md §2.6). All are converted to EI.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,16 +55,16 @@ pub struct FloorStructure {
     /// Modes kept (1 … `all_modes.len()`).
     pub modes: usize,
     /// Yielding storeys (issue 16; a shear building only): `None` for an elastic building.
-    pub hysteresis: Option<crate::hysteresis::BoucWen>,
+    pub hysteresis: Option<crate::model::hysteresis::BoucWen>,
 }
 
 /// The kinds of building with floors.
 #[derive(Debug, Clone, PartialEq)]
 pub enum FloorKind {
     /// `kind = "shear-building"`: storey springs between lumped floor masses.
-    ShearBuilding(crate::building::ShearBuilding),
+    ShearBuilding(crate::model::building::ShearBuilding),
     /// `kind = "modal"`: the engineer's periods and mode shapes.
-    Modal(crate::building::EngineerModes),
+    Modal(crate::model::building::EngineerModes),
 }
 
 impl FloorStructure {
@@ -72,11 +72,11 @@ impl FloorStructure {
     pub fn new(
         name: String,
         kind: FloorKind,
-    ) -> Result<FloorStructure, crate::building::BuildingError> {
+    ) -> Result<FloorStructure, crate::model::building::BuildingError> {
         let (all_modes, modes) = match &kind {
             FloorKind::ShearBuilding(b) => {
                 let n = b.floors.heights.len();
-                let all = crate::building::ShearBuilding {
+                let all = crate::model::building::ShearBuilding {
                     modes: n,
                     damping: every_mode(&b.damping, n),
                     ..b.clone()
@@ -85,7 +85,7 @@ impl FloorStructure {
             }
             FloorKind::Modal(e) => {
                 let n = e.periods.len();
-                let all = crate::building::EngineerModes {
+                let all = crate::model::building::EngineerModes {
                     modes: n,
                     damping: every_mode(&e.damping, n),
                     ..e.clone()
@@ -94,7 +94,7 @@ impl FloorStructure {
             }
         };
         if modes == 0 || modes > all_modes.len() {
-            return Err(crate::building::BuildingError::Invalid(format!(
+            return Err(crate::model::building::BuildingError::Invalid(format!(
                 "{modes} modes asked for; this building has modes 1 to {}",
                 all_modes.len()
             )));
@@ -111,12 +111,15 @@ impl FloorStructure {
 
 /// Damping ratios given per mode kept, extended to every mode of the building (the modes not
 /// kept take the last ratio; they are truncated away).
-fn every_mode(d: &crate::building::FloorDamping, n: usize) -> crate::building::FloorDamping {
+fn every_mode(
+    d: &crate::model::building::FloorDamping,
+    n: usize,
+) -> crate::model::building::FloorDamping {
     match d {
-        crate::building::FloorDamping::Modal(z) if z.len() > 1 && z.len() < n => {
+        crate::model::building::FloorDamping::Modal(z) if z.len() > 1 && z.len() < n => {
             let mut z = z.clone();
             z.resize(n, z[z.len() - 1]);
-            crate::building::FloorDamping::Modal(z)
+            crate::model::building::FloorDamping::Modal(z)
         }
         other => other.clone(),
     }
@@ -180,7 +183,7 @@ impl Structure {
     }
 
     /// The Bouc–Wen storeys of a yielding shear building (`None`: elastic).
-    pub fn hysteresis(&self) -> Option<&crate::hysteresis::BoucWen> {
+    pub fn hysteresis(&self) -> Option<&crate::model::hysteresis::BoucWen> {
         match self {
             Structure::Cantilever(_) => None,
             Structure::Floors(f) => f.hysteresis.as_ref(),

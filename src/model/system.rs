@@ -11,9 +11,9 @@
 //! which makes the contact force exactly `−∂U/∂η` of the contact potential U(δ): the discrete
 //! system conserves energy with an elastic law.
 
-use crate::contact::{ContactForce, ContactLaw};
-use crate::ground_motion::GroundMotion;
-use crate::modal::ModalModel;
+use crate::model::contact::{ContactForce, ContactLaw};
+use crate::model::ground_motion::GroundMotion;
+use crate::model::structure::ModalModel;
 
 /// Penetration (m) from which an impulsive contact counts as touching: integrators that locate
 /// the onset of contact land on δ = 0 only to round-off.
@@ -63,7 +63,7 @@ pub struct Powers {
     /// Power flowing into the contacts, `Σ_k F_k δ̇_k`.
     pub contact: f64,
     /// Power given to the yielding storeys' pseudo-forces, `Σ_s ΔV_s ḋ_s` (0 without
-    /// hysteresis; see [`crate::hysteresis`]).
+    /// hysteresis; see [`crate::model::hysteresis`]).
     pub hysteretic: f64,
 }
 
@@ -89,7 +89,7 @@ pub struct System {
     /// Yielding storeys (issue 16): their pseudo-forces enter through drift rows as contact
     /// forces do, with one hysteretic variable z per storey as extra state. Empty when both
     /// structures are elastic.
-    pub hysteresis: crate::hysteresis::Hysteresis,
+    pub hysteresis: crate::model::hysteresis::Hysteresis,
 }
 
 impl System {
@@ -148,12 +148,12 @@ impl System {
             load_a,
             load_v,
             coupling,
-            hysteresis: crate::hysteresis::Hysteresis::none(),
+            hysteresis: crate::model::hysteresis::Hysteresis::none(),
         }
     }
 
     /// The same system with yielding storeys (`h` built for these structures' modes).
-    pub fn with_hysteresis(mut self, h: crate::hysteresis::Hysteresis) -> System {
+    pub fn with_hysteresis(mut self, h: crate::model::hysteresis::Hysteresis) -> System {
         self.hysteresis = h;
         self
     }
@@ -391,7 +391,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::modal::{Cantilever, Damping, Stiffness};
+    use crate::model::structure::{Cantilever, Damping, Stiffness};
 
     fn pair(modes: usize) -> [ModalModel; 2] {
         let s = |t: f64, l: f64| Cantilever {

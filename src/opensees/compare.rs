@@ -10,10 +10,10 @@ use serde::Deserialize;
 
 pub use super::storeys::OsStorey;
 use super::{DRIVER, ExportError, ExportOptions, Mapping, TESTED_OPENSEESPY, law_mapping};
+use crate::analysis::simulate::{Report, run_system, simulate};
+use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, Method, SolveError, SolverSettings};
-use crate::modal::Structure;
-use crate::scenario::Scenario;
-use crate::simulate::{Report, run_system, simulate};
+use crate::model::structure::Structure;
 
 /// Environment variable naming the Python interpreter to run OpenSees with (default
 /// `python3`).
@@ -247,9 +247,11 @@ pub fn run_script(
     let model = dir.join("model.py");
     let json = dir.join("opensees.json");
     let log = dir.join("opensees.log");
-    crate::output::write_atomic(&model, script.as_bytes()).map_err(|e| CrosscheckError::Io {
-        path: model.display().to_string(),
-        detail: e.to_string(),
+    crate::output::run::write_atomic(&model, script.as_bytes()).map_err(|e| {
+        CrosscheckError::Io {
+            path: model.display().to_string(),
+            detail: e.to_string(),
+        }
     })?;
     let out = Command::new(python)
         .arg(&model)
@@ -327,7 +329,7 @@ pub fn program(scenario: &Scenario) -> Result<ProgramNumbers, CrosscheckError> {
         for (s, out) in heights.iter_mut().enumerate() {
             for h in tracked_heights(scenario, s) {
                 let k = all.iter().position(|x| (x - h).abs() <= 1e-9).unwrap_or(0);
-                let pick = |l: &crate::recorder::LevelRecord| {
+                let pick = |l: &crate::recording::recorder::LevelRecord| {
                     if s == 0 { l.peak_w1 } else { l.peak_w2 }
                 };
                 out.push((h, pick(&with.levels[k]), pick(&without.levels[k])));
@@ -593,10 +595,10 @@ pub fn crosscheck(
     }
     let mut extra_notes = Vec::new();
     if let Some(n) = opts.modes {
-        if n == 0 || n > crate::scenario::MAX_MODES as usize {
+        if n == 0 || n > crate::input::scenario::MAX_MODES as usize {
             return Err(ExportError::Option(format!(
                 "--modes must be a whole number from 1 to {}, got {n}",
-                crate::scenario::MAX_MODES
+                crate::input::scenario::MAX_MODES
             ))
             .into());
         }

@@ -7,10 +7,10 @@
 use std::fmt::Write as _;
 use std::io::{BufWriter, Write as _};
 
-use crate::output::{push_field, push_number};
+use crate::output::run::{push_field, push_number};
 use std::path::{Path, PathBuf};
 
-use crate::row_spool::RowSpool;
+use crate::output::row_spool::RowSpool;
 
 /// The file's name in a run's directory.
 pub const FILE_NAME: &str = "floors.csv";
@@ -44,7 +44,7 @@ impl FloorsCsv {
     /// with `_free` (without).
     pub fn create(dir: &Path, columns: &[String]) -> std::io::Result<FloorsCsv> {
         // (the permissions of every other output: an ordinary new file's under the umask)
-        let tmp = crate::output::temp_file(dir, ".pounding-floors-", ".tmp")?;
+        let tmp = crate::output::run::temp_file(dir, ".pounding-floors-", ".tmp")?;
         let mut csv = BufWriter::with_capacity(1 << 16, tmp);
         let mut head = String::from("t");
         for c in columns {

@@ -7,11 +7,11 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::ground_motion::processing::{Baseline, Processing};
-use crate::ground_motion::record::{
+use crate::model::ground_motion::processing::{Baseline, Processing};
+use crate::model::ground_motion::record::{
     AccelUnits, Component, Record, RecordOptions, STANDARD_GRAVITY,
 };
-use crate::output::{OutputError, write_atomic};
+use crate::output::run::{OutputError, write_atomic};
 
 /// What was read from a record file. The JSON keys `format`, `component`, `dt` (s), `points`,
 /// `pga` (m/s²) and `pga_time` (s) are a contract for scripts; the others may grow.
@@ -19,7 +19,7 @@ use crate::output::{OutputError, write_atomic};
 pub struct RecordSummary {
     /// The file as given.
     pub file: String,
-    /// The layout's identifier ([`crate::ground_motion::RecordFormat::key`]), e.g. `cosmos-v2`.
+    /// The layout's identifier ([`crate::model::ground_motion::RecordFormat::key`]), e.g. `cosmos-v2`.
     pub format: String,
     /// The layout's name, e.g. `COSMOS V2 (corrected)`.
     pub format_name: String,

@@ -14,10 +14,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::analysis::simulate::{Report, RunSink};
+use crate::input::scenario::Scenario;
 use crate::integrate::Method;
-use crate::row_spool::RowSpool;
-use crate::scenario::Scenario;
-use crate::simulate::{Report, RunSink};
+use crate::output::row_spool::RowSpool;
 
 /// Why an output could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -187,7 +187,7 @@ fn history_row(out: &mut Vec<u8>, t: f64, w: [f64; 2], forces: &[f64], free: [f6
 /// several levels, `force_1 … force_k` (`force` is then their sum). Displacements at the main
 /// contact height, m; forces, N. This is exactly what [`RunWriter`] streams when the history
 /// holds every sample (`History::stride == 1`, runs of at most
-/// [`crate::recorder::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
+/// [`crate::recording::recorder::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
 /// envelope and only the streamed file has every sample.
 pub fn history_csv(report: &Report) -> String {
     let h = &report.with_contact.history;
@@ -254,8 +254,9 @@ pub enum Column {
 /// whole numbers, the rest the same numbers the file holds.
 pub fn impact_columns(report: &Report) -> Vec<(&'static str, Column)> {
     let log = &report.impact_log;
-    let f =
-        |g: &dyn Fn(&crate::recorder::Impact) -> f64| Column::Float(log.iter().map(g).collect());
+    let f = |g: &dyn Fn(&crate::recording::recorder::Impact) -> f64| {
+        Column::Float(log.iter().map(g).collect())
+    };
     vec![
         (
             "level",
@@ -300,13 +301,13 @@ impl FloorStations {
     }
 
     /// Indices of the values of a floor row of `floors`
-    /// ([`crate::floor_response::FloorRecorder::columns`]) that `floors.csv` keeps for a
+    /// ([`crate::recording::floor_response::FloorRecorder::columns`]) that `floors.csv` keeps for a
     /// system whose structures are `system` and whose contact heights are `heights` (m);
     /// `None`: every value.
     pub fn selection(
         self,
-        system: &crate::system::System,
-        floors: &crate::floor_response::FloorRecorder,
+        system: &crate::model::system::System,
+        floors: &crate::recording::floor_response::FloorRecorder,
         heights: &[f64],
     ) -> Option<Vec<usize>> {
         if self == FloorStations::All {
@@ -316,7 +317,7 @@ impl FloorStations {
         let mut offset = 0;
         let mut all = true;
         for (m, st) in system.structures.iter().zip(floors.station_heights()) {
-            let cantilever = matches!(m.shapes, crate::modal::Shapes::Cantilever(_));
+            let cantilever = matches!(m.shapes, crate::model::structure::Shapes::Cantilever(_));
             // (the stations include the contact heights and the top exactly, up to the
             // 1e-9·L within which they were merged with a tenth of the height)
             let tol = 1e-9 * m.length;
@@ -339,12 +340,15 @@ impl FloorStations {
 /// The floor columns of a run of `scenario` (`floors.csv` without `t` and the `_free`
 /// copies): the displacement and absolute acceleration at each station that
 /// `scenario.floor_stations` keeps ([`FloorStations`]; names of
-/// [`crate::floor_response::FloorRecorder::columns`]).
+/// [`crate::recording::floor_response::FloorRecorder::columns`]).
 pub fn floor_columns(scenario: &Scenario) -> Vec<String> {
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
     let system = scenario.system();
-    let floors =
-        crate::floor_response::FloorRecorder::new(&system, &heights, scenario.output_interval);
+    let floors = crate::recording::floor_response::FloorRecorder::new(
+        &system,
+        &heights,
+        scenario.output_interval,
+    );
     let all = floors.columns();
     match scenario
         .floor_stations
@@ -358,13 +362,13 @@ pub fn floor_columns(scenario: &Scenario) -> Vec<String> {
 /// Write a run already done into `dir` exactly as `pounding run --out dir` does while it
 /// runs: the samples in `capture` are replayed into a [`RunWriter`] for the scenario
 /// ([`RunWriter::for_scenario`]), then [`RunWriter::finish`] (pictures by `draw`, e.g.
-/// [`crate::figures::run_pictures`]; without, stale pictures are removed; `summary.json`
+/// [`crate::figures::run::run_pictures`]; without, stale pictures are removed; `summary.json`
 /// last). Returns the files written, in order.
 pub fn write_run(
     dir: &Path,
     scenario: &Scenario,
     report: &Report,
-    capture: &crate::simulate::RunCapture,
+    capture: &crate::analysis::simulate::RunCapture,
     draw: Option<Box<DrawPictures<'_>>>,
 ) -> Result<Vec<PathBuf>, OutputError> {
     let mut writer = RunWriter::for_scenario(dir, scenario)?;
@@ -392,7 +396,7 @@ pub type WrittenHook = dyn FnMut(&Path);
 /// Writes one run into a directory: streams `history.csv` during the run (it is the run's
 /// [`RunSink`]) and writes the rest in [`RunWriter::finish`], `summary.json` last.
 ///
-/// The run with contact comes first ([`crate::simulate::simulate_streaming`]); its rows are
+/// The run with contact comes first ([`crate::analysis::simulate::simulate_streaming`]); its rows are
 /// spooled in binary to an anonymous temporary file (8 bytes per number), and each row of the
 /// run without contact completes one row of the CSV. Memory holds one row.
 pub struct RunWriter {
@@ -413,7 +417,7 @@ pub struct RunWriter {
     /// The directory did not exist before: a run that fails removes it again (if empty).
     created_dir: bool,
     /// floors.csv being written, when asked for ([`RunWriter::with_floors`]).
-    floors: Option<crate::floors_csv::FloorsCsv>,
+    floors: Option<crate::output::floors_csv::FloorsCsv>,
 }
 
 impl Drop for RunWriter {
@@ -480,11 +484,11 @@ impl RunWriter {
     }
 
     /// Also write `floors.csv`, the floor histories with the names of
-    /// [`crate::floor_response::FloorRecorder::columns`] (written after impacts.csv).
+    /// [`crate::recording::floor_response::FloorRecorder::columns`] (written after impacts.csv).
     pub fn with_floors(mut self, columns: &[String]) -> Result<RunWriter, OutputError> {
-        let path = self.dir.join(crate::floors_csv::FILE_NAME);
+        let path = self.dir.join(crate::output::floors_csv::FILE_NAME);
         self.floors = Some(
-            crate::floors_csv::FloorsCsv::create(&self.dir, columns)
+            crate::output::floors_csv::FloorsCsv::create(&self.dir, columns)
                 .map_err(|source| OutputError::Io { path, source })?,
         );
         Ok(self)
@@ -554,7 +558,7 @@ impl RunWriter {
         write_atomic(&impacts, impacts_csv(report).as_bytes())?;
         self.written(&impacts, &mut written);
         if let Some(f) = self.floors.take() {
-            let path = self.dir.join(crate::floors_csv::FILE_NAME);
+            let path = self.dir.join(crate::output::floors_csv::FILE_NAME);
             let done = f
                 .finish()
                 .map_err(|source| OutputError::Io { path, source })?;

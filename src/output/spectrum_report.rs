@@ -4,9 +4,9 @@
 
 use serde::Serialize;
 
-use crate::ground_motion::{Record, STANDARD_GRAVITY};
-use crate::record_spectrum::scaling::{PeriodRange, ScaledSuite, Target};
-use crate::record_spectrum::{ResponseSpectrum, SpectrumInputError};
+use crate::analysis::record_spectrum::scaling::{PeriodRange, ScaledSuite, Target};
+use crate::analysis::record_spectrum::{ResponseSpectrum, SpectrumInputError};
+use crate::model::ground_motion::{Record, STANDARD_GRAVITY};
 
 /// One record's spectrum, as `pounding spectrum --json` gives it.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -17,7 +17,7 @@
 //! building, and a `modal` structure built from one) are recognised once, and their storey
 //! force is `k_j` times the drift's peak: nothing is added to the time loop. The equilibrium
 //! of everything above, `V_j = Σ_{f ≥ j} (F_f − m_f a_f)` (a cantilever's `Σ_{h_k ≥ x} F_k −
-//! m ∫_x^L a dx`, [`crate::cantilever::Mode::integral_above`]), is the storey force plus the
+//! m ∫_x^L a dx`, [`crate::model::cantilever::Mode::integral_above`]), is the storey force plus the
 //! damping forces above: `shear_with_damping`.
 //!
 //! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
@@ -31,8 +31,8 @@ use serde::Serialize;
 
 use crate::integrate::StepView;
 use crate::integrate::linear::hermite_abs_max;
-use crate::modal::{ModalModel, Shapes};
-use crate::system::System;
+use crate::model::structure::{ModalModel, Shapes};
+use crate::model::system::System;
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
 const HERMITE_REACH: f64 = 4.0 / 27.0;
@@ -279,9 +279,9 @@ impl Stations {
             .flat_map(|&x| {
                 contact_heights.iter().map(move |&hk| {
                     if lumped {
-                        crate::building::same_height(hk, x)
+                        crate::model::building::same_height(hk, x)
                     } else {
-                        hk >= x || crate::building::same_height(hk, x)
+                        hk >= x || crate::model::building::same_height(hk, x)
                     }
                 })
             })
@@ -393,7 +393,7 @@ impl FloorRecorder {
         &mut self,
         system: &System,
         s: &StepView,
-        sink: Option<&mut (dyn crate::recorder::HistorySink + '_)>,
+        sink: Option<&mut (dyn crate::recording::recorder::HistorySink + '_)>,
     ) {
         let n = system.len();
         let (ag, vg) = system.ground.accel_velocity(s.t);
@@ -411,7 +411,7 @@ impl FloorRecorder {
                     }
                 }
             }
-            // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::hysteresis)
+            // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::model::hysteresis)
             let hy = &system.hysteresis;
             for (k, st) in hy.storeys().iter().enumerate() {
                 let (d, _) = hy.drift(k, s.q, s.v);
@@ -576,7 +576,12 @@ impl FloorRecorder {
 
     /// The floor history samples due by time `t` (the current observation; `h` since the
     /// previous one).
-    fn emit(&mut self, t: f64, h: Option<f64>, sink: &mut (dyn crate::recorder::HistorySink + '_)) {
+    fn emit(
+        &mut self,
+        t: f64,
+        h: Option<f64>,
+        sink: &mut (dyn crate::recording::recorder::HistorySink + '_),
+    ) {
         let eps = 1e-9 * self.interval;
         let mut consumed = false;
         loop {
@@ -639,7 +644,7 @@ impl FloorRecorder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::building::{FloorDamping, Floors, ShearBuilding};
+    use crate::model::building::{FloorDamping, Floors, ShearBuilding};
 
     fn shear_building(modes: usize) -> ModalModel {
         ShearBuilding {

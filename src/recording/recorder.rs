@@ -9,12 +9,12 @@
 
 use serde::Serialize;
 
-use crate::contact::ContactForce;
-use crate::floor_response::{FloorPeaks, FloorRecorder};
 use crate::integrate::linear::{hermite_abs_max, hermite_max};
 use crate::integrate::{Observer, StepView, onset_speed};
-use crate::storey_record::{StoreyRecord, StoreyTracker};
-use crate::system::System;
+use crate::model::contact::ContactForce;
+use crate::model::system::System;
+use crate::recording::floor_response::{FloorPeaks, FloorRecorder};
+use crate::recording::storey_record::{StoreyRecord, StoreyTracker};
 
 /// One contact episode at one level: from the first instant of penetration to separation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -71,7 +71,7 @@ pub struct EnergyBalance {
     /// Energy dissipated in the contacts, J (0 for elastic laws, up to integration error).
     pub contact_dissipated: f64,
     /// Energy dissipated by the yielding storeys' hysteresis, J (only with yielding storeys;
-    /// see [`crate::hysteresis`]).
+    /// see [`crate::model::hysteresis`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hysteretic_dissipated: Option<f64>,
     /// Strain energy the Bouc–Wen storeys hold at the end beyond the linear strain energy of
@@ -97,7 +97,7 @@ pub const MAX_KEPT_SAMPLES: usize = 20_000;
 pub trait HistorySink {
     /// One sample.
     fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]);
-    /// One sample of the floors (see [`crate::floor_response::FloorRecorder::columns`]): at
+    /// One sample of the floors (see [`crate::recording::floor_response::FloorRecorder::columns`]): at
     /// every station of structure 1 then 2, the displacement and the absolute acceleration.
     fn floor_row(&mut self, t: f64, values: &[f64]) {
         let _ = (t, values);
@@ -372,7 +372,7 @@ impl<'s> Recorder<'s> {
         mut self,
         system: &System,
         heights: &[f64],
-        stations: crate::output::FloorStations,
+        stations: crate::output::run::FloorStations,
     ) -> Recorder<'s> {
         if let Some(f) = &self.floors {
             self.floor_keep = stations.selection(system, f, heights);
@@ -839,11 +839,11 @@ fn rate_law_peak(law: &ContactForce, a: (f64, f64), b: (f64, f64), h: f64, v0: f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::ContactLaw;
-    use crate::ground_motion::GroundMotion;
     use crate::integrate::Tally;
-    use crate::modal::{Cantilever, Damping, Stiffness};
-    use crate::system::{ContactLevel, LevelState};
+    use crate::model::contact::ContactLaw;
+    use crate::model::ground_motion::GroundMotion;
+    use crate::model::structure::{Cantilever, Damping, Stiffness};
+    use crate::model::system::{ContactLevel, LevelState};
 
     fn system(law: ContactLaw) -> System {
         let st = |period: f64| Cantilever {
@@ -957,7 +957,7 @@ mod tests {
                 height: 10.0,
                 gap: 0.01,
             }],
-            GroundMotion::Harmonic(crate::ground_motion::Harmonic::from_pga_g(0.01, 0.5)),
+            GroundMotion::Harmonic(crate::model::ground_motion::Harmonic::from_pga_g(0.01, 0.5)),
         );
         let (interval, duration) = (1e-3, 2000.0);
         let mut sink = Count {

@@ -4,14 +4,14 @@
 //!
 //! The dissipated energy is `E_h = W + ½(1 − α)k(d² − d_y² z²) − (the same at the start)`, W the
 //! pseudo-force's work the integrator tallies per storey with its own stage weights (see
-//! [`crate::hysteresis`] for the definition and its source): the energy balance and E_h come
+//! [`crate::model::hysteresis`] for the definition and its source): the energy balance and E_h come
 //! from the same integral.
 
 use serde::Serialize;
 
-use crate::floor_response::refine;
 use crate::integrate::StepView;
-use crate::system::System;
+use crate::model::system::System;
+use crate::recording::floor_response::refine;
 
 /// Most (drift, force) pairs kept per storey for the loop figure; beyond, every other one is
 /// dropped and the sampling interval doubled.

@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::plot::PlotError;
 use crate::plot::lines::{AxisScale, Figure, LineStyle, Panel, Series, write_figure};
-use crate::sweep::results::{Table, TableRow};
+use crate::study::sweep::results::{Table, TableRow};
 
 /// The paper's rules among the table's fields, in report order.
 pub const PAPER_RULES: [&str; 3] = ["sep_abs", "sep_srss", "sep_ddc"];

@@ -20,11 +20,11 @@ pub mod quantities;
 
 use serde::{Serialize, Serializer};
 
+use crate::analysis::simulate::run_system;
+use crate::input::scenario::Scenario;
 use crate::integrate::{
     InitialState, MIN_ATOL, MIN_RTOL, Method, SolveError, SolverSettings, rk4_max_stable_dt,
 };
-use crate::scenario::Scenario;
-use crate::simulate::run_system;
 use quantities::{Yielding, headline_changes, named, within, worst, yield_changes};
 
 /// Mode counts tried (per structure), capped at [`MAX_MODES`].
@@ -93,7 +93,7 @@ pub struct Row {
     /// Their changes relative to the finest row, per structure: ductility relative, residual
     /// drift in units of the larger of the finest's and the smallest yield drift, hysteretic
     /// energy in units of the larger of the finest's and 0.1 % of its input energy (as the
-    /// self-check measures them, [`crate::accuracy`]).
+    /// self-check measures them, [`crate::analysis::accuracy`]).
     pub yield_change: [Option<[f64; 3]>; 2],
     /// Steps taken.
     pub steps: usize,

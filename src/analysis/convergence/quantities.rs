@@ -1,11 +1,11 @@
 //! What the convergence study compares between runs: the peaks at the main contact height and
 //! the peak contact force, and for yielding buildings (issue 16) the peak ductility, the largest
 //! residual drift and the hysteretic energy, each change measured as the self-check measures
-//! it ([`crate::accuracy`]).
+//! it ([`crate::analysis::accuracy`]).
 
 use serde::Serialize;
 
-use crate::recorder::RunRecord;
+use crate::recording::recorder::RunRecord;
 
 /// A yielding building's numbers in one run with pounding.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use super::*;
 /// with every finer row, within the tolerance of the finest, and never the finest alone.
 #[test]
 fn study_of_a_short_case_recommends_within_tolerance() {
-    let text = include_str!("../../examples/paper-c.toml")
+    let text = include_str!("../../../examples/paper-c.toml")
         .replace("duration = 20.0", "duration = 2.0")
         .replace("method = \"rk4\"", "method = \"exact-modal\"");
     let sc = Scenario::from_toml(&text, "t", ".".as_ref()).unwrap();

@@ -10,15 +10,13 @@
 //! - [`scaling`]: one factor per record so that the suite's mean spectrum meets ASCE 7-16 §16.2.3
 //!   or EN 1998-1 §3.2.3.1.2 over the code's period range ([`scaling::SuiteScaling`]), and the
 //!   factor that brings a record to a target S_a at one period ([`scale_to_sa`]);
-//! - [`report`]: the tables and JSON of `pounding spectrum` and `pounding scale`; [`figure`]:
-//!   their pictures.
+//! - the tables and JSON of `pounding spectrum` and `pounding scale` are
+//!   [`crate::output::spectrum_report`], their pictures [`crate::figures::spectrum`].
 //!
-//! The record is the program's ground-motion model ([`crate::ground_motion::Record`]): linear
+//! The record is the program's ground-motion model ([`crate::model::ground_motion::Record`]): linear
 //! between samples, zero after the last one; the oscillator starts at rest at t = 0 and its
 //! free vibration after the record's end counts (it matters at long periods).
 
-pub mod figure;
-pub mod report;
 pub mod scaling;
 pub mod sdof;
 
@@ -26,7 +24,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use crate::ground_motion::Record;
+use crate::model::ground_motion::Record;
 
 pub use scaling::{
     PeriodRange, ScaledRecord, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember,

@@ -22,9 +22,11 @@
 
 use serde::Serialize;
 
-use crate::ground_motion::{Record, STANDARD_GRAVITY};
-use crate::record_spectrum::{DEFAULT_DAMPING, SpectrumInputError, check_input, log_periods};
-use crate::spectrum::{DesignSpectrum, SpectrumError};
+use crate::analysis::record_spectrum::{
+    DEFAULT_DAMPING, SpectrumInputError, check_input, log_periods,
+};
+use crate::codes::spectrum::{DesignSpectrum, SpectrumError};
+use crate::model::ground_motion::{Record, STANDARD_GRAVITY};
 
 /// The codes' scaling rules, a closed set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

@@ -12,7 +12,7 @@
 //!   changes sign inside a sub-step near the running peak, the extremum is located on the exact
 //!   solution of that sub-step (its Taylor series, exact to rounding for ωh ≤ 0.5; Newton's
 //!   method) and its value taken;
-//! - after the last sample the ground is still (as [`crate::ground_motion::Record`] has it) and
+//! - after the last sample the ground is still (as [`crate::model::ground_motion::Record`] has it) and
 //!   the free vibration's largest excursion is found in closed form: a damped sinusoid's
 //!   extrema decrease one after the other, so the first one after the end (or the end itself)
 //!   is the largest.

@@ -7,11 +7,11 @@ use std::path::Path;
 use toml::Spanned;
 
 use super::{Check, DEFAULT_DAMPING_RATIO, RawStructure, ScenarioError};
-use crate::building::{
+use crate::model::building::{
     EngineerModes, FloorDamping, Floors, MAX_ORTHOGONALITY_ERROR, ShearBuilding,
     WARN_ORTHOGONALITY_ERROR,
 };
-use crate::modal::{FloorKind, FloorStructure, Structure};
+use crate::model::structure::{FloorKind, FloorStructure, Structure};
 
 /// Most floors a building may have (each is a degree of freedom of the eigenproblem).
 pub const MAX_FLOORS: usize = 500;

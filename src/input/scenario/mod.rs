@@ -10,12 +10,13 @@ use std::sync::Arc;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::contact::{ContactLaw, HertzDampModel};
-use crate::ground_motion::{GroundMotion, Harmonic, Record, RecordOptions};
 use crate::integrate::{ATOL_PER_RTOL, MIN_ATOL, MIN_RTOL, Method, SolverSettings};
-use crate::modal::{Cantilever, Damping, Stiffness, Structure};
-use crate::system::{ContactLevel, System};
+use crate::model::contact::{ContactLaw, HertzDampModel};
+use crate::model::ground_motion::{GroundMotion, Harmonic, Record, RecordOptions};
+use crate::model::structure::{Cantilever, Damping, Stiffness, Structure};
+use crate::model::system::{ContactLevel, System};
 
+pub mod design;
 mod floors;
 mod hysteresis;
 mod ranges;
@@ -158,7 +159,7 @@ pub enum ScenarioError {
         /// The key.
         key: String,
         /// The reader's error.
-        source: Box<crate::ground_motion::RecordError>,
+        source: Box<crate::model::ground_motion::RecordError>,
     },
 }
 
@@ -180,7 +181,7 @@ struct RawScenario {
     contact: Option<Spanned<RawContact>>,
     ground_motion: Option<Spanned<RawGround>>,
     solver: Option<Spanned<RawSolver>>,
-    separation: Option<Spanned<crate::design::RawSeparation>>,
+    separation: Option<Spanned<crate::input::scenario::design::RawSeparation>>,
     output: Option<Spanned<RawOutput>>,
 }
 
@@ -283,7 +284,7 @@ pub(crate) struct RawGround {
     /// kind = "record": checked in `record_keys`.
     pub(crate) component: Option<Spanned<toml::Value>>,
     pub(crate) processing: Option<Spanned<record_keys::RawProcessing>>,
-    // kind = "spectrum": checked in crate::design
+    // kind = "spectrum": checked in crate::input::scenario::design
     pub(crate) spectrum: Option<Spanned<String>>,
     pub(crate) sds: Option<Spanned<f64>>,
     pub(crate) sd1: Option<Spanned<f64>>,
@@ -447,7 +448,7 @@ pub struct Scenario {
     /// Sampling interval of the written history, s.
     pub output_interval: f64,
     /// Which stations' histories floors.csv holds (`[output] floor_stations`).
-    pub floor_stations: crate::output::FloorStations,
+    pub floor_stations: crate::output::run::FloorStations,
     /// Keys the file left out and the defaults used for them, as `key = value`, in file
     /// order (printed in the run summary, `defaults_applied` in summary.json).
     pub defaults_applied: Vec<String>,
@@ -455,8 +456,8 @@ pub struct Scenario {
     /// them to its warnings.
     pub warnings: Vec<String>,
     /// A design spectrum (`[ground_motion] kind = "spectrum"`, then `ground_motion` is
-    /// [`GroundMotion::None`]) and the code factors of `[separation]` ([`crate::design`]).
-    pub design: crate::design::DesignInputs,
+    /// [`GroundMotion::None`]) and the code factors of `[separation]` ([`crate::input::scenario::design`]).
+    pub design: crate::input::scenario::design::DesignInputs,
 }
 
 impl Scenario {
@@ -467,12 +468,10 @@ impl Scenario {
 
     /// As [`Scenario::from_file`], also returning the file's text (what was validated).
     pub fn read_file(path: &Path) -> Result<(Scenario, String), ScenarioError> {
-        let text =
-            crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
-                ScenarioError::Read {
-                    path: path.display().to_string(),
-                    source: e,
-                }
+        let text = crate::input::file::read_text(path, crate::input::file::MAX_TEXT_BYTES)
+            .map_err(|e| ScenarioError::Read {
+                path: path.display().to_string(),
+                source: e,
             })?;
         let base = path.parent().unwrap_or(Path::new("."));
         let sc = Scenario::from_toml(&text, &path.display().to_string(), base)?;
@@ -529,7 +528,7 @@ impl Scenario {
     /// The assembled system with contact.
     pub fn system(&self) -> System {
         let models = [self.structures[0].modal(), self.structures[1].modal()];
-        let hysteresis = crate::hysteresis::Hysteresis::new(&self.structures, &models);
+        let hysteresis = crate::model::hysteresis::Hysteresis::new(&self.structures, &models);
         System::new(
             models,
             &self.contact.law,
@@ -855,7 +854,7 @@ impl Ctx<'_> {
     /// serde's list of expected keys (every table's key set is distinct, tested in
     /// `tests/unknown_keys.rs`).
     fn section_for(&self, expected: &[String]) -> (String, Vec<String>) {
-        for (name, keys) in TABLES.iter().chain(crate::design::TABLES) {
+        for (name, keys) in TABLES.iter().chain(crate::input::scenario::design::TABLES) {
             if keys.len() == expected.len() && expected.iter().all(|k| keys.contains(&k.as_str())) {
                 return (
                     name.to_string(),
@@ -1059,7 +1058,7 @@ fn floors_at_contact(
             };
             if heights
                 .iter()
-                .any(|&h| crate::building::same_height(h, lv.height))
+                .any(|&h| crate::model::building::same_height(h, lv.height))
             {
                 continue;
             }
@@ -1166,7 +1165,7 @@ fn validate(
     let mut warnings = structure_warnings;
     warnings.extend(plausibility(&contact, &ground_motion));
     warnings.extend(derived_warnings(&structures));
-    let design = crate::design::validate(
+    let design = crate::input::scenario::design::validate(
         &c,
         raw.ground_motion.as_ref(),
         raw.separation.as_ref(),
@@ -1178,14 +1177,14 @@ fn validate(
         .as_ref()
         .and_then(|o| o.get_ref().floor_stations.as_ref())
     {
-        None => crate::output::FloorStations::default(),
-        Some(v) => crate::output::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
+        None => crate::output::run::FloorStations::default(),
+        Some(v) => crate::output::run::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
             c.invalid(
                 v,
                 "output.floor_stations",
                 &format!(
                     "must be one of {}",
-                    quoted(&crate::output::FloorStations::NAMES)
+                    quoted(&crate::output::run::FloorStations::NAMES)
                 ),
             )
         })?,
@@ -1244,7 +1243,10 @@ fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
                 matches!(c.stiffness, Stiffness::Period(_)),
                 matches!(c.damping, Damping::Physical { .. }),
             ),
-            Structure::Floors(f) => (matches!(f.kind, crate::modal::FloorKind::Modal(_)), false),
+            Structure::Floors(f) => (
+                matches!(f.kind, crate::model::structure::FloorKind::Modal(_)),
+                false,
+            ),
         };
         let modal = st.modal();
         let (lo, hi) = USUAL_STRUCTURE_PERIOD;
@@ -1279,7 +1281,7 @@ fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
 /// Warnings about values that are valid but implausible, each saying why.
 fn plausibility(contact: &ContactSpec, ground: &GroundMotion) -> Vec<String> {
     let mut out = Vec::new();
-    let pga_g = ground.pga() / crate::ground_motion::STANDARD_GRAVITY;
+    let pga_g = ground.pga() / crate::model::ground_motion::STANDARD_GRAVITY;
     if matches!(ground, GroundMotion::Harmonic(_) | GroundMotion::Record(_))
         && pga_g < PLAUSIBLE_MIN_PGA
     {
@@ -1800,7 +1802,7 @@ fn ground(
                 .borrow_mut()
                 .extend(record.warnings.iter().cloned());
             // what the file gives is held to the ranges of the keys that could give it
-            let g = crate::ground_motion::STANDARD_GRAVITY;
+            let g = crate::model::ground_motion::STANDARD_GRAVITY;
             for (what, x, key, unit) in [
                 ("PGA", record.pga() / g, "pga", "g"),
                 ("sample spacing", record.dt, "dt", "s"),
@@ -1822,7 +1824,7 @@ fn ground(
             }
             Ok(GroundMotion::Record(record))
         }
-        // a design spectrum has no time history: crate::design checks its keys
+        // a design spectrum has no time history: crate::input::scenario::design checks its keys
         "spectrum" => Ok(GroundMotion::None),
         _ => Err(c.invalid(
             kind,

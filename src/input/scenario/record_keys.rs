@@ -6,8 +6,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{Check, ScenarioError};
-use crate::ground_motion::processing::{Baseline, DEFAULT_ORDER, MAX_ORDER, Processing};
-use crate::ground_motion::{AccelUnits, Component};
+use crate::model::ground_motion::processing::{Baseline, DEFAULT_ORDER, MAX_ORDER, Processing};
+use crate::model::ground_motion::{AccelUnits, Component};
 
 /// `processing = { baseline = "linear", highpass_hz = 0.1, lowpass_hz = 25, order = 4 }`.
 #[derive(Debug, Deserialize)]
@@ -57,7 +57,7 @@ pub(crate) fn component(
 }
 
 /// `processing = { … }`: at least one step; the corners in their ranges
-/// ([`crate::scenario::ranges`]), high-pass below low-pass; the order a whole number 1 to 8.
+/// ([`crate::input::scenario::ranges`]), high-pass below low-pass; the order a whole number 1 to 8.
 /// The Nyquist limit is checked against the record's time step when it is read.
 pub(crate) fn processing(
     c: &Check,

@@ -71,7 +71,7 @@ use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
-use crate::system::{LevelState, System, dot};
+use crate::model::system::{LevelState, System, dot};
 
 mod storeys;
 use storeys::{StoreyState, Yield};
@@ -1235,8 +1235,8 @@ impl<O: Observer> Run<'_, O> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scenario::Scenario;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {

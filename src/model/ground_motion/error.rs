@@ -8,7 +8,7 @@ use std::fmt;
 /// Longest piece of user text quoted in an error message, in characters.
 pub const MAX_QUOTED_CHARS: usize = 60;
 
-/// Where a problem is: the file (or, for [`crate::ground_motion::Record::from_samples`], the
+/// Where a problem is: the file (or, for [`crate::model::ground_motion::Record::from_samples`], the
 /// description) and the 1-based line number when there is one. Displays as
 /// `record "x.AT2", line 7`.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -87,7 +87,7 @@ pub enum RecordError {
         at: Location,
         /// Its size, bytes.
         size: u64,
-        /// The limit, bytes ([`crate::ground_motion::record::MAX_RECORD_BYTES`]).
+        /// The limit, bytes ([`crate::model::ground_motion::record::MAX_RECORD_BYTES`]).
         limit: u64,
     },
     /// The file could not be read.

@@ -2,13 +2,13 @@
 //! (docs/model.md §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file:
 //! [`record`] (the signal model), [`formats`] (one reader per layout, a dispatcher that detects
 //! the layout from the content), [`processing`] (baseline correction and band-pass of
-//! uncorrected records), [`summary`] (what `pounding record` prints), [`error`] (diagnostics).
+//! uncorrected records), [`error`] (diagnostics); what `pounding record` prints is
+//! [`crate::output::record_summary`].
 
 pub mod error;
 pub mod formats;
 pub mod processing;
 pub mod record;
-pub mod summary;
 
 pub use error::{Location, RecordError};
 pub use processing::{Baseline, Processing};

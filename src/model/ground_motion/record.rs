@@ -2,10 +2,10 @@
 //! exact velocity integral `v_g(t)` (m/s), scaling, and what was read with it (format,
 //! component, units stated in the file, the header's own peak, warnings).
 //!
-//! Files are read by [`crate::ground_motion::formats`]: the layout is detected from the content
+//! Files are read by [`crate::model::ground_motion::formats`]: the layout is detected from the content
 //! (PEER NGA `.AT2`, COSMOS V1/V2, CSMIP/DMG V1/V2, K-NET/KiK-net ASCII, ESM ASCII, one or two
 //! columns), one reader per layout, and the chosen component converted to m/s² (processed when
-//! asked, [`crate::ground_motion::processing`]).
+//! asked, [`crate::model::ground_motion::processing`]).
 //!
 //! Acceleration is linear between samples and zero after the end of the record (free
 //! vibration, as OpenSees' `Path` time series); the velocity is its exact integral with
@@ -13,8 +13,8 @@
 
 use std::path::Path;
 
-pub use crate::ground_motion::error::{Location, RecordError};
-use crate::ground_motion::processing::Processing;
+pub use crate::model::ground_motion::error::{Location, RecordError};
+use crate::model::ground_motion::processing::Processing;
 
 /// Standard gravity, m/s², used to convert accelerations given in g.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -313,7 +313,7 @@ impl Record {
     }
 
     /// Parses the bytes of a record file, as [`Record::read`] does after reading them: a
-    /// binary file is refused ([`crate::ground_motion::formats::check_text`]), bytes that are
+    /// binary file is refused ([`crate::model::ground_motion::formats::check_text`]), bytes that are
     /// not UTF-8 are replaced, then [`Record::parse`]. `path` is used only in error messages,
     /// for the description and as [`Record::parse`] says (the fuzz targets of `fuzz/` call
     /// this).
@@ -322,13 +322,13 @@ impl Record {
         path: &Path,
         opts: &RecordOptions,
     ) -> Result<Record, RecordError> {
-        crate::ground_motion::formats::check_text(bytes, &path.display().to_string())?;
+        crate::model::ground_motion::formats::check_text(bytes, &path.display().to_string())?;
         let text = String::from_utf8_lossy(bytes);
         Record::parse(&text, path, opts)
     }
 
     /// Parses the text of a record file: the layout is detected from the content
-    /// ([`crate::ground_motion::formats::detect`]), the component chosen, converted to m/s²,
+    /// ([`crate::model::ground_motion::formats::detect`]), the component chosen, converted to m/s²,
     /// processed and scaled as `opts` say. `path` is used only in error messages, for the
     /// description of records without one, and, when the content matches no layout, to pick
     /// which layout's error to report (`.AT2`).
@@ -336,7 +336,7 @@ impl Record {
     /// Two-column files take dt = t[1] − t[0] and treat the first sample as t = 0: a
     /// nonzero t[0] is an offset that is ignored.
     pub fn parse(text: &str, path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
-        crate::ground_motion::formats::read(text, path, opts)
+        crate::model::ground_motion::formats::read(text, path, opts)
     }
 
     /// Number of samples.
@@ -488,7 +488,7 @@ pub(crate) fn max_abs(values: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ground_motion::formats::testutil::*;
+    use crate::model::ground_motion::formats::testutil::*;
 
     // ---------------------------------------------------------------- scaling
 

@@ -1,6 +1,6 @@
 //! Parameter sweeps (docs/model.md §1.3): a sweep file names a base scenario and axes; every point of
 //! the full grid is a *case*, i.e. the base scenario's TOML with the axis values set, validated
-//! exactly like a scenario file and run with [`crate::simulate::simulate`].
+//! exactly like a scenario file and run with [`crate::analysis::simulate::simulate`].
 //!
 //! ```toml
 //! scenario = "paper-c.toml"        # base scenario, relative to this file
@@ -41,8 +41,8 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::{Spanned, Table, Value};
 
-use crate::modal::{Cantilever, Damping, Stiffness};
-use crate::scenario::{Location, RecordCache, Scenario, ScenarioError};
+use crate::input::scenario::{Location, RecordCache, Scenario, ScenarioError};
+use crate::model::structure::{Cantilever, Damping, Stiffness};
 
 /// Most cases a sweep may have.
 pub const MAX_CASES: usize = 10_000_000;
@@ -537,11 +537,11 @@ impl Fnv1a {
         self.end_part();
     }
 
-    /// A file's bytes, read in 64 KiB blocks (up to [`crate::ground_motion::record::MAX_RECORD_BYTES`]);
+    /// A file's bytes, read in 64 KiB blocks (up to [`crate::model::ground_motion::record::MAX_RECORD_BYTES`]);
     /// a read error ends the stream (the case's own validation reports it).
     pub fn stream(&mut self, mut r: impl std::io::Read) {
         let mut buf = vec![0u8; 1 << 16];
-        let mut left = crate::ground_motion::record::MAX_RECORD_BYTES;
+        let mut left = crate::model::ground_motion::record::MAX_RECORD_BYTES;
         while left > 0 {
             match r.read(&mut buf) {
                 Ok(0) | Err(_) => break,
@@ -576,12 +576,10 @@ fn number(v: &Value) -> Option<f64> {
 impl Sweep {
     /// Read and check a sweep file and its base scenario.
     pub fn from_file(path: &Path) -> Result<Sweep, SweepError> {
-        let text =
-            crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES).map_err(|e| {
-                SweepError::Read {
-                    path: path.display().to_string(),
-                    source: e,
-                }
+        let text = crate::input::file::read_text(path, crate::input::file::MAX_TEXT_BYTES)
+            .map_err(|e| SweepError::Read {
+                path: path.display().to_string(),
+                source: e,
             })?;
         Sweep::from_toml(&text, path)
     }
@@ -608,7 +606,7 @@ impl Sweep {
         let raw: RawSweep = toml::from_str(text).map_err(|e| {
             let mut message = e.message().trim().to_string();
             // an unknown key: name the table and list its keys, as a scenario's message does
-            if let Some((key, valid)) = crate::scenario::unknown_field(&message) {
+            if let Some((key, valid)) = crate::input::scenario::unknown_field(&message) {
                 let table = if valid.iter().any(|k| k == "scenario") {
                     "the top level of the sweep file"
                 } else {
@@ -616,7 +614,7 @@ impl Sweep {
                 };
                 message = format!(
                     "unknown key `{key}` in {table}{}",
-                    crate::scenario::key_hint(&key, &valid)
+                    crate::input::scenario::key_hint(&key, &valid)
                 );
             }
             if message.starts_with("unknown key") && text.contains("[[structure]]") {
@@ -646,18 +644,20 @@ impl Sweep {
             Some((text, p)) => (p.to_path_buf(), text.to_string()),
             None => {
                 let scenario_path = sweep_dir.join(sc.get_ref());
-                let base_text =
-                    crate::input_file::read_text(&scenario_path, crate::input_file::MAX_TEXT_BYTES)
-                        .map_err(|e| {
-                            ctx.invalid(
-                                Some(sc.span().start),
-                                "scenario",
-                                format!(
-                                    "cannot read the base scenario {}: {e}",
-                                    scenario_path.display()
-                                ),
-                            )
-                        })?;
+                let base_text = crate::input::file::read_text(
+                    &scenario_path,
+                    crate::input::file::MAX_TEXT_BYTES,
+                )
+                .map_err(|e| {
+                    ctx.invalid(
+                        Some(sc.span().start),
+                        "scenario",
+                        format!(
+                            "cannot read the base scenario {}: {e}",
+                            scenario_path.display()
+                        ),
+                    )
+                })?;
                 (scenario_path, base_text)
             }
         };
@@ -723,8 +723,8 @@ impl Sweep {
                     "the grid has {cases} cases (results of about {}); a sweep may have at most \
                      {MAX_CASES} cases: use fewer values per axis (`values`, or `steps` of a range), \
                      or split the study into several sweep files",
-                    crate::budget::format_size(
-                        crate::budget::estimate_sweep(cases as u64, axes.len()).bytes
+                    crate::output::budget::format_size(
+                        crate::output::budget::estimate_sweep(cases as u64, axes.len()).bytes
                     )
                 ),
             ));
@@ -760,7 +760,7 @@ impl Sweep {
             hash.part(p);
         }
         for f in &files {
-            if let Ok(file) = crate::ground_motion::record::open_record_file(f) {
+            if let Ok(file) = crate::model::ground_motion::record::open_record_file(f) {
                 hash.stream(file);
             }
             hash.end_part();
@@ -789,13 +789,13 @@ impl Sweep {
     }
 
     /// The code columns of the results (`sep_asce7`, …, in the order of
-    /// [`crate::design::CODE_KEYS`]): one per code table in the base scenario's `[separation]`
+    /// [`crate::input::scenario::design::CODE_KEYS`]): one per code table in the base scenario's `[separation]`
     /// (the axes cannot change them), after the [`results::FIELDS`].
     pub fn code_columns(&self) -> Vec<&'static str> {
         let Some(Value::Table(sep)) = self.base.get("separation") else {
             return Vec::new();
         };
-        crate::design::CODE_KEYS
+        crate::input::scenario::design::CODE_KEYS
             .iter()
             .zip(results::CODE_FIELDS)
             .filter(|(k, _)| sep.contains_key(**k))
@@ -1687,7 +1687,7 @@ mod tests {
         p
     }
 
-    const BASE: &str = include_str!("../../examples/paper-c.toml");
+    const BASE: &str = include_str!("../../../examples/paper-c.toml");
 
     fn sweep(axes: &str) -> Result<Sweep, SweepError> {
         let dir = tempfile::tempdir().unwrap();
@@ -1727,7 +1727,7 @@ mod tests {
             Stiffness::Period(t2)
         );
         let h = match &sc.ground_motion {
-            crate::ground_motion::GroundMotion::Harmonic(h) => *h,
+            crate::model::ground_motion::GroundMotion::Harmonic(h) => *h,
             _ => panic!(),
         };
         assert!((h.period() - t2 / 2.0).abs() < 1e-12);

@@ -3,7 +3,7 @@
 //!
 //! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
 //! (`ok` or `failed: reason`), then [`FIELDS`] (docs/model.md §6 meanings, SI units), the last two of
-//! which are the case's self-check ([`crate::accuracy`]): `check_max_change`, the largest
+//! which are the case's self-check ([`crate::analysis::accuracy`]): `check_max_change`, the largest
 //! relative change of the checked quantities against the 100× tighter rerun (empty when not
 //! checked), and `converged` (`true`, `false`, or `unchecked` for a sweep run with
 //! `--no-check`). Rows are in `case` order. Numbers are written exactly as `summary.json` writes them (shortest form
@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::{Shard, Sweep, SweepError};
-use crate::simulate::Report;
+use crate::analysis::simulate::Report;
 
 /// The result columns after `status`.
 pub const FIELDS: [&str; NFIELDS] = [
@@ -66,7 +66,7 @@ pub const JOURNAL_VERSION: u32 = 2;
 pub const JOURNAL_VERSION_CODES: u32 = 3;
 
 /// The code columns that may follow [`FIELDS`], in this order (`sep_` + the key of
-/// [`crate::design::CODE_KEYS`]).
+/// [`crate::input::scenario::design::CODE_KEYS`]).
 pub const CODE_FIELDS: [&str; 5] = [
     "sep_asce7",
     "sep_is1893",
@@ -126,7 +126,7 @@ pub fn case_fields(sweep: &Sweep, r: &Report) -> Vec<String> {
         }
         if let Some(i) = FLOOR_FIELDS.iter().position(|f| *f == col) {
             let s = &r.structures[i % 2];
-            let pick = |f: &crate::simulate::FloorReport| match i / 2 {
+            let pick = |f: &crate::analysis::simulate::FloorReport| match i / 2 {
                 0 => f.peak_acceleration,
                 1 => f.peak_acceleration_no_contact,
                 _ => f.peak_drift,
@@ -298,8 +298,8 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) ->
 pub fn columns(
     sweep: &Sweep,
     rows: &[impl AsRef<str>],
-) -> Result<Vec<(String, crate::output::Column)>, SweepError> {
-    use crate::output::Column;
+) -> Result<Vec<(String, crate::output::run::Column)>, SweepError> {
+    use crate::output::run::Column;
     let names: Vec<String> = std::iter::once("case".to_string())
         .chain(sweep.axes.iter().map(|a| a.key.clone()))
         .chain(std::iter::once("status".to_string()))
@@ -571,7 +571,7 @@ pub fn write_results<'a>(
         out.push_str(r);
         out.push('\n');
     }
-    crate::output::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
+    crate::output::run::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
         path: path.display().to_string(),
         source: std::io::Error::other(e.to_string()),
     })

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 
 use super::results::{self, Journal};
 use super::{Shard, Sweep, SweepError};
-use crate::simulate::simulate_headline;
+use crate::analysis::simulate::simulate_headline;
 
 /// How to run a sweep.
 #[derive(Debug, Clone)]
@@ -247,14 +247,14 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         let report = if sweep.floor_columns().is_empty() {
             simulate_headline(&sc, check)
         } else {
-            crate::simulate::simulate_checked(&sc, check)
+            crate::analysis::simulate::simulate_checked(&sc, check)
         }
         .map_err(|e| e.to_string())?;
         // the self-check's verdict is counted from the `converged` column instead
         warning = report
             .warnings
             .iter()
-            .find(|w| !crate::accuracy::is_check_warning(w))
+            .find(|w| !crate::analysis::accuracy::is_check_warning(w))
             .cloned();
         Ok(results::case_fields(sweep, &report))
     }))

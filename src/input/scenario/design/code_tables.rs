@@ -4,11 +4,11 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{CodeSpec, ToDesign, per_structure};
-use crate::codes::{
+use crate::codes::rules::{
     Asce7Boundary, Asce7Params, CodeRule, Ec8Boundary, Ec8Params, Gb50011Params, GbSystem,
     Is1893Params, NbccParams, NtcMethod, NtcParams, NtcZone, PartialStep,
 };
-use crate::scenario::{Check, ScenarioError};
+use crate::input::scenario::{Check, ScenarioError};
 
 /// `[separation]` as written.
 #[derive(Debug, Deserialize)]

@@ -2,9 +2,9 @@
 //! (`[ground_motion] kind = "spectrum"`) and the building-code factors of `[separation]`.
 //!
 //! The raw serde structs of `[separation]` and the checks of every key live here; the checked
-//! result is a [`DesignInputs`] in [`crate::scenario::Scenario::design`]. Errors are
+//! result is a [`DesignInputs`] in [`crate::input::scenario::Scenario::design`]. Errors are
 //! [`ScenarioError`]s with file:line:col, the key and the allowed range, like the rest of a
-//! scenario. The formulas are in [`crate::spectrum`] and [`crate::codes`] (docs/codes.md);
+//! scenario. The formulas are in [`crate::codes::spectrum`] and [`crate::codes::rules`] (docs/codes.md);
 //! the conversion of the elastic displacement computed here into the displacement a code
 //! multiplies is [`ToDesign`]: ASCE 7's δ_max = δ_elastic I_e/R (§12.9.1.2, needs `r`), or a
 //! factor the user states (`displacement_factor`). No factor is ever assumed.
@@ -16,9 +16,9 @@ use std::path::Path;
 
 use toml::Spanned;
 
-use crate::codes::CodeRule;
-use crate::scenario::{Check, RawGround, ScenarioError};
-use crate::spectrum::DesignSpectrum;
+use crate::codes::rules::CodeRule;
+use crate::codes::spectrum::DesignSpectrum;
+use crate::input::scenario::{Check, RawGround, ScenarioError};
 
 pub(crate) use code_tables::RawSeparation;
 pub use spectrum_keys::{read_table, spectrum_from_arg};
@@ -26,7 +26,7 @@ pub use spectrum_keys::{read_table, spectrum_from_arg};
 /// The codes of `[separation]`, in the order they are reported (keys as in the scenario, the
 /// `--code` flag and the sweep columns `sep_<key>`).
 /// (`ec8` is last so that the five older keys keep their sweep columns, see
-/// [`crate::sweep::results::CODE_FIELDS`].)
+/// [`crate::study::sweep::results::CODE_FIELDS`].)
 pub const CODE_KEYS: [&str; 6] = ["asce7", "is1893", "nbcc", "gb50011", "ntc", "ec8"];
 
 /// Valid keys of the tables of this module, for the scenario's unknown-key suggestions.
@@ -165,7 +165,7 @@ impl DesignInputs {
 }
 
 /// Check the spectrum keys of `[ground_motion]` and the `[separation]` table (the hook of
-/// [`crate::scenario`]'s validation). `kind` itself was checked before.
+/// [`crate::input::scenario`]'s validation). `kind` itself was checked before.
 pub(crate) fn validate(
     c: &Check,
     ground: Option<&Spanned<RawGround>>,

@@ -4,11 +4,11 @@ use std::path::Path;
 
 use toml::Spanned;
 
-use crate::ground_motion::STANDARD_GRAVITY;
-use crate::scenario::{Check, Ctx, RawGround, ScenarioError};
-use crate::spectrum::{
+use crate::codes::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumTable,
 };
+use crate::input::scenario::{Check, Ctx, RawGround, ScenarioError};
+use crate::model::ground_motion::STANDARD_GRAVITY;
 
 /// A spectrum given on the command line (`--spectrum`): `asce7:sds=1.0,sd1=0.6,tl=8`,
 /// `ec8:ag=0.25g,ground_type=C,type=1` (a_g with its unit: `0.25g`, `2.45m/s2`, or a bare
@@ -17,7 +17,7 @@ use crate::spectrum::{
 /// Checked exactly as the scenario keys of the same names.
 pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
     let bad = |reason: String| ScenarioError::Invalid {
-        at: crate::scenario::Location {
+        at: crate::input::scenario::Location {
             file: "--spectrum".into(),
             line_col: None,
         },
@@ -354,7 +354,7 @@ pub(super) fn spectrum(
 /// a comma; blank lines and lines starting with `#` skipped; a first line that is not numeric
 /// is taken as a header.
 pub fn read_table(path: &Path, scale: f64) -> Result<Vec<(f64, f64)>, String> {
-    let text = crate::input_file::read_text(path, crate::input_file::MAX_TEXT_BYTES)
+    let text = crate::input::file::read_text(path, crate::input::file::MAX_TEXT_BYTES)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut pairs = Vec::new();
     for (i, line) in text.lines().enumerate() {

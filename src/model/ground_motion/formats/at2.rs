@@ -5,10 +5,10 @@
 //! in g (line 3: `ACCELERATION TIME SERIES IN UNITS OF G`). Files whose 3rd line says VELOCITY
 //! or DISPLACEMENT are refused.
 
-use crate::ground_motion::error::{Location, RecordError, clip};
-use crate::ground_motion::formats::text::parse_value;
-use crate::ground_motion::formats::{Channel, Parsed};
-use crate::ground_motion::record::{AccelUnits, RecordFormat};
+use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::formats::text::parse_value;
+use crate::model::ground_motion::formats::{Channel, Parsed};
+use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
 
 /// The units line 3 states (`… IN UNITS OF G`, `… UNITS: CM/S/S`), if it states them.
 fn stated_units(line3: &str) -> Option<AccelUnits> {
@@ -164,8 +164,8 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ground_motion::formats::testutil::*;
-    use crate::ground_motion::record::*;
+    use crate::model::ground_motion::formats::testutil::*;
+    use crate::model::ground_motion::record::*;
     use std::path::{Path, PathBuf};
 
     /// Directory of the real PEER records bundled with the tests (`tests/data/records/`, with

@@ -7,10 +7,10 @@
 
 use std::path::Path;
 
-use crate::ground_motion::error::{Location, RecordError};
-use crate::ground_motion::formats::text::{parse_number, parse_value};
-use crate::ground_motion::formats::{Channel, Parsed};
-use crate::ground_motion::record::{AccelUnits, DT_REL_TOLERANCE, RecordFormat};
+use crate::model::ground_motion::error::{Location, RecordError};
+use crate::model::ground_motion::formats::text::{parse_number, parse_value};
+use crate::model::ground_motion::formats::{Channel, Parsed};
+use crate::model::ground_motion::record::{AccelUnits, DT_REL_TOLERANCE, RecordFormat};
 
 /// Reads one or two columns (see the module).
 pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> {
@@ -144,8 +144,8 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
 
 #[cfg(test)]
 mod tests {
-    use crate::ground_motion::formats::testutil::*;
-    use crate::ground_motion::record::*;
+    use crate::model::ground_motion::formats::testutil::*;
+    use crate::model::ground_motion::record::*;
 
     // ---------------------------------------------------------------- two columns
 

@@ -19,12 +19,12 @@
 //!
 //! Each count and format is the header's own; velocity and displacement blocks are skipped.
 
-use crate::ground_motion::error::{Location, RecordError, clip};
-use crate::ground_motion::formats::text::{
+use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::formats::text::{
     EditKind, FortranFormat, first_number, number_after, read_fixed,
 };
-use crate::ground_motion::formats::{Channel, Parsed, orientation_names};
-use crate::ground_motion::record::{AccelUnits, RecordFormat};
+use crate::model::ground_motion::formats::{Channel, Parsed, orientation_names};
+use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
 
 const FORMAT: &str = "COSMOS";
 

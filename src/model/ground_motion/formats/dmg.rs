@@ -15,12 +15,12 @@
 //!   `13200 Accelerogram points at 200 pts/sec in units of g . Format: (8f9.6)` and the values;
 //!   in the 1980s layout no such line but (t, a) pairs of the digitised film in 10F7.3, in g/10.
 
-use crate::ground_motion::error::{Location, RecordError, clip};
-use crate::ground_motion::formats::text::{
+use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::formats::text::{
     EditKind, FortranFormat, first_number, number_after, read_fixed,
 };
-use crate::ground_motion::formats::{Channel, Parsed, orientation_names};
-use crate::ground_motion::record::{AccelUnits, RecordFormat};
+use crate::model::ground_motion::formats::{Channel, Parsed, orientation_names};
+use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
 
 const FORMAT: &str = "CSMIP/DMG";
 const V2_TEXT: usize = 25;

@@ -5,10 +5,10 @@
 //! …, `USER5:`), then one value per line. Files whose `PROCESSING` is `none` (the database's
 //! unprocessed "U" files) are uncorrected.
 
-use crate::ground_motion::error::{Location, RecordError, clip};
-use crate::ground_motion::formats::text::{first_number, parse_value};
-use crate::ground_motion::formats::{Channel, Parsed};
-use crate::ground_motion::record::{AccelUnits, RecordFormat};
+use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::formats::text::{first_number, parse_value};
+use crate::model::ground_motion::formats::{Channel, Parsed};
+use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
 
 const FORMAT: &str = "ESM";
 

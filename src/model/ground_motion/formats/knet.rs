@@ -5,10 +5,10 @@
 //! counts × 3920/6182761 gal with the mean of the whole record removed; the header's maximum
 //! is of that (NIED's description of the format).
 
-use crate::ground_motion::error::{Location, RecordError, clip};
-use crate::ground_motion::formats::text::{first_number, parse_value};
-use crate::ground_motion::formats::{Channel, Parsed};
-use crate::ground_motion::record::{AccelUnits, RecordFormat};
+use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::formats::text::{first_number, parse_value};
+use crate::model::ground_motion::formats::{Channel, Parsed};
+use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
 
 const FORMAT: &str = "K-NET";
 

@@ -27,8 +27,8 @@ pub(crate) mod text;
 
 use std::path::Path;
 
-use crate::ground_motion::error::{Location, RecordError};
-use crate::ground_motion::record::{
+use crate::model::ground_motion::error::{Location, RecordError};
+use crate::model::ground_motion::record::{
     AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY,
     StatedPeak, build, max_abs,
 };

@@ -1,8 +1,8 @@
 //! The dispatcher: detection from the content, non-text files, components, units, robustness.
 
 use super::*;
-use crate::ground_motion::formats::testutil::*;
-use crate::ground_motion::record::*;
+use crate::model::ground_motion::formats::testutil::*;
+use crate::model::ground_motion::record::*;
 
 // ---------------------------------------------------------------- robustness
 

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crate::ground_motion::record::{Record, RecordError, RecordOptions, STANDARD_GRAVITY};
+use crate::model::ground_motion::record::{Record, RecordError, RecordOptions, STANDARD_GRAVITY};
 
 pub(crate) const G: f64 = STANDARD_GRAVITY;
 

@@ -1,8 +1,8 @@
 //! What the readers share: numbers as Fortran writes them, Fortran edit descriptors such as
 //! `(8F10.5)` and the fixed-width fields they describe (which may touch: `-12.34567-23.45678`).
 
-use crate::ground_motion::STANDARD_GRAVITY;
-use crate::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::STANDARD_GRAVITY;
+use crate::model::ground_motion::error::{Location, RecordError, clip};
 
 /// Largest magnitude of a value in a file, in the file's units: beyond it the conversion to
 /// m/s² (at most ×9.80665, from g) could overflow.

@@ -1,0 +1,5 @@
+//! The project's pictures, drawn with [`crate::plot`].
+
+pub mod run;
+pub mod spectrum;
+pub mod sweep;

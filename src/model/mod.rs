@@ -1,0 +1,9 @@
+//! The physical model.
+
+pub mod building;
+pub mod cantilever;
+pub mod contact;
+pub mod ground_motion;
+pub mod hysteresis;
+pub mod structure;
+pub mod system;
