@@ -22,6 +22,7 @@ pub mod figures;
 pub mod input;
 pub mod integrate;
 pub mod model;
+pub mod numerics;
 pub mod opensees;
 pub mod output;
 pub mod plot;

@@ -791,7 +791,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             match out {
                 None => print!("{script}"),
                 Some(path) => {
-                    pounding::output::run::write_atomic(&path, script.as_bytes())?;
+                    pounding::output::atomic::write_atomic(&path, script.as_bytes())?;
                     if !quiet {
                         println!(
                             "wrote {} (run it: python3 {} [--json results.json])",

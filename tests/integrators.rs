@@ -13,7 +13,7 @@ use pounding::model::contact::ContactLaw;
 use pounding::model::ground_motion::{GroundMotion, Harmonic, Record};
 use pounding::model::structure::{Cantilever, Damping, Stiffness};
 use pounding::model::system::{ContactLevel, System};
-use pounding::recording::recorder::RunRecord;
+use pounding::recording::run_record::RunRecord;
 
 fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {
     Cantilever {

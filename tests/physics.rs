@@ -8,7 +8,8 @@ use pounding::analysis::simulate::run_system;
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
 use pounding::model::contact::ContactLaw;
 use pounding::model::ground_motion::{GroundMotion, Harmonic, Record};
-use pounding::model::structure::{Cantilever, Damping, ModalModel, Stiffness};
+use pounding::model::modal::ModalModel;
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
 use pounding::model::system::{ContactLevel, System};
 
 fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {

@@ -4,7 +4,8 @@ use pounding::codes::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumError, SpectrumTable,
     modal_correlation, peak_displacement, peak_displacements, relative_peak,
 };
-use pounding::model::structure::{Cantilever, Damping, ModalModel, Stiffness};
+use pounding::model::modal::ModalModel;
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
 use std::f64::consts::PI;
 
 const G: f64 = 9.80665;

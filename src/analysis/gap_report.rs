@@ -25,8 +25,9 @@ use crate::codes::spectrum::{
 use crate::input::scenario::Scenario;
 use crate::input::scenario::design::{CODE_KEYS, DesignInputs};
 use crate::integrate::SolveError;
-use crate::model::structure::{ModalModel, Structure};
-use crate::recording::recorder::RunRecord;
+use crate::model::modal::ModalModel;
+use crate::model::structure::Structure;
+use crate::recording::run_record::RunRecord;
 
 /// One code's required separation at one contact level (`separation.codes` of summary.json at
 /// the main level; `levels[].codes` at each).

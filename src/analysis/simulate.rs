@@ -10,7 +10,9 @@ use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
 use crate::model::system::System;
 use crate::recording::floor_response::FloorPeaks;
-use crate::recording::recorder::{EnergyBalance, HistorySink, Impact, Recorder, RunRecord};
+use crate::recording::history::HistorySink;
+use crate::recording::recorder::Recorder;
+use crate::recording::run_record::{EnergyBalance, Impact, RunRecord};
 use crate::recording::storey_record::StoreyRecord;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
@@ -543,7 +545,7 @@ fn run_phase(
     interval: f64,
     sink: &mut dyn RunSink,
     phase: Phase,
-    floors: Option<crate::output::run::FloorStations>,
+    floors: Option<crate::recording::stations::FloorStations>,
 ) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
     let mut rec = Recorder::new(system, heights, interval, settings.duration);
@@ -593,7 +595,7 @@ pub struct SeparationReport {
     pub peaks_no_contact: [f64; 2],
     /// Every contact level of the run without contact (peaks, `max_closing`), in the order of
     /// the scenario's levels.
-    pub levels: Vec<crate::recording::recorder::LevelRecord>,
+    pub levels: Vec<crate::recording::run_record::LevelRecord>,
     /// First-mode periods of structures 1 and 2, s.
     pub periods: [f64; 2],
     /// First-mode damping ratios of structures 1 and 2.

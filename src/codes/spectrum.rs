@@ -21,7 +21,7 @@
 
 use crate::analysis::separation::cqc_correlation;
 use crate::model::ground_motion::STANDARD_GRAVITY;
-use crate::model::structure::ModalModel;
+use crate::model::modal::ModalModel;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -503,8 +503,8 @@ fn check_model(model: &ModalModel) -> Result<(), SpectrumError> {
         return Err(SpectrumError::BadModel("no modes".into()));
     }
     let shapes = match &model.shapes {
-        crate::model::structure::Shapes::Cantilever(m) => m.len(),
-        crate::model::structure::Shapes::Floors { values, .. } => values.len(),
+        crate::model::modal::Shapes::Cantilever(m) => m.len(),
+        crate::model::modal::Shapes::Floors { values, .. } => values.len(),
     };
     if model.zeta.len() != n || model.participation.len() != n || shapes != n {
         return Err(SpectrumError::BadModel(format!(

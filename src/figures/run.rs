@@ -8,7 +8,7 @@ use crate::plot::{
     AxisScale, Figure, LineStyle, Panel, PlotError, ProfileFigure, ProfilePanel, ProfileSeries,
     Series, write_figure, write_profile,
 };
-use crate::recording::recorder::Impact;
+use crate::recording::run_record::Impact;
 
 /// The contact force of one level as the time-history figure draws it, N: the history's
 /// samples `(t, force)` merged with every impact's located start and end (force 0) and its peak

@@ -91,7 +91,7 @@ pub fn spectrum_figure(report: &SpectrumReport, stem: &Path) -> Result<Vec<PathB
         "{} record{}, {} % damping{}",
         n,
         if n == 1 { "" } else { "s" },
-        crate::plot::style::fmt_num(100.0 * report.damping),
+        crate::numerics::format::fmt_num(100.0 * report.damping),
         if n > COLOURED {
             " (records in grey)"
         } else {
@@ -134,7 +134,7 @@ pub fn scaling_figure(suite: &ScaledSuite, stem: &Path) -> Result<Vec<PathBuf>, 
         .collect();
     let required_label = format!(
         "{} × target",
-        crate::plot::style::fmt_num(suite.required_ratio)
+        crate::numerics::format::fmt_num(suite.required_ratio)
     );
     let mut lines: Vec<XyLine> = scaled
         .iter()

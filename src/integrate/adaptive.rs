@@ -51,7 +51,8 @@ use super::{
     update_onsets,
 };
 use crate::model::ground_motion::GroundMotion;
-use crate::model::system::{LevelState, System, dot};
+use crate::model::system::{LevelState, System};
+use crate::numerics::linalg::dot;
 
 /// Event tolerance on δ, m.
 const EVENT_TOL: f64 = 1e-12;

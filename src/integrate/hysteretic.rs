@@ -431,12 +431,12 @@ fn first_event(sys: &System, w: &Work, hs: f64, skip: Option<usize>) -> Option<(
     for s in 0..ns {
         let r = hy.row(s);
         let (dd0, dd1) = (
-            crate::model::system::dot(r, &w.y[n..2 * n]),
-            crate::model::system::dot(r, &w.y1[n..2 * n]),
+            crate::numerics::linalg::dot(r, &w.y[n..2 * n]),
+            crate::numerics::linalg::dot(r, &w.y1[n..2 * n]),
         );
         let (a0, a1) = (
-            crate::model::system::dot(r, &k0[n..2 * n]),
-            crate::model::system::dot(r, &k1[n..2 * n]),
+            crate::numerics::linalg::dot(r, &k0[n..2 * n]),
+            crate::numerics::linalg::dot(r, &k1[n..2 * n]),
         );
         consider(s, dd0, a0, dd1, a1);
         let j = 2 * n + s;

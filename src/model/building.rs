@@ -16,7 +16,7 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::model::structure::{ModalModel, Shapes};
+use crate::model::modal::{ModalModel, Shapes};
 
 /// Largest |φ_mᵀ M φ_n| (m ≠ n, shapes mass-normalised) accepted for the engineer's modes:
 /// shapes exported with four significant digits are orthogonal to ~1e-4; 0.1 is a shape that

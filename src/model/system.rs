@@ -13,7 +13,8 @@
 
 use crate::model::contact::{ContactForce, ContactLaw};
 use crate::model::ground_motion::GroundMotion;
-use crate::model::structure::ModalModel;
+use crate::model::modal::ModalModel;
+use crate::numerics::linalg::dot;
 
 /// Penetration (m) from which an impulsive contact counts as touching: integrators that locate
 /// the onset of contact land on δ = 0 only to round-off.
@@ -359,33 +360,6 @@ impl System {
         }
         any
     }
-}
-
-/// Dot product.
-#[inline(always)]
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    // four partial sums for long rows: the additions of one chain would wait on each other
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    if n < 8 {
-        let mut s = 0.0;
-        for i in 0..n {
-            s += a[i] * b[i];
-        }
-        return s;
-    }
-    let mut acc = [0.0; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for i in 0..4 {
-            acc[i] += x[i] * y[i];
-        }
-    }
-    for (i, (x, y)) in ra.iter().zip(rb).enumerate() {
-        acc[i] += x * y;
-    }
-    (acc[0] + acc[2]) + (acc[1] + acc[3])
 }
 
 #[cfg(test)]

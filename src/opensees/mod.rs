@@ -29,6 +29,7 @@
 //!   sub-steps halved down to dt/64, then the same with ModifiedNewton, then KrylovNewton.
 
 pub mod compare;
+pub mod results;
 mod storeys;
 mod yielding;
 

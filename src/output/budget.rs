@@ -5,7 +5,7 @@
 //! see [`crate::output::run::RunWriter`]); disk and time do.
 
 use crate::input::scenario::Scenario;
-use crate::recording::recorder::sample_count;
+use crate::recording::history::sample_count;
 
 /// Default largest estimated output, bytes (1 GB).
 pub const DEFAULT_MAX_OUTPUT: u64 = 1_000_000_000;
@@ -58,8 +58,10 @@ pub fn estimate_run(scenario: &Scenario) -> Estimate {
     let stations: u64 = (scenario.structures.iter())
         .map(|s| match (s.floor_heights(), scenario.floor_stations) {
             (Some(h), _) => h.len() as u64,
-            (None, crate::output::run::FloorStations::All) => 10 + levels,
-            (None, crate::output::run::FloorStations::Contact) => contact_stations(s.length()),
+            (None, crate::recording::stations::FloorStations::All) => 10 + levels,
+            (None, crate::recording::stations::FloorStations::Contact) => {
+                contact_stations(s.length())
+            }
         })
         .sum();
     let numbers = 6 + if levels > 1 { levels } else { 0 } + 1 + 4 * stations;

@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::io::{BufWriter, Write as _};
 
-use crate::output::run::{push_field, push_number};
+use crate::output::csv::{push_field, push_number};
 use std::path::{Path, PathBuf};
 
 use crate::output::row_spool::RowSpool;
@@ -44,7 +44,7 @@ impl FloorsCsv {
     /// with `_free` (without).
     pub fn create(dir: &Path, columns: &[String]) -> std::io::Result<FloorsCsv> {
         // (the permissions of every other output: an ordinary new file's under the umask)
-        let tmp = crate::output::run::temp_file(dir, ".pounding-floors-", ".tmp")?;
+        let tmp = crate::output::atomic::temp_file(dir, ".pounding-floors-", ".tmp")?;
         let mut csv = BufWriter::with_capacity(1 << 16, tmp);
         let mut head = String::from("t");
         for c in columns {

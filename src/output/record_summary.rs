@@ -11,7 +11,7 @@ use crate::model::ground_motion::processing::{Baseline, Processing};
 use crate::model::ground_motion::record::{
     AccelUnits, Component, Record, RecordOptions, STANDARD_GRAVITY,
 };
-use crate::output::run::{OutputError, write_atomic};
+use crate::output::atomic::{OutputError, write_atomic};
 
 /// What was read from a record file. The JSON keys `format`, `component`, `dt` (s), `points`,
 /// `pga` (m/s²) and `pga_time` (s) are a contract for scripts; the others may grow.

@@ -17,63 +17,9 @@ use serde::Serialize;
 use crate::analysis::simulate::{Report, RunSink};
 use crate::input::scenario::Scenario;
 use crate::integrate::Method;
+use crate::output::atomic::{OutputError, temp_file, write_atomic};
+use crate::output::csv::{push_field, push_number};
 use crate::output::row_spool::RowSpool;
-
-/// Why an output could not be written.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    /// File-system error, with the path concerned.
-    #[error("cannot write {path}: {source}")]
-    Io {
-        /// Path.
-        path: PathBuf,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// Serialisation failure.
-    #[error("cannot encode {path}: {message}")]
-    Encode {
-        /// Path.
-        path: PathBuf,
-        /// Cause.
-        message: String,
-    },
-}
-
-/// A temporary file in `dir` named `<prefix>XXXXXX<suffix>`, for writing and then renaming into
-/// place, with the permissions an ordinary new file would get (tempfile's default is
-/// owner-only, which the rename would carry over).
-pub fn temp_file(
-    dir: &Path,
-    prefix: impl AsRef<std::ffi::OsStr>,
-    suffix: &str,
-) -> std::io::Result<tempfile::NamedTempFile> {
-    let mut b = tempfile::Builder::new();
-    b.prefix(prefix.as_ref()).suffix(suffix);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        b.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    b.tempfile_in(dir)
-}
-
-/// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    let io = |source| OutputError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = temp_file(dir, ".pounding-", ".tmp").map_err(io)?;
-    tmp.write_all(bytes).map_err(io)?;
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
-}
 
 /// Solver facts recorded in the summary.
 #[derive(Debug, Serialize)]
@@ -151,23 +97,6 @@ pub fn history_header(levels: usize) -> String {
     out
 }
 
-/// Appends `v` to `out` as the shortest decimal text that reads back as the same `f64`
-/// (zmij: plain digits from 1e-5 to 1e16, exponent notation outside; `NaN`, `inf`, `-inf` as
-/// Rust writes them). About 10× fewer instructions than `format!("{v}")`, and no allocation:
-/// the CSV files of a run hold hundreds of thousands of numbers.
-#[inline]
-pub(crate) fn push_number(out: &mut Vec<u8>, v: f64) {
-    let mut b = zmij::Buffer::new();
-    out.extend_from_slice(b.format(v).as_bytes());
-}
-
-/// `,v` appended to `out` (see [`push_number`]).
-#[inline]
-pub(crate) fn push_field(out: &mut Vec<u8>, v: f64) {
-    out.push(b',');
-    push_number(out, v);
-}
-
 /// One row of `history.csv` (with its newline) appended to `out`.
 fn history_row(out: &mut Vec<u8>, t: f64, w: [f64; 2], forces: &[f64], free: [f64; 2]) {
     let total: f64 = forces.iter().sum();
@@ -187,7 +116,7 @@ fn history_row(out: &mut Vec<u8>, t: f64, w: [f64; 2], forces: &[f64], free: [f6
 /// several levels, `force_1 … force_k` (`force` is then their sum). Displacements at the main
 /// contact height, m; forces, N. This is exactly what [`RunWriter`] streams when the history
 /// holds every sample (`History::stride == 1`, runs of at most
-/// [`crate::recording::recorder::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
+/// [`crate::recording::history::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
 /// envelope and only the streamed file has every sample.
 pub fn history_csv(report: &Report) -> String {
     let h = &report.with_contact.history;
@@ -254,7 +183,7 @@ pub enum Column {
 /// whole numbers, the rest the same numbers the file holds.
 pub fn impact_columns(report: &Report) -> Vec<(&'static str, Column)> {
     let log = &report.impact_log;
-    let f = |g: &dyn Fn(&crate::recording::recorder::Impact) -> f64| {
+    let f = |g: &dyn Fn(&crate::recording::run_record::Impact) -> f64| {
         Column::Float(log.iter().map(g).collect())
     };
     vec![
@@ -271,70 +200,6 @@ pub fn impact_columns(report: &Report) -> Vec<(&'static str, Column)> {
         ("max_penetration", f(&|i| i.max_penetration)),
         ("approach_speed", f(&|i| i.approach_speed)),
     ]
-}
-
-/// Which stations' time histories `floors.csv` holds (`[output] floor_stations`); the peaks
-/// over the height (summary.json, envelopes.png) always cover every station.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum FloorStations {
-    /// Every floor of a building with floors; of a cantilever, the stations at the contact
-    /// heights and at the top (`"contact"`, the default: the histories an engineer reads;
-    /// a cantilever's 10 tenths of its height would make floors.csv 5–10× larger).
-    #[default]
-    Contact,
-    /// Every station, a cantilever's every tenth of its height too (`"all"`).
-    All,
-}
-
-impl FloorStations {
-    /// The names `[output] floor_stations` accepts, in the order of [`FloorStations::ALL`].
-    pub const NAMES: [&'static str; 2] = ["contact", "all"];
-    /// Every choice.
-    pub const ALL: [FloorStations; 2] = [FloorStations::Contact, FloorStations::All];
-
-    /// The choice of a name of [`FloorStations::NAMES`].
-    pub fn from_name(name: &str) -> Option<FloorStations> {
-        Self::NAMES
-            .iter()
-            .position(|n| *n == name)
-            .map(|i| Self::ALL[i])
-    }
-
-    /// Indices of the values of a floor row of `floors`
-    /// ([`crate::recording::floor_response::FloorRecorder::columns`]) that `floors.csv` keeps for a
-    /// system whose structures are `system` and whose contact heights are `heights` (m);
-    /// `None`: every value.
-    pub fn selection(
-        self,
-        system: &crate::model::system::System,
-        floors: &crate::recording::floor_response::FloorRecorder,
-        heights: &[f64],
-    ) -> Option<Vec<usize>> {
-        if self == FloorStations::All {
-            return None;
-        }
-        let mut keep = Vec::new();
-        let mut offset = 0;
-        let mut all = true;
-        for (m, st) in system.structures.iter().zip(floors.station_heights()) {
-            let cantilever = matches!(m.shapes, crate::model::structure::Shapes::Cantilever(_));
-            // (the stations include the contact heights and the top exactly, up to the
-            // 1e-9·L within which they were merged with a tenth of the height)
-            let tol = 1e-9 * m.length;
-            for (j, &x) in st.iter().enumerate() {
-                let wanted = !cantilever
-                    || (x - m.length).abs() <= tol
-                    || heights.iter().any(|&h| (x - h).abs() <= tol);
-                if wanted {
-                    keep.extend([offset + 2 * j, offset + 2 * j + 1]);
-                } else {
-                    all = false;
-                }
-            }
-            offset += 2 * st.len();
-        }
-        (!all).then_some(keep)
-    }
 }
 
 /// The floor columns of a run of `scenario` (`floors.csv` without `t` and the `_free`

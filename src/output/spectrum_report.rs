@@ -280,5 +280,5 @@ impl ScaledSuite {
 
 /// A number with up to 4 significant decimals and no trailing zeros.
 fn fmt(x: f64) -> String {
-    crate::plot::style::fmt_num(x).replace('−', "-")
+    crate::numerics::format::fmt_num(x).replace('−', "-")
 }

@@ -130,7 +130,7 @@ fn write_both<R: Render>(r: &R, stem: &Path, w: u32, h: u32) -> Result<Vec<PathB
     prefix.push(name);
     prefix.push(".tmp-");
     let temp =
-        |suffix: &str| crate::output::run::temp_file(dir, &prefix, suffix).map_err(io_err(dir));
+        |suffix: &str| crate::output::atomic::temp_file(dir, &prefix, suffix).map_err(io_err(dir));
     let persist = |tmp: tempfile::NamedTempFile, to: &Path| {
         tmp.as_file().sync_all().map_err(io_err(tmp.path()))?;
         tmp.persist(to).map_err(|e| PlotError::Io {

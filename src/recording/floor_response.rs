@@ -31,7 +31,7 @@ use serde::Serialize;
 
 use crate::integrate::StepView;
 use crate::integrate::linear::hermite_abs_max;
-use crate::model::structure::{ModalModel, Shapes};
+use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::System;
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
@@ -393,7 +393,7 @@ impl FloorRecorder {
         &mut self,
         system: &System,
         s: &StepView,
-        sink: Option<&mut (dyn crate::recording::recorder::HistorySink + '_)>,
+        sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
     ) {
         let n = system.len();
         let (ag, vg) = system.ground.accel_velocity(s.t);
@@ -580,7 +580,7 @@ impl FloorRecorder {
         &mut self,
         t: f64,
         h: Option<f64>,
-        sink: &mut (dyn crate::recording::recorder::HistorySink + '_),
+        sink: &mut (dyn crate::recording::history::HistorySink + '_),
     ) {
         let eps = 1e-9 * self.interval;
         let mut consumed = false;

@@ -1,206 +1,20 @@
-//! What a run keeps: peaks over every integration step, impact events, a history sampled at the
-//! output interval, and the energy balance. The recorder is an [`Observer`]: the integrators
-//! do not know it exists.
+//! The recorder: what a run keeps ([`RunRecord`]) taken from every integration step — peaks
+//! over every step, impact events, a history sampled at the output interval, and the energy
+//! balance. The recorder is an [`Observer`]: the integrators do not know it exists.
 //!
 //! Memory does not grow with the duration: every history sample goes, as it is taken, to an
 //! optional [`HistorySink`] (the CSV writer streams it to disk), while the in-memory
 //! [`History`] (for figures and the library) keeps at most [`MAX_KEPT_SAMPLES`] rows — every
 //! sample of an ordinary run, a min/max envelope of a long one ([`History::stride`]).
 
-use serde::Serialize;
-
 use crate::integrate::linear::{hermite_abs_max, hermite_max};
 use crate::integrate::{Observer, StepView, onset_speed};
 use crate::model::contact::ContactForce;
 use crate::model::system::System;
-use crate::recording::floor_response::{FloorPeaks, FloorRecorder};
-use crate::recording::storey_record::{StoreyRecord, StoreyTracker};
-
-/// One contact episode at one level: from the first instant of penetration to separation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Impact {
-    /// Contact level index (0-based).
-    pub level: usize,
-    /// Start time (δ crosses 0 upwards, interpolated between steps), s.
-    pub start: f64,
-    /// End time (δ crosses 0 downwards), s; the run's end if still in contact.
-    pub end: f64,
-    /// Peak contact force, N.
-    pub peak_force: f64,
-    /// Impulse `∫F dt`, N·s.
-    pub impulse: f64,
-    /// Largest penetration, m.
-    pub max_penetration: f64,
-    /// Approach speed δ̇ at the start, m/s.
-    pub approach_speed: f64,
-}
-
-/// Per-level results of one run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct LevelRecord {
-    /// Height, m.
-    pub height: f64,
-    /// Peak |w₁(h)|, m.
-    pub peak_w1: f64,
-    /// Peak |w₂(h)|, m.
-    pub peak_w2: f64,
-    /// `max_t [w₁(h) − w₂(h)]`, m: without contact, the gap needed to avoid touching here.
-    pub max_closing: f64,
-    /// Peak contact force, N.
-    pub peak_force: f64,
-    /// Largest penetration, m.
-    pub max_penetration: f64,
-    /// Number of contact episodes.
-    pub impacts: usize,
-    /// Total time in contact, s.
-    pub contact_time: f64,
-}
-
-/// The energy balance of a run: `input = modal + contact_stored + damping + contact_dissipated`
-/// up to the integration error, which `relative_error` measures.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-pub struct EnergyBalance {
-    /// Work done by the ground loading, J.
-    pub input: f64,
-    /// Kinetic + strain energy of the structures at the end, minus at the start, J.
-    pub modal_change: f64,
-    /// Energy stored in the contacts at the end, J.
-    pub contact_stored: f64,
-    /// Energy dissipated by structural damping, J.
-    pub damping_dissipated: f64,
-    /// Energy dissipated in the contacts, J (0 for elastic laws, up to integration error).
-    pub contact_dissipated: f64,
-    /// Energy dissipated by the yielding storeys' hysteresis, J (only with yielding storeys;
-    /// see [`crate::model::hysteresis`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub hysteretic_dissipated: Option<f64>,
-    /// Strain energy the Bouc–Wen storeys hold at the end beyond the linear strain energy of
-    /// the initial stiffness counted in `modal_change`, `Σ ½(1 − α)k(d_y²z² − d²)`, minus that at
-    /// the start, J (only with yielding storeys).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub hysteretic_stored: Option<f64>,
-    /// |input − modal_change − contact_stored − damping − contact_dissipated
-    /// − hysteretic_dissipated − hysteretic_stored| over the largest
-    /// energy present in the run (peak modal + contact energy at the history samples, or
-    /// |input| if larger).
-    pub relative_error: f64,
-}
-
-/// Most history rows a [`Recorder`] keeps in memory. Up to this many samples (a 200 s run at
-/// the default 10 ms interval) the [`History`] holds every sample; beyond, an envelope.
-pub const MAX_KEPT_SAMPLES: usize = 20_000;
-
-/// Receives every history sample of a run as the recorder takes it, at full resolution, in
-/// time order: `t` (s), `w` = (w₁, w₂) at the main contact height (m), `forces` one per
-/// contact level (N; empty without contact levels in the system). What a long run writes to
-/// disk goes through here; the in-memory [`History`] is bounded.
-pub trait HistorySink {
-    /// One sample.
-    fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]);
-    /// One sample of the floors (see [`crate::recording::floor_response::FloorRecorder::columns`]): at
-    /// every station of structure 1 then 2, the displacement and the absolute acceleration.
-    fn floor_row(&mut self, t: f64, values: &[f64]) {
-        let _ = (t, values);
-    }
-}
-
-/// Sampled time history: displacements at the main contact height and every level's force.
-///
-/// With `stride == 1` (every run of at most [`MAX_KEPT_SAMPLES`] samples) row i is the sample
-/// at `t = i·output_interval`, exactly as written to history.csv. With `stride > 1` (a longer
-/// run) it is an envelope for drawing: each group of `stride` consecutive samples is kept as
-/// two rows, the columns' minima at the group's first time and their maxima at its last, so
-/// that every extreme of the sampled series (e.g. the largest sampled force) is kept while the
-/// length stays below [`MAX_KEPT_SAMPLES`].
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct History {
-    /// Samples per envelope group: 1 = every sample kept (0 only in an empty default).
-    pub stride: usize,
-    /// Sample times, s (multiples of the output interval).
-    pub t: Vec<f64>,
-    /// w₁(h) at the main contact height, m.
-    pub w1: Vec<f64>,
-    /// w₂(h), m.
-    pub w2: Vec<f64>,
-    /// Contact force of each level (outer index: level), N.
-    pub force: Vec<Vec<f64>>,
-}
-
-/// A group of samples being folded into the envelope (stride > 1).
-#[derive(Debug, Clone)]
-struct Envelope {
-    count: usize,
-    t_first: f64,
-    t_last: f64,
-    /// Minima then maxima of w₁, w₂, force₁ … force_k.
-    min: Vec<f64>,
-    max: Vec<f64>,
-}
-
-impl Envelope {
-    fn new(columns: usize) -> Envelope {
-        Envelope {
-            count: 0,
-            t_first: 0.0,
-            t_last: 0.0,
-            min: vec![f64::INFINITY; columns],
-            max: vec![f64::NEG_INFINITY; columns],
-        }
-    }
-
-    fn add(&mut self, t: f64, values: impl Iterator<Item = f64>) {
-        if self.count == 0 {
-            self.t_first = t;
-        }
-        self.t_last = t;
-        self.count += 1;
-        for ((lo, hi), v) in self.min.iter_mut().zip(self.max.iter_mut()).zip(values) {
-            *lo = lo.min(v);
-            *hi = hi.max(v);
-        }
-    }
-
-    /// Append the group's two rows to `h` and start a new group.
-    fn flush(&mut self, h: &mut History) {
-        if self.count == 0 {
-            return;
-        }
-        for (t, col) in [(self.t_first, &self.min), (self.t_last, &self.max)] {
-            h.t.push(t);
-            h.w1.push(col[0]);
-            h.w2.push(col[1]);
-            for (f, v) in h.force.iter_mut().zip(&col[2..]) {
-                f.push(*v);
-            }
-        }
-        self.count = 0;
-        self.min.fill(f64::INFINITY);
-        self.max.fill(f64::NEG_INFINITY);
-    }
-}
-
-/// Everything one integration produced.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunRecord {
-    /// Per-level results (empty without contact... except displacements: see `main_level`).
-    pub levels: Vec<LevelRecord>,
-    /// Peak |w₁|, |w₂| at the main contact height, m.
-    pub peak: [f64; 2],
-    /// `max_t [w₁ − w₂]` at the main contact height, m.
-    pub max_closing: f64,
-    /// Every impact, in time order per level.
-    pub impacts: Vec<Impact>,
-    /// Sampled history.
-    pub history: History,
-    /// Energy balance.
-    pub energy: EnergyBalance,
-    /// Steps observed.
-    pub steps: usize,
-    /// Peaks over the height of structure 1 and 2 (floors, or a cantilever's stations).
-    pub floors: [Vec<FloorPeaks>; 2],
-    /// Every yielding storey (issue 16; empty when both structures are elastic).
-    pub storeys: Vec<StoreyRecord>,
-}
+use crate::recording::floor_response::FloorRecorder;
+use crate::recording::history::{Envelope, History, HistorySink, MAX_KEPT_SAMPLES, sample_count};
+use crate::recording::run_record::{EnergyBalance, Impact, LevelRecord, RunRecord};
+use crate::recording::storey_record::StoreyTracker;
 
 #[derive(Debug, Clone, Copy)]
 struct Open {
@@ -276,11 +90,6 @@ impl std::fmt::Debug for Recorder<'_> {
             .field("streams", &self.sink.is_some())
             .finish_non_exhaustive()
     }
-}
-
-/// Samples of a run of `duration` s at `interval` s: `⌊duration/interval⌋ + 1` (t = 0 included).
-pub fn sample_count(interval: f64, duration: f64) -> u64 {
-    (duration / interval + 1e-9).floor() as u64 + 1
 }
 
 impl<'s> Recorder<'s> {
@@ -372,7 +181,7 @@ impl<'s> Recorder<'s> {
         mut self,
         system: &System,
         heights: &[f64],
-        stations: crate::output::run::FloorStations,
+        stations: crate::recording::stations::FloorStations,
     ) -> Recorder<'s> {
         if let Some(f) = &self.floors {
             self.floor_keep = stations.selection(system, f, heights);

@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use crate::recording::recorder::RunRecord;
+use crate::recording::run_record::RunRecord;
 
 /// A yielding building's numbers in one run with pounding.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

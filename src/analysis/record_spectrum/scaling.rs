@@ -164,7 +164,7 @@ impl Target {
         let mut t = Target::as_given(spectrum);
         t.description = format!(
             "{} × the {}",
-            crate::plot::style::fmt_num(factor),
+            crate::numerics::format::fmt_num(factor),
             t.description
         );
         t.scale = factor;

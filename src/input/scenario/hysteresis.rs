@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::floors::list_error;
 use super::{Check, ScenarioError};
-use crate::model::hysteresis::{BoucWen, DEFAULT_BETA, DEFAULT_EXPONENT, DEFAULT_GAMMA};
+use crate::model::bouc_wen::{BoucWen, DEFAULT_BETA, DEFAULT_EXPONENT, DEFAULT_GAMMA};
 
 /// `hysteresis = { model = "bouc-wen", … }` of a shear building (issue 16), checked against its
 /// storeys (`k`: the initial storey stiffnesses, N/m).

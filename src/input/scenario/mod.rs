@@ -448,7 +448,7 @@ pub struct Scenario {
     /// Sampling interval of the written history, s.
     pub output_interval: f64,
     /// Which stations' histories floors.csv holds (`[output] floor_stations`).
-    pub floor_stations: crate::output::run::FloorStations,
+    pub floor_stations: crate::recording::stations::FloorStations,
     /// Keys the file left out and the defaults used for them, as `key = value`, in file
     /// order (printed in the run summary, `defaults_applied` in summary.json).
     pub defaults_applied: Vec<String>,
@@ -1177,17 +1177,19 @@ fn validate(
         .as_ref()
         .and_then(|o| o.get_ref().floor_stations.as_ref())
     {
-        None => crate::output::run::FloorStations::default(),
-        Some(v) => crate::output::run::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
-            c.invalid(
-                v,
-                "output.floor_stations",
-                &format!(
-                    "must be one of {}",
-                    quoted(&crate::output::run::FloorStations::NAMES)
-                ),
-            )
-        })?,
+        None => crate::recording::stations::FloorStations::default(),
+        Some(v) => {
+            crate::recording::stations::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
+                c.invalid(
+                    v,
+                    "output.floor_stations",
+                    &format!(
+                        "must be one of {}",
+                        quoted(&crate::recording::stations::FloorStations::NAMES)
+                    ),
+                )
+            })?
+        }
     };
     // (after `design`, which may warn too: a_g probably in g)
     warnings.extend(ctx.warnings.take());

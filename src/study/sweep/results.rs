@@ -571,7 +571,7 @@ pub fn write_results<'a>(
         out.push_str(r);
         out.push('\n');
     }
-    crate::output::run::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
+    crate::output::atomic::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
         path: path.display().to_string(),
         source: std::io::Error::other(e.to_string()),
     })

@@ -32,6 +32,7 @@ use crate::model::ground_motion::record::{
     AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY,
     StatedPeak, build, max_abs,
 };
+use crate::model::ground_motion::record::{MAX_RECORD_BYTES, open_record_file};
 
 /// Bytes at the start of a file checked for control characters and invalid UTF-8.
 pub const SNIFF_BYTES: usize = 8192;
@@ -69,6 +70,60 @@ pub struct Parsed {
     pub channels: Vec<Channel>,
     /// The units when neither the file nor the options give them.
     pub default_units: AccelUnits,
+}
+
+/// Reading a record: the file, its bytes, its text (here rather than in
+/// [`crate::model::ground_motion::record`], which the readers below build on).
+impl Record {
+    /// Reads a record file; see [`Record::parse`] for the formats and options. A binary file
+    /// is refused ("not a text record file"); a few bytes that are not UTF-8 (e.g. Latin-1
+    /// station names in a header) are replaced, not refused.
+    pub fn read(path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
+        let at = || Location::file(&path.display().to_string());
+        let mut file = open_record_file(path)?;
+        // (at most the limit and one byte more: a file that grows while it is read is caught)
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(&mut file, MAX_RECORD_BYTES + 1),
+            &mut bytes,
+        )
+        .map_err(|source| RecordError::Io { at: at(), source })?;
+        if bytes.len() as u64 > MAX_RECORD_BYTES {
+            return Err(RecordError::TooLarge {
+                at: at(),
+                size: bytes.len() as u64,
+                limit: MAX_RECORD_BYTES,
+            });
+        }
+        Record::from_bytes(&bytes, path, opts)
+    }
+
+    /// Parses the bytes of a record file, as [`Record::read`] does after reading them: a
+    /// binary file is refused ([`crate::model::ground_motion::formats::check_text`]), bytes that are
+    /// not UTF-8 are replaced, then [`Record::parse`]. `path` is used only in error messages,
+    /// for the description and as [`Record::parse`] says (the fuzz targets of `fuzz/` call
+    /// this).
+    pub fn from_bytes(
+        bytes: &[u8],
+        path: &Path,
+        opts: &RecordOptions,
+    ) -> Result<Record, RecordError> {
+        crate::model::ground_motion::formats::check_text(bytes, &path.display().to_string())?;
+        let text = String::from_utf8_lossy(bytes);
+        Record::parse(&text, path, opts)
+    }
+
+    /// Parses the text of a record file: the layout is detected from the content
+    /// ([`crate::model::ground_motion::formats::detect`]), the component chosen, converted to m/s²,
+    /// processed and scaled as `opts` say. `path` is used only in error messages, for the
+    /// description of records without one, and, when the content matches no layout, to pick
+    /// which layout's error to report (`.AT2`).
+    ///
+    /// Two-column files take dt = t[1] − t[0] and treat the first sample as t = 0: a
+    /// nonzero t[0] is an offset that is ignored.
+    pub fn parse(text: &str, path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
+        crate::model::ground_motion::formats::read(text, path, opts)
+    }
 }
 
 /// Refuses a file that is not text (issue 24): a NUL byte anywhere, a control character
