@@ -706,7 +706,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
                 let sub = format!("{} ({} cases)", results.display(), study.rows);
                 let files =
-                    pounding::study::rule_study::rule_figure(&table, x.as_deref(), &dir, &sub)?;
+                    pounding::figures::rules::rule_figure(&table, x.as_deref(), &dir, &sub)?;
                 if !quiet {
                     let names: Vec<String> =
                         files.iter().map(|p| p.display().to_string()).collect();
@@ -1516,7 +1516,7 @@ fn print_separation(r: &pounding::analysis::gap_report::GapReport) {
         println!("  warning: {w}");
     }
     // top level first, as a building is read
-    let mut order: Vec<&pounding::analysis::gap_report::LevelCheck> = r.levels.iter().collect();
+    let mut order: Vec<&pounding::analysis::level_checks::LevelCheck> = r.levels.iter().collect();
     order.sort_by(|a, b| b.height.total_cmp(&a.height));
     for l in &order {
         println!();

@@ -180,7 +180,7 @@ fn hand(j: usize, height: f64) -> Hand {
     }
 }
 
-fn level(r: &GapReport, h: f64) -> &pounding::analysis::gap_report::LevelCheck {
+fn level(r: &GapReport, h: f64) -> &pounding::analysis::level_checks::LevelCheck {
     r.levels.iter().find(|l| l.height == h).unwrap()
 }
 

@@ -883,7 +883,7 @@ fn rule_study_counts_unsafe_cases_and_excess_by_hand() {
     assert!(asce.median_over_percent.is_nan());
     // the figure is drawn
     let files =
-        pounding::study::rule_study::rule_figure(&t, Some("x"), &dir.path().join("plots"), "test")
+        pounding::figures::rules::rule_figure(&t, Some("x"), &dir.path().join("plots"), "test")
             .unwrap();
     assert!(files.iter().any(|f| f.ends_with("rules.png")));
 }

@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod convergence;
 pub mod gap_report;
+pub mod level_checks;
 pub mod record_spectrum;
 pub mod restitution;
 pub mod separation;

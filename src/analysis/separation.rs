@@ -1,11 +1,12 @@
 //! Required separation between the structures (docs/model.md §3, paper §3).
 //!
 //! The design rules combine the two structures' peak displacements at the contact height
-//! without pounding; the time-history value is exact for the given motion. [`Separations`]
-//! (summary.json `separation`) holds them at the main (highest) contact level, as it always
-//! has, and beside them every level's checks and the verdict ([`crate::analysis::gap_report`]).
+//! without pounding; the time-history value is exact for the given motion. The CQC correlation
+//! of DDC is the one of the response-spectrum analysis ([`cqc_correlation`], from
+//! [`crate::codes::spectrum`]); the rules at every contact level, with the codes, are in
+//! [`crate::analysis::level_checks`].
 
-use serde::Serialize;
+pub use crate::codes::spectrum::cqc_correlation;
 
 /// A separation rule.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,16 +20,6 @@ pub enum Rule {
     /// DDC as printed in the seed paper (eq. 22–23: factor 2 in ρ, no 2 on the cross term).
     /// Kept only to reproduce the paper; not a correct rule.
     DdcPaper,
-}
-
-/// CQC correlation of two modes with damping ratios ζ₁, ζ₂ and period ratio r = T₁/T₂:
-/// `ρ = 8√(ζ₁ζ₂)(ζ₁ + rζ₂) r^{3/2} / [(1−r²)² + 4ζ₁ζ₂ r(1+r²) + 4(ζ₁² + ζ₂²) r²]`.
-pub fn cqc_correlation(zeta1: f64, zeta2: f64, r: f64) -> f64 {
-    let num = 8.0 * (zeta1 * zeta2).sqrt() * (zeta1 + r * zeta2) * r.powf(1.5);
-    let den = (1.0 - r * r).powi(2)
-        + 4.0 * zeta1 * zeta2 * r * (1.0 + r * r)
-        + 4.0 * (zeta1 * zeta1 + zeta2 * zeta2) * r * r;
-    num / den
 }
 
 /// Inputs of the design rules.
@@ -61,57 +52,6 @@ impl PeakPair {
                 let rho = cqc_correlation(self.zeta1, self.zeta2, self.period_ratio) / 4.0;
                 (a * a + b * b - rho * a * b).max(0.0).sqrt()
             }
-        }
-    }
-}
-
-/// Every rule side by side, plus the exact time-history value, m: `abs` … `rho` and `codes` at
-/// the main (highest) contact level; `levels` and `verdict` at every level.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Separations {
-    /// ABS, m.
-    pub abs: f64,
-    /// SRSS, m.
-    pub srss: f64,
-    /// DDC with the CQC correlation, m.
-    pub ddc: f64,
-    /// DDC as printed in the paper, m.
-    pub ddc_paper: f64,
-    /// `max_t [w₁(h,t) − w₂(h,t)]` without pounding (0 if they only move apart), m: the
-    /// smallest gap at which the structures do not touch.
-    pub time_history: f64,
-    /// CQC correlation ρ₁₂ used by DDC.
-    pub rho: f64,
-    /// The building codes of the scenario's `[separation]` table at the main contact level
-    /// (empty without it).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub codes: Vec<crate::analysis::gap_report::CodeCheck>,
-    /// Where the peaks fed to the rules come from (the run without pounding: elastic, or
-    /// inelastic with yielding storeys).
-    pub peaks_from: crate::analysis::gap_report::PeakSource,
-    /// Every rule at every contact level, in the order of the scenario's levels (as the
-    /// report's `levels`); empty when not computed.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub levels: Vec<crate::analysis::gap_report::LevelCheck>,
-    /// Each rule at its governing level (the smallest gap − required over the levels).
-    #[serde(skip_serializing_if = "crate::analysis::gap_report::Verdict::is_empty")]
-    pub verdict: crate::analysis::gap_report::Verdict,
-}
-
-impl Separations {
-    /// All rules for `peaks`, with the time-history value `exact` (m).
-    pub fn new(peaks: &PeakPair, exact: f64) -> Separations {
-        Separations {
-            abs: peaks.separation(Rule::Abs),
-            srss: peaks.separation(Rule::Srss),
-            ddc: peaks.separation(Rule::Ddc),
-            ddc_paper: peaks.separation(Rule::DdcPaper),
-            time_history: exact.max(0.0),
-            rho: cqc_correlation(peaks.zeta1, peaks.zeta2, peaks.period_ratio),
-            codes: Vec::new(),
-            peaks_from: crate::analysis::gap_report::PeakSource::TimeHistory,
-            levels: Vec::new(),
-            verdict: Default::default(),
         }
     }
 }

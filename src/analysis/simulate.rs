@@ -5,7 +5,8 @@
 use serde::Serialize;
 
 use crate::analysis::accuracy::{AccuracyCheck, limited_tightening, tightened};
-use crate::analysis::separation::{PeakPair, Separations};
+use crate::analysis::level_checks::Separations;
+use crate::analysis::separation::PeakPair;
 use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
 use crate::model::system::System;
@@ -621,7 +622,7 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
     let mut separation = separations(&system, &without);
     // as in `simulate`; a code that refuses its input is reported by `gap_report`, which
     // evaluates the codes again
-    let _ = crate::analysis::gap_report::complete_run_separation(
+    let _ = crate::analysis::level_checks::complete_run_separation(
         scenario,
         &system.structures,
         &without,
@@ -775,7 +776,7 @@ fn simulate_phases(
     let mut warnings = scenario.warnings.clone();
     // the building codes of `[separation]` and every rule at every level, from the peaks
     // without pounding
-    if let Err(e) = crate::analysis::gap_report::complete_run_separation(
+    if let Err(e) = crate::analysis::level_checks::complete_run_separation(
         scenario,
         &system.structures,
         &without,

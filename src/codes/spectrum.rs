@@ -15,15 +15,24 @@
 //! Response-spectrum analysis: the peak of mode n at height x is
 //! `u_n(x) = Γ_n φ_n(x) S_d(T_n, ζ_n)` (Γ_n in kg^½, φ_n in kg^-½: u in m), combined by SRSS
 //! `√Σ u_n²` and by CQC `√ΣΣ ρ_ij u_i u_j` with Der Kiureghian's correlation
-//! ([`crate::analysis::separation::cqc_correlation`], general form for different damping ratios).
+//! ([`cqc_correlation`], general form for different damping ratios).
 //! [`relative_peak`] combines the modes of both structures at their contact heights into the
 //! peak of w₁ − w₂ (the spectral form of DDC).
 
-use crate::analysis::separation::cqc_correlation;
 use crate::model::ground_motion::STANDARD_GRAVITY;
 use crate::model::modal::ModalModel;
 use serde::Serialize;
 use std::f64::consts::PI;
+
+/// CQC correlation of two modes with damping ratios ζ₁, ζ₂ and period ratio r = T₁/T₂:
+/// `ρ = 8√(ζ₁ζ₂)(ζ₁ + rζ₂) r^{3/2} / [(1−r²)² + 4ζ₁ζ₂ r(1+r²) + 4(ζ₁² + ζ₂²) r²]`.
+pub fn cqc_correlation(zeta1: f64, zeta2: f64, r: f64) -> f64 {
+    let num = 8.0 * (zeta1 * zeta2).sqrt() * (zeta1 + r * zeta2) * r.powf(1.5);
+    let den = (1.0 - r * r).powi(2)
+        + 4.0 * zeta1 * zeta2 * r * (1.0 + r * r)
+        + 4.0 * (zeta1 * zeta1 + zeta2 * zeta2) * r * r;
+    num / den
+}
 
 /// What is wrong with a spectrum, its input or a response-spectrum analysis.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

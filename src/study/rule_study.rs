@@ -2,17 +2,13 @@
 //! cite"): from a results table with `sep_time_history` (the exact separation) and the rules'
 //! columns (`sep_abs`, `sep_srss`, `sep_ddc` and the code columns `sep_asce7`, …), the fraction
 //! of cases where a rule is below the exact value and by how much it exceeds it when it is not;
-//! and a figure of the ratio rule/exact over one axis of the sweep.
+//! the figure of the ratio rule/exact over one axis is `crate::figures::rules`.
 //!
 //! Cases that failed, and cases whose exact separation is 0 (the structures never approach:
 //! identical structures), are left out: a ratio to 0 means nothing.
 
-use std::path::{Path, PathBuf};
-
 use serde::Serialize;
 
-use crate::plot::PlotError;
-use crate::plot::lines::{AxisScale, Figure, LineStyle, Panel, Series, write_figure};
 use crate::study::sweep::results::{Table, TableRow};
 
 /// The paper's rules among the table's fields, in report order.
@@ -50,7 +46,7 @@ pub struct RuleStudy {
     pub rules: Vec<RuleStat>,
 }
 
-fn exact_of(table: &Table, r: &TableRow) -> Option<f64> {
+pub(crate) fn exact_of(table: &Table, r: &TableRow) -> Option<f64> {
     let e = r.get(table, "sep_time_history")?;
     (r.status == "ok" && e.is_finite() && e > 0.0).then_some(e)
 }
@@ -70,7 +66,7 @@ pub fn rule_columns(table: &Table) -> Vec<String> {
         .collect()
 }
 
-fn median(v: &mut [f64]) -> f64 {
+pub(crate) fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
@@ -174,135 +170,4 @@ pub fn format_study(s: &RuleStudy) -> String {
          * over the safe cases, 100 (rule − exact)/exact\n",
     );
     out
-}
-
-/// Draws `<dir>/rules.png/.svg`: one panel per rule, the ratio rule/exact against the axis
-/// `x` of the table (its first axis when `None`): the smallest, the median and the largest
-/// over the other axes' values at each x, and the line 1 (below it the rule is unsafe).
-pub fn rule_figure(
-    table: &Table,
-    x: Option<&str>,
-    dir: &Path,
-    subtitle: &str,
-) -> Result<Vec<PathBuf>, PlotError> {
-    let j = match x {
-        Some(k) => table
-            .axes
-            .iter()
-            .position(|a| a == k)
-            .ok_or_else(|| PlotError::NoData(format!("the table has no axis `{k}`")))?,
-        None => 0,
-    };
-    let axis = table
-        .axes
-        .get(j)
-        .ok_or_else(|| PlotError::NoData("the table has no axis".into()))?;
-    // the distinct numeric values of the axis, increasing
-    let mut xs: Vec<f64> = table
-        .rows
-        .values()
-        .filter_map(|r| r.values.get(j)?.parse::<f64>().ok())
-        .collect();
-    xs.sort_by(f64::total_cmp);
-    xs.dedup();
-    if xs.is_empty() {
-        return Err(PlotError::NoData(format!(
-            "axis `{axis}` does not hold numbers"
-        )));
-    }
-    let study = rule_study(table);
-    let cols = rule_columns(table);
-    let mut data: Vec<[Vec<f64>; 3]> = Vec::new();
-    for col in &cols {
-        let mut lines = [Vec::new(), Vec::new(), Vec::new()];
-        for &xv in &xs {
-            let mut ratios: Vec<f64> = table
-                .rows
-                .values()
-                .filter(|r| {
-                    r.values
-                        .get(j)
-                        .and_then(|v| v.parse::<f64>().ok())
-                        .is_some_and(|v| v == xv)
-                })
-                .filter_map(|r| {
-                    let e = exact_of(table, r)?;
-                    let v = r.get(table, col)?;
-                    v.is_finite().then_some(v / e)
-                })
-                .collect();
-            let lo = ratios.iter().copied().fold(f64::NAN, f64::min);
-            let hi = ratios.iter().copied().fold(f64::NAN, f64::max);
-            lines[0].push(lo);
-            lines[1].push(median(&mut ratios));
-            lines[2].push(hi);
-        }
-        data.push(lines);
-    }
-    let ones = vec![1.0; xs.len()];
-    let titles: Vec<String> = cols
-        .iter()
-        .zip(&study.rules)
-        .map(|(c, s)| {
-            format!(
-                "{c}: below the exact separation in {:.0} % of {} cases",
-                100.0 * s.unsafe_fraction,
-                s.cases
-            )
-        })
-        .collect();
-    let panels: Vec<Panel> = data
-        .iter()
-        .zip(&titles)
-        .map(|(d, title)| Panel {
-            title,
-            y_label: "rule / exact",
-            series: vec![
-                Series {
-                    label: "smallest",
-                    x: &xs,
-                    y: &d[0],
-                    style: LineStyle::Solid,
-                    color: None,
-                },
-                Series {
-                    label: "median",
-                    x: &xs,
-                    y: &d[1],
-                    style: LineStyle::Solid,
-                    color: None,
-                },
-                Series {
-                    label: "largest",
-                    x: &xs,
-                    y: &d[2],
-                    style: LineStyle::Solid,
-                    color: None,
-                },
-                Series {
-                    label: "exact (below: unsafe)",
-                    x: &xs,
-                    y: &ones,
-                    style: LineStyle::Dashed,
-                    color: None,
-                },
-            ],
-            y_scale: AxisScale::Log,
-        })
-        .collect();
-    let height = 120 + 190 * panels.len() as u32;
-    let fig = Figure {
-        title: "Required separation by each rule / the exact time-history separation",
-        subtitle,
-        x_label: axis,
-        panels,
-        legend_once: true,
-        width: 1000,
-        height,
-    };
-    std::fs::create_dir_all(dir).map_err(|e| PlotError::Io {
-        path: dir.to_path_buf(),
-        source: e,
-    })?;
-    write_figure(&fig, &dir.join("rules"))
 }
