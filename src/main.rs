@@ -1251,8 +1251,8 @@ fn print_acceleration_pulses(r: &Report) {
 }
 
 /// One line saying whether the result passed its self-check.
-fn self_check_line(a: &pounding::analysis::accuracy::AccuracyCheck) -> String {
-    use pounding::analysis::accuracy::percent;
+fn self_check_line(a: &pounding::analysis::simulate::accuracy::AccuracyCheck) -> String {
+    use pounding::analysis::simulate::accuracy::percent;
     let against = a.settings.map(|s| s.describe()).unwrap_or_default();
     if !a.checked {
         return "self-check: not done (--no-check): this result was NOT self-checked".into();
@@ -1768,10 +1768,10 @@ fn run_sweep(
     }
     if let Some((c, change)) = &o.check.first_not_converged {
         let change = match change.parse::<f64>() {
-            Ok(x) if x > pounding::analysis::accuracy::CHECK_THRESHOLD => {
+            Ok(x) if x > pounding::analysis::simulate::accuracy::CHECK_THRESHOLD => {
                 format!(
                     "largest change {}",
-                    pounding::analysis::accuracy::percent(x)
+                    pounding::analysis::simulate::accuracy::percent(x)
                 )
             }
             _ => "not verified: the check run failed or changed nothing".into(),

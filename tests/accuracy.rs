@@ -228,7 +228,7 @@ fn a_check_that_changed_nothing_is_not_a_pass() {
     let sc = scenario(&paper_c(2.0));
     let r = simulate(&sc).unwrap();
     assert!(r.contact.impacts > 0);
-    let acc = pounding::analysis::accuracy::AccuracyCheck::compare(&r, &r, &sc.solver);
+    let acc = pounding::analysis::simulate::accuracy::AccuracyCheck::compare(&r, &r, &sc.solver);
     assert_eq!(acc.max_change, Some(0.0));
     assert_eq!(acc.converged, Some(false));
     assert!(acc.failure.as_deref().unwrap().contains("bit-identical"));
@@ -241,6 +241,6 @@ fn a_check_that_changed_nothing_is_not_a_pass() {
     let free = scenario(&paper_c(2.0).replace("gap = 0.0127", "gap = 10.0"));
     let r = simulate(&free).unwrap();
     assert_eq!(r.contact.impacts, 0);
-    let acc = pounding::analysis::accuracy::AccuracyCheck::compare(&r, &r, &free.solver);
+    let acc = pounding::analysis::simulate::accuracy::AccuracyCheck::compare(&r, &r, &free.solver);
     assert_eq!(acc.converged, Some(true));
 }

@@ -1020,7 +1020,7 @@ fn sweeps_report_peak_ductility() {
 /// converged, naming it.
 #[test]
 fn the_self_check_sees_the_hysteresis() {
-    use pounding::analysis::accuracy::AccuracyCheck;
+    use pounding::analysis::simulate::accuracy::AccuracyCheck;
     let (a, b) = (building_a(), building_b());
     let (ground, _) = harmonic(0.3, 0.8);
     let text = format!(

@@ -1,6 +1,5 @@
 //! Drivers of the solver and what is computed from runs.
 
-pub mod accuracy;
 pub mod convergence;
 pub mod gap_report;
 pub mod level_checks;

@@ -93,7 +93,7 @@ pub struct Row {
     /// Their changes relative to the finest row, per structure: ductility relative, residual
     /// drift in units of the larger of the finest's and the smallest yield drift, hysteretic
     /// energy in units of the larger of the finest's and 0.1 % of its input energy (as the
-    /// self-check measures them, [`crate::analysis::accuracy`]).
+    /// self-check measures them, [`crate::analysis::simulate::accuracy`]).
     pub yield_change: [Option<[f64; 3]>; 2],
     /// Steps taken.
     pub steps: usize,

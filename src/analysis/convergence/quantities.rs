@@ -1,7 +1,7 @@
 //! What the convergence study compares between runs: the peaks at the main contact height and
 //! the peak contact force, and for yielding buildings (issue 16) the peak ductility, the largest
 //! residual drift and the hysteretic energy, each change measured as the self-check measures
-//! it ([`crate::analysis::accuracy`]).
+//! it ([`crate::analysis::simulate::accuracy`]).
 
 use serde::Serialize;
 

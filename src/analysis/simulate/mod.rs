@@ -1,10 +1,12 @@
 //! One scenario, end to end: the run with contact, the same run without, the comparison and the
 //! required separations — `simulate(&Scenario) -> Report` — and the same with its self-check,
-//! `simulate_checked(&Scenario, true)` (see [`crate::analysis::accuracy`]).
+//! `simulate_checked(&Scenario, true)` (see [`accuracy`]).
+
+pub mod accuracy;
 
 use serde::Serialize;
 
-use crate::analysis::accuracy::{AccuracyCheck, limited_tightening, tightened};
+use self::accuracy::{AccuracyCheck, limited_tightening, tightened};
 use crate::analysis::level_checks::Separations;
 use crate::analysis::separation::PeakPair;
 use crate::input::scenario::Scenario;
@@ -896,8 +898,8 @@ fn simulate_run(
              tolerances are {:e} and {:e} m): its changes understate the error",
             scenario.solver.rtol,
             scenario.solver.atol,
-            crate::analysis::accuracy::MIN_RTOL,
-            crate::analysis::accuracy::MIN_ATOL
+            crate::analysis::simulate::accuracy::MIN_RTOL,
+            crate::analysis::simulate::accuracy::MIN_ATOL
         ));
     }
     Ok(report)

@@ -3,7 +3,7 @@
 //!
 //! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
 //! (`ok` or `failed: reason`), then [`FIELDS`] (docs/model.md §6 meanings, SI units), the last two of
-//! which are the case's self-check ([`crate::analysis::accuracy`]): `check_max_change`, the largest
+//! which are the case's self-check ([`crate::analysis::simulate::accuracy`]): `check_max_change`, the largest
 //! relative change of the checked quantities against the 100× tighter rerun (empty when not
 //! checked), and `converged` (`true`, `false`, or `unchecked` for a sweep run with
 //! `--no-check`). Rows are in `case` order. Numbers are written exactly as `summary.json` writes them (shortest form

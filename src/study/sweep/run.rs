@@ -254,7 +254,7 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         warning = report
             .warnings
             .iter()
-            .find(|w| !crate::analysis::accuracy::is_check_warning(w))
+            .find(|w| !crate::analysis::simulate::accuracy::is_check_warning(w))
             .cloned();
         Ok(results::case_fields(sweep, &report))
     }))
