@@ -6,8 +6,7 @@
 use serde::Serialize;
 
 use crate::analysis::level_checks::{
-    LevelCheck, LevelInput, PeakSource, RuleInputs, Verdict, floors_coincide, level_check,
-    verdict,
+    LevelCheck, LevelInput, PeakSource, RuleInputs, Verdict, floors_coincide, level_check, verdict,
 };
 use crate::codes::rules::CodeError;
 use crate::codes::spectrum::{

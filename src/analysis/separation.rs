@@ -59,6 +59,7 @@ impl PeakPair {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::level_checks::Separations;
 
     /// Equal periods and damping: ρ = 1 exactly, DDC = |w₁ − w₂|.
     #[test]

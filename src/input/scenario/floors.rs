@@ -6,7 +6,9 @@ use std::path::Path;
 
 use toml::Spanned;
 
-use super::{Check, DEFAULT_DAMPING_RATIO, RawStructure, ScenarioError};
+use super::DEFAULT_DAMPING_RATIO;
+use super::RawStructure;
+use super::diagnostics::{Check, ScenarioError, list_error};
 use crate::model::building::{
     EngineerModes, FloorDamping, Floors, MAX_ORTHOGONALITY_ERROR, ShearBuilding,
     WARN_ORTHOGONALITY_ERROR,
@@ -157,25 +159,6 @@ pub(super) fn kind(c: &Check, i: usize, s: &RawStructure) -> Result<Kind, Scenar
     Ok(kind)
 }
 
-pub(super) fn list_error<T: std::fmt::Debug>(
-    c: &Check,
-    v: &Spanned<T>,
-    key: &str,
-    reason: String,
-) -> ScenarioError {
-    let value = format!("{:?}", v.get_ref());
-    ScenarioError::Invalid {
-        at: c.ctx.at(Some(v.span().start)),
-        key: key.to_string(),
-        value: if value.len() > 60 {
-            format!("{}…", &value[..value.floor_char_boundary(57)])
-        } else {
-            value
-        },
-        reason,
-    }
-}
-
 /// A list of finite numbers > 0 (strictly increasing when `increasing`), 1 … [`MAX_FLOORS`]
 /// long.
 fn positive_list(
@@ -194,7 +177,7 @@ fn positive_list(
             format!("must list 1 to {MAX_FLOORS} values ({unit})"),
         ));
     }
-    let range = super::physical_range(key);
+    let range = super::ranges::physical_range(key);
     let mut last = 0.0;
     for (j, &y) in x.iter().enumerate() {
         if let Some((lo, hi, what)) = range.filter(|(lo, hi, _)| !(*lo..=*hi).contains(&y)) {

@@ -3,8 +3,7 @@
 
 use toml::Spanned;
 
-use super::floors::list_error;
-use super::{Check, ScenarioError};
+use super::diagnostics::{Check, ScenarioError, list_error};
 use crate::model::bouc_wen::{BoucWen, DEFAULT_BETA, DEFAULT_EXPONENT, DEFAULT_GAMMA};
 
 /// `hysteresis = { model = "bouc-wen", … }` of a shear building (issue 16), checked against its
@@ -50,7 +49,8 @@ pub(super) fn bouc_wen(
                 ),
             ));
         }
-        let (lo, hi, what) = super::physical_range(name).unwrap_or((0.0, f64::MAX, "a value"));
+        let (lo, hi, what) =
+            super::ranges::physical_range(name).unwrap_or((0.0, f64::MAX, "a value"));
         for (j, &y) in values.iter().enumerate() {
             if !(y.is_finite() && y > 0.0 && (lo..=hi).contains(&y)) {
                 return Err(list_error(
@@ -82,7 +82,7 @@ pub(super) fn bouc_wen(
             let drifts: Vec<f64> = forces.iter().zip(k).map(|(f, k)| f / k).collect();
             // the drift F_y/k must itself be a storey's yield drift: F_y = 1e-3 N on 1e8 N/m
             // storeys would yield at 1e-11 m, F_y = 1e14 N on 1e5 N/m at 1e9 m
-            let (lo, hi, what) = super::physical_range("yield_drifts")
+            let (lo, hi, what) = super::ranges::physical_range("yield_drifts")
                 .unwrap_or_else(|| unreachable!("yield_drifts has a range"));
             if let Some(j) = drifts.iter().position(|d| !(lo..=hi).contains(d)) {
                 return Err(list_error(
@@ -194,7 +194,7 @@ pub(super) fn bouc_wen(
     })
 }
 
-/// Warnings for the Bouc–Wen values known only together ([`super::usual_range`]): a storey's
+/// Warnings for the Bouc–Wen values known only together ([`super::ranges::usual_range`]): a storey's
 /// yield drift over its height (`yield_drift_ratio`, once per building, the first unusual
 /// storey), and β + γ (`beta_plus_gamma`).
 fn unusual_bouc_wen(
@@ -212,7 +212,7 @@ fn unusual_bouc_wen(
     } else {
         "yield_drifts"
     });
-    if let Some((lo, hi, why)) = super::usual_range("yield_drift_ratio") {
+    if let Some((lo, hi, why)) = super::ranges::usual_range("yield_drift_ratio") {
         let mut below = 0.0;
         for (j, (&d, &top)) in drifts.iter().zip(heights).enumerate() {
             let h = top - below;
@@ -230,7 +230,7 @@ fn unusual_bouc_wen(
             }
         }
     }
-    if let Some((lo, hi, why)) = super::usual_range("beta_plus_gamma")
+    if let Some((lo, hi, why)) = super::ranges::usual_range("beta_plus_gamma")
         && !(lo..=hi).contains(&(beta + gamma))
     {
         warnings.push(format!(

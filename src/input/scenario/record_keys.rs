@@ -5,7 +5,7 @@
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::{Check, ScenarioError};
+use super::diagnostics::{Check, ScenarioError};
 use crate::model::ground_motion::processing::{Baseline, DEFAULT_ORDER, MAX_ORDER, Processing};
 use crate::model::ground_motion::{AccelUnits, Component};
 
@@ -19,9 +19,6 @@ pub(crate) struct RawProcessing {
     /// A whole number; taken as a TOML value so that `4.0` gets our message.
     order: Option<Spanned<toml::Value>>,
 }
-
-/// Valid keys of `ground_motion.processing`, for suggestions.
-pub(crate) const PROCESSING_KEYS: &[&str] = &["baseline", "highpass_hz", "lowpass_hz", "order"];
 
 /// `units`: g, gal / cm/s², m/s² (several spellings, [`AccelUnits::from_name`]).
 pub(crate) fn units(

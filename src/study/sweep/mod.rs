@@ -606,7 +606,7 @@ impl Sweep {
         let raw: RawSweep = toml::from_str(text).map_err(|e| {
             let mut message = e.message().trim().to_string();
             // an unknown key: name the table and list its keys, as a scenario's message does
-            if let Some((key, valid)) = crate::input::scenario::unknown_field(&message) {
+            if let Some((key, valid)) = crate::input::scenario::diagnostics::unknown_field(&message) {
                 let table = if valid.iter().any(|k| k == "scenario") {
                     "the top level of the sweep file"
                 } else {
@@ -614,7 +614,7 @@ impl Sweep {
                 };
                 message = format!(
                     "unknown key `{key}` in {table}{}",
-                    crate::input::scenario::key_hint(&key, &valid)
+                    crate::input::scenario::diagnostics::key_hint(&key, &valid)
                 );
             }
             if message.starts_with("unknown key") && text.contains("[[structure]]") {

@@ -8,7 +8,7 @@ use crate::codes::rules::{
     Asce7Boundary, Asce7Params, CodeRule, Ec8Boundary, Ec8Params, Gb50011Params, GbSystem,
     Is1893Params, NbccParams, NtcMethod, NtcParams, NtcZone, PartialStep,
 };
-use crate::input::scenario::{Check, ScenarioError};
+use crate::input::scenario::diagnostics::{Check, ScenarioError};
 
 /// `[separation]` as written.
 #[derive(Debug, Deserialize)]

@@ -18,7 +18,8 @@ use toml::Spanned;
 
 use crate::codes::rules::CodeRule;
 use crate::codes::spectrum::DesignSpectrum;
-use crate::input::scenario::{Check, RawGround, ScenarioError};
+use crate::input::scenario::RawGround;
+use crate::input::scenario::diagnostics::{Check, ScenarioError};
 
 pub(crate) use code_tables::RawSeparation;
 pub use spectrum_keys::{read_table, spectrum_from_arg};
@@ -30,41 +31,7 @@ pub use spectrum_keys::{read_table, spectrum_from_arg};
 pub const CODE_KEYS: [&str; 6] = ["asce7", "is1893", "nbcc", "gb50011", "ntc", "ec8"];
 
 /// Valid keys of the tables of this module, for the scenario's unknown-key suggestions.
-pub const TABLES: &[(&str, &[&str])] = &[
-    (
-        "[separation]",
-        &["asce7", "is1893", "nbcc", "gb50011", "ntc", "ec8"],
-    ),
-    (
-        "[separation.asce7]",
-        &["cd", "ie", "r", "displacement_factor", "boundary"],
-    ),
-    (
-        "[separation.is1893]",
-        &["r", "displacement_factor", "floor_reduction"],
-    ),
-    (
-        "[separation.ec8]",
-        &["q", "qd", "boundary", "floor_reduction"],
-    ),
-    (
-        "[separation.nbcc]",
-        &["rd", "ro", "ie", "displacement_factor"],
-    ),
-    (
-        "[separation.gb50011]",
-        &["intensity", "systems", "partial_step"],
-    ),
-    (
-        "[separation.ntc]",
-        &[
-            "zone",
-            "method",
-            "same_height_and_levels",
-            "displacement_factor",
-        ],
-    ),
-];
+pub use super::keys::SEPARATION_TABLES as TABLES;
 
 /// How the peak displacement at a contact level computed by `pounding` (from the time history
 /// without pounding — elastic, or inelastic where storeys yield — or the CQC of a design

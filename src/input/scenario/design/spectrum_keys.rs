@@ -7,7 +7,8 @@ use toml::Spanned;
 use crate::codes::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumTable,
 };
-use crate::input::scenario::{Check, Ctx, RawGround, ScenarioError};
+use crate::input::scenario::RawGround;
+use crate::input::scenario::diagnostics::{Check, Ctx, ScenarioError};
 use crate::model::ground_motion::STANDARD_GRAVITY;
 
 /// A spectrum given on the command line (`--spectrum`): `asce7:sds=1.0,sd1=0.6,tl=8`,
@@ -17,7 +18,7 @@ use crate::model::ground_motion::STANDARD_GRAVITY;
 /// Checked exactly as the scenario keys of the same names.
 pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
     let bad = |reason: String| ScenarioError::Invalid {
-        at: crate::input::scenario::Location {
+        at: crate::input::scenario::diagnostics::Location {
             file: "--spectrum".into(),
             line_col: None,
         },
