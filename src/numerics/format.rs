@@ -1,5 +1,5 @@
-//! Numbers as short text: tick labels, and the factors and percentages quoted in
-//! descriptions and reports.
+//! Numbers as text: tick labels ([`fmt_num`]) and the shortest decimal that reads back to the
+//! same `f64` ([`fmt_f64`], as summary.json and the results tables write them).
 
 /// A number as a tick label: at most 4 significant digits, no trailing zeros, `e` notation
 /// outside `[1e-3, 1e5)`, a true minus sign.
@@ -29,5 +29,15 @@ fn trim_zeros(s: &str) -> &str {
         s.trim_end_matches('0').trim_end_matches('.')
     } else {
         s
+    }
+}
+
+/// An `f64` as `summary.json` writes it: the shortest decimal that reads back to the same
+/// value (`NaN`/`inf` for non-finite values, which JSON cannot hold).
+pub fn fmt_f64(x: f64) -> String {
+    if x.is_finite() {
+        serde_json::to_string(&x).unwrap_or_else(|_| x.to_string())
+    } else {
+        x.to_string()
     }
 }

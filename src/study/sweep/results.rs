@@ -30,7 +30,10 @@ use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::{Shard, Sweep, SweepError};
+pub use crate::numerics::format::fmt_f64;
+
+use super::shard::Shard;
+use super::{Sweep, SweepError};
 use crate::analysis::simulate::Report;
 
 /// The result columns after `status`.
@@ -162,16 +165,6 @@ fn parse_field(k: usize, x: &str) -> Option<f64> {
         },
         "check_max_change" if x.is_empty() => Some(f64::NAN),
         _ => x.parse().ok(),
-    }
-}
-
-/// An `f64` as `summary.json` writes it: the shortest decimal that reads back to the same
-/// value (`NaN`/`inf` for non-finite values, which JSON cannot hold).
-pub fn fmt_f64(x: f64) -> String {
-    if x.is_finite() {
-        serde_json::to_string(&x).unwrap_or_else(|_| x.to_string())
-    } else {
-        x.to_string()
     }
 }
 
@@ -312,8 +305,8 @@ pub fn columns(
         .map(|(j, name)| {
             let axis = j.checked_sub(1).and_then(|a| sweep.axes.get(a));
             match axis.and_then(|a| a.values.first()) {
-                Some(super::AxisValue::Number(_)) => Column::Float(Vec::new()),
-                Some(super::AxisValue::Integer(_)) => Column::Int(Vec::new()),
+                Some(super::axes::AxisValue::Number(_)) => Column::Float(Vec::new()),
+                Some(super::axes::AxisValue::Integer(_)) => Column::Int(Vec::new()),
                 Some(_) => Column::Text(Vec::new()),
                 None if j == 0 => Column::Int(Vec::new()),
                 None if name == "status" || name == "converged" => Column::Text(Vec::new()),

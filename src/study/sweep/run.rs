@@ -10,7 +10,8 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use super::results::{self, Journal};
-use super::{Shard, Sweep, SweepError};
+use super::shard::Shard;
+use super::{Sweep, SweepError};
 use crate::analysis::simulate::simulate_headline;
 
 /// How to run a sweep.
