@@ -656,6 +656,28 @@ fn the_module_graph_follows_the_layers() {
                 && b.first().is_some_and(|x| x == "model")),
         "no import of `model` by `integrate` was read: the path reader is broken"
     );
+    // the graph between top-level modules, by layer (`cargo test --release --test architecture
+    // -- --nocapture` shows it)
+    let mut uses: BTreeMap<&str, BTreeSet<&str>> = BTreeMap::new();
+    for (a, b) in g.edges.keys() {
+        if let (Some(x), Some(y)) = (a.first(), b.first())
+            && x != y
+        {
+            uses.entry(x.as_str()).or_default().insert(y.as_str());
+        }
+    }
+    let mut by_layer: Vec<(&u32, &String)> = layers.iter().map(|(m, l)| (l, m)).collect();
+    by_layer.sort();
+    println!("the module graph (layer, module: the top-level modules it uses)");
+    for (l, m) in by_layer {
+        let used: Vec<&str> = uses
+            .get(m.as_str())
+            .into_iter()
+            .flatten()
+            .copied()
+            .collect();
+        println!("{l:>3}  {m:<10} {}", used.join(", "));
+    }
     errors.extend(cycle_errors(&g));
     errors.extend(layer_errors(&g, &layers));
     assert!(
