@@ -3,10 +3,12 @@
 //! written by hand (not through `accuracy::tightened`).
 
 use std::path::Path;
-use std::process::{Command, Output};
 
 use pounding::analysis::simulate::{simulate, simulate_checked};
 use pounding::input::scenario::Scenario;
+
+mod common;
+use common::pounding;
 
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
 
@@ -18,14 +20,6 @@ fn paper_c(duration: f64) -> String {
 
 fn scenario(text: &str) -> Scenario {
     Scenario::from_toml(text, "test.toml", Path::new("examples")).unwrap()
-}
-
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
 }
 
 fn run_json(text: &str, extra: &[&str]) -> (serde_json::Value, String, String) {

@@ -11,12 +11,11 @@ mod common;
 use common::{Case, Physical, integrate_physical, physical};
 
 fn scenario(text: &str) -> Result<Scenario, String> {
-    Scenario::from_toml(text, "b.toml", Path::new(env!("CARGO_MANIFEST_DIR")))
-        .map_err(|e| e.to_string())
+    common::scenario_named(text, "b.toml")
 }
 
 fn run(text: &str) -> Report {
-    simulate(&scenario(text).expect("valid scenario")).expect("runs")
+    common::run_named(text, "b.toml")
 }
 
 const GROUND: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.3\nperiod = 0.5\n";

@@ -4,20 +4,14 @@
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::rc::Rc;
 
 use pounding::analysis::simulate::{NoSink, simulate_streaming};
 use pounding::input::scenario::{DEFAULT_DAMPING_RATIO, DEFAULT_MODES, Scenario};
 use pounding::output::run::{RunWriter, history_csv};
 
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::pounding;
 
 fn text(o: &[u8]) -> String {
     String::from_utf8_lossy(o).into_owned()

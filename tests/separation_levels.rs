@@ -11,20 +11,14 @@
 
 use std::f64::consts::PI;
 use std::path::Path;
-use std::process::{Command, Output};
 
 use pounding::analysis::gap_report::{GapReport, gap_report};
 use pounding::input::scenario::Scenario;
 
-const G: f64 = 9.80665;
+mod common;
+use common::pounding;
 
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
+const G: f64 = 9.80665;
 
 fn parse(text: &str) -> Scenario {
     Scenario::from_toml(text, "levels.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))

@@ -9,22 +9,16 @@
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use pounding::codes::rules::{Asce7Boundary, CodeRule, GbSystem, NtcMethod, NtcZone, PartialStep};
 use pounding::codes::spectrum::DesignSpectrum;
 use pounding::input::scenario::Scenario;
 use pounding::input::scenario::design::ToDesign;
 
-const G: f64 = 9.80665;
+mod common;
+use common::pounding;
 
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
+const G: f64 = 9.80665;
 
 /// Two cantilevers of height `l`, one mode each, 5 % damping, periods 0.5 s and 1.0 s; contact
 /// at the top with a 50 mm gap; then `ground` and `extra`.
