@@ -177,7 +177,7 @@ pub fn csv(record: &Record) -> String {
     out
 }
 
-/// Writes [`csv`] to `path` atomically (a temporary file, then renamed into place).
+/// Writes [`csv()`] to `path` atomically (a temporary file, then renamed into place).
 pub fn write_csv(record: &Record, path: &Path) -> Result<(), OutputError> {
     write_atomic(path, csv(record).as_bytes())
 }

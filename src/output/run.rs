@@ -204,7 +204,7 @@ pub fn impact_columns(report: &Report) -> Vec<(&'static str, Column)> {
 
 /// The floor columns of a run of `scenario` (`floors.csv` without `t` and the `_free`
 /// copies): the displacement and absolute acceleration at each station that
-/// `scenario.floor_stations` keeps ([`FloorStations`]; names of
+/// `scenario.floor_stations` keeps ([`FloorStations`](crate::recording::stations::FloorStations); names of
 /// [`crate::recording::floor_response::FloorRecorder::columns`]).
 pub fn floor_columns(scenario: &Scenario) -> Vec<String> {
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();

@@ -1,4 +1,4 @@
-//! Scenario files (README, *Scenario files*): TOML → raw serde structs with spans → [`validate`] → a checked
+//! Scenario files (README, *Scenario files*): TOML → raw serde structs with spans → `validate` → a checked
 //! [`Scenario`] in SI units.
 //!
 //! Every error names the file, the line and column, the key and the allowed range.

@@ -31,7 +31,7 @@ pub fn sweep_text(scenario: &str, axes: Vec<Table>) -> Result<String, SweepError
 /// keys such as `period_ratio` included, and the same rules: setting a structure's `period`
 /// removes its `bending_stiffness`, …): `values` = (key path, value) in any order, applied in
 /// the sweep's order. `base` = the scenario's text and path (record files relative to its
-/// directory). The result is not validated: read it with [`Scenario::from_toml`]. Used by the
+/// directory). The result is not validated: read it with [`Scenario::from_toml`](crate::input::scenario::Scenario::from_toml). Used by the
 /// Python package's `Scenario.replace`.
 pub fn set_keys(
     base_text: &str,
