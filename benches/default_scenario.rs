@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use pounding::scenario::Scenario;
-use pounding::simulate::{simulate, simulate_checked};
+use pounding::analysis::simulate::{simulate, simulate_checked};
+use pounding::input::scenario::Scenario;
 
 fn default_scenario(c: &mut Criterion) {
     let text = include_str!("../examples/paper-c.toml");

@@ -8,9 +8,9 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use criterion::Criterion;
-use pounding::ground_motion::{GroundMotion, Record};
-use pounding::scenario::Scenario;
-use pounding::simulate::simulate_headline;
+use pounding::analysis::simulate::simulate_headline;
+use pounding::input::scenario::Scenario;
+use pounding::model::ground_motion::{GroundMotion, Record};
 
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
 

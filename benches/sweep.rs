@@ -11,8 +11,8 @@
 use std::path::Path;
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use pounding::sweep::run::{RunOptions, Silent, run};
-use pounding::sweep::{Shard, Sweep};
+use pounding::study::sweep::run::{RunOptions, Silent, run};
+use pounding::study::sweep::{Shard, Sweep};
 
 const CASES: usize = 48;
 

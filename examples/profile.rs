@@ -16,8 +16,8 @@
 
 use std::time::Instant;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{simulate_checked, simulate_headline};
+use pounding::analysis::simulate::{simulate_checked, simulate_headline};
+use pounding::input::scenario::Scenario;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();

@@ -7,9 +7,9 @@ use clap::{Parser, Subcommand};
 
 use std::io::IsTerminal as _;
 
-use pounding::output::RunWriter;
-use pounding::scenario::Scenario;
-use pounding::simulate::{Phase, Report, simulate_streaming};
+use pounding::analysis::simulate::{Phase, Report, simulate_streaming};
+use pounding::input::scenario::Scenario;
+use pounding::output::run::RunWriter;
 
 /// The bundled default scenario: a 4- and an 8-storey frame under a scaled record, converged
 /// at the default settings (the seed paper's case is examples/paper-c.toml).
@@ -203,7 +203,7 @@ enum Command {
         /// --shard $((SLURM_ARRAY_TASK_ID+1))/$SLURM_ARRAY_TASK_COUNT. Each part writes
         /// DIR/results-shard-K-of-N.csv; join them with `pounding merge`.
         #[arg(long, value_name = "K/N")]
-        shard: Option<pounding::sweep::Shard>,
+        shard: Option<pounding::study::sweep::Shard>,
         /// Do not draw the pictures.
         #[arg(long)]
         no_plot: bool,
@@ -334,7 +334,7 @@ enum Command {
         #[arg(long, value_name = "HZ")]
         lowpass: Option<f64>,
         /// Butterworth order.
-        #[arg(long, default_value_t = pounding::ground_motion::processing::DEFAULT_ORDER)]
+        #[arg(long, default_value_t = pounding::model::ground_motion::processing::DEFAULT_ORDER)]
         order: usize,
     },
     /// 5 %-damped pseudo-acceleration response spectra of records (exact for an acceleration
@@ -353,7 +353,7 @@ enum Command {
         #[arg(long)]
         component: Option<String>,
         /// Damping ratio of the oscillators, in [0, 1).
-        #[arg(long, default_value_t = pounding::record_spectrum::DEFAULT_DAMPING)]
+        #[arg(long, default_value_t = pounding::analysis::record_spectrum::DEFAULT_DAMPING)]
         damping: f64,
         /// Periods, s: a list (0,0.1,0.2,0.5,1) or FROM:TO:N (N periods equally spaced in log
         /// T). Default: 0 (the PGA) and 0.01 to 10 s, 20 a decade.
@@ -471,7 +471,7 @@ enum ExportTarget {
 
 /// `--max-output-size` values.
 fn parse_size(text: &str) -> Result<u64, String> {
-    pounding::budget::parse_size(text)
+    pounding::output::budget::parse_size(text)
 }
 
 fn main() -> ExitCode {
@@ -535,7 +535,7 @@ impl RunProgress<'_> {
     }
 }
 
-impl pounding::simulate::RunSink for RunProgress<'_> {
+impl pounding::analysis::simulate::RunSink for RunProgress<'_> {
     fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
         self.writer.contact_row(t, w, forces);
     }
@@ -601,8 +601,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
-            pounding::simulate::require_time_history(&sc)?;
-            pounding::budget::check_run(&sc, max_output_size)?;
+            pounding::analysis::simulate::require_time_history(&sc)?;
+            pounding::output::budget::check_run(&sc, max_output_size)?;
             let mut writer = RunWriter::for_scenario(&out, &sc)?;
             let mut sink = RunProgress {
                 writer: &mut writer,
@@ -616,7 +616,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let result = simulate_streaming(&sc, !no_check, &mut sink);
             sink.finish();
             let report = result?;
-            let draw = (!no_plot).then(|| pounding::figures::run_pictures(&sc, &report));
+            let draw = (!no_plot).then(|| pounding::figures::run::run_pictures(&sc, &report));
             let written = writer.finish(&sc, &report, draw)?;
             if !quiet {
                 print_summary(&sc, &name, &report);
@@ -657,7 +657,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             },
         ),
         Command::Merge { out, parts } => {
-            let m = pounding::sweep::results::merge(&out, &parts)?;
+            let m = pounding::study::sweep::results::merge(&out, &parts)?;
             if quiet {
                 return Ok(());
             }
@@ -677,17 +677,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             field,
             out,
         } => {
-            let table = pounding::sweep::results::Table::read(&results)?;
+            let table = pounding::study::sweep::results::Table::read(&results)?;
             let dir =
                 out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
-            let req = pounding::sweep_plots::PlotRequest { x, y, field };
-            let files = pounding::sweep_plots::plot_table(&table, &req, &dir)?;
+            let req = pounding::figures::sweep::PlotRequest { x, y, field };
+            let files = pounding::figures::sweep::plot_table(&table, &req, &dir)?;
             if quiet {
                 return Ok(());
             }
             println!(
                 "wrote {} pictures (PNG and SVG) in {}",
-                pounding::sweep_plots::count_pictures(&files),
+                pounding::figures::sweep::count_pictures(&files),
                 dir.display()
             );
             Ok(())
@@ -698,14 +698,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             out,
             no_plot,
         } => {
-            let table = pounding::sweep::results::Table::read(&results)?;
-            let study = pounding::rule_study::rule_study(&table);
-            print!("{}", pounding::rule_study::format_study(&study));
+            let table = pounding::study::sweep::results::Table::read(&results)?;
+            let study = pounding::study::rule_study::rule_study(&table);
+            print!("{}", pounding::study::rule_study::format_study(&study));
             if !no_plot {
                 let dir =
                     out.unwrap_or_else(|| results.parent().unwrap_or(Path::new(".")).join("plots"));
                 let sub = format!("{} ({} cases)", results.display(), study.rows);
-                let files = pounding::rule_study::rule_figure(&table, x.as_deref(), &dir, &sub)?;
+                let files =
+                    pounding::figures::rules::rule_figure(&table, x.as_deref(), &dir, &sub)?;
                 if !quiet {
                     let names: Vec<String> =
                         files.iter().map(|p| p.display().to_string()).collect();
@@ -730,7 +731,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
-            pounding::simulate::require_time_history(&sc)?;
+            pounding::analysis::simulate::require_time_history(&sc)?;
             if !quiet {
                 println!(
                     "{}
@@ -738,7 +739,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     sc.title
                 );
             }
-            let table = pounding::convergence::convergence(&sc, tolerance, |what| {
+            let table = pounding::analysis::convergence::convergence(&sc, tolerance, |what| {
                 if !quiet {
                     eprintln!("  running {what} …")
                 }
@@ -755,10 +756,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let (sc, _) = load(scenario.as_deref())?;
             let spectrum = spectrum
                 .as_deref()
-                .map(pounding::design::spectrum_from_arg)
+                .map(pounding::input::scenario::design::spectrum_from_arg)
                 .transpose()?;
             let codes = (!code.is_empty()).then_some(code.as_slice());
-            let report = pounding::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
+            let report = pounding::analysis::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
             if json {
                 println!("{}", serde_json::to_string_pretty(&report)?);
             } else {
@@ -790,7 +791,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             match out {
                 None => print!("{script}"),
                 Some(path) => {
-                    pounding::output::write_atomic(&path, script.as_bytes())?;
+                    pounding::output::atomic::write_atomic(&path, script.as_bytes())?;
                     if !quiet {
                         println!(
                             "wrote {} (run it: python3 {} [--json results.json])",
@@ -814,7 +815,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             lowpass,
             order,
         } => {
-            let opts = pounding::ground_motion::summary::options(
+            let opts = pounding::output::record_summary::options(
                 component.as_deref(),
                 units.as_deref(),
                 dt,
@@ -824,11 +825,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 order,
             )
             .map_err(anyhow::Error::msg)?;
-            let record = pounding::ground_motion::Record::read(&file, &opts)?;
+            let record = pounding::model::ground_motion::Record::read(&file, &opts)?;
             let name = file.display().to_string();
-            let summary = pounding::ground_motion::summary::RecordSummary::of(&record, &name);
+            let summary = pounding::output::record_summary::RecordSummary::of(&record, &name);
             if let Some(out) = &csv {
-                pounding::ground_motion::summary::write_csv(&record, out)?;
+                pounding::output::record_summary::write_csv(&record, out)?;
             }
             if json {
                 println!("{}", summary.json());
@@ -855,7 +856,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             units,
             dt,
         } => {
-            use pounding::record_spectrum as rs;
+            use pounding::analysis::record_spectrum as rs;
             let read = read_records(&records, component.as_deref(), units.as_deref(), dt)?;
             let periods = match periods {
                 Some(text) => rs::parse_periods(&text)?,
@@ -863,7 +864,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let target = target
                 .as_deref()
-                .map(pounding::design::spectrum_from_arg)
+                .map(pounding::input::scenario::design::spectrum_from_arg)
                 .transpose()?
                 .map(rs::Target::as_given);
             let range = t1
@@ -871,10 +872,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 .map(|t| parse_list(t, "--t1"))
                 .transpose()?
                 .map(|t| rs::PeriodRange::from_first_modes(&t));
-            let pairs: Vec<(&str, &pounding::ground_motion::Record)> =
+            let pairs: Vec<(&str, &pounding::model::ground_motion::Record)> =
                 read.iter().map(|(n, r)| (n.as_str(), r)).collect();
-            let report =
-                rs::report::SpectrumReport::new(&pairs, &periods, damping, target.as_ref(), range)?;
+            let report = pounding::output::spectrum_report::SpectrumReport::new(
+                &pairs,
+                &periods,
+                damping,
+                target.as_ref(),
+                range,
+            )?;
             if json {
                 println!("{}", report.json());
             } else {
@@ -882,7 +888,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             if !no_plot {
                 std::fs::create_dir_all(&out)?;
-                let written = rs::figure::spectrum_figure(&report, &out.join("spectrum"))?;
+                let written =
+                    pounding::figures::spectrum::spectrum_figure(&report, &out.join("spectrum"))?;
                 if !quiet && !json {
                     println!("wrote {}", list_paths(&written));
                 }
@@ -905,10 +912,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             units,
             dt,
         } => {
-            use pounding::record_spectrum as rs;
+            use pounding::analysis::record_spectrum as rs;
             let rule = rs::ScalingRule::from_name(&rule)
                 .ok_or_else(|| anyhow::anyhow!("--rule {rule}: must be asce7 or ec8"))?;
-            let spectrum = pounding::design::spectrum_from_arg(&target)?;
+            let spectrum = pounding::input::scenario::design::spectrum_from_arg(&target)?;
             let target = match target_scale {
                 None => rs::Target::for_rule(spectrum, rule),
                 Some(f) if f.is_finite() && f > 0.0 => rs::Target::scaled(spectrum, f),
@@ -937,7 +944,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             if !no_plot {
                 std::fs::create_dir_all(&out)?;
-                let written = rs::figure::scaling_figure(&suite, &out.join("scaling"))?;
+                let written =
+                    pounding::figures::spectrum::scaling_figure(&suite, &out.join("scaling"))?;
                 if !quiet && !json {
                     println!("wrote {}", list_paths(&written));
                 }
@@ -981,13 +989,13 @@ fn read_records(
     component: Option<&str>,
     units: Option<&str>,
     dt: Option<f64>,
-) -> anyhow::Result<Vec<(String, pounding::ground_motion::Record)>> {
-    let opts = pounding::ground_motion::summary::options(component, units, dt, None, None, None, 4)
+) -> anyhow::Result<Vec<(String, pounding::model::ground_motion::Record)>> {
+    let opts = pounding::output::record_summary::options(component, units, dt, None, None, None, 4)
         .map_err(anyhow::Error::msg)?;
     files
         .iter()
         .map(|f| {
-            let r = pounding::ground_motion::Record::read(f, &opts)?;
+            let r = pounding::model::ground_motion::Record::read(f, &opts)?;
             Ok((f.display().to_string(), r))
         })
         .collect()
@@ -1077,8 +1085,8 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
         && (sc.structures[0].floor_heights().is_some()
             || sc.structures[1].floor_heights().is_some())
     {
-        let peak = |s: &pounding::simulate::StructureReport,
-                    f: fn(&pounding::simulate::FloorReport) -> f64| {
+        let peak = |s: &pounding::analysis::simulate::StructureReport,
+                    f: fn(&pounding::analysis::simulate::FloorReport) -> f64| {
             s.floors.iter().map(f).fold(0.0, f64::max)
         };
         println!(
@@ -1094,7 +1102,7 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
             peak(b, |f| f.peak_acceleration)
         );
         // the storey drift over the storey's height, as engineers read it (and the figure shows)
-        let ratio = |s: &pounding::simulate::StructureReport, k: usize| {
+        let ratio = |s: &pounding::analysis::simulate::StructureReport, k: usize| {
             s.peak_drift_ratios()
                 .iter()
                 .map(|r| r[k])
@@ -1113,7 +1121,7 @@ fn print_summary(sc: &Scenario, name: &str, r: &Report) {
         let cell = |v: Option<f64>, scale: f64, digits: usize| {
             v.map_or("–".to_string(), |x| format!("{:.digits$}", x * scale))
         };
-        type Pick = fn(&pounding::simulate::StructureReport) -> Option<f64>;
+        type Pick = fn(&pounding::analysis::simulate::StructureReport) -> Option<f64>;
         let rows: [(&str, Pick, f64, usize); 6] = [
             (
                 "peak ductility without",
@@ -1243,8 +1251,8 @@ fn print_acceleration_pulses(r: &Report) {
 }
 
 /// One line saying whether the result passed its self-check.
-fn self_check_line(a: &pounding::accuracy::AccuracyCheck) -> String {
-    use pounding::accuracy::percent;
+fn self_check_line(a: &pounding::analysis::simulate::accuracy::AccuracyCheck) -> String {
+    use pounding::analysis::simulate::accuracy::percent;
     let against = a.settings.map(|s| s.describe()).unwrap_or_default();
     if !a.checked {
         return "self-check: not done (--no-check): this result was NOT self-checked".into();
@@ -1277,10 +1285,10 @@ fn print_modes(sc: &Scenario) {
     for (i, s) in sc.structures.iter().enumerate() {
         let m = s.modal();
         let stiffness = match s {
-            pounding::modal::Structure::Cantilever(c) => {
+            pounding::model::structure::Structure::Cantilever(c) => {
                 format!("cantilever, EI = {:.4e} N·m²", c.bending_stiffness())
             }
-            pounding::modal::Structure::Floors(f) => format!(
+            pounding::model::structure::Structure::Floors(f) => format!(
                 "{} floors, {} of {} modes kept",
                 f.all_modes.floor_heights().map_or(0, |h| h.len()),
                 f.modes,
@@ -1341,8 +1349,8 @@ fn print_modes(sc: &Scenario) {
     );
 }
 
-fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
-    let print_rows = |title: &str, rows: &[pounding::convergence::Row]| {
+fn print_convergence(t: &pounding::analysis::convergence::ConvergenceTable) {
+    let print_rows = |title: &str, rows: &[pounding::analysis::convergence::Row]| {
         println!();
         println!("  {title}");
         println!(
@@ -1397,7 +1405,7 @@ fn print_convergence(t: &pounding::convergence::ConvergenceTable) {
                 .any(|r| r.yielding[i].is_some())
         })
         .collect();
-    let print_yielding = |rows: &[pounding::convergence::Row]| {
+    let print_yielding = |rows: &[pounding::analysis::convergence::Row]| {
         if yielding.is_empty() {
             return;
         }
@@ -1488,7 +1496,7 @@ fn mm(x: f64) -> String {
     format!("{:.3}", 1e3 * x)
 }
 
-fn print_separation(r: &pounding::gap_report::GapReport) {
+fn print_separation(r: &pounding::analysis::gap_report::GapReport) {
     println!("{}", r.title);
     let exact = r.levels.iter().any(|l| l.exact.is_some());
     let source = match (r.spectrum, exact) {
@@ -1508,7 +1516,7 @@ fn print_separation(r: &pounding::gap_report::GapReport) {
         println!("  warning: {w}");
     }
     // top level first, as a building is read
-    let mut order: Vec<&pounding::gap_report::LevelCheck> = r.levels.iter().collect();
+    let mut order: Vec<&pounding::analysis::level_checks::LevelCheck> = r.levels.iter().collect();
     order.sort_by(|a, b| b.height.total_cmp(&a.height));
     for l in &order {
         println!();
@@ -1655,10 +1663,10 @@ fn run_sweep(
     path: &Path,
     out: Option<PathBuf>,
     jobs: Option<usize>,
-    shard: Option<pounding::sweep::Shard>,
+    shard: Option<pounding::study::sweep::Shard>,
     flags: SweepFlags,
 ) -> anyhow::Result<()> {
-    use pounding::sweep::{Shard, Sweep, run};
+    use pounding::study::sweep::{Shard, Sweep, run};
     let SweepFlags {
         no_plot,
         case,
@@ -1691,7 +1699,7 @@ fn run_sweep(
     let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let shard = shard.unwrap_or(Shard::ALL);
     let in_shard = (0..sweep.len()).filter(|&c| shard.contains(c)).count();
-    pounding::budget::check_sweep(in_shard as u64, sweep.axes.len(), max_output_size)?;
+    pounding::output::budget::check_sweep(in_shard as u64, sweep.axes.len(), max_output_size)?;
     let opts = run::RunOptions {
         out_dir: out.clone(),
         jobs,
@@ -1760,8 +1768,11 @@ fn run_sweep(
     }
     if let Some((c, change)) = &o.check.first_not_converged {
         let change = match change.parse::<f64>() {
-            Ok(x) if x > pounding::accuracy::CHECK_THRESHOLD => {
-                format!("largest change {}", pounding::accuracy::percent(x))
+            Ok(x) if x > pounding::analysis::simulate::accuracy::CHECK_THRESHOLD => {
+                format!(
+                    "largest change {}",
+                    pounding::analysis::simulate::accuracy::percent(x)
+                )
             }
             _ => "not verified: the check run failed or changed nothing".into(),
         };
@@ -1799,14 +1810,14 @@ fn run_sweep(
         );
     }
     if !no_plot && shard.is_all() {
-        let table = pounding::sweep::results::Table::read(&o.results)?;
+        let table = pounding::study::sweep::results::Table::read(&o.results)?;
         let dir = out.join("plots");
         // the pictures name the base scenario as what the keys not swept were held at
         let base = sweep
             .scenario_path
             .file_name()
             .map(|n| n.to_string_lossy().into_owned());
-        match pounding::sweep_plots::plot_table_of(
+        match pounding::figures::sweep::plot_table_of(
             &table,
             &Default::default(),
             &dir,
@@ -1816,7 +1827,7 @@ fn run_sweep(
                 if !quiet {
                     println!(
                         "wrote {} pictures (PNG and SVG) in {}",
-                        pounding::sweep_plots::count_pictures(&files),
+                        pounding::figures::sweep::count_pictures(&files),
                         dir.display()
                     );
                 }
@@ -1834,7 +1845,7 @@ fn run_sweep(
 }
 
 fn print_laws(speed: f64) -> anyhow::Result<()> {
-    use pounding::restitution::{TargetLaw, isolated_impact};
+    use pounding::analysis::restitution::{TargetLaw, isolated_impact};
     let targets = [0.3, 0.4, 0.5, 0.6, 0.65, 0.7, 0.8, 0.9];
     print!("  {:<36}", "law \\ target e");
     for e in targets {

@@ -6,8 +6,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::simulate;
+use pounding::analysis::simulate::simulate;
+use pounding::input::scenario::Scenario;
 
 /// Two one-storey shear buildings (m₁ = 2e5 kg, k₁ = 8e7 N/m: ω₁ = 20 rad/s; m₂ = 3e5 kg,
 /// k₂ = 3e7 N/m: ω₂ = 10 rad/s), undamped, Hertz contact at the floor (3.5 m), harmonic

@@ -3,10 +3,12 @@
 //! written by hand (not through `accuracy::tightened`).
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{simulate, simulate_checked};
+use pounding::analysis::simulate::{simulate, simulate_checked};
+use pounding::input::scenario::Scenario;
+
+mod common;
+use common::pounding;
 
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
 
@@ -18,14 +20,6 @@ fn paper_c(duration: f64) -> String {
 
 fn scenario(text: &str) -> Scenario {
     Scenario::from_toml(text, "test.toml", Path::new("examples")).unwrap()
-}
-
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
 }
 
 fn run_json(text: &str, extra: &[&str]) -> (serde_json::Value, String, String) {
@@ -228,7 +222,7 @@ fn a_check_that_changed_nothing_is_not_a_pass() {
     let sc = scenario(&paper_c(2.0));
     let r = simulate(&sc).unwrap();
     assert!(r.contact.impacts > 0);
-    let acc = pounding::accuracy::AccuracyCheck::compare(&r, &r, &sc.solver);
+    let acc = pounding::analysis::simulate::accuracy::AccuracyCheck::compare(&r, &r, &sc.solver);
     assert_eq!(acc.max_change, Some(0.0));
     assert_eq!(acc.converged, Some(false));
     assert!(acc.failure.as_deref().unwrap().contains("bit-identical"));
@@ -241,7 +235,7 @@ fn a_check_that_changed_nothing_is_not_a_pass() {
     let free = scenario(&paper_c(2.0).replace("gap = 0.0127", "gap = 10.0"));
     let r = simulate(&free).unwrap();
     assert_eq!(r.contact.impacts, 0);
-    let acc = pounding::accuracy::AccuracyCheck::compare(&r, &r, &free.solver);
+    let acc = pounding::analysis::simulate::accuracy::AccuracyCheck::compare(&r, &r, &free.solver);
     assert_eq!(acc.converged, Some(true));
 }
 
@@ -266,9 +260,9 @@ fn the_run_without_contact_is_the_same_at_the_check_tolerance() {
             let base = text.replace("method = \"rk4\"", &format!("method = \"{method}\""));
             let sc = Scenario::from_toml(&base, "t.toml", &dir).unwrap();
             assert_eq!(sc.solver.method.name(), method, "{text}");
-            assert!(pounding::simulate::free_run_is_exact(&sc));
+            assert!(pounding::analysis::simulate::free_run_is_exact(&sc));
             let mut tight = sc.clone();
-            tight.solver = pounding::accuracy::tightened(&sc.solver);
+            tight.solver = pounding::analysis::simulate::accuracy::tightened(&sc.solver);
             let (a, b) = (simulate(&sc).unwrap(), simulate(&tight).unwrap());
             assert_eq!(a.without_contact, b.without_contact, "{method}");
             assert_ne!(
@@ -278,14 +272,14 @@ fn the_run_without_contact_is_the_same_at_the_check_tolerance() {
         }
     }
     let rk4 = scenario(&paper_c(2.0));
-    assert!(!pounding::simulate::free_run_is_exact(&rk4));
+    assert!(!pounding::analysis::simulate::free_run_is_exact(&rk4));
     let yielding = Scenario::from_toml(
         &std::fs::read_to_string(dir.join("yielding-frames.toml")).unwrap(),
         "y.toml",
         &dir,
     )
     .unwrap();
-    assert!(!pounding::simulate::free_run_is_exact(&yielding));
+    assert!(!pounding::analysis::simulate::free_run_is_exact(&yielding));
 }
 
 /// The self-check is an error estimate: `exact-modal`'s check run (rtol/100) is so much more

@@ -4,10 +4,10 @@
 
 use std::path::Path;
 
-use pounding::output::{Column, RunWriter, write_run};
-use pounding::scenario::Scenario;
-use pounding::simulate::{RunCapture, simulate_streaming};
-use pounding::sweep::Sweep;
+use pounding::analysis::simulate::{RunCapture, simulate_streaming};
+use pounding::input::scenario::Scenario;
+use pounding::output::run::{Column, RunWriter, write_run};
+use pounding::study::sweep::Sweep;
 
 fn example(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -84,18 +84,18 @@ fn a_captured_run_writes_the_bytes_of_a_streamed_run() {
 #[test]
 fn in_memory_rows_are_the_results_rows() {
     let sweep = Sweep::from_file(&example("quick-sweep.toml")).unwrap();
-    let rows = pounding::sweep::run::compute_all(&sweep, 2, false).unwrap();
+    let rows = pounding::study::sweep::run::compute_all(&sweep, 2, false).unwrap();
     assert_eq!(rows.len(), sweep.len());
     for (c, r) in rows.iter().enumerate() {
         assert_eq!(
             r.line,
-            pounding::sweep::run::compute_case(&sweep, c, false).line
+            pounding::study::sweep::run::compute_case(&sweep, c, false).line
         );
         assert!(r.line.starts_with(&format!("{c},")));
     }
     let lines: Vec<&str> = rows.iter().map(|r| r.line.as_str()).collect();
-    let cols = pounding::sweep::results::columns(&sweep, &lines).unwrap();
-    let header = pounding::sweep::results::header(&sweep);
+    let cols = pounding::study::sweep::results::columns(&sweep, &lines).unwrap();
+    let header = pounding::study::sweep::results::header(&sweep);
     assert_eq!(
         cols.iter()
             .map(|(k, _)| k.as_str())
@@ -115,7 +115,7 @@ fn in_memory_rows_are_the_results_rows() {
 fn set_keys_sets_as_a_sweep_sets() {
     let path = example("paper-c.toml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let out = pounding::sweep::set_keys(
+    let out = pounding::study::sweep::set_keys(
         &text,
         &path,
         vec![
@@ -128,7 +128,7 @@ fn set_keys_sets_as_a_sweep_sets() {
     let s = t["structure"].as_array().unwrap();
     assert_eq!(s[1]["period"].as_float(), Some(0.4203 / 0.5));
     assert_eq!(t["ground_motion"]["pga"].as_float(), Some(0.4));
-    let err = pounding::sweep::set_keys(
+    let err = pounding::study::sweep::set_keys(
         &text,
         &path,
         vec![("contact.gapp".into(), toml::Value::Float(0.1))],

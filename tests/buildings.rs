@@ -4,19 +4,18 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
 
 mod common;
 use common::{Case, Physical, integrate_physical, physical};
 
 fn scenario(text: &str) -> Result<Scenario, String> {
-    Scenario::from_toml(text, "b.toml", Path::new(env!("CARGO_MANIFEST_DIR")))
-        .map_err(|e| e.to_string())
+    common::scenario_named(text, "b.toml")
 }
 
 fn run(text: &str) -> Report {
-    simulate(&scenario(text).expect("valid scenario")).expect("runs")
+    common::run_named(text, "b.toml")
 }
 
 const GROUND: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.3\nperiod = 0.5\n";
@@ -366,7 +365,7 @@ fn cantilever_stations_and_the_shear_at_the_top() {
 /// S_d = 0.6·9.80665/0.6283/100 m.
 #[test]
 fn spectral_peaks_at_every_floor_by_hand() {
-    use pounding::spectrum::{Asce7Spectrum, DesignSpectrum};
+    use pounding::codes::spectrum::{Asce7Spectrum, DesignSpectrum};
     let text = format!(
         "[[structure]]\nkind = \"shear-building\"\nfloor_heights = [3.0]\nfloor_masses = [1.0e5]\n\
          storey_stiffnesses = [4.0e7]\n[[structure]]\nkind = \"shear-building\"\n\
@@ -375,7 +374,7 @@ fn spectral_peaks_at_every_floor_by_hand() {
     );
     let sc = scenario(&text).unwrap();
     let spectrum = DesignSpectrum::Asce7(Asce7Spectrum::new(1.0, 0.6, 8.0).unwrap());
-    let r = pounding::gap_report::gap_report(&sc, Some(&spectrum), None).unwrap();
+    let r = pounding::analysis::gap_report::gap_report(&sc, Some(&spectrum), None).unwrap();
     let s = r.spectral_floors.expect("spectral part");
     let g = 9.80665;
     let t2 = 2.0 * std::f64::consts::PI / 10.0;
@@ -394,18 +393,18 @@ fn spectral_peaks_at_every_floor_by_hand() {
 /// `structures[i].floors` of the same case run on its own.
 #[test]
 fn sweeps_over_buildings_report_floor_columns() {
-    use pounding::sweep::Sweep;
-    use pounding::sweep::results::{FIELDS, FLOOR_FIELDS, parse_csv_line};
+    use pounding::study::sweep::Sweep;
+    use pounding::study::sweep::results::{FIELDS, FLOOR_FIELDS, parse_csv_line};
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/buildings-sweep.toml");
     let sweep = Sweep::from_file(&path).unwrap();
     assert_eq!(sweep.extra_columns(), FLOOR_FIELDS.to_vec());
     let case = 3;
-    let row = pounding::sweep::run::compute_case(&sweep, case, false);
+    let row = pounding::study::sweep::run::compute_case(&sweep, case, false);
     assert!(!row.failed, "{}", row.line);
     let cells = parse_csv_line(&row.line).unwrap();
     let first = 2 + sweep.axes.len() + FIELDS.len();
     let r = simulate(&sweep.case_scenario(case).unwrap()).unwrap();
-    let max = |i: usize, f: fn(&pounding::simulate::FloorReport) -> f64| {
+    let max = |i: usize, f: fn(&pounding::analysis::simulate::FloorReport) -> f64| {
         r.structures[i].floors.iter().map(f).fold(0.0, f64::max)
     };
     let want = [
@@ -430,7 +429,7 @@ fn sweeps_over_buildings_report_floor_columns() {
 /// multiplies every ω by √2 (K scales, M does not).
 #[test]
 fn building_keys_are_sweep_axes() {
-    use pounding::sweep::Sweep;
+    use pounding::study::sweep::Sweep;
     let dir = std::env::temp_dir().join(format!("pounding-bsweep-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shear-buildings.toml");
@@ -458,7 +457,7 @@ fn building_keys_are_sweep_axes() {
 /// until the next sample), with and without pounding.
 #[test]
 fn floors_csv_matches_the_history_and_the_peaks() {
-    use pounding::output::RunWriter;
+    use pounding::output::run::RunWriter;
     let dir = std::env::temp_dir().join(format!("pounding-floors-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let text = std::fs::read_to_string(
@@ -473,14 +472,17 @@ fn floors_csv_matches_the_history_and_the_peaks() {
     )
     .unwrap();
     let heights: Vec<f64> = sc.contact.levels.iter().map(|l| l.height).collect();
-    let columns =
-        pounding::floor_response::FloorRecorder::new(&sc.system(), &heights, sc.output_interval)
-            .columns();
+    let columns = pounding::recording::floor_response::FloorRecorder::new(
+        &sc.system(),
+        &heights,
+        sc.output_interval,
+    )
+    .columns();
     let mut writer = RunWriter::create(&dir, sc.contact.levels.len())
         .unwrap()
         .with_floors(&columns)
         .unwrap();
-    let report = pounding::simulate::simulate_streaming(&sc, false, &mut writer).unwrap();
+    let report = pounding::analysis::simulate::simulate_streaming(&sc, false, &mut writer).unwrap();
     writer.finish(&sc, &report, None).unwrap();
     let read = |name: &str| -> (Vec<String>, Vec<Vec<f64>>) {
         let text = std::fs::read_to_string(dir.join(name)).unwrap();
@@ -636,12 +638,12 @@ fn mirrored_buildings_give_mirrored_results() {
 /// F_max = k_h δ_max^{3/2}, contact time 2.9432 δ_max/v, rebound at the approach speed.
 #[test]
 fn one_storey_floor_impact_matches_the_two_body_hertz_formulas() {
-    use pounding::building::{FloorDamping, Floors, ShearBuilding};
-    use pounding::contact::ContactLaw;
-    use pounding::ground_motion::GroundMotion;
     use pounding::integrate::{InitialState, Method, SolverSettings, integrate};
-    use pounding::recorder::Recorder;
-    use pounding::system::{ContactLevel, System};
+    use pounding::model::building::{FloorDamping, Floors, ShearBuilding};
+    use pounding::model::contact::ContactLaw;
+    use pounding::model::ground_motion::GroundMotion;
+    use pounding::model::system::{ContactLevel, System};
+    use pounding::recording::recorder::Recorder;
     let building = |m: f64| {
         ShearBuilding {
             floors: Floors {
@@ -714,7 +716,7 @@ fn one_storey_floor_impact_matches_the_two_body_hertz_formulas() {
 /// `modes_file` are refused (the sweep cannot rewrite the file).
 #[test]
 fn scale_factor_axes() {
-    use pounding::sweep::Sweep;
+    use pounding::study::sweep::Sweep;
     let dir = std::env::temp_dir().join(format!("pounding-scale-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
@@ -773,8 +775,8 @@ fn scale_factor_axes() {
 /// table does not have, listing the ones it has).
 #[test]
 fn plot_draws_floor_columns() {
-    use pounding::sweep::results::{FIELDS, FLOOR_FIELDS, Table};
-    use pounding::sweep_plots::{PlotRequest, plot_table_of};
+    use pounding::figures::sweep::{PlotRequest, plot_table_of};
+    use pounding::study::sweep::results::{FIELDS, FLOOR_FIELDS, Table};
     let dir = std::env::temp_dir().join(format!("pounding-plotfloors-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut text = format!(
@@ -819,8 +821,8 @@ fn plot_draws_floor_columns() {
 /// back; a number where a list is due is refused naming the key.
 #[test]
 fn list_keys_are_sweep_axes() {
-    use pounding::sweep::Sweep;
-    use pounding::sweep::results::Table;
+    use pounding::study::sweep::Sweep;
+    use pounding::study::sweep::results::Table;
     let dir = std::env::temp_dir().join(format!("pounding-listaxis-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shear-buildings.toml");
@@ -844,9 +846,9 @@ fn list_keys_are_sweep_axes() {
         assert!((a / b - 2f64.sqrt()).abs() < 1e-12, "{a} {b}");
     }
     // the row of case 1: the list as one cell, then `ok`
-    let row = pounding::sweep::run::compute_case(&sweep, 1, false);
+    let row = pounding::study::sweep::run::compute_case(&sweep, 1, false);
     assert!(!row.failed, "{}", row.line);
-    let cells = pounding::sweep::results::parse_csv_line(&row.line).unwrap();
+    let cells = pounding::study::sweep::results::parse_csv_line(&row.line).unwrap();
     assert_eq!(cells[1], "[400000.0 400000.0 400000.0 300000.0]");
     assert_eq!(cells[3], "ok");
     // and a results table with it reads back
@@ -854,7 +856,7 @@ fn list_keys_are_sweep_axes() {
         dir.join("results.csv"),
         format!(
             "{}\n{}\n",
-            pounding::sweep::results::header(&sweep),
+            pounding::study::sweep::results::header(&sweep),
             row.line
         ),
     )

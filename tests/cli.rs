@@ -1,15 +1,9 @@
 //! The binary end to end: outputs per docs/model.md §6, exit codes, and no partial output on failure.
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::pounding;
 
 fn example(name: &str) -> String {
     format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"))

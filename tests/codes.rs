@@ -1,7 +1,7 @@
 //! Code separation rules against hand computations (issue 13, docs/codes.md; EN 1998-1 and
 //! IS 1893's coinciding floors: issue 24).
 
-use pounding::codes::{
+use pounding::codes::rules::{
     Asce7Boundary, Asce7Params, CodeError, CodeRule, Ec8Boundary, Ec8Params, Gb50011Params,
     GbSystem, Is1893Params, NbccParams, NtcMethod, NtcParams, NtcZone, PairInput, PartialStep,
     gb50011_width,

@@ -1,7 +1,7 @@
 //! Contact laws on an isolated two-body impact (issue 3): achieved restitution, energy bookkeeping.
 
-use pounding::contact::{ContactLaw, HertzDampModel};
-use pounding::restitution::{TargetLaw, isolated_impact};
+use pounding::analysis::restitution::{TargetLaw, isolated_impact};
+use pounding::model::contact::{ContactLaw, HertzDampModel};
 
 const KH: f64 = 2.808e10;
 const KL: f64 = 1.0e9;
@@ -187,12 +187,12 @@ fn linear_impact_duration_and_force() {
 /// law at low restitution, where an unclamped dashpot would pull at the end of the contact.
 #[test]
 fn forces_are_never_negative() {
-    use pounding::ground_motion::GroundMotion;
     use pounding::integrate::{
         InitialState, Method, Observer, SolverSettings, StepView, integrate,
     };
-    use pounding::modal::{Cantilever, Damping, Stiffness};
-    use pounding::system::{ContactLevel, System};
+    use pounding::model::ground_motion::GroundMotion;
+    use pounding::model::structure::{Cantilever, Damping, Stiffness};
+    use pounding::model::system::{ContactLevel, System};
     struct MinForce(f64);
     impl Observer for MinForce {
         fn observe(&mut self, _: &System, s: &StepView) {
@@ -249,11 +249,11 @@ fn forces_are_never_negative() {
 /// 1e-7 effect at T = 1000 s), with impulse (1 + e) m* v and the energy balance closed.
 #[test]
 fn stereomechanical_impact_every_method() {
-    use pounding::ground_motion::GroundMotion;
+    use pounding::analysis::simulate::run_system;
     use pounding::integrate::{InitialState, Method, SolverSettings};
-    use pounding::modal::{Cantilever, Damping, Stiffness};
-    use pounding::simulate::run_system;
-    use pounding::system::{ContactLevel, System};
+    use pounding::model::ground_motion::GroundMotion;
+    use pounding::model::structure::{Cantilever, Damping, Stiffness};
+    use pounding::model::system::{ContactLevel, System};
     let beam = |m: f64| Cantilever {
         name: "b".into(),
         length: 10.0,

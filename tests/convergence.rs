@@ -3,10 +3,10 @@
 
 use std::path::Path;
 
-use pounding::convergence::{Ladders, convergence, convergence_with};
+use pounding::analysis::convergence::{Ladders, convergence, convergence_with};
+use pounding::analysis::simulate::simulate;
+use pounding::input::scenario::Scenario;
 use pounding::integrate::{Method, SolverSettings};
-use pounding::scenario::Scenario;
-use pounding::simulate::simulate;
 
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
 

@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use pounding::scenario::{Scenario, physical_range};
+use pounding::input::scenario::{Scenario, physical_range};
 
 const CANTILEVERS: &str = r#"
 [[structure]]
@@ -147,14 +147,14 @@ fn corner(label: &str, text: &str, dir: &Path) -> Outcome {
             return Outcome::Refused;
         }
     };
-    let report = match pounding::simulate::simulate(&sc) {
+    let report = match pounding::analysis::simulate::simulate(&sc) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("{label}: stopped: {e}");
             return Outcome::Failed;
         }
     };
-    let json = pounding::output::summary_json(&sc, &report).unwrap();
+    let json = pounding::output::run::summary_json(&sc, &report).unwrap();
     let value: serde_json::Value = serde_json::from_str(&json).unwrap();
     let mut stack = vec![("".to_string(), &value)];
     while let Some((path, x)) = stack.pop() {
@@ -596,7 +596,9 @@ fn bouc_wen_keys_at_both_ends_of_their_ranges() {
     // the ordinary storeys yield in the 1 s of 0.5 g (so the corners exercise the law)
     let sc = Scenario::from_toml(&with("exponent", "2.0"), "c.toml", &dir).unwrap();
     assert!(sc.warnings.is_empty(), "{:?}", sc.warnings);
-    let mu = pounding::simulate::simulate(&sc).unwrap().structures[0]
+    let mu = pounding::analysis::simulate::simulate(&sc)
+        .unwrap()
+        .structures[0]
         .peak_ductility
         .unwrap();
     assert!(mu > 1.0, "peak ductility {mu}");

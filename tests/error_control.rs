@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
 
 /// The stiff case of issue 9: T1 = 0.3 s, T2 = 0.6 s, equal masses 2.273e6 kg, L = 10 m,
 /// 3 modes, ζ = 0.01, Hertz k_h = 2.808e13 N/m^1.5 (1000× the paper's), gap 12.7 mm, harmonic
@@ -436,7 +436,7 @@ fn exact_modal_does_not_miss_short_impacts_inside_a_long_step() {
 /// was 1.6 % and 20 % off, flagged.)
 #[test]
 fn exact_modal_on_the_stiff_case_is_flagged_when_off() {
-    use pounding::simulate::simulate_checked;
+    use pounding::analysis::simulate::simulate_checked;
     let reference = run(&stiff(0.5, 6.0, "adaptive", 1e-4, "rtol = 1e-12"));
     for (dt, solver, bound) in [
         (1e-3, "rtol = 5e-5", None),

@@ -4,20 +4,14 @@
 
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::rc::Rc;
 
-use pounding::output::{RunWriter, history_csv};
-use pounding::scenario::{DEFAULT_DAMPING_RATIO, DEFAULT_MODES, Scenario};
-use pounding::simulate::{NoSink, simulate_streaming};
+use pounding::analysis::simulate::{NoSink, simulate_streaming};
+use pounding::input::scenario::{DEFAULT_DAMPING_RATIO, DEFAULT_MODES, Scenario};
+use pounding::output::run::{RunWriter, history_csv};
 
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+use common::pounding;
 
 fn text(o: &[u8]) -> String {
     String::from_utf8_lossy(o).into_owned()
@@ -173,13 +167,13 @@ fn a_run_too_large_is_refused_with_the_size_and_the_keys() {
     );
     // the library's estimate, from the formula: rows = duration/interval + 1, 15 numbers a row
     let sc = short(MINIMAL, 1e6);
-    let e = pounding::budget::estimate_run(&sc);
+    let e = pounding::output::budget::estimate_run(&sc);
     assert_eq!(e.rows, 100_000_001);
     assert_eq!(
         e.bytes,
-        100_000_001 * (6 + 1 + 4 * 2) * pounding::budget::HISTORY_BYTES_PER_NUMBER
+        100_000_001 * (6 + 1 + 4 * 2) * pounding::output::budget::HISTORY_BYTES_PER_NUMBER
     );
-    assert!(pounding::budget::check_run(&sc, 200_000_000_000).is_ok());
+    assert!(pounding::output::budget::check_run(&sc, 200_000_000_000).is_ok());
 }
 
 /// A minimal scenario runs, with every default documented and listed: in the printed summary
@@ -194,7 +188,7 @@ fn minimal_scenario_runs_with_listed_defaults() {
     assert_eq!(sc.solver.method, pounding::integrate::Method::DEFAULT);
     assert_eq!(
         sc.solver.duration,
-        pounding::scenario::DEFAULT_HARMONIC_DURATION
+        pounding::input::scenario::DEFAULT_HARMONIC_DURATION
     );
     for key in [
         "structure[1].modes = 20",
@@ -406,7 +400,7 @@ fn sweep_case_has_its_own_title() {
         title.contains("case 1 of sweep quick-sweep.toml"),
         "{title}"
     );
-    let sw = pounding::sweep::Sweep::from_file(Path::new(&sweep)).unwrap();
+    let sw = pounding::study::sweep::Sweep::from_file(Path::new(&sweep)).unwrap();
     assert!(
         title.contains(&sw.label(1)),
         "{title} lacks {}",

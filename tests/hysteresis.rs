@@ -8,8 +8,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate, simulate_checked};
+use pounding::analysis::simulate::{Report, simulate, simulate_checked};
+use pounding::input::scenario::Scenario;
 
 fn scenario(text: &str, dir: &Path) -> Result<Scenario, String> {
     Scenario::from_toml(text, "y.toml", dir).map_err(|e| e.to_string())
@@ -984,15 +984,15 @@ fn hysteresis_keys_and_errors() {
 /// case run on its own (NaN for the elastic building).
 #[test]
 fn sweeps_report_peak_ductility() {
-    use pounding::sweep::Sweep;
-    use pounding::sweep::results::{DUCTILITY_FIELDS, FIELDS, FLOOR_FIELDS, parse_csv_line};
+    use pounding::study::sweep::Sweep;
+    use pounding::study::sweep::results::{DUCTILITY_FIELDS, FIELDS, FLOOR_FIELDS, parse_csv_line};
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let text = "scenario = \"yielding-frames.toml\"\n[[axis]]\nkey = \"ground_motion.pga\"\nvalues = [0.3, 0.6]\n";
     let sweep = Sweep::from_toml(text, &root.join("s.toml")).unwrap();
     let mut want = FLOOR_FIELDS.to_vec();
     want.extend(DUCTILITY_FIELDS);
     assert_eq!(sweep.extra_columns(), want);
-    let row = pounding::sweep::run::compute_case(&sweep, 0, false);
+    let row = pounding::study::sweep::run::compute_case(&sweep, 0, false);
     assert!(!row.failed, "{}", row.line);
     let cells = parse_csv_line(&row.line).unwrap();
     let first = 2 + sweep.axes.len() + FIELDS.len() + FLOOR_FIELDS.len();
@@ -1020,7 +1020,7 @@ fn sweeps_report_peak_ductility() {
 /// converged, naming it.
 #[test]
 fn the_self_check_sees_the_hysteresis() {
-    use pounding::accuracy::AccuracyCheck;
+    use pounding::analysis::simulate::accuracy::AccuracyCheck;
     let (a, b) = (building_a(), building_b());
     let (ground, _) = harmonic(0.3, 0.8);
     let text = format!(
@@ -1039,7 +1039,7 @@ fn the_self_check_sees_the_hysteresis() {
     ] {
         assert!(r.accuracy.change_of(q).is_some(), "{q} checked");
     }
-    type Edit = fn(&mut pounding::simulate::StructureReport);
+    type Edit = fn(&mut pounding::analysis::simulate::StructureReport);
     let edits: [(&str, usize, Edit); 4] = [
         ("peak_ductility_2", 1, |s| {
             s.peak_ductility = s.peak_ductility.map(|x| x * 1.02)

@@ -5,16 +5,16 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use pounding::contact::ContactLaw;
-use pounding::ground_motion::{GroundMotion, Harmonic, Record};
+use pounding::analysis::simulate::run_system;
 use pounding::integrate::{
     EXACT_MODAL_DEFAULT_RTOL, InitialState, Method, Observer, SolverSettings, Stats, StepView,
     integrate,
 };
-use pounding::modal::{Cantilever, Damping, Stiffness};
-use pounding::recorder::RunRecord;
-use pounding::simulate::run_system;
-use pounding::system::{ContactLevel, System};
+use pounding::model::contact::ContactLaw;
+use pounding::model::ground_motion::{GroundMotion, Harmonic, Record};
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
+use pounding::model::system::{ContactLevel, System};
+use pounding::recording::run_record::RunRecord;
 
 fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {
     Cantilever {
@@ -530,8 +530,8 @@ fn exact_tallies_match_rk4_quadrature() {
 /// `[solver]` keys: method names, rtol/atol with defaults and ranges, and the default method.
 #[test]
 fn solver_keys_are_validated() {
+    use pounding::input::scenario::Scenario;
     use pounding::integrate::{DEFAULT_ATOL, DEFAULT_RTOL};
-    use pounding::scenario::Scenario;
     let base = include_str!("../examples/paper-c.toml");
     let parse = |from: &str, to: &str| {
         Scenario::from_toml(&base.replace(from, to), "t.toml", ".".as_ref())

@@ -22,9 +22,9 @@
 use proptest::prelude::*;
 use std::path::Path;
 
-use pounding::ground_motion::{GroundMotion, Harmonic};
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
+use pounding::model::ground_motion::{GroundMotion, Harmonic};
 
 /// One structure as a `[[structure]]` table.
 #[derive(Debug, Clone)]

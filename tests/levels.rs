@@ -2,13 +2,13 @@
 
 use std::path::Path;
 
-use pounding::contact::ContactLaw;
-use pounding::ground_motion::GroundMotion;
+use pounding::analysis::simulate::{run_system, simulate};
+use pounding::input::scenario::Scenario;
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Cantilever, Damping, Stiffness};
-use pounding::scenario::Scenario;
-use pounding::simulate::{run_system, simulate};
-use pounding::system::{ContactLevel, System};
+use pounding::model::contact::ContactLaw;
+use pounding::model::ground_motion::GroundMotion;
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
+use pounding::model::system::{ContactLevel, System};
 
 fn beam(length: f64, mass: f64, period: f64, zeta: f64) -> Cantilever {
     Cantilever {
@@ -188,7 +188,7 @@ fn two_level_example_outputs() {
         r.structures[0].peak_displacement,
         r.levels[0].peak_displacement[0]
     );
-    let csv = pounding::output::history_csv(&r);
+    let csv = pounding::output::run::history_csv(&r);
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
@@ -202,7 +202,7 @@ fn two_level_example_outputs() {
         );
     }
     let json: serde_json::Value =
-        serde_json::from_str(&pounding::output::summary_json(&sc, &r).unwrap()).unwrap();
+        serde_json::from_str(&pounding::output::run::summary_json(&sc, &r).unwrap()).unwrap();
     assert_eq!(json["levels"].as_array().unwrap().len(), 2);
     assert!(json["levels"][1]["peak_force"].as_f64().unwrap() > 0.0);
 }

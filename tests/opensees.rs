@@ -13,15 +13,15 @@
 use std::path::Path;
 use std::process::Command;
 
-use pounding::building::{EngineerModes, FloorDamping, Floors, ShearBuilding};
+use pounding::input::scenario::Scenario;
 use pounding::integrate::{Method, SolverSettings};
-use pounding::modal::{FloorKind, FloorStructure, Structure};
+use pounding::model::building::{EngineerModes, FloorDamping, Floors, ShearBuilding};
+use pounding::model::structure::{FloorKind, FloorStructure, Structure};
 use pounding::opensees::compare::{
-    CrosscheckOptions, OpenSeesResults, crosscheck, probe, python, run_script, with_duration,
-    with_modes,
+    CrosscheckOptions, crosscheck, probe, python, run_script, with_duration, with_modes,
 };
+use pounding::opensees::results::OpenSeesResults;
 use pounding::opensees::{ExportOptions, Only, hertz_curve, script};
-use pounding::scenario::Scenario;
 
 fn scenario(name: &str) -> Scenario {
     Scenario::from_file(Path::new(&format!("examples/{name}"))).expect("bundled scenario")
@@ -75,7 +75,7 @@ fn harmonic_mode(a: f64, b: f64, w: f64, z: f64, om: f64, t: f64) -> f64 {
 /// Peak over [0, `duration`] of `Σ_n φ_n(h) η_n(t)` for a harmonic ground motion (PGA `p`,
 /// Ω `om`), over the modes with ζ < 0.9 (the others' static share is negligible).
 fn closed_form_peak(
-    mm: &pounding::modal::ModalModel,
+    mm: &pounding::model::modal::ModalModel,
     h: f64,
     p: f64,
     om: f64,

@@ -85,11 +85,11 @@ fn every_output_has_the_permissions_of_an_ordinary_new_file() {
 /// sample of this short run), parsed as numbers, bit for bit.
 #[test]
 fn csv_numbers_read_back_exactly() {
-    use pounding::scenario::Scenario;
+    use pounding::input::scenario::Scenario;
     let dir = tempfile::tempdir().unwrap();
     let path = scenario(dir.path());
     let (sc, _) = Scenario::read_file(&path).unwrap();
-    let report = pounding::simulate::simulate_checked(&sc, false).unwrap();
+    let report = pounding::analysis::simulate::simulate_checked(&sc, false).unwrap();
     let out = dir.path().join("out");
     let status = Command::new(env!("CARGO_BIN_EXE_pounding"))
         .args(["run", path.to_str().unwrap(), "--out"])
@@ -137,7 +137,7 @@ fn csv_numbers_read_back_exactly() {
 /// reaches the peak absolute acceleration of summary.json at that height.
 #[test]
 fn floors_csv_keeps_the_contact_stations_by_default() {
-    use pounding::scenario::Scenario;
+    use pounding::input::scenario::Scenario;
     let dir = tempfile::tempdir().unwrap();
     let path = scenario(dir.path());
     let all_path = dir.path().join("all.toml");
@@ -220,7 +220,7 @@ fn floors_csv_keeps_the_contact_stations_by_default() {
     // two contact levels, structures of 10 m and 16 m: the levels and each top
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let (sc, _) = Scenario::read_file(&examples.join("two-levels.toml")).unwrap();
-    let cols = pounding::output::floor_columns(&sc);
+    let cols = pounding::output::run::floor_columns(&sc);
     let want: Vec<&str> = vec![
         "w1_6", "a1_6", "w1_10", "a1_10", "w2_6", "a2_6", "w2_10", "a2_10", "w2_16", "a2_16",
     ];
@@ -232,5 +232,5 @@ fn floors_csv_keeps_the_contact_stations_by_default() {
         .iter()
         .map(|s| s.floor_heights().unwrap().len())
         .sum();
-    assert_eq!(pounding::output::floor_columns(&sc).len(), 2 * floors);
+    assert_eq!(pounding::output::run::floor_columns(&sc).len(), 2 * floors);
 }

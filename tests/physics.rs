@@ -4,12 +4,13 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use pounding::contact::ContactLaw;
-use pounding::ground_motion::{GroundMotion, Harmonic, Record};
+use pounding::analysis::simulate::run_system;
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Cantilever, Damping, ModalModel, Stiffness};
-use pounding::simulate::run_system;
-use pounding::system::{ContactLevel, System};
+use pounding::model::contact::ContactLaw;
+use pounding::model::ground_motion::{GroundMotion, Harmonic, Record};
+use pounding::model::modal::ModalModel;
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
+use pounding::model::system::{ContactLevel, System};
 
 fn structure(length: f64, mass: f64, period: f64, modes: usize, damping: Damping) -> Cantilever {
     Cantilever {
@@ -342,20 +343,20 @@ fn paper_case_c_qualitative() {
         "/examples/paper-c.toml"
     ))
     .unwrap();
-    let sc = pounding::scenario::Scenario::from_toml(
+    let sc = pounding::input::scenario::Scenario::from_toml(
         &text,
         "paper-c.toml",
         std::path::Path::new("examples"),
     )
     .unwrap();
-    let r = pounding::simulate::simulate(&sc).unwrap();
+    let r = pounding::analysis::simulate::simulate(&sc).unwrap();
     assert!(r.structures[0].change_percent > 20.0);
     assert!(r.structures[1].change_percent < -20.0);
     assert!(r.contact.impacts > 0);
     // the peak force never exceeds k_h δ_max^1.5
     assert!(r.contact.peak_force <= 2.808e10 * r.contact.max_penetration.powf(1.5) * (1.0 + 1e-12));
     // `pounding separation` runs only the case without contact: the same gaps and peaks
-    let s = pounding::simulate::separation(&sc).unwrap();
+    let s = pounding::analysis::simulate::separation(&sc).unwrap();
     assert_eq!(s.separation, r.separation);
     assert_eq!(
         s.peaks_no_contact,

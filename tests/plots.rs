@@ -3,14 +3,16 @@
 
 use std::path::Path;
 
-use pounding::figures::{drawn_force, envelope_figure, hysteresis_figure, time_history_figure};
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::figures::run::{
+    drawn_force, envelope_figure, hysteresis_figure, time_history_figure,
+};
+use pounding::figures::sweep::{RATIO_LIMIT, axis_label, field_scale};
+use pounding::input::scenario::Scenario;
 use pounding::plot::ColorScale;
 use pounding::plot::style::{
     NO_DATA, RATIO_HIGH, RATIO_LOW, RATIO_NEUTRAL, ratio_color, ratio_position, viridis,
 };
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
-use pounding::sweep_plots::{RATIO_LIMIT, axis_label, field_scale};
 
 fn run(file: &str, output_interval: Option<f64>) -> (Scenario, Report) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);

@@ -11,11 +11,11 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use pounding::ground_motion::{
+use pounding::input::scenario::Scenario;
+use pounding::model::ground_motion::{
     AccelUnits, Baseline, Component, Processing, Record, RecordError, RecordFormat, RecordOptions,
     STANDARD_GRAVITY,
 };
-use pounding::scenario::Scenario;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/records/formats");
 const A: f64 = 150.0;

@@ -5,14 +5,14 @@
 use std::f64::consts::PI;
 use std::process::Command;
 
-use pounding::ground_motion::{Record, STANDARD_GRAVITY};
-use pounding::record_spectrum::{
+use pounding::analysis::record_spectrum::{
     DEFAULT_DAMPING, PeriodRange, ResponseSpectrum, ScalingError, ScalingOptions, ScalingRule,
     SuiteMember, SuiteScaling, Target, scale_to_sa, spectral_point,
 };
-use pounding::spectrum::{
+use pounding::codes::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumTable,
 };
+use pounding::model::ground_motion::{Record, STANDARD_GRAVITY};
 
 fn record(dt: f64, accel: Vec<f64>) -> Record {
     Record::from_samples(dt, accel, "synthetic".into()).unwrap()

@@ -3,13 +3,13 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use pounding::contact::ContactLaw;
-use pounding::ground_motion::{GroundMotion, Record, STANDARD_GRAVITY};
+use pounding::analysis::simulate::simulate;
+use pounding::input::scenario::Scenario;
 use pounding::integrate::{InitialState, Method, Observer, SolverSettings, StepView, integrate};
-use pounding::modal::{Cantilever, Damping, Stiffness};
-use pounding::scenario::Scenario;
-use pounding::simulate::simulate;
-use pounding::system::System;
+use pounding::model::contact::ContactLaw;
+use pounding::model::ground_motion::{GroundMotion, Record, STANDARD_GRAVITY};
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
+use pounding::model::system::System;
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/records");
 

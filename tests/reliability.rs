@@ -7,7 +7,9 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use pounding::ground_motion::record::{MAX_RECORD_BYTES, Record, RecordError, RecordOptions};
+use pounding::model::ground_motion::record::{
+    MAX_RECORD_BYTES, Record, RecordError, RecordOptions,
+};
 
 const BIN: &str = env!("CARGO_BIN_EXE_pounding");
 

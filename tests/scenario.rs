@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use pounding::scenario::{Scenario, ScenarioError};
+use pounding::input::scenario::{Scenario, ScenarioError};
 
 const BASE: &str = include_str!("../examples/paper-c.toml");
 
@@ -439,7 +439,7 @@ fn duplicates_name_the_table_or_key_and_both_lines() {
 /// Outside the ranges the scenario is refused naming the range.
 #[test]
 fn range_corners_give_finite_summaries_or_clear_errors() {
-    use pounding::scenario::physical_range;
+    use pounding::input::scenario::physical_range;
     let base = include_str!("../examples/paper-c.toml")
         .replace("method = \"rk4\"", "method = \"adaptive\"")
         .replace("duration = 20.0", "duration = 1.0");
@@ -467,11 +467,11 @@ fn range_corners_give_finite_summaries_or_clear_errors() {
                     continue;
                 }
             };
-            let Ok(report) = pounding::simulate::simulate(&sc) else {
+            let Ok(report) = pounding::analysis::simulate::simulate(&sc) else {
                 continue;
             };
             ran += 1;
-            let json = pounding::output::summary_json(&sc, &report).unwrap();
+            let json = pounding::output::run::summary_json(&sc, &report).unwrap();
             let value: serde_json::Value = serde_json::from_str(&json).unwrap();
             let mut stack = vec![&value];
             while let Some(x) = stack.pop() {

@@ -11,20 +11,14 @@
 
 use std::f64::consts::PI;
 use std::path::Path;
-use std::process::{Command, Output};
 
-use pounding::gap_report::{GapReport, gap_report};
-use pounding::scenario::Scenario;
+use pounding::analysis::gap_report::{GapReport, gap_report};
+use pounding::input::scenario::Scenario;
+
+mod common;
+use common::pounding;
 
 const G: f64 = 9.80665;
-
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
 
 fn parse(text: &str) -> Scenario {
     Scenario::from_toml(text, "levels.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
@@ -180,7 +174,7 @@ fn hand(j: usize, height: f64) -> Hand {
     }
 }
 
-fn level(r: &GapReport, h: f64) -> &pounding::gap_report::LevelCheck {
+fn level(r: &GapReport, h: f64) -> &pounding::analysis::level_checks::LevelCheck {
     r.levels.iter().find(|l| l.height == h).unwrap()
 }
 
@@ -561,7 +555,7 @@ fn a_yielding_run_feeds_its_inelastic_peaks_and_says_so() {
 /// scenario key warns when a bare a_g below 1.5 m/s² is probably in g.
 #[test]
 fn the_unit_of_ag() {
-    use pounding::design::spectrum_from_arg;
+    use pounding::input::scenario::design::spectrum_from_arg;
     let e = spectrum_from_arg("ec8:ag=2.5,ground_type=C,type=1")
         .unwrap_err()
         .to_string();
@@ -571,7 +565,7 @@ fn the_unit_of_ag() {
         .to_string();
     assert!(e.contains("give one of them"), "{e}");
     let ag = |arg: &str| match spectrum_from_arg(arg).unwrap() {
-        pounding::spectrum::DesignSpectrum::Ec8(s) => s.ag(),
+        pounding::codes::spectrum::DesignSpectrum::Ec8(s) => s.ag(),
         other => panic!("{other:?}"),
     };
     let in_g = ag("ec8:ag=0.25g,ground_type=C,type=1");
@@ -615,10 +609,16 @@ fn ec8_keys_and_defaults() {
     let sc = parse(&buildings(ASCE, "[separation]\nec8 = { q = [4, 1.5] }"));
     let c = sc.design.code("ec8").unwrap();
     match (c.rule, c.to_design) {
-        (pounding::codes::CodeRule::Ec8(p), pounding::design::ToDesign::Ec8 { q }) => {
+        (
+            pounding::codes::rules::CodeRule::Ec8(p),
+            pounding::input::scenario::design::ToDesign::Ec8 { q },
+        ) => {
             assert_eq!(q, [4.0, 1.5]);
             assert_eq!(p.qd, q, "q_d = q unless given");
-            assert_eq!(p.boundary, pounding::codes::Ec8Boundary::SameProperty);
+            assert_eq!(
+                p.boundary,
+                pounding::codes::rules::Ec8Boundary::SameProperty
+            );
             assert!(p.floor_reduction);
         }
         other => panic!("{other:?}"),

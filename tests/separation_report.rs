@@ -9,22 +9,16 @@
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-use pounding::codes::{Asce7Boundary, CodeRule, GbSystem, NtcMethod, NtcZone, PartialStep};
-use pounding::design::ToDesign;
-use pounding::scenario::Scenario;
-use pounding::spectrum::DesignSpectrum;
+use pounding::codes::rules::{Asce7Boundary, CodeRule, GbSystem, NtcMethod, NtcZone, PartialStep};
+use pounding::codes::spectrum::DesignSpectrum;
+use pounding::input::scenario::Scenario;
+use pounding::input::scenario::design::ToDesign;
+
+mod common;
+use common::pounding;
 
 const G: f64 = 9.80665;
-
-fn pounding(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_pounding"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
 
 /// Two cantilevers of height `l`, one mode each, 5 % damping, periods 0.5 s and 1.0 s; contact
 /// at the top with a 50 mm gap; then `ground` and `extra`.
@@ -123,7 +117,7 @@ ntc = { zone = "III", method = "simplified", same_height_and_levels = true }
     }
     assert_eq!(
         sc.ground_motion,
-        pounding::ground_motion::GroundMotion::None
+        pounding::model::ground_motion::GroundMotion::None
     );
     let keys: Vec<&str> = sc.design.codes.iter().map(|c| c.rule.key()).collect();
     assert_eq!(keys, ["asce7", "is1893", "nbcc", "gb50011", "ntc"]);
@@ -486,7 +480,7 @@ fn hand_rules(w: [f64; 2], l: f64) -> Vec<(&'static str, f64)> {
 fn separation_report_of_a_single_mode_spectrum_case_by_hand() {
     let l = 24.0;
     let sc = parse(&scenario_text(l, ASCE, &hand_codes(l))).unwrap();
-    let r = pounding::gap_report::gap_report(&sc, None, None).unwrap();
+    let r = pounding::analysis::gap_report::gap_report(&sc, None, None).unwrap();
     let w = hand_peaks();
     assert_eq!(r.levels.len(), 1);
     let level = &r.levels[0];
@@ -532,13 +526,13 @@ fn separation_report_of_a_single_mode_spectrum_case_by_hand() {
     }
     // --code selects; unknown and absent codes are refused
     let only = ["gb50011".to_string()];
-    let r = pounding::gap_report::gap_report(&sc, None, Some(&only)).unwrap();
+    let r = pounding::analysis::gap_report::gap_report(&sc, None, Some(&only)).unwrap();
     assert_eq!(r.levels[0].codes.len(), 1);
-    let e = pounding::gap_report::gap_report(&sc, None, Some(&["ec8".to_string()]))
+    let e = pounding::analysis::gap_report::gap_report(&sc, None, Some(&["ec8".to_string()]))
         .unwrap_err()
         .to_string();
     assert!(e.contains("no [separation.ec8] table"), "{e}");
-    let e = pounding::gap_report::gap_report(&sc, None, Some(&["ec9".to_string()]))
+    let e = pounding::analysis::gap_report::gap_report(&sc, None, Some(&["ec9".to_string()]))
         .unwrap_err()
         .to_string();
     assert!(e.contains("unknown code") && e.contains("ec8"), "{e}");
@@ -651,7 +645,9 @@ fn run_refuses_a_spectrum_and_points_to_separation() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("no time history"));
     // the library refuses too (sweeps, convergence)
     let sc = parse(&scenario_text(10.0, ASCE, "")).unwrap();
-    let e = pounding::simulate::simulate(&sc).unwrap_err().to_string();
+    let e = pounding::analysis::simulate::simulate(&sc)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("design spectrum"), "{e}");
 }
 
@@ -788,7 +784,8 @@ fn sweep_returns_code_columns() {
         "{journal}"
     );
     // the table reads back with its code columns
-    let t = pounding::sweep::results::Table::read(&dir.path().join("o/results.csv")).unwrap();
+    let t =
+        pounding::study::sweep::results::Table::read(&dir.path().join("o/results.csv")).unwrap();
     assert_eq!(t.codes, ["sep_asce7", "sep_is1893", "sep_gb50011"]);
     let r = &t.rows[&0];
     assert_eq!(r.get(&t, "sep_gb50011"), Some(0.1));
@@ -829,7 +826,7 @@ fn sweep_returns_code_columns() {
 
 #[test]
 fn rule_study_counts_unsafe_cases_and_excess_by_hand() {
-    use pounding::sweep::results::FIELDS;
+    use pounding::study::sweep::results::FIELDS;
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("results.csv");
     // four ok cases with exact = 0.1, 0.2, 0.4, 0 (the last left out) and one failed case;
@@ -856,8 +853,8 @@ fn rule_study_counts_unsafe_cases_and_excess_by_hand() {
     }
     text.push_str(&format!("4,5,failed: x{}\n", ",".repeat(FIELDS.len() + 1)));
     std::fs::write(&p, text).unwrap();
-    let t = pounding::sweep::results::Table::read(&p).unwrap();
-    let s = pounding::rule_study::rule_study(&t);
+    let t = pounding::study::sweep::results::Table::read(&p).unwrap();
+    let s = pounding::study::rule_study::rule_study(&t);
     assert_eq!((s.rows, s.left_out), (5, 2));
     let get = |c: &str| s.rules.iter().find(|r| r.column == c).unwrap();
     let abs = get("sep_abs");
@@ -879,15 +876,16 @@ fn rule_study_counts_unsafe_cases_and_excess_by_hand() {
     assert!(close(asce.worst_under_percent, -87.5, 1e-9));
     assert!(asce.median_over_percent.is_nan());
     // the figure is drawn
-    let files = pounding::rule_study::rule_figure(&t, Some("x"), &dir.path().join("plots"), "test")
-        .unwrap();
+    let files =
+        pounding::figures::rules::rule_figure(&t, Some("x"), &dir.path().join("plots"), "test")
+            .unwrap();
     assert!(files.iter().any(|f| f.ends_with("rules.png")));
 }
 
 #[test]
 fn bundled_study_and_spectrum_examples_are_valid() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let s = pounding::sweep::Sweep::from_file(&dir.join("separation-sweep.toml")).unwrap();
+    let s = pounding::study::sweep::Sweep::from_file(&dir.join("separation-sweep.toml")).unwrap();
     assert_eq!(s.len(), 3 * 7 * 5);
     for c in [0, 52, 104] {
         let sc = s
@@ -907,6 +905,6 @@ fn bundled_study_and_spectrum_examples_are_valid() {
     );
     let sc = Scenario::from_file(&dir.join("design-spectrum.toml")).unwrap();
     assert!(matches!(sc.design.spectrum, Some(DesignSpectrum::Asce7(_))));
-    let r = pounding::gap_report::gap_report(&sc, None, None).unwrap();
+    let r = pounding::analysis::gap_report::gap_report(&sc, None, None).unwrap();
     assert_eq!(r.levels[0].codes.len(), 5);
 }

@@ -1,10 +1,11 @@
 //! Design spectra and response-spectrum analysis against hand computations (issue 13).
 
-use pounding::modal::{Cantilever, Damping, ModalModel, Stiffness};
-use pounding::spectrum::{
+use pounding::codes::spectrum::{
     Asce7Spectrum, DesignSpectrum, Ec8Spectrum, Ec8Type, GroundType, SpectrumError, SpectrumTable,
     modal_correlation, peak_displacement, peak_displacements, relative_peak,
 };
+use pounding::model::modal::ModalModel;
+use pounding::model::structure::{Cantilever, Damping, Stiffness};
 use std::f64::consts::PI;
 
 const G: f64 = 9.80665;

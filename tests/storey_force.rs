@@ -7,18 +7,14 @@
 //! against the physical integration; yielding storeys: `tests/hysteresis.rs`.)
 
 use std::f64::consts::PI;
-use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::simulate::{Report, simulate};
+use pounding::analysis::simulate::Report;
 
 mod common;
 use common::{Case, Physical, integrate_physical, physical};
 
 fn run(text: &str) -> Report {
-    let sc = Scenario::from_toml(text, "s.toml", Path::new(env!("CARGO_MANIFEST_DIR")))
-        .expect("valid scenario");
-    simulate(&sc).expect("runs")
+    common::run_named(text, "s.toml")
 }
 
 fn rel(a: f64, b: f64) -> f64 {

@@ -370,7 +370,7 @@ fn failed_cases_are_recorded_and_the_sweep_goes_on() {
         "{}",
         rows[1]
     );
-    assert!(rows[1].ends_with(&",".repeat(pounding::sweep::results::FIELDS.len())));
+    assert!(rows[1].ends_with(&",".repeat(pounding::study::sweep::results::FIELDS.len())));
     assert!(rows[2].contains(",ok,"));
 }
 
@@ -467,7 +467,7 @@ fn example_sweeps_are_valid() {
         ("bench-10k.toml", 10_000),
         ("record-sweep.toml", 36),
     ] {
-        let s = pounding::sweep::Sweep::from_file(&dir.join(name)).unwrap();
+        let s = pounding::study::sweep::Sweep::from_file(&dir.join(name)).unwrap();
         assert_eq!(s.len(), cases, "{name}");
         for c in [0, cases / 2, cases - 1] {
             s.case_scenario(c)
@@ -552,8 +552,8 @@ fn sweep_records_the_self_check_and_no_check_says_so() {
     assert_eq!(rows[1][conv], "false");
     assert!(rows[1][change].parse::<f64>().unwrap() > 0.01);
     // the table reads back, `converged` as 1/0
-    let t = pounding::sweep::results::Table::read(&out.join("results.csv")).unwrap();
-    let k = pounding::sweep::results::Table::field_index("converged").unwrap();
+    let t = pounding::study::sweep::results::Table::read(&out.join("results.csv")).unwrap();
+    let k = pounding::study::sweep::results::Table::field_index("converged").unwrap();
     assert_eq!((t.rows[&0].fields[k], t.rows[&1].fields[k]), (1.0, 0.0));
 
     // --no-check: the rows and the summary say the cases were not self-checked

@@ -8,8 +8,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::Scenario;
-use pounding::sweep::Sweep;
+use pounding::input::scenario::Scenario;
+use pounding::study::sweep::Sweep;
 
 /// A scenario with every kind of table: structures with `rayleigh` and `hysteresis`, contact
 /// levels, a record, a solver table and every code of `[separation]` as its own table.

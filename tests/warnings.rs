@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use pounding::scenario::{Scenario, usual_range};
-use pounding::sweep::Sweep;
+use pounding::input::scenario::{Scenario, usual_range};
+use pounding::study::sweep::Sweep;
 
 const BASE: &str = include_str!("../examples/paper-c.toml");
 
@@ -244,7 +244,7 @@ fn derived_and_other_keys_warn() {
 /// Every band lies inside its key's allowed range.
 #[test]
 fn bands_are_inside_the_ranges() {
-    use pounding::scenario::physical_range;
+    use pounding::input::scenario::physical_range;
     for key in [
         "length",
         "mass",
@@ -485,10 +485,10 @@ fn bundled_examples_run_without_warnings() {
             continue;
         }
         let sc = Scenario::from_file(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-        if pounding::simulate::require_time_history(&sc).is_err() {
+        if pounding::analysis::simulate::require_time_history(&sc).is_err() {
             continue;
         }
-        let report = pounding::simulate::simulate_checked(&sc, true)
+        let report = pounding::analysis::simulate::simulate_checked(&sc, true)
             .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         ran += 1;
         let expected = expected_kinds(&text);

@@ -50,7 +50,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let base = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples"));
-    if let Ok(sc) = pounding::scenario::Scenario::from_table(&table, "<dict>", base) {
+    if let Ok(sc) = pounding::input::scenario::Scenario::from_table(&table, "<dict>", base) {
         // an accepted scenario must assemble its system
         let _ = sc.system();
     }

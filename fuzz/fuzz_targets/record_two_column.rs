@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use pounding::ground_motion::record::{Record, RecordOptions};
+use pounding::model::ground_motion::record::{Record, RecordOptions};
 use std::path::Path;
 
 fuzz_target!(|data: &[u8]| {

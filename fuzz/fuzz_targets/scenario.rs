@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let base = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../examples"));
-    if let Ok(sc) = pounding::scenario::Scenario::from_toml(text, "fuzz.toml", base) {
+    if let Ok(sc) = pounding::input::scenario::Scenario::from_toml(text, "fuzz.toml", base) {
         // an accepted scenario must assemble its system
         let _ = sc.system();
     }

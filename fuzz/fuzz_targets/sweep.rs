@@ -16,7 +16,7 @@ fuzz_target!(|data: &[u8]| {
         env!("CARGO_MANIFEST_DIR"),
         "/../examples/fuzz-sweep.toml"
     ));
-    if let Ok(sweep) = pounding::sweep::Sweep::from_toml(text, path) {
+    if let Ok(sweep) = pounding::study::sweep::Sweep::from_toml(text, path) {
         assert!(!sweep.is_empty());
         for case in [0, sweep.len() - 1] {
             let _ = sweep.case_toml(case);

@@ -17,10 +17,10 @@ use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-use pounding::output::Column;
-use pounding::scenario::{Scenario, ScenarioError as LibScenarioError};
-use pounding::simulate::{Report, RunCapture};
-use pounding::sweep::Sweep;
+use pounding::analysis::simulate::{Report, RunCapture};
+use pounding::input::scenario::{Scenario, ScenarioError as LibScenarioError};
+use pounding::output::run::Column;
+use pounding::study::sweep::Sweep;
 
 create_exception!(
     pounding,
@@ -51,7 +51,7 @@ fn scenario_err(e: LibScenarioError) -> PyErr {
     ScenarioError::new_err(e.to_string())
 }
 
-fn sweep_err(e: pounding::sweep::SweepError) -> PyErr {
+fn sweep_err(e: pounding::study::sweep::SweepError) -> PyErr {
     SweepError::new_err(e.to_string())
 }
 
@@ -259,7 +259,7 @@ impl PyScenario {
         let base_dir = absolute(&base_dir);
         let inner =
             no_panic(|| Scenario::from_table(&table, &name, &base_dir).map_err(scenario_err))?;
-        let text = pounding::scenario::table_to_toml(&table, &name).map_err(scenario_err)?;
+        let text = pounding::input::scenario::table_to_toml(&table, &name).map_err(scenario_err)?;
         Ok(PyScenario {
             text,
             origin: name,
@@ -281,7 +281,7 @@ impl PyScenario {
             let value = to_toml(&v, &key, "replace")?;
             list.push((key, value));
         }
-        let text = pounding::sweep::set_keys(&self.text, &self.path(), list)
+        let text = pounding::study::sweep::set_keys(&self.text, &self.path(), list)
             .map_err(|e| ScenarioError::new_err(e.to_string()))?;
         // positions in messages are in the new text, not in the file it came from
         let origin = if self.origin.ends_with(REPLACED) {
@@ -377,7 +377,8 @@ fn column_dict<'py>(py: Python<'py>, cols: Vec<(String, Column)>) -> PyResult<Bo
 impl PyRunOutput {
     /// summary.json's text (exactly the file `pounding run` writes).
     fn summary_json(&self) -> PyResult<String> {
-        pounding::output::summary_json(&self.scenario, &self.report).map_err(OutputError::new_err)
+        pounding::output::run::summary_json(&self.scenario, &self.report)
+            .map_err(OutputError::new_err)
     }
 
     /// history.csv's columns: dict of float64 arrays.
@@ -387,7 +388,7 @@ impl PyRunOutput {
 
     /// impacts.csv's columns: dict of arrays (`level` int64, the rest float64).
     fn impacts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let cols = pounding::output::impact_columns(&self.report)
+        let cols = pounding::output::run::impact_columns(&self.report)
             .into_iter()
             .map(|(k, c)| (k.to_string(), c))
             .collect();
@@ -411,10 +412,16 @@ impl PyRunOutput {
     fn save(&self, py: Python<'_>, dir: PathBuf, plots: bool) -> PyResult<Vec<PathBuf>> {
         py.detach(|| {
             no_panic(|| {
-                let draw =
-                    plots.then(|| pounding::figures::run_pictures(&self.scenario, &self.report));
-                pounding::output::write_run(&dir, &self.scenario, &self.report, &self.capture, draw)
-                    .map_err(|e| OutputError::new_err(e.to_string()))
+                let draw = plots
+                    .then(|| pounding::figures::run::run_pictures(&self.scenario, &self.report));
+                pounding::output::run::write_run(
+                    &dir,
+                    &self.scenario,
+                    &self.report,
+                    &self.capture,
+                    draw,
+                )
+                .map_err(|e| OutputError::new_err(e.to_string()))
             })
         })
     }
@@ -433,14 +440,14 @@ fn run(
     let sc = scenario.get().inner.clone();
     py.detach(|| {
         no_panic(|| {
-            pounding::simulate::require_time_history(&sc)
+            pounding::analysis::simulate::require_time_history(&sc)
                 .map_err(|e| SolveError::new_err(e.to_string()))?;
-            pounding::budget::check_run(&sc, max_output_size)
+            pounding::output::budget::check_run(&sc, max_output_size)
                 .map_err(|e| ScenarioError::new_err(e.to_string()))?;
             let mut capture = RunCapture::new();
-            let report = pounding::simulate::simulate_streaming(&sc, check, &mut capture)
+            let report = pounding::analysis::simulate::simulate_streaming(&sc, check, &mut capture)
                 .map_err(|e| SolveError::new_err(e.to_string()))?;
-            let floor_columns = pounding::output::floor_columns(&sc);
+            let floor_columns = pounding::output::run::floor_columns(&sc);
             Ok(PyRunOutput {
                 scenario: sc.clone(),
                 report,
@@ -511,7 +518,7 @@ impl PySweep {
         let name = path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-        let text = pounding::sweep::sweep_text(&name, list).map_err(sweep_err)?;
+        let text = pounding::study::sweep::sweep_text(&name, list).map_err(sweep_err)?;
         let sweep_path = sc.base_dir.join("<axes>");
         let inner = py
             .detach(|| Sweep::from_toml_with_base(&text, &sweep_path, Some((&sc.text, &path))))
@@ -558,7 +565,7 @@ impl PySweep {
     /// The results header (results.csv's first line).
     #[getter]
     fn header(&self) -> String {
-        pounding::sweep::results::header(&self.inner)
+        pounding::study::sweep::results::header(&self.inner)
     }
 
     /// `key = value, …` of a case.
@@ -577,14 +584,14 @@ impl PySweep {
     #[pyo3(signature = (case, check = true))]
     fn run_case(&self, py: Python<'_>, case: usize, check: bool) -> PyResult<String> {
         self.check_case(case)?;
-        Ok(py.detach(|| pounding::sweep::run::compute_case(&self.inner, case, check).line))
+        Ok(py.detach(|| pounding::study::sweep::run::compute_case(&self.inner, case, check).line))
     }
 
     /// Compute every case on `jobs` threads (GIL released); the rows in case order.
     #[pyo3(signature = (jobs, check = true))]
     fn run_all(&self, py: Python<'_>, jobs: usize, check: bool) -> PyResult<Vec<String>> {
         let rows = py
-            .detach(|| pounding::sweep::run::compute_all(&self.inner, jobs, check))
+            .detach(|| pounding::study::sweep::run::compute_all(&self.inner, jobs, check))
             .map_err(sweep_err)?;
         Ok(rows.into_iter().map(|r| r.line).collect())
     }
@@ -592,13 +599,14 @@ impl PySweep {
     /// Refuse a sweep none of whose cases is a valid scenario (as `pounding sweep` does).
     fn require_valid_case(&self, py: Python<'_>) -> PyResult<()> {
         let cases: Vec<usize> = (0..self.inner.len()).collect();
-        py.detach(|| pounding::sweep::run::require_valid_case(&self.inner, &cases))
+        py.detach(|| pounding::study::sweep::run::require_valid_case(&self.inner, &cases))
             .map_err(sweep_err)
     }
 
     /// The typed columns of results rows (dict: int64/float64 arrays, lists of str).
     fn columns<'py>(&self, py: Python<'py>, rows: Vec<String>) -> PyResult<Bound<'py, PyDict>> {
-        let cols = pounding::sweep::results::columns(&self.inner, &rows).map_err(sweep_err)?;
+        let cols =
+            pounding::study::sweep::results::columns(&self.inner, &rows).map_err(sweep_err)?;
         column_dict(py, cols)
     }
 

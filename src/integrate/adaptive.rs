@@ -50,8 +50,9 @@ use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
-use crate::ground_motion::GroundMotion;
-use crate::system::{LevelState, System, dot};
+use crate::model::ground_motion::GroundMotion;
+use crate::model::system::{LevelState, System};
+use crate::numerics::linalg::dot;
 
 /// Event tolerance on δ, m.
 const EVENT_TOL: f64 = 1e-12;
@@ -1076,8 +1077,8 @@ fn locate_event(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scenario::Scenario;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {

@@ -28,7 +28,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{Prop, propagator};
-use crate::system::{LevelState, System};
+use crate::model::system::{LevelState, System};
 
 /// The two interior nodes of the 4-node companion, ½ ∓ 1/(2√5).
 const A1: f64 = 0.276_393_202_250_021;

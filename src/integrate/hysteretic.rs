@@ -35,7 +35,7 @@ use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
-use crate::system::{LevelState, Powers, System};
+use crate::model::system::{LevelState, Powers, System};
 
 /// Dormand–Prince nodes.
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
@@ -432,12 +432,12 @@ fn first_event(sys: &System, w: &Work, hs: f64, skip: Option<usize>) -> Option<(
     for s in 0..ns {
         let r = hy.row(s);
         let (dd0, dd1) = (
-            crate::system::dot(r, &w.y[n..2 * n]),
-            crate::system::dot(r, &w.y1[n..2 * n]),
+            crate::numerics::linalg::dot(r, &w.y[n..2 * n]),
+            crate::numerics::linalg::dot(r, &w.y1[n..2 * n]),
         );
         let (a0, a1) = (
-            crate::system::dot(r, &k0[n..2 * n]),
-            crate::system::dot(r, &k1[n..2 * n]),
+            crate::numerics::linalg::dot(r, &k0[n..2 * n]),
+            crate::numerics::linalg::dot(r, &k1[n..2 * n]),
         );
         consider(s, dd0, a0, dd1, a1);
         let j = 2 * n + s;
@@ -495,8 +495,8 @@ fn observe<O: Observer>(sys: &System, observer: &mut O, t: f64, w: &Work, tally:
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::input::scenario::Scenario;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {

@@ -21,8 +21,8 @@
 
 use std::sync::Arc;
 
-use crate::ground_motion::{GroundMotion, Record};
-use crate::system::System;
+use crate::model::ground_motion::{GroundMotion, Record};
+use crate::model::system::System;
 
 /// The exact homogeneous propagator of one mode over a step: `[η; η̇](t+h) = P [η; η̇](t)`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -977,10 +977,10 @@ mod tests {
     /// the level cross terms count.
     #[test]
     fn contact_forms_regroup_the_per_mode_tallies() {
-        use crate::contact::ContactLaw;
-        use crate::ground_motion::Harmonic;
-        use crate::modal::{Cantilever, Damping, Stiffness};
-        use crate::system::ContactLevel;
+        use crate::model::contact::ContactLaw;
+        use crate::model::ground_motion::Harmonic;
+        use crate::model::structure::{Cantilever, Damping, Stiffness};
+        use crate::model::system::ContactLevel;
         let st = |period: f64, zeta: f64| Cantilever {
             name: "s".into(),
             length: 10.0,

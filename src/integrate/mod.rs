@@ -25,7 +25,7 @@ mod rk4;
 pub use exact_modal::SUBSTEP_ALPHA;
 pub use rk4::{rk4_max_stable_dt, rk4_stability_limit};
 
-use crate::system::{LevelState, System};
+use crate::model::system::{LevelState, System};
 
 /// Integration method (`[solver] method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -239,7 +239,7 @@ pub struct Tally {
     /// Impulse of each level's contact force, `∫ F_k dt`, N·s.
     pub impulse: Vec<f64>,
     /// Work given to the yielding storeys' pseudo-forces, `Σ_s ∫ ΔV_s ḋ_s dt`, J (0 without
-    /// hysteresis; see [`crate::hysteresis`]).
+    /// hysteresis; see [`crate::model::hysteresis`]).
     pub hysteretic: f64,
     /// The same per yielding storey (in the order of `System::hysteresis`), J.
     pub storey_work: Vec<f64>,

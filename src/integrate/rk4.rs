@@ -5,8 +5,8 @@ use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepView, Tally, step_plan,
     update_onsets,
 };
-use crate::contact::ContactForce;
-use crate::system::{LevelState, Powers, System};
+use crate::model::contact::ContactForce;
+use crate::model::system::{LevelState, Powers, System};
 
 /// |R(z)| of RK4, `R(z) = 1 + z + z²/2 + z³/6 + z⁴/24`, for complex z = x + iy.
 fn rk4_gain(x: f64, y: f64) -> f64 {
@@ -334,7 +334,7 @@ struct Work {
 }
 
 /// The right-hand side with the yielding storeys' pseudo-forces: [`System::acceleration_in`],
-/// then (with hysteresis) [`crate::hysteresis::Hysteresis::apply`] on the same state.
+/// then (with hysteresis) [`crate::model::hysteresis::Hysteresis::apply`] on the same state.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn eval(
@@ -668,10 +668,10 @@ mod tests {
     /// max(ω_c, ω*) and √(ω_c² + ω*²).
     #[test]
     fn contact_mode_matches_the_two_by_two_eigenproblem() {
-        use crate::contact::ContactLaw;
-        use crate::ground_motion::GroundMotion;
-        use crate::modal::{Cantilever, Damping, Stiffness};
-        use crate::system::ContactLevel;
+        use crate::model::contact::ContactLaw;
+        use crate::model::ground_motion::GroundMotion;
+        use crate::model::structure::{Cantilever, Damping, Stiffness};
+        use crate::model::system::ContactLevel;
         let beam = |period: f64, zeta: f64| Cantilever {
             name: "b".into(),
             length: 10.0,

@@ -1,19 +1,16 @@
 //! `pounding crosscheck`: run an exported script with a local `openseespy` and set OpenSees'
 //! numbers beside the program's, with the relative differences and what explains them.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 
-use serde::Deserialize;
-
-pub use super::storeys::OsStorey;
+use super::results::{OpenSeesResults, ProgramNumbers, Row};
 use super::{DRIVER, ExportError, ExportOptions, Mapping, TESTED_OPENSEESPY, law_mapping};
+use crate::analysis::simulate::{run_system, simulate};
+use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, Method, SolveError, SolverSettings};
-use crate::modal::Structure;
-use crate::scenario::Scenario;
-use crate::simulate::{Report, run_system, simulate};
+use crate::model::structure::Structure;
 
 /// Environment variable naming the Python interpreter to run OpenSees with (default
 /// `python3`).
@@ -114,120 +111,6 @@ fn last_line(text: &str) -> Option<String> {
         .map(|l| l.trim().to_string())
 }
 
-/// One run of the OpenSees script.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct RunInfo {
-    /// Wall time of the analysis, s.
-    pub seconds: f64,
-    /// Steps.
-    pub steps: u64,
-    /// Steps that needed the fallback.
-    pub fallbacks: u64,
-}
-
-/// Peaks at one height.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct HeightPeaks {
-    /// Height, m.
-    pub height: f64,
-    /// Peak |w| with contact, m.
-    pub peak_displacement: Option<f64>,
-    /// Peak |w| without contact, m.
-    pub peak_displacement_no_contact: Option<f64>,
-}
-
-/// A structure's numbers.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OsStructure {
-    /// Name.
-    pub name: String,
-    /// Peak |w| at the main contact height with contact, m.
-    pub peak_displacement: Option<f64>,
-    /// The same without contact, m.
-    pub peak_displacement_no_contact: Option<f64>,
-    /// Peaks at every tracked height (contact heights, or floors).
-    pub heights: Vec<HeightPeaks>,
-    /// Every storey of a shear building, lowest first (empty for a cantilever).
-    #[serde(default)]
-    pub storeys: Vec<OsStorey>,
-    /// Periods of the FE model's modes that belong to this structure, s (when it is modally
-    /// damped).
-    #[serde(default)]
-    pub fe_periods: Vec<f64>,
-}
-
-/// A contact level's numbers.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OsLevel {
-    /// Height, m.
-    pub height: f64,
-    /// Peak force, N.
-    pub peak_force: Option<f64>,
-    /// Largest penetration, m.
-    pub max_penetration: Option<f64>,
-    /// Contact episodes.
-    pub impacts: Option<u64>,
-    /// Time in contact, s.
-    pub contact_time: Option<f64>,
-    /// Peak |w₁|, |w₂| with contact, m.
-    pub peak_displacement: Option<[f64; 2]>,
-    /// The same without, m.
-    pub peak_displacement_no_contact: Option<[f64; 2]>,
-    /// max (w₁ − w₂) without contact, m.
-    pub required_gap: Option<f64>,
-}
-
-/// Contact totals.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OsContact {
-    /// N.
-    pub peak_force: f64,
-    /// m.
-    pub max_penetration: f64,
-    /// Episodes.
-    pub impacts: u64,
-    /// s.
-    pub contact_time: f64,
-}
-
-/// Separation.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OsSeparation {
-    /// max_t (w₁ − w₂) at the main height without contact, m.
-    pub time_history: Option<f64>,
-}
-
-/// What an exported script prints.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OpenSeesResults {
-    /// OpenSees' version.
-    pub opensees: String,
-    /// Step, s.
-    pub dt: f64,
-    /// Simulated time, s.
-    pub duration: f64,
-    /// Elements per structure (floors for a shear building).
-    pub elements: Vec<usize>,
-    /// `contact` and/or `free`.
-    pub runs: BTreeMap<String, RunInfo>,
-    /// Structures 1 and 2.
-    pub structures: Vec<OsStructure>,
-    /// Levels.
-    pub levels: Vec<OsLevel>,
-    /// Totals (with contact).
-    #[serde(default)]
-    pub contact: Option<OsContact>,
-    /// Separation.
-    pub separation: OsSeparation,
-}
-
-impl OpenSeesResults {
-    /// Wall time of both runs, s.
-    pub fn seconds(&self) -> f64 {
-        self.runs.values().map(|r| r.seconds).sum()
-    }
-}
-
 /// Parse a script's JSON output.
 pub fn parse_results(text: &str, path: &str) -> Result<OpenSeesResults, CrosscheckError> {
     serde_json::from_str(text).map_err(|e| CrosscheckError::Parse {
@@ -247,9 +130,11 @@ pub fn run_script(
     let model = dir.join("model.py");
     let json = dir.join("opensees.json");
     let log = dir.join("opensees.log");
-    crate::output::write_atomic(&model, script.as_bytes()).map_err(|e| CrosscheckError::Io {
-        path: model.display().to_string(),
-        detail: e.to_string(),
+    crate::output::atomic::write_atomic(&model, script.as_bytes()).map_err(|e| {
+        CrosscheckError::Io {
+            path: model.display().to_string(),
+            detail: e.to_string(),
+        }
     })?;
     let out = Command::new(python)
         .arg(&model)
@@ -275,18 +160,6 @@ pub fn run_script(
         detail: e.to_string(),
     })?;
     parse_results(&text, &json.display().to_string())
-}
-
-/// The program's side of a crosscheck.
-#[derive(Debug, Clone)]
-pub struct ProgramNumbers {
-    /// Its report (both runs).
-    pub report: Report,
-    /// Peaks at every tracked height per structure: (height, with, without), m — the contact
-    /// heights of a cantilever, every floor of a building.
-    pub heights: [Vec<(f64, f64, f64)>; 2],
-    /// Wall time of the two runs, s.
-    pub seconds: f64,
 }
 
 /// The heights whose peaks are reported for structure `s` (as in the export).
@@ -327,7 +200,7 @@ pub fn program(scenario: &Scenario) -> Result<ProgramNumbers, CrosscheckError> {
         for (s, out) in heights.iter_mut().enumerate() {
             for h in tracked_heights(scenario, s) {
                 let k = all.iter().position(|x| (x - h).abs() <= 1e-9).unwrap_or(0);
-                let pick = |l: &crate::recorder::LevelRecord| {
+                let pick = |l: &crate::recording::run_record::LevelRecord| {
                     if s == 0 { l.peak_w1 } else { l.peak_w2 }
                 };
                 out.push((h, pick(&with.levels[k]), pick(&without.levels[k])));
@@ -379,34 +252,6 @@ pub fn with_duration(scenario: &Scenario, duration: f64) -> Scenario {
     sc.solver.duration = duration;
     sc.output_interval = sc.output_interval.min(duration);
     sc
-}
-
-/// One compared quantity.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Row {
-    /// What it is (with its unit).
-    pub quantity: String,
-    /// The program's value.
-    pub program: f64,
-    /// OpenSees' value (`None`: that run was not made).
-    pub opensees: Option<f64>,
-    /// The size below which a difference is measured against this scale instead of the
-    /// program's value (0: plain relative difference): a residual drift near zero against
-    /// the yield drift, a storey's small hysteretic energy against 0.1 % of the input energy.
-    pub scale: f64,
-}
-
-impl Row {
-    /// (OpenSees − program)/max(|program|, scale) (`None` without an OpenSees value, or with
-    /// a zero program value and scale).
-    pub fn relative(&self) -> Option<f64> {
-        let o = self.opensees?;
-        let by = self.program.abs().max(self.scale);
-        if by == 0.0 {
-            return (o == 0.0).then_some(0.0);
-        }
-        Some((o - self.program) / by)
-    }
 }
 
 /// The quantities compared: peaks at the main height with and without contact, per level
@@ -593,10 +438,10 @@ pub fn crosscheck(
     }
     let mut extra_notes = Vec::new();
     if let Some(n) = opts.modes {
-        if n == 0 || n > crate::scenario::MAX_MODES as usize {
+        if n == 0 || n > crate::input::scenario::MAX_MODES as usize {
             return Err(ExportError::Option(format!(
                 "--modes must be a whole number from 1 to {}, got {n}",
-                crate::scenario::MAX_MODES
+                crate::input::scenario::MAX_MODES
             ))
             .into());
         }

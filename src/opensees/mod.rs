@@ -29,6 +29,7 @@
 //!   sub-steps halved down to dt/64, then the same with ModifiedNewton, then KrylovNewton.
 
 pub mod compare;
+pub mod results;
 mod storeys;
 mod yielding;
 
@@ -36,10 +37,10 @@ pub use yielding::{BOUC_WEN_MAPPING, BoucWenMaterial, bouc_wen_material};
 
 use serde::Serialize;
 
-use crate::contact::{ContactForce, ContactLaw};
-use crate::ground_motion::GroundMotion;
-use crate::modal::{Cantilever, Damping, FloorKind, Structure};
-use crate::scenario::Scenario;
+use crate::input::scenario::Scenario;
+use crate::model::contact::{ContactForce, ContactLaw};
+use crate::model::ground_motion::GroundMotion;
+use crate::model::structure::{Cantilever, Damping, FloorKind, Structure};
 
 /// The driver appended to every exported script (Python, OpenSeesPy).
 pub const DRIVER: &str = include_str!("driver.py");
@@ -496,7 +497,7 @@ pub fn damping_notes(scenario: &Scenario) -> Vec<String> {
             Structure::Cantilever(c) => matches!(c.damping, Damping::Modal(_)),
             Structure::Floors(f) => match &f.kind {
                 FloorKind::ShearBuilding(b) => {
-                    matches!(b.damping, crate::building::FloorDamping::Modal(_))
+                    matches!(b.damping, crate::model::building::FloorDamping::Modal(_))
                 }
                 FloorKind::Modal(_) => true,
             },
@@ -644,10 +645,10 @@ fn export_structure(
                 }
             }
             let damping = match &b.damping {
-                crate::building::FloorDamping::Modal(z) => {
+                crate::model::building::FloorDamping::Modal(z) => {
                     ExportDamping::Modal { ratios: z.clone() }
                 }
-                crate::building::FloorDamping::Rayleigh { ratio, modes } => {
+                crate::model::building::FloorDamping::Rayleigh { ratio, modes } => {
                     let w = &f.all_modes.omega;
                     let (wi, wj) = (w[modes[0] - 1], w[modes[1] - 1]);
                     ExportDamping::Rayleigh {

@@ -2,31 +2,7 @@
 //! program's storey peaks, and a yielding building's ductility, residual drift and hysteretic
 //! energy.
 
-use serde::Deserialize;
-
-use super::compare::{OpenSeesResults, ProgramNumbers, Row};
-
-/// A storey of a shear building: its link's numbers.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct OsStorey {
-    /// Peak |u_j − u_{j−1}| with contact, m.
-    pub peak_drift: Option<f64>,
-    /// The same without contact, m.
-    pub peak_drift_no_contact: Option<f64>,
-    /// Peak |V| of the storey link with contact (its material's force: k·drift, or Bouc–Wen),
-    /// N.
-    pub peak_force: Option<f64>,
-    /// The same without contact, N.
-    pub peak_force_no_contact: Option<f64>,
-    /// Signed drift at the end with contact, m.
-    pub residual_drift: Option<f64>,
-    /// The same without contact, m.
-    pub residual_drift_no_contact: Option<f64>,
-    /// Energy dissipated by the Bouc–Wen link with contact, J (`None`: elastic).
-    pub hysteretic_energy: Option<f64>,
-    /// The same without contact, J.
-    pub hysteretic_energy_no_contact: Option<f64>,
-}
+use super::results::{OpenSeesResults, OsStorey, ProgramNumbers, Row};
 
 /// The storeys of each shear building: every storey's peak drift and peak storey force
 /// (`floors[].peak_shear`, the force the storey carries: OpenSees' link force) with and without

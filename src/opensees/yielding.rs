@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::hysteresis::BoucWen;
+use crate::model::bouc_wen::BoucWen;
 
 /// OpenSees' `uniaxialMaterial BoucWen tag alpha ko n gamma beta Ao deltaA deltaNu deltaEta tol
 /// maxIter` for one yielding storey (OpenSees 3.7.1, `BoucWenMaterial`, Haukaas; Baber & Noori

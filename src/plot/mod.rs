@@ -129,7 +129,8 @@ fn write_both<R: Render>(r: &R, stem: &Path, w: u32, h: u32) -> Result<Vec<PathB
     let mut prefix = OsString::from(".");
     prefix.push(name);
     prefix.push(".tmp-");
-    let temp = |suffix: &str| crate::output::temp_file(dir, &prefix, suffix).map_err(io_err(dir));
+    let temp =
+        |suffix: &str| crate::output::atomic::temp_file(dir, &prefix, suffix).map_err(io_err(dir));
     let persist = |tmp: tempfile::NamedTempFile, to: &Path| {
         tmp.as_file().sync_all().map_err(io_err(tmp.path()))?;
         tmp.persist(to).map_err(|e| PlotError::Io {

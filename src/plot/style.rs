@@ -17,6 +17,9 @@ use plotters::style::{FontStyle, register_font};
 
 use super::PlotError;
 
+/// The tick labels of every figure (re-exported: the style of a figure's numbers).
+pub use crate::numerics::format::fmt_num;
+
 /// The embedded font (DejaVu Sans, Bitstream Vera / DejaVu licence, freely redistributable).
 static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
@@ -200,37 +203,6 @@ pub(super) fn pad(r: Option<(f64, f64)>, frac: f64) -> (f64, f64) {
     }
     let p = (hi - lo) * frac;
     (lo - p, hi + p)
-}
-
-/// A number as a tick label: at most 4 significant digits, no trailing zeros, `e` notation
-/// outside `[1e-3, 1e5)`, a true minus sign.
-pub fn fmt_num(v: f64) -> String {
-    if !v.is_finite() {
-        return String::new();
-    }
-    let a = v.abs();
-    let s = if a < 1e-300 {
-        "0".to_string()
-    } else if (1e-3..1e5).contains(&a) {
-        let decimals = (3 - a.log10().floor() as i32).clamp(0, 7) as usize;
-        trim_zeros(&format!("{v:.decimals$}")).to_string()
-    } else {
-        let s = format!("{v:.3e}");
-        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
-        format!("{}e{e}", trim_zeros(m))
-    };
-    match s.strip_prefix('-') {
-        Some(rest) => format!("−{rest}"),
-        None => s,
-    }
-}
-
-fn trim_zeros(s: &str) -> &str {
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        s
-    }
 }
 
 /// Ticks of a logarithmic axis over `[lo, hi]` (values, not logs; `0 < lo < hi`): 1-2-5 per

@@ -1,10 +1,21 @@
-//! An integration of buildings in physical coordinates, `M ü + C u̇ + K u = −M 1 a_g + F`, by
-//! RK4 at a small fixed step: the independent reference of the floor-response tests (it shares
-//! nothing with the program but the equations of motion). Used by `tests/buildings.rs` and
-//! `tests/storey_force.rs`.
+//! Helpers shared by the integration tests (each file of `tests/` is a crate of its own and
+//! includes them with `mod common;`):
+//!
+//! - running the `pounding` binary ([`pounding`]), a scenario from TOML text
+//!   ([`scenario_named`], [`run_named`]);
+//! - an integration of buildings in physical coordinates, `M ü + C u̇ + K u = −M 1 a_g + F`, by
+//!   RK4 at a small fixed step: the independent reference of the floor-response tests (it
+//!   shares nothing with the program but the equations of motion). Used by
+//!   `tests/buildings.rs` and `tests/storey_force.rs`.
 
 // (each test file uses part of it)
 #![allow(dead_code)]
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use pounding::analysis::simulate::{Report, simulate};
+use pounding::input::scenario::Scenario;
 
 /// M, K, C (Rayleigh through modes i, j of the generalised problem, computed here by the
 /// characteristic polynomial's roots) of a shear building, for the independent integration.
@@ -226,4 +237,25 @@ pub fn integrate_physical(a: &Physical, b: &Physical, case: &Case) -> ([FloorPea
         }
     }
     (peaks, pf)
+}
+
+/// The `pounding` binary run with `args` in the directory `cwd`.
+pub fn pounding(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A scenario from TOML `text`, named `file` in its messages, its paths relative to the
+/// repository's root; the error as its message.
+pub fn scenario_named(text: &str, file: &str) -> Result<Scenario, String> {
+    Scenario::from_toml(text, file, Path::new(env!("CARGO_MANIFEST_DIR")))
+        .map_err(|e| e.to_string())
+}
+
+/// `simulate` of the scenario `text` (named `file`), which must be valid and run.
+pub fn run_named(text: &str, file: &str) -> Report {
+    simulate(&scenario_named(text, file).expect("valid scenario")).expect("runs")
 }

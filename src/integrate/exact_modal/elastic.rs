@@ -45,7 +45,8 @@ use super::super::{
     update_onsets,
 };
 use super::{SubstepTolerance, hermite_gap_factor};
-use crate::system::{LevelState, System, dot};
+use crate::model::system::{LevelState, System};
+use crate::numerics::linalg::dot;
 
 /// Onsets are located to |δ| ≤ this, m.
 pub(super) const EVENT_TOL: f64 = 1e-12;
@@ -1354,7 +1355,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// function's values at the nodes (it is smooth across the kink, the force is not). Kinks
     /// within a thousandth of the step's ends are left where they are.
     ///
-    /// [`ContactForce::kink`]: crate::contact::ContactForce::kink
+    /// [`ContactForce::kink`]: crate::model::contact::ContactForce::kink
     fn law_kink_inside(&self) -> Option<(usize, f64, f64)> {
         let bases = collocation::bases();
         let mut best: Option<(usize, f64, f64)> = None;
@@ -2041,9 +2042,9 @@ fn hermite_root(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::scenario::Scenario;
     use crate::integrate::hysteretic::tests::redo;
     use crate::integrate::{Method, SolverSettings};
-    use crate::scenario::Scenario;
 
     struct Quiet;
     impl Observer for Quiet {

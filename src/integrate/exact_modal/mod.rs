@@ -71,7 +71,8 @@ use super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
-use crate::system::{LevelState, System, dot};
+use crate::model::system::{LevelState, System};
+use crate::numerics::linalg::dot;
 
 mod elastic;
 mod storeys;

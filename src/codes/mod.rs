@@ -1,0 +1,4 @@
+//! What the building codes define.
+
+pub mod rules;
+pub mod spectrum;

@@ -1,0 +1,6 @@
+//! The project's pictures, drawn with [`crate::plot`].
+
+pub mod rules;
+pub mod run;
+pub mod spectrum;
+pub mod sweep;

@@ -1,0 +1,4 @@
+//! What the user gives.
+
+pub mod file;
+pub mod scenario;

@@ -1,0 +1,450 @@
+//! The raw scenario → the checked [`super::Scenario`]: every missing key in one message,
+//! each table by its own module (`structure_keys`, `contact_keys`, `ground_keys`, `solver_keys`),
+//! contact heights at floors, and the warnings of valid but unusual values.
+
+use std::path::Path;
+
+use crate::model::ground_motion::GroundMotion;
+use crate::model::structure::{Damping, Stiffness, Structure};
+
+use super::RawScenario;
+use super::contact_keys::contact;
+use super::diagnostics::{Check, Ctx, Location, ScenarioError, quoted};
+use super::floors;
+use super::ground_keys::ground;
+use super::ranges::{
+    PLAUSIBLE_MIN_PGA, USUAL_DAMPING_RATIO, USUAL_RECORD_DT, USUAL_STRUCTURE_PERIOD,
+};
+use super::solver_keys::solver;
+use super::structure_keys::structure;
+use super::{ContactSpec, DEFAULT_MODES, PLAUSIBLE_GAP, PLAUSIBLE_PGA, RecordCache, Scenario};
+
+/// Every required key the file lacks (with its place and what is expected), before any value
+/// is checked: so that one message lists them all.
+pub(super) fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, String, String)> {
+    let mut out = Vec::new();
+    let mut miss = |near: Option<usize>, key: String, expected: &str| {
+        out.push((ctx.at(near), key, expected.to_string()));
+    };
+    match &raw.structure {
+        None => miss(
+            None,
+            "structure".into(),
+            "two [[structure]] tables (structure 1 on the left, 2 on the right)",
+        ),
+        Some(list) => {
+            let near = Some(list.span().start);
+            for (i, s) in list.get_ref().iter().enumerate().take(2) {
+                let key = |k: &str| format!("structure[{}].{k}", i + 1);
+                if s.kind.as_ref().is_some_and(|k| k.get_ref() != "cantilever") {
+                    // a building with floors: its keys are checked by `floors`
+                    continue;
+                }
+                if s.length.is_none() {
+                    miss(near, key("length"), "height L in m");
+                }
+                if s.mass.is_none() {
+                    miss(near, key("mass"), "total mass M in kg");
+                }
+                if s.period.is_none() && s.bending_stiffness.is_none() && s.tip_stiffness.is_none()
+                {
+                    miss(
+                        near,
+                        key("period"),
+                        "one of `period` (s), `bending_stiffness` (N·m²) or `tip_stiffness` (N/m)",
+                    );
+                }
+            }
+        }
+    }
+    match &raw.contact {
+        None => miss(
+            None,
+            "contact".into(),
+            "a [contact] table with at least `stiffness` and `gap`",
+        ),
+        Some(c) => {
+            let near = Some(c.span().start);
+            let r = c.get_ref();
+            let law = r.law.as_ref().map_or("hertz", |l| l.get_ref().as_str());
+            if r.stiffness.is_none() && law != "stereomechanical" {
+                miss(near, "contact.stiffness".into(), "contact stiffness");
+            }
+            if r.restitution.is_none()
+                && matches!(
+                    law,
+                    "kelvin" | "hertzdamp" | "jankowski" | "stereomechanical"
+                )
+            {
+                miss(
+                    near,
+                    "contact.restitution".into(),
+                    "a coefficient of restitution for this law",
+                );
+            }
+            match &r.level {
+                None if r.gap.is_none() => {
+                    miss(near, "contact.gap".into(), "at-rest gap in m (≥ 0)")
+                }
+                None => {}
+                Some(levels) => {
+                    for (i, l) in levels.iter().enumerate() {
+                        let near = Some(l.span().start);
+                        if l.get_ref().height.is_none() {
+                            miss(
+                                near,
+                                format!("contact.level[{}].height", i + 1),
+                                "contact height in m",
+                            );
+                        }
+                        if l.get_ref().gap.is_none() {
+                            miss(
+                                near,
+                                format!("contact.level[{}].gap", i + 1),
+                                "at-rest gap in m (≥ 0)",
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+    match &raw.ground_motion {
+        None => miss(
+            None,
+            "ground_motion".into(),
+            "a [ground_motion] table (kind = \"harmonic\" with `pga` and `period`, or kind = \"record\" with `file`)",
+        ),
+        Some(g) => {
+            let near = Some(g.span().start);
+            let r = g.get_ref();
+            match r.kind.as_ref().map(|k| k.get_ref().as_str()) {
+                None => miss(
+                    near,
+                    "ground_motion.kind".into(),
+                    "\"harmonic\", \"record\" or \"spectrum\"",
+                ),
+                Some("harmonic") => {
+                    if r.pga.is_none() {
+                        miss(
+                            near,
+                            "ground_motion.pga".into(),
+                            "peak ground acceleration in g",
+                        );
+                    }
+                    if r.period.is_none() {
+                        miss(
+                            near,
+                            "ground_motion.period".into(),
+                            "ground period T_g in s",
+                        );
+                    }
+                }
+                Some("record") if r.file.is_none() => {
+                    miss(near, "ground_motion.file".into(), "the record file")
+                }
+                Some(_) => {}
+            }
+        }
+    }
+    out
+}
+
+/// A building with floors touches only at its floors: every contact height must be one of
+/// them (a cantilever may touch at any height up to its top).
+pub(super) fn floors_at_contact(
+    c: &Check,
+    raw: &RawScenario,
+    structures: &[Structure; 2],
+    contact: &ContactSpec,
+) -> Result<(), ScenarioError> {
+    let Some(rc) = raw.contact.as_ref() else {
+        return Ok(());
+    };
+    let levels = rc.get_ref().level.as_ref();
+    for (k, lv) in contact.levels.iter().enumerate() {
+        for (i, s) in structures.iter().enumerate() {
+            let Some(heights) = s.floor_heights() else {
+                continue;
+            };
+            if heights
+                .iter()
+                .any(|&h| crate::model::building::same_height(h, lv.height))
+            {
+                continue;
+            }
+            let (key, at) = match levels.and_then(|l| l.get(k)) {
+                Some(l) => (
+                    format!("contact.level[{}].height", k + 1),
+                    l.get_ref()
+                        .height
+                        .as_ref()
+                        .map_or(l.span().start, |h| h.span().start),
+                ),
+                None => (
+                    "contact.height".to_string(),
+                    rc.get_ref()
+                        .height
+                        .as_ref()
+                        .map_or(rc.span().start, |h| h.span().start),
+                ),
+            };
+            let floors: Vec<String> = heights.iter().map(|h| format!("{h}")).collect();
+            return Err(ScenarioError::Invalid {
+                at: c.ctx.at(Some(at)),
+                key,
+                value: format!("{} m", lv.height),
+                reason: format!(
+                    "structure {} (\"{}\") has floors at {} m: a building with floors touches its \
+                     neighbour only at a floor, so a contact height must be one of them",
+                    i + 1,
+                    s.name(),
+                    floors.join(", ")
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn validate(
+    raw: RawScenario,
+    ctx: &Ctx,
+    base_dir: &Path,
+    records: Option<&RecordCache>,
+) -> Result<Scenario, ScenarioError> {
+    let c = Check { ctx };
+    let mut defaults = Vec::new();
+    let mut structure_warnings = Vec::new();
+    let structures = {
+        let list = c.required(
+            &raw.structure,
+            "structure",
+            "two [[structure]] tables (structure 1 on the left, 2 on the right)",
+            None,
+        )?;
+        if list.get_ref().len() != 2 {
+            return Err(ScenarioError::Invalid {
+                at: ctx.at(Some(list.span().start)),
+                key: "structure".into(),
+                value: format!("{} table(s)", list.get_ref().len()),
+                reason: "exactly two [[structure]] tables are needed".into(),
+            });
+        }
+        let start = list.span().start;
+        let mut it =
+            list.get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, s)| match floors::kind(&c, i, s)? {
+                    floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
+                    kind => floors::floor_structure(
+                        &c,
+                        i,
+                        s,
+                        kind,
+                        start,
+                        base_dir,
+                        &mut defaults,
+                        &mut structure_warnings,
+                    ),
+                });
+        let a = it.next().unwrap_or_else(|| unreachable!())?;
+        let b = it.next().unwrap_or_else(|| unreachable!())?;
+        [a, b]
+    };
+    let min_length = structures[0].length().min(structures[1].length());
+    let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
+    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
+    let yielding = structures.iter().any(|s| s.hysteresis().is_some());
+    let (solver, output_interval) = solver(
+        &c,
+        raw.solver.as_ref(),
+        &ground_motion,
+        yielding,
+        &mut defaults,
+    )?;
+    floors_at_contact(&c, &raw, &structures, &contact)?;
+    // each key within its range can still combine into a structure no run can mean (a huge
+    // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
+    for (i, st) in structures.iter().enumerate() {
+        let t1 = st.modal().periods().first().copied().unwrap_or(f64::NAN);
+        if !(1e-3..=1e4).contains(&t1) {
+            return Err(ScenarioError::Invalid {
+                at: c.ctx.at(raw.structure.as_ref().map(|l| l.span().start)),
+                key: format!("structure[{}]", i + 1),
+                value: format!("first-mode period {t1:e} s"),
+                reason: "the mass, height and stiffness give a first-mode period outside \
+                         [1e-3, 1e4] s: check their units"
+                    .into(),
+            });
+        }
+    }
+    let mut warnings = structure_warnings;
+    warnings.extend(plausibility(&contact, &ground_motion));
+    warnings.extend(derived_warnings(&structures));
+    let design = crate::input::scenario::design::validate(
+        &c,
+        raw.ground_motion.as_ref(),
+        raw.separation.as_ref(),
+        base_dir,
+        &mut defaults,
+    )?;
+    let floor_stations = match raw
+        .output
+        .as_ref()
+        .and_then(|o| o.get_ref().floor_stations.as_ref())
+    {
+        None => crate::recording::stations::FloorStations::default(),
+        Some(v) => {
+            crate::recording::stations::FloorStations::from_name(v.get_ref()).ok_or_else(|| {
+                c.invalid(
+                    v,
+                    "output.floor_stations",
+                    &format!(
+                        "must be one of {}",
+                        quoted(&crate::recording::stations::FloorStations::NAMES)
+                    ),
+                )
+            })?
+        }
+    };
+    // (after `design`, which may warn too: a_g probably in g)
+    warnings.extend(ctx.warnings.take());
+    let scenario = Scenario {
+        floor_stations,
+        title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
+        structures,
+        contact,
+        ground_motion,
+        solver,
+        output_interval,
+        defaults_applied: defaults,
+        warnings,
+        design,
+    };
+    // stability: needs the modal model (docs/model.md §2.9)
+    if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
+        let dt = raw
+            .solver
+            .as_ref()
+            .and_then(|s| s.get_ref().dt.as_ref())
+            .map(|d| d.span().start);
+        return Err(ScenarioError::Invalid {
+            at: ctx.at(dt),
+            key: "solver.dt".into(),
+            value: solver.dt.to_string(),
+            reason: if scenario
+                .defaults_applied
+                .iter()
+                .any(|d| d.contains(".modes = "))
+            {
+                format!(
+                    "{e}. `modes` was not given for every structure: the default of {DEFAULT_MODES} \
+                     modes was used; give `modes` to keep fewer, or omit `method` for the \
+                     adaptive default, stable with any number of modes"
+                )
+            } else {
+                e.to_string()
+            },
+        });
+    }
+    Ok(scenario)
+}
+
+/// Warnings about what several keys give together: the first-mode period of a structure given
+/// by its stiffness (not by `period`), the first-mode damping ratio of physical damping
+/// (`strain_rate_damping`, `air_damping`), each outside its usual band ([`usual_range`]).
+pub(super) fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, st) in structures.iter().enumerate() {
+        let (by_period, physical) = match st {
+            Structure::Cantilever(c) => (
+                matches!(c.stiffness, Stiffness::Period(_)),
+                matches!(c.damping, Damping::Physical { .. }),
+            ),
+            Structure::Floors(f) => (
+                matches!(f.kind, crate::model::structure::FloorKind::Modal(_)),
+                false,
+            ),
+        };
+        let modal = st.modal();
+        let (lo, hi) = USUAL_STRUCTURE_PERIOD;
+        if let Some(&t1) = modal.periods().first()
+            && !by_period
+            && !(lo..=hi).contains(&t1)
+        {
+            out.push(format!(
+                "structure {} (\"{}\"): its stiffness, mass and height give a first-mode period of \
+                 {t1:.4e} s, outside the usual [{lo}, {hi}] s of buildings; check their units",
+                i + 1,
+                st.name()
+            ));
+        }
+        let (lo, hi) = USUAL_DAMPING_RATIO;
+        if let Some(&z1) = modal.zeta.first()
+            && physical
+            && !(lo..=hi).contains(&z1)
+        {
+            out.push(format!(
+                "structure {} (\"{}\"): strain_rate_damping and air_damping give a first-mode \
+                 damping ratio of {z1:.4}, outside the usual [{lo}, {hi}] of buildings; check \
+                 their units (c_s/E in s, c_a in N·s/m²)",
+                i + 1,
+                st.name()
+            ));
+        }
+    }
+    out
+}
+
+/// Warnings about values that are valid but implausible, each saying why.
+pub(super) fn plausibility(contact: &ContactSpec, ground: &GroundMotion) -> Vec<String> {
+    let mut out = Vec::new();
+    let pga_g = ground.pga() / crate::model::ground_motion::STANDARD_GRAVITY;
+    if matches!(ground, GroundMotion::Harmonic(_) | GroundMotion::Record(_))
+        && pga_g < PLAUSIBLE_MIN_PGA
+    {
+        out.push(format!(
+            "the ground motion's PGA is {pga_g:.3e} g, below {PLAUSIBLE_MIN_PGA} g: shaking that \
+             people barely feel, far below any that makes buildings pound; PGA is in g — was it \
+             given in cm/s² or scaled twice?"
+        ));
+    }
+    if let GroundMotion::Record(r) = ground {
+        let (lo, hi) = USUAL_RECORD_DT;
+        if !(lo..=hi).contains(&r.dt) {
+            out.push(format!(
+                "the record is sampled every {} s, outside the usual [{lo}, {hi}] s of \
+                 accelerograms (50 Hz to 10 kHz); check `ground_motion.dt` or the file's time \
+                 column (in s)",
+                r.dt
+            ));
+        }
+    }
+    if pga_g > PLAUSIBLE_PGA {
+        out.push(format!(
+            "the ground motion's PGA is {pga_g:.3} g, above {PLAUSIBLE_PGA} g: beyond the strongest \
+             shaking ever recorded (about 3–4 g) and far beyond design levels (≤ 1–1.5 g); \
+             PGA is in g — was it given in m/s²?"
+        ));
+    }
+    let key = |k: usize| {
+        if contact.levels.len() > 1 {
+            format!("contact.level[{}].gap", k + 1)
+        } else {
+            "contact.gap".into()
+        }
+    };
+    for (k, l) in contact.levels.iter().enumerate() {
+        if l.gap >= PLAUSIBLE_GAP {
+            out.push(format!(
+                "`{}` = {} m: a gap of metres between adjacent buildings (usual gaps are \
+                 centimetres); the unit is m — was it given in mm or cm?",
+                key(k),
+                l.gap
+            ));
+        }
+    }
+    out
+}

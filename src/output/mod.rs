@@ -1,0 +1,10 @@
+//! Files and text reports.
+
+pub mod atomic;
+pub mod budget;
+pub mod csv;
+pub mod floors_csv;
+pub mod record_summary;
+pub mod row_spool;
+pub mod run;
+pub mod spectrum_report;

@@ -1,0 +1,688 @@
+//! Responses over a structure's height (issue 11): at every floor of a building (at stations
+//! of a cantilever: every tenth of its height and each contact height), the peaks of the
+//! displacement relative to the ground, the **absolute** acceleration, the storey drift and the
+//! storey force.
+//!
+//! At every observation the modal accelerations come from the equations of motion
+//! (docs/model.md §2.4), `η̈ = −Γ a_g − a v_g − 2ζω η̇ − ω² η + Σ_k c_k F_k`, so that the
+//! absolute acceleration `ü + a_g = Σ φ η̈ + a_g` includes each impact's spike (the integrators
+//! observe every contact step).
+//!
+//! The **storey shear** (`shear`) is the force the storey's structure carries, its restoring
+//! force without damping forces, the same quantity for every kind (docs/model.md §2.6c): `k_j
+//! d_j` of a shear building's storey spring, the Bouc–Wen force `V_j` of a yielding storey, the
+//! modes' equivalent static forces `K u = M Φ Ω² η` summed over the floors above for a building
+//! given by its modes, and the section shear `−EI w‴ = m Σ_n ω_n² η_n ∫_x^L φ_n dx` of a
+//! cantilever. Floors whose modes are those of a chain of storey springs (every shear
+//! building, and a `modal` structure built from one) are recognised once, and their storey
+//! force is `k_j` times the drift's peak: nothing is added to the time loop. The equilibrium
+//! of everything above, `V_j = Σ_{f ≥ j} (F_f − m_f a_f)` (a cantilever's `Σ_{h_k ≥ x} F_k −
+//! m ∫_x^L a dx`, [`crate::model::cantilever::Mode::integral_above`]), is the storey force plus the
+//! damping forces above: `shear_with_damping`.
+//!
+//! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
+//! observations on the cubic Hermite interpolant, as the contact-height peaks are;
+//! accelerations and the equilibrium value are taken at the observations.
+
+// Index loops over parallel per-mode slices read like the sums they form.
+#![allow(clippy::needless_range_loop)]
+
+use serde::Serialize;
+
+use crate::integrate::StepView;
+use crate::integrate::linear::hermite_abs_max;
+use crate::model::modal::{ModalModel, Shapes};
+use crate::model::system::System;
+
+/// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
+const HERMITE_REACH: f64 = 4.0 / 27.0;
+
+/// How closely (relative to the row's largest term) a floor's storey-force row must be `k_j`
+/// times its drift row for the floors to be taken as storey springs: far above the round-off
+/// of an eigen-solution (~1e-13) and far below any real departure from a chain of springs.
+const SPRING_MATCH: f64 = 1e-9;
+
+/// `peak = max(peak, x)` as a plain comparison (no NaN handling: a NaN state has already
+/// stopped the run as diverged).
+#[inline(always)]
+fn raise(peak: &mut f64, x: f64) {
+    if x > *peak {
+        *peak = x;
+    }
+}
+
+/// Refine `peak` on the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`, only
+/// where it could beat the peak: the interpolant lies within (4/27)·h·(|ẏ₀| + |ẏ₁|) of the
+/// larger end value (its slope basis functions are at most 4/27 in size).
+#[inline(always)]
+pub(crate) fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
+    // (a plain comparison, not f64::max: one instruction, and the values are finite)
+    let ends = if y0.abs() > y1.abs() {
+        y0.abs()
+    } else {
+        y1.abs()
+    };
+    if ends + HERMITE_REACH * h * (d0.abs() + d1.abs()) > *peak {
+        raise(peak, hermite_abs_max(y0, d0, y1, d1, h));
+    }
+}
+
+/// Peaks at one floor (station) of one run.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct FloorPeaks {
+    /// Height above the base, m.
+    pub height: f64,
+    /// Peak |u| relative to the ground, m.
+    pub displacement: f64,
+    /// Peak |ü + a_g|, absolute, m/s².
+    pub acceleration: f64,
+    /// The time of that peak, s (the observation it was taken at).
+    pub acceleration_time: f64,
+    /// Peak |u_j − u_{j−1}| of the storey below (the first relative to the base), m.
+    pub drift: f64,
+    /// Peak |V| of the storey below: the force its structure carries (its restoring force,
+    /// without damping forces; see the module documentation), N.
+    pub shear: f64,
+    /// Peak |V| of the storey below from the equilibrium of everything above it (inertia and
+    /// contact forces): the storey force plus the damping forces above, N.
+    pub shear_with_damping: f64,
+}
+
+/// How the equilibrium shear of one structure is formed.
+#[derive(Debug, Clone)]
+enum Equilibrium {
+    /// Lumped floor masses, kg.
+    Lumped(Vec<f64>),
+    /// A continuous cantilever: mass per length (kg/m) and, per station, `∫_x^L φ_n dx` of
+    /// every mode (m·kg^−½) and `L − x` (m).
+    Continuous {
+        m: f64,
+        /// `[n·stations + station]` (built `[station·modes + n]`, transposed).
+        integral: Vec<f64>,
+        above: Vec<f64>,
+    },
+}
+
+/// How the storey force (restoring, without damping) of one structure is formed.
+#[derive(Debug, Clone)]
+enum StoreyForce {
+    /// Storey springs k_j, N/m: `V_j = k_j d_j`, so its peak is `k_j` times the (refined) peak
+    /// drift, formed at the end.
+    Springs(Vec<f64>),
+    /// `V = r·η` per station, `r_n = ω_n² Σ_{g ≥ j} m_g φ_n(g)` (floors) or `ω_n² m ∫_x^L φ_n
+    /// dx` (a cantilever), N·kg^−½, `[n·stations + station]` (built `[station·modes + n]`,
+    /// transposed); refined between observations.
+    Rows(Vec<f64>),
+}
+
+/// The storey stiffnesses k_j (N/m) when the storey-force rows `rows` are `k_j` times the
+/// drift rows of the floor values `phi` (both `[floor·modes + n]`) to [`SPRING_MATCH`]: the
+/// modes are those of a chain of storey springs. `None` otherwise.
+fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec<f64>> {
+    let mut ks = Vec::with_capacity(floors);
+    let mut e = vec![0.0; modes];
+    for f in 0..floors {
+        let r = &rows[f * modes..(f + 1) * modes];
+        for n in 0..modes {
+            let below = if f == 0 {
+                0.0
+            } else {
+                phi[(f - 1) * modes + n]
+            };
+            e[n] = phi[f * modes + n] - below;
+        }
+        let (mut re, mut ee, mut big) = (0.0, 0.0, 0.0f64);
+        for n in 0..modes {
+            re += r[n] * e[n];
+            ee += e[n] * e[n];
+            big = big.max(r[n].abs());
+        }
+        let k = re / ee;
+        if !(k.is_finite() && k > 0.0)
+            || (0..modes).any(|n| (r[n] - k * e[n]).abs() > SPRING_MATCH * big)
+        {
+            return None;
+        }
+        ks.push(k);
+    }
+    Some(ks)
+}
+
+/// The stations of one structure.
+#[derive(Debug, Clone)]
+struct Stations {
+    heights: Vec<f64>,
+    /// Modes of the structure.
+    modes: usize,
+    /// φ_n at every station: `[n·stations + station]`.
+    phi: Vec<f64>,
+    equilibrium: Equilibrium,
+    force: StoreyForce,
+    /// Stations whose storey yields (Bouc–Wen), with the storey's index in the system's
+    /// hysteresis: its force comes from the law.
+    yields: Vec<Option<usize>>,
+    /// Which contact levels load the part above each station: `[station·levels + k]` (for
+    /// floors: the level acts at that very floor).
+    above: Vec<bool>,
+    levels: usize,
+    /// Offset of this structure's modes in the system, and the sign of the contact force on it.
+    offset: usize,
+    sign: f64,
+    /// (u, u̇) at every station at the previous observation, and at the one before (for
+    /// the samples between them).
+    prev: Vec<(f64, f64)>,
+    before: Vec<(f64, f64)>,
+    /// (V, V̇) of the storey force (`StoreyForce::Rows`, or a yielding storey's) at the
+    /// previous observation.
+    prev_force: Vec<(f64, f64)>,
+    /// Per station u, u̇, ü + … (modal part), V, V̇ and the inertia integral (scratch).
+    work: Vec<f64>,
+    /// Absolute acceleration at the current observation, and the one of largest size since
+    /// the last sample (signed).
+    abs_now: Vec<f64>,
+    hold: Vec<f64>,
+    peaks: Vec<FloorPeaks>,
+}
+
+impl Stations {
+    fn new(m: &ModalModel, contact_heights: &[f64], offset: usize, sign: f64) -> Stations {
+        let nm = m.len();
+        let (heights, equilibrium) = match &m.shapes {
+            Shapes::Floors {
+                heights, masses, ..
+            } => (heights.clone(), Equilibrium::Lumped(masses.clone())),
+            Shapes::Cantilever(modes) => {
+                let l = m.length;
+                let mut h: Vec<f64> = (1..=10).map(|k| l * k as f64 / 10.0).collect();
+                h.extend(
+                    contact_heights
+                        .iter()
+                        .copied()
+                        .filter(|&x| x > 0.0 && x <= l),
+                );
+                h.sort_by(f64::total_cmp);
+                h.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * l);
+                let scale = l / m.mass.sqrt(); // ∫ φ dx = L ∫ y dξ / √(mL)
+                let integral = h
+                    .iter()
+                    .flat_map(|&x| modes.iter().map(move |md| scale * md.integral_above(x / l)))
+                    .collect();
+                let above = h.iter().map(|&x| l - x).collect();
+                (
+                    h,
+                    Equilibrium::Continuous {
+                        m: m.mass / l,
+                        integral,
+                        above,
+                    },
+                )
+            }
+        };
+        let phi: Vec<f64> = heights.iter().flat_map(|&x| m.shapes_at(x)).collect();
+        let ns = heights.len();
+        // the storey force per unit modal coordinate: the equivalent static forces
+        // K φ_n = ω_n² M φ_n of what is above (docs/model.md §2.6c)
+        let mut rows = vec![0.0; ns * nm];
+        match &equilibrium {
+            Equilibrium::Lumped(masses) => {
+                for f in (0..ns).rev() {
+                    for n in 0..nm {
+                        let above = if f + 1 < ns {
+                            rows[(f + 1) * nm + n]
+                        } else {
+                            0.0
+                        };
+                        rows[f * nm + n] =
+                            above + masses[f] * m.omega[n] * m.omega[n] * phi[f * nm + n];
+                    }
+                }
+            }
+            Equilibrium::Continuous {
+                m: mpl, integral, ..
+            } => {
+                for f in 0..ns {
+                    for n in 0..nm {
+                        rows[f * nm + n] = mpl * m.omega[n] * m.omega[n] * integral[f * nm + n];
+                    }
+                }
+            }
+        }
+        let force = match &equilibrium {
+            Equilibrium::Lumped(_) => match springs(&rows, &phi, ns, nm) {
+                Some(k) => StoreyForce::Springs(k),
+                None => StoreyForce::Rows(rows),
+            },
+            Equilibrium::Continuous { .. } => StoreyForce::Rows(rows),
+        };
+        // the time loop runs over the stations mode by mode: `[mode·stations + station]`
+        let transpose = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .flat_map(|n| (0..ns).map(move |f| x[f * nm + n]))
+                .collect()
+        };
+        let force = match force {
+            StoreyForce::Rows(r) => StoreyForce::Rows(transpose(&r)),
+            springs => springs,
+        };
+        let equilibrium = match equilibrium {
+            Equilibrium::Continuous { m, integral, above } => Equilibrium::Continuous {
+                m,
+                integral: transpose(&integral),
+                above,
+            },
+            lumped => lumped,
+        };
+        let phi = transpose(&phi);
+        let lumped = matches!(equilibrium, Equilibrium::Lumped(_));
+        let above = heights
+            .iter()
+            .flat_map(|&x| {
+                contact_heights.iter().map(move |&hk| {
+                    if lumped {
+                        crate::model::building::same_height(hk, x)
+                    } else {
+                        hk >= x || crate::model::building::same_height(hk, x)
+                    }
+                })
+            })
+            .collect();
+        Stations {
+            peaks: heights
+                .iter()
+                .map(|&height| FloorPeaks {
+                    height,
+                    ..FloorPeaks::default()
+                })
+                .collect(),
+            heights,
+            modes: nm,
+            phi,
+            equilibrium,
+            force,
+            yields: vec![None; ns],
+            above,
+            levels: contact_heights.len(),
+            offset,
+            sign,
+            prev: vec![(0.0, 0.0); ns],
+            before: vec![(0.0, 0.0); ns],
+            prev_force: vec![(0.0, 0.0); ns],
+            work: vec![0.0; 6 * ns],
+            abs_now: vec![0.0; ns],
+            hold: vec![0.0; ns],
+        }
+    }
+
+    /// The peaks, with the springs' storey forces formed from the peak drifts.
+    fn finish(mut self) -> Vec<FloorPeaks> {
+        if let StoreyForce::Springs(k) = &self.force {
+            for ((p, k), y) in self.peaks.iter_mut().zip(k).zip(&self.yields) {
+                if y.is_none() {
+                    p.shear = k * p.drift;
+                }
+            }
+        }
+        self.peaks
+    }
+}
+
+/// Tracks [`FloorPeaks`] of both structures through a run (an addition to the recorder).
+#[derive(Debug, Clone)]
+pub struct FloorRecorder {
+    stations: [Stations; 2],
+    /// Sampling of the floor history (s) and the next sample's index.
+    interval: f64,
+    next_sample: usize,
+    /// One row of the floor history (scratch).
+    row: Vec<f64>,
+    /// Modal accelerations at the current observation (scratch).
+    accel: Vec<f64>,
+    last_t: Option<f64>,
+}
+
+impl FloorRecorder {
+    /// Stations for both structures of `system`; `contact_heights` are the contact levels'
+    /// heights (the levels of `system`, or for a run without contact those of the run with).
+    pub fn new(system: &System, contact_heights: &[f64], interval: f64) -> FloorRecorder {
+        let [s1, s2] = &system.structures;
+        let n1 = system.n1();
+        let mut stations = [
+            Stations::new(s1, contact_heights, 0, -1.0),
+            Stations::new(s2, contact_heights, n1, 1.0),
+        ];
+        for (k, st) in system.hysteresis.storeys().iter().enumerate() {
+            if let Some(y) = stations[st.structure].yields.get_mut(st.storey) {
+                *y = Some(k);
+            }
+        }
+        let cols = 2 * stations.iter().map(|s| s.heights.len()).sum::<usize>();
+        FloorRecorder {
+            stations,
+            interval,
+            next_sample: 0,
+            row: vec![0.0; cols],
+            accel: vec![0.0; system.len()],
+            last_t: None,
+        }
+    }
+
+    /// The heights of the stations of structure 1 and 2 (m, lowest first), in the order of
+    /// [`FloorRecorder::columns`].
+    pub fn station_heights(&self) -> [&[f64]; 2] {
+        [&self.stations[0].heights, &self.stations[1].heights]
+    }
+
+    /// The names of a floor history row's values: for structure i and every station (height
+    /// h, m), `w{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
+    pub fn columns(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for (i, st) in self.stations.iter().enumerate() {
+            for h in &st.heights {
+                out.push(format!("w{}_{h}", i + 1));
+                out.push(format!("a{}_{h}", i + 1));
+            }
+        }
+        out
+    }
+
+    /// Record one observation; with a `sink`, every floor history sample due by then (times
+    /// `k·interval`, as history.csv): displacements on the cubic Hermite interpolant between
+    /// observations, and for the acceleration the value of largest size since the previous
+    /// sample (so that an impact's spike shows at the sample after it, at its true size).
+    pub fn observe(
+        &mut self,
+        system: &System,
+        s: &StepView,
+        sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
+    ) {
+        let n = system.len();
+        let (ag, vg) = system.ground.accel_velocity(s.t);
+        let h = self.last_t.map(|t0| s.t - t0).filter(|h| *h > 0.0);
+        {
+            let (la, lv) = (system.ground_load(), system.air_load());
+            let (damp, w) = (system.damping_coefficients(), system.omega());
+            for j in 0..n {
+                self.accel[j] = la[j] * ag + lv[j] * vg - damp[j] * s.v[j] - w[j] * w[j] * s.q[j];
+            }
+            for (k, st) in s.levels.iter().enumerate() {
+                if st.force != 0.0 {
+                    for (a, c) in self.accel.iter_mut().zip(system.coupling(k)) {
+                        *a += c * st.force;
+                    }
+                }
+            }
+            // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::model::hysteresis)
+            let hy = &system.hysteresis;
+            for (k, st) in hy.storeys().iter().enumerate() {
+                let (d, _) = hy.drift(k, s.q, s.v);
+                let z = s.z.get(k).copied().unwrap_or(0.0);
+                let f = st.pseudo_force(d, z);
+                if f != 0.0 {
+                    for (a, e) in self.accel.iter_mut().zip(hy.row(k)) {
+                        *a -= e * f;
+                    }
+                }
+            }
+        }
+        for st in &mut self.stations {
+            let nm = st.modes;
+            let ns = st.heights.len();
+            let (q, v, a) = (
+                &s.q[st.offset..st.offset + nm],
+                &s.v[st.offset..st.offset + nm],
+                &self.accel[st.offset..st.offset + nm],
+            );
+            // every station's sums over the modes, formed mode by mode: the runs over the
+            // stations are contiguous (`[mode·stations + station]`) and vectorise
+            let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
+            let (ud, rest) = rest.split_at_mut(ns);
+            let (ua, rest) = rest.split_at_mut(ns);
+            let (vf, rest) = rest.split_at_mut(ns);
+            let (vfd, inertia) = rest.split_at_mut(ns);
+            let phi = &st.phi[..ns * nm];
+            {
+                let c = &phi[..ns];
+                let (q0, v0, a0) = (q[0], v[0], a[0]);
+                for f in 0..ns {
+                    u[f] = c[f] * q0;
+                    ud[f] = c[f] * v0;
+                    ua[f] = c[f] * a0;
+                }
+            }
+            for j in 1..nm {
+                let c = &phi[j * ns..(j + 1) * ns];
+                let (qj, vj, aj) = (q[j], v[j], a[j]);
+                for f in 0..ns {
+                    u[f] += c[f] * qj;
+                    ud[f] += c[f] * vj;
+                    ua[f] += c[f] * aj;
+                }
+            }
+            // the storey force from the modes' equivalent static forces (springs: at the end)
+            let rows = match &st.force {
+                StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
+                StoreyForce::Springs(_) => None,
+            };
+            if let Some(rows) = rows {
+                {
+                    let c = &rows[..ns];
+                    for f in 0..ns {
+                        vf[f] = c[f] * q[0];
+                        vfd[f] = c[f] * v[0];
+                    }
+                }
+                for j in 1..nm {
+                    let c = &rows[j * ns..(j + 1) * ns];
+                    let (qj, vj) = (q[j], v[j]);
+                    for f in 0..ns {
+                        vf[f] += c[f] * qj;
+                        vfd[f] += c[f] * vj;
+                    }
+                }
+            }
+            // the previous observation's (u, u̇) become the one before: swap, then overwrite
+            std::mem::swap(&mut st.prev, &mut st.before);
+            let abs = &mut st.abs_now[..ns];
+            let (mut below, mut below_rate, mut below_prev, mut below_prev_rate) =
+                (0.0, 0.0, 0.0, 0.0);
+            for f in 0..ns {
+                let (u, ud) = (u[f], ud[f]);
+                let (up, udp) = st.before[f];
+                let p = &mut st.peaks[f];
+                let (d, dd, dp, ddp) = (
+                    u - below,
+                    ud - below_rate,
+                    up - below_prev,
+                    udp - below_prev_rate,
+                );
+                raise(&mut p.displacement, u.abs());
+                raise(&mut p.drift, d.abs());
+                if let Some(h) = h {
+                    refine(&mut p.displacement, up, udp, u, ud, h);
+                    refine(&mut p.drift, dp, ddp, d, dd, h);
+                }
+                abs[f] = ua[f] + ag;
+                if abs[f].abs() > p.acceleration {
+                    p.acceleration = abs[f].abs();
+                    p.acceleration_time = s.t;
+                }
+                // the storey force, refined between observations: a yielding storey's
+                // Bouc–Wen V (C¹ in time) from this drift and its z, or the modal rows' V
+                let force = match st.yields[f] {
+                    Some(k) => {
+                        let law = &system.hysteresis.storeys()[k];
+                        let z = s.z.get(k).copied().unwrap_or(0.0);
+                        Some((law.force(d, z), law.force_rate(dd, z)))
+                    }
+                    None => rows.map(|_| (vf[f], vfd[f])),
+                };
+                if let Some((v1, vd1)) = force {
+                    raise(&mut p.shear, v1.abs());
+                    if let Some(h) = h {
+                        let (v0, vd0) = st.prev_force[f];
+                        refine(&mut p.shear, v0, vd0, v1, vd1, h);
+                    }
+                    st.prev_force[f] = (v1, vd1);
+                }
+                st.prev[f] = (u, ud);
+                (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
+            }
+            // the equilibrium of what is above (storey force and damping forces)
+            let nl = st.levels.min(s.levels.len());
+            match &st.equilibrium {
+                Equilibrium::Lumped(masses) => {
+                    let mut v_above = 0.0;
+                    for f in (0..ns).rev() {
+                        v_above -= masses[f] * abs[f];
+                        // contact forces acting at this floor
+                        for k in 0..nl {
+                            if st.above[f * st.levels + k] {
+                                v_above += st.sign * s.levels[k].force;
+                            }
+                        }
+                        raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
+                    }
+                }
+                Equilibrium::Continuous { m, integral, above } => {
+                    let above = &above[..ns];
+                    for f in 0..ns {
+                        inertia[f] = ag * above[f];
+                    }
+                    let integral = &integral[..ns * nm];
+                    for j in 0..nm {
+                        let c = &integral[j * ns..(j + 1) * ns];
+                        let aj = a[j];
+                        for f in 0..ns {
+                            inertia[f] += c[f] * aj;
+                        }
+                    }
+                    for f in 0..ns {
+                        let mut v_sec = -m * inertia[f];
+                        for k in 0..nl {
+                            if st.above[f * st.levels + k] {
+                                v_sec += st.sign * s.levels[k].force;
+                            }
+                        }
+                        raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
+                    }
+                }
+            }
+        }
+        if let Some(sink) = sink {
+            self.emit(s.t, h, sink);
+        }
+        self.last_t = Some(s.t);
+    }
+
+    /// The floor history samples due by time `t` (the current observation; `h` since the
+    /// previous one).
+    fn emit(
+        &mut self,
+        t: f64,
+        h: Option<f64>,
+        sink: &mut (dyn crate::recording::history::HistorySink + '_),
+    ) {
+        let eps = 1e-9 * self.interval;
+        let mut consumed = false;
+        loop {
+            let tau = self.next_sample as f64 * self.interval;
+            if tau > t + eps {
+                break;
+            }
+            // a sample strictly before this observation holds the accelerations up to the
+            // previous one; one at this observation includes it
+            let here = tau >= t - eps;
+            let th = match h {
+                Some(h) if h > 0.0 && !here => ((tau - (t - h)) / h).clamp(0.0, 1.0),
+                _ => 1.0,
+            };
+            let hh = h.unwrap_or(0.0);
+            let (t2, t3) = (th * th, th * th * th);
+            let (h00, h10, h01, h11) = (
+                2.0 * t3 - 3.0 * t2 + 1.0,
+                t3 - 2.0 * t2 + th,
+                -2.0 * t3 + 3.0 * t2,
+                t3 - t2,
+            );
+            let mut k = 0;
+            for st in &mut self.stations {
+                for f in 0..st.heights.len() {
+                    let ((u0, d0), (u1, d1)) = (st.before[f], st.prev[f]);
+                    self.row[k] = h00 * u0 + h10 * hh * d0 + h01 * u1 + h11 * hh * d1;
+                    if here && st.abs_now[f].abs() > st.hold[f].abs() {
+                        st.hold[f] = st.abs_now[f];
+                    }
+                    self.row[k + 1] = st.hold[f];
+                    st.hold[f] = 0.0;
+                    k += 2;
+                }
+            }
+            sink.floor_row(tau, &self.row);
+            self.next_sample += 1;
+            consumed |= here;
+        }
+        if consumed {
+            return;
+        }
+        // this observation's accelerations count towards the next sample
+        for st in &mut self.stations {
+            for f in 0..st.heights.len() {
+                if st.abs_now[f].abs() > st.hold[f].abs() {
+                    st.hold[f] = st.abs_now[f];
+                }
+            }
+        }
+    }
+
+    /// The peaks of structure 1 and 2, lowest station first.
+    pub fn finish(self) -> [Vec<FloorPeaks>; 2] {
+        let [a, b] = self.stations;
+        [a.finish(), b.finish()]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::building::{FloorDamping, Floors, ShearBuilding};
+
+    fn shear_building(modes: usize) -> ModalModel {
+        ShearBuilding {
+            floors: Floors {
+                heights: vec![3.0, 6.0, 9.0, 12.0],
+                masses: vec![2.0e5, 2.0e5, 1.8e5, 1.5e5],
+            },
+            storey_stiffnesses: vec![4.0e8, 3.5e8, 3.0e8, 2.0e8],
+            modes,
+            damping: FloorDamping::Modal(vec![0.05]),
+        }
+        .modal()
+        .expect("building")
+        .truncated(modes)
+    }
+
+    /// A shear building's modes, all of them or the first two, are recognised as storey
+    /// springs with its own stiffnesses (to 1e-9), and the modes' equivalent static forces
+    /// `Σ_{g ≥ j} m_g φ_n(g) ω_n²` are `k_j (φ_n(j) − φ_n(j−1))` mode by mode; a structure whose
+    /// modes are not a chain's (the second mode's shape altered, so K φ ≠ ω² M φ for a chain)
+    /// keeps the modal rows.
+    #[test]
+    fn a_shear_buildings_modes_are_its_storey_springs() {
+        for modes in [4, 2] {
+            let m = shear_building(modes);
+            let st = Stations::new(&m, &[], 0, 1.0);
+            let StoreyForce::Springs(k) = &st.force else {
+                panic!("{modes} modes: not recognised as springs");
+            };
+            for (got, want) in k.iter().zip([4.0e8, 3.5e8, 3.0e8, 2.0e8]) {
+                assert!((got - want).abs() <= 1e-9 * want, "{got} vs {want}");
+            }
+        }
+        let mut m = shear_building(4);
+        if let Shapes::Floors { values, .. } = &mut m.shapes {
+            values[1][2] *= 1.01;
+        }
+        let st = Stations::new(&m, &[], 0, 1.0);
+        assert!(matches!(st.force, StoreyForce::Rows(_)));
+    }
+}

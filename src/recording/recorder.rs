@@ -1,0 +1,831 @@
+//! The recorder: what a run keeps ([`RunRecord`]) taken from every integration step — peaks
+//! over every step, impact events, a history sampled at the output interval, and the energy
+//! balance. The recorder is an [`Observer`]: the integrators do not know it exists.
+//!
+//! Memory does not grow with the duration: every history sample goes, as it is taken, to an
+//! optional [`HistorySink`] (the CSV writer streams it to disk), while the in-memory
+//! [`History`] (for figures and the library) keeps at most [`MAX_KEPT_SAMPLES`] rows — every
+//! sample of an ordinary run, a min/max envelope of a long one ([`History::stride`]).
+
+use crate::integrate::linear::{hermite_abs_max, hermite_max};
+use crate::integrate::{Observer, StepView, onset_speed};
+use crate::model::contact::ContactForce;
+use crate::model::system::System;
+use crate::recording::floor_response::FloorRecorder;
+use crate::recording::history::{Envelope, History, HistorySink, MAX_KEPT_SAMPLES, sample_count};
+use crate::recording::run_record::{EnergyBalance, Impact, LevelRecord, RunRecord};
+use crate::recording::storey_record::StoreyTracker;
+
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    start: f64,
+    impulse_at_start: f64,
+    peak_force: f64,
+    max_penetration: f64,
+    approach_speed: f64,
+}
+
+/// The recorder. Build with [`Recorder::new`] (and [`Recorder::with_sink`] to stream the
+/// history), pass to an integrator, then [`Recorder::finish`].
+pub struct Recorder<'s> {
+    /// Index of the main (highest) tracked height. Heights tracked: the contact levels' (for the
+    /// no-contact run the same heights are passed in, so that both runs report the same places).
+    main: usize,
+    /// φ of structure 1 and 2 at each tracked height: rows of n₁ and n₂.
+    phi1: Vec<Vec<f64>>,
+    phi2: Vec<Vec<f64>>,
+    levels: Vec<LevelRecord>,
+    open: Vec<Option<Open>>,
+    impacts: Vec<Impact>,
+    prev: Option<Sample>,
+    prev_delta: Vec<f64>,
+    prev_delta_dot: Vec<f64>,
+    /// (w₁, ẇ₁, w₂, ẇ₂) at every tracked height at the previous observation.
+    prev_w: Vec<[f64; 4]>,
+    interval: f64,
+    next_sample: usize,
+    /// `next_sample · interval`, s.
+    next_time: f64,
+    history: History,
+    /// The envelope group being filled (stride > 1).
+    envelope: Envelope,
+    /// Where every sample goes as it is taken.
+    sink: Option<&'s mut dyn HistorySink>,
+    /// Forces of the levels at the sample being taken (scratch, no allocation per sample).
+    row_forces: Vec<f64>,
+    last_impulse: Vec<f64>,
+    prev_force: Vec<f64>,
+    modal_initial: f64,
+    stored_initial: f64,
+    energy_peak: f64,
+    last_t: f64,
+    steps: usize,
+    /// Modal and contact energy and the tallies (input, damping, contact, hysteretic work) at
+    /// the last observation, J.
+    last_energy: [f64; 6],
+    /// End of the run, s.
+    end: f64,
+    /// Responses over the structures' heights (`None`: not tracked).
+    floors: Option<FloorRecorder>,
+    /// The values of the floor rows that go to the sink (`None`: all; see
+    /// [`Recorder::with_floor_stations`]), and a scratch row for them.
+    floor_keep: Option<Vec<usize>>,
+    floor_row: Vec<f64>,
+    /// Yielding storeys (`None`: none).
+    storeys: Option<StoreyTracker>,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    t: f64,
+    w: [f64; 2],
+    wdot: [f64; 2],
+}
+
+impl std::fmt::Debug for Recorder<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Recorder")
+            .field("steps", &self.steps)
+            .field("kept_samples", &self.history.t.len())
+            .field("streams", &self.sink.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'s> Recorder<'s> {
+    /// A recorder tracking displacements at `heights` (m; the main one is the highest) for
+    /// `system`, sampling the history every `interval` s over `duration` s.
+    pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder<'s> {
+        let main = heights
+            .iter()
+            .enumerate()
+            .fold(0, |best, (i, &h)| if h > heights[best] { i } else { best });
+        let [s1, s2] = &system.structures;
+        let phi1 = heights.iter().map(|&h| s1.shapes_at(h)).collect();
+        let phi2 = heights.iter().map(|&h| s2.shapes_at(h)).collect();
+        let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
+        let stride = if samples <= MAX_KEPT_SAMPLES {
+            1
+        } else {
+            // two rows per group
+            samples.div_ceil(MAX_KEPT_SAMPLES / 2)
+        };
+        let kept = if stride == 1 {
+            samples
+        } else {
+            2 * samples.div_ceil(stride)
+        };
+        let nl = system.levels.len();
+        Recorder {
+            main,
+            phi1,
+            phi2,
+            levels: heights
+                .iter()
+                .map(|&h| LevelRecord {
+                    height: h,
+                    peak_w1: 0.0,
+                    peak_w2: 0.0,
+                    max_closing: f64::NEG_INFINITY,
+                    peak_force: 0.0,
+                    max_penetration: 0.0,
+                    impacts: 0,
+                    contact_time: 0.0,
+                })
+                .collect(),
+            open: vec![None; nl],
+            impacts: Vec::with_capacity(64),
+            prev: None,
+            prev_delta: vec![f64::NEG_INFINITY; nl],
+            prev_delta_dot: vec![0.0; nl],
+            prev_w: vec![[0.0; 4]; heights.len()],
+            interval,
+            next_sample: 0,
+            next_time: 0.0,
+            history: History {
+                stride,
+                t: Vec::with_capacity(kept),
+                w1: Vec::with_capacity(kept),
+                w2: Vec::with_capacity(kept),
+                force: vec![Vec::with_capacity(kept); nl],
+            },
+            envelope: Envelope::new(2 + nl),
+            sink: None,
+            row_forces: vec![0.0; nl],
+            last_impulse: vec![0.0; nl],
+            prev_force: vec![0.0; nl],
+            modal_initial: 0.0,
+            stored_initial: 0.0,
+            energy_peak: 0.0,
+            last_t: 0.0,
+            steps: 0,
+            last_energy: [0.0; 6],
+            end: duration,
+            floors: Some(FloorRecorder::new(system, heights, interval)),
+            floor_keep: None,
+            floor_row: Vec::new(),
+            storeys: StoreyTracker::new(system, interval, duration),
+        }
+    }
+
+    /// Do not track the responses over the structures' heights (`RunRecord::floors` empty):
+    /// for runs that need only the contact-height numbers.
+    pub fn without_floors(mut self) -> Recorder<'s> {
+        self.floors = None;
+        self
+    }
+
+    /// Send to the sink the floor history of the stations `stations` keeps (the peaks over
+    /// the height still cover every station): the rows of `floors.csv`.
+    pub fn with_floor_stations(
+        mut self,
+        system: &System,
+        heights: &[f64],
+        stations: crate::recording::stations::FloorStations,
+    ) -> Recorder<'s> {
+        if let Some(f) = &self.floors {
+            self.floor_keep = stations.selection(system, f, heights);
+            self.floor_row = Vec::with_capacity(self.floor_keep.as_ref().map_or(0, Vec::len));
+        }
+        self
+    }
+
+    /// Send every history sample to `sink` as it is taken (the in-memory history is kept as
+    /// well, bounded: see [`History`]).
+    pub fn with_sink(mut self, sink: &'s mut dyn HistorySink) -> Recorder<'s> {
+        self.sink = Some(sink);
+        self
+    }
+
+    /// Close open contact episodes and return the record.
+    pub fn finish(mut self) -> RunRecord {
+        let mut envelope = std::mem::replace(&mut self.envelope, Envelope::new(0));
+        envelope.flush(&mut self.history);
+        for k in 0..self.open.len() {
+            if let Some(o) = self.open[k].take() {
+                self.close(k, o, self.last_t, self.last_impulse[k]);
+            }
+        }
+        for l in &mut self.levels {
+            if !l.max_closing.is_finite() {
+                l.max_closing = 0.0;
+            }
+        }
+        self.impacts
+            .sort_by(|a, b| a.start.total_cmp(&b.start).then(a.level.cmp(&b.level)));
+        let [modal, stored, input, damping, contact, hysteretic] = self.last_energy;
+        let modal_change = modal - self.modal_initial;
+        let residual = input - modal_change - damping - contact - hysteretic;
+        let storeys = self
+            .storeys
+            .take()
+            .map_or(Vec::new(), StoreyTracker::finish);
+        let (hysteretic_dissipated, hysteretic_stored) = if storeys.is_empty() {
+            (None, None)
+        } else {
+            let e: f64 = storeys.iter().map(|r| r.hysteretic_energy).sum();
+            (Some(e), Some(hysteretic - e))
+        };
+        let scale = self.energy_peak.max(input.abs()).max(f64::MIN_POSITIVE);
+        let energy = EnergyBalance {
+            input,
+            modal_change,
+            contact_stored: stored,
+            damping_dissipated: damping,
+            contact_dissipated: contact - (stored - self.stored_initial),
+            hysteretic_dissipated,
+            hysteretic_stored,
+            relative_error: residual.abs() / scale,
+        };
+        let (peak, max_closing) = self
+            .levels
+            .get(self.main)
+            .map_or(([0.0; 2], 0.0), |m| ([m.peak_w1, m.peak_w2], m.max_closing));
+        RunRecord {
+            peak,
+            max_closing,
+            levels: self.levels,
+            impacts: self.impacts,
+            history: self.history,
+            energy,
+            steps: self.steps,
+            floors: self
+                .floors
+                .map_or([Vec::new(), Vec::new()], FloorRecorder::finish),
+            storeys,
+        }
+    }
+
+    fn close(&mut self, k: usize, o: Open, end: f64, impulse_now: f64) {
+        self.impacts.push(Impact {
+            level: k,
+            start: o.start,
+            end,
+            peak_force: o.peak_force,
+            impulse: impulse_now - o.impulse_at_start,
+            max_penetration: o.max_penetration,
+            approach_speed: o.approach_speed,
+        });
+        let l = &mut self.levels[k];
+        l.impacts += 1;
+        l.contact_time += end - o.start;
+    }
+
+    /// One history sample (forces in `row_forces`): to the sink, and into the bounded
+    /// in-memory history.
+    fn keep(&mut self, t: f64, w: [f64; 2]) {
+        if let Some(sink) = self.sink.as_deref_mut() {
+            sink.row(t, w, &self.row_forces);
+        }
+        let h = &mut self.history;
+        if h.stride <= 1 {
+            h.t.push(t);
+            h.w1.push(w[0]);
+            h.w2.push(w[1]);
+            for (c, f) in h.force.iter_mut().zip(&self.row_forces) {
+                c.push(*f);
+            }
+        } else {
+            let forces = &self.row_forces;
+            self.envelope
+                .add(t, w.into_iter().chain(forces.iter().copied()));
+            if self.envelope.count == h.stride {
+                self.envelope.flush(h);
+            }
+        }
+    }
+
+    /// History samples at multiples of the interval in (previous step, this step]: cubic
+    /// Hermite in the displacements (4th-order accurate like the step), linear in the forces.
+    /// Returns whether a sample was taken.
+    fn sample(&mut self, s: &StepView, now: &Sample) -> bool {
+        if self.next_time > s.t + 1e-9 * self.interval {
+            // (most observations of a run in contact: no sample due)
+            for (k, st) in s.levels.iter().enumerate() {
+                self.prev_force[k] = st.force;
+            }
+            return false;
+        }
+        let first = self.next_sample;
+        loop {
+            let tau = self.next_sample as f64 * self.interval;
+            if tau > s.t + 1e-9 * self.interval {
+                break;
+            }
+            let w = match self.prev {
+                Some(p) if s.t > p.t => {
+                    let h = s.t - p.t;
+                    let th = ((tau - p.t) / h).clamp(0.0, 1.0);
+                    let (t2, t3) = (th * th, th * th * th);
+                    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+                    let h10 = t3 - 2.0 * t2 + th;
+                    let h01 = -2.0 * t3 + 3.0 * t2;
+                    let h11 = t3 - t2;
+                    let w = |i: usize| {
+                        h00 * p.w[i] + h10 * h * p.wdot[i] + h01 * now.w[i] + h11 * h * now.wdot[i]
+                    };
+                    for (k, st) in s.levels.iter().enumerate() {
+                        self.row_forces[k] =
+                            self.prev_force[k] + th * (st.force - self.prev_force[k]);
+                    }
+                    [w(0), w(1)]
+                }
+                _ => {
+                    for (k, st) in s.levels.iter().enumerate() {
+                        self.row_forces[k] = st.force;
+                    }
+                    now.w
+                }
+            };
+            self.keep(tau, w);
+            self.next_sample += 1;
+        }
+        self.next_time = self.next_sample as f64 * self.interval;
+        for (k, st) in s.levels.iter().enumerate() {
+            self.prev_force[k] = st.force;
+        }
+        self.next_sample > first
+    }
+}
+
+/// `peak = max(peak, x)` as a plain comparison (no NaN handling, which `f64::max` spends
+/// instructions on: a NaN state has already stopped the run as diverged).
+#[inline(always)]
+fn raise(peak: &mut f64, x: f64) {
+    if x > *peak {
+        *peak = x;
+    }
+}
+
+/// The largest of the cubic Hermite slope basis functions θ(1−θ)² and θ²(1−θ) on [0, 1].
+const HERMITE_REACH: f64 = 4.0 / 27.0;
+
+/// An upper bound of the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`: its
+/// value basis functions are ≥ 0 and sum to 1 (at most the larger end value), its slope
+/// terms θ(1−θ)²·h·d0 ≥ 0 ≥ −θ²(1−θ)·h·d1 add at most (4/27)·h·(d0⁺ + d1⁻). A step whose
+/// bound does not beat a running maximum cannot raise it: no root solve needed.
+#[inline(always)]
+fn hermite_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
+    y0.max(y1) + HERMITE_REACH * h * (d0.max(0.0) - d1.min(0.0))
+}
+
+/// An upper bound of the interpolant's absolute value (see [`hermite_bound`], for y and −y).
+#[inline(always)]
+fn hermite_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
+    let up = d0.max(0.0) - d1.min(0.0);
+    let down = d1.max(0.0) - d0.min(0.0);
+    y0.abs().max(y1.abs()) + HERMITE_REACH * h * up.max(down)
+}
+
+/// A sink that passes on the floor rows' values at `keep` only.
+struct Picked<'a, 'b> {
+    sink: &'a mut (dyn HistorySink + 'b),
+    keep: &'a [usize],
+    row: &'a mut Vec<f64>,
+}
+
+impl HistorySink for Picked<'_, '_> {
+    fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+        self.sink.row(t, w, forces);
+    }
+
+    fn floor_row(&mut self, t: f64, values: &[f64]) {
+        self.row.clear();
+        self.row
+            .extend(self.keep.iter().filter_map(|&i| values.get(i).copied()));
+        self.sink.floor_row(t, self.row);
+    }
+}
+
+/// `(φ·η, φ·η̇)` in one pass.
+#[inline(always)]
+fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
+    let n = phi.len().min(q.len()).min(v.len());
+    let (phi, q, v) = (&phi[..n], &q[..n], &v[..n]);
+    let (mut w, mut wd) = (0.0, 0.0);
+    for j in 0..n {
+        w += phi[j] * q[j];
+        wd += phi[j] * v[j];
+    }
+    (w, wd)
+}
+
+impl Observer for Recorder<'_> {
+    fn observe(&mut self, system: &System, s: &StepView) {
+        if let Some(f) = &mut self.floors {
+            match (&self.floor_keep, self.sink.as_deref_mut()) {
+                (Some(keep), Some(sink)) => {
+                    let mut picked = Picked {
+                        sink,
+                        keep,
+                        row: &mut self.floor_row,
+                    };
+                    f.observe(system, s, Some(&mut picked));
+                }
+                (_, sink) => f.observe(system, s, sink),
+            }
+        }
+        if let Some(st) = &mut self.storeys {
+            st.observe(system, s);
+        }
+        let (n1, q) = (system.n1(), s.q);
+        // displacements and velocities at every tracked height
+        let mut main_sample = Sample {
+            t: s.t,
+            w: [0.0; 2],
+            wdot: [0.0; 2],
+        };
+        // Peaks: at the observation, and inside the interval since the previous one from the
+        // cubic Hermite interpolant of (w, ẇ) at both ends (O(h⁴), so peaks do not depend on
+        // where the steps happen to fall).
+        let h = s.t - self.last_t;
+        let refine = self.prev.is_some() && h > 0.0;
+        let (q1, q2) = q.split_at(n1);
+        let (v1, v2) = s.v.split_at(n1);
+        let tracks = self.phi1.iter().zip(&self.phi2).zip(&mut self.prev_w);
+        for (k, (((phi1, phi2), prev_w), l)) in tracks.zip(&mut self.levels).enumerate() {
+            let (w1, w1d) = project(phi1, q1, v1);
+            let (w2, w2d) = project(phi2, q2, v2);
+            raise(&mut l.peak_w1, w1.abs());
+            raise(&mut l.peak_w2, w2.abs());
+            raise(&mut l.max_closing, w1 - w2);
+            if refine {
+                // (every step: an interior extremum does not need the slope to change sign;
+                // the root solve only where the interpolant's bound could beat the peak)
+                let [a1, a1d, a2, a2d] = *prev_w;
+                if hermite_abs_bound(a1, a1d, w1, w1d, h) > l.peak_w1 {
+                    raise(&mut l.peak_w1, hermite_abs_max(a1, a1d, w1, w1d, h));
+                }
+                if hermite_abs_bound(a2, a2d, w2, w2d, h) > l.peak_w2 {
+                    raise(&mut l.peak_w2, hermite_abs_max(a2, a2d, w2, w2d, h));
+                }
+                let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);
+                if hermite_bound(c0, c0d, c1, c1d, h) > l.max_closing {
+                    raise(&mut l.max_closing, hermite_max(c0, c0d, c1, c1d, h).0);
+                }
+            }
+            *prev_w = [w1, w1d, w2, w2d];
+            if k == self.main {
+                main_sample.w = [w1, w2];
+                main_sample.wdot = [w1d, w2d];
+            }
+        }
+        // contact episodes
+        for (k, st) in s.levels.iter().enumerate() {
+            let prev = self.prev_delta[k];
+            // largest penetration inside the interval (Hermite), and the force there: at an
+            // interior maximum δ̇ = 0, so every law gives its elastic force — the peak force for
+            // elastic laws, a lower bound for damped ones.
+            let (mut inner_delta, mut inner_force) = (f64::NEG_INFINITY, 0.0);
+            // (an interior maximum does not need δ̇ to change sign: after a velocity jump, or
+            // over a step long against the motion, the cubic overshoots with end slopes of one
+            // sign, as the displacements' do; δ may be negative at both ends and positive in
+            // between: a grazing contact. The root solve only where the interpolant's bound
+            // rises above both ends, above 0 and above the open episode's largest
+            // penetration: below it, an interior maximum changes neither the episode's nor
+            // the level's penetration, nor its peak force — an elastic law's force grows
+            // with δ, and a damped law's peak is searched below.)
+            let prev_dot = self.prev_delta_dot[k];
+            let above = self.open[k].map_or(0.0, |o| o.max_penetration);
+            if refine
+                && hermite_bound(prev, prev_dot, st.delta, st.delta_dot, h)
+                    > prev.max(st.delta).max(above)
+            {
+                let (m, th) = hermite_max(prev, prev_dot, st.delta, st.delta_dot, h);
+                if th > 0.0 && th < 1.0 && m > 0.0 {
+                    inner_delta = m;
+                    inner_force = system.levels[k].force.force(m, 0.0, 1.0);
+                }
+            }
+            // a damped law peaks while δ still grows (δ̇ > 0): search the interval's Hermite
+            // interpolant of (δ, δ̇) for the force's own maximum
+            let law = &system.levels[k].force;
+            if refine && law.rate_dependent() && (prev > 0.0 || st.delta > 0.0 || inner_delta > 0.0)
+            {
+                let ends = ((prev, self.prev_delta_dot[k]), (st.delta, st.delta_dot));
+                let v0 = match &self.open[k] {
+                    Some(o) => o.approach_speed,
+                    None => onset_speed(ends.0, ends.1, h),
+                };
+                inner_force = inner_force.max(rate_law_peak(law, ends.0, ends.1, h, v0));
+            }
+            if st.delta > 0.0 {
+                let o = self.open[k].get_or_insert_with(|| {
+                    // δ crossed 0 between the previous observation and this one (δ_prev = 0
+                    // exactly puts the start at the previous observation)
+                    let theta = if prev.is_finite() && prev <= 0.0 {
+                        prev / (prev - st.delta)
+                    } else {
+                        1.0
+                    };
+                    let t0 = self.last_t + theta * (s.t - self.last_t);
+                    Open {
+                        start: if self.prev.is_none() { s.t } else { t0 },
+                        // the tally at the previous observation: the onset step's impulse
+                        // (and a stereomechanical jump at its end) belongs to this episode
+                        impulse_at_start: self.last_impulse[k],
+                        peak_force: 0.0,
+                        max_penetration: 0.0,
+                        // δ̇ where δ crosses 0 (at a located onset: the previous
+                        // observation), the same v₀ the integrators give the damped laws
+                        approach_speed: if prev.is_finite() {
+                            onset_speed(
+                                (prev, self.prev_delta_dot[k]),
+                                (st.delta, st.delta_dot),
+                                s.t - self.last_t,
+                            )
+                        } else {
+                            st.delta_dot
+                        },
+                    }
+                });
+                raise(&mut o.peak_force, st.force.max(inner_force));
+                raise(&mut o.max_penetration, st.delta.max(inner_delta));
+            } else if let Some(mut o) = self.open[k].take() {
+                o.peak_force = o.peak_force.max(inner_force);
+                o.max_penetration = o.max_penetration.max(inner_delta);
+                let theta = if prev > 0.0 {
+                    prev / (prev - st.delta)
+                } else {
+                    1.0
+                };
+                let end = self.last_t + theta * (s.t - self.last_t);
+                self.close(k, o, end, s.tally.impulse[k]);
+            } else if s.tally.impulse[k] > self.last_impulse[k]
+                && (system.levels[k].force.impulsive().is_some() || inner_delta > 0.0)
+            {
+                // an impulse without observed penetration: an instantaneous (stereomechanical)
+                // impact located exactly at δ = 0, or a grazing contact between observations
+                // (δ > 0 inside the interval). A force law's impulse over an interval where δ
+                // stays ≤ 0 is round-off (a step ending on a located onset), not an impact.
+                let o = Open {
+                    start: s.t,
+                    impulse_at_start: self.last_impulse[k],
+                    peak_force: st.force.max(inner_force),
+                    max_penetration: st.delta.max(inner_delta).max(0.0),
+                    approach_speed: self.prev_delta_dot[k],
+                };
+                self.close(k, o, s.t, s.tally.impulse[k]);
+            }
+            let l = &mut self.levels[k];
+            raise(&mut l.peak_force, st.force.max(inner_force));
+            raise(&mut l.max_penetration, st.delta.max(inner_delta));
+            self.prev_delta[k] = st.delta;
+            self.prev_delta_dot[k] = st.delta_dot;
+        }
+        let n = self.last_impulse.len().min(s.tally.impulse.len());
+        self.last_impulse[..n].copy_from_slice(&s.tally.impulse[..n]);
+        let sampled = self.sample(s, &main_sample);
+        // energy (docs/model.md §2.7; balance: input = Δmodal + damping + work into contacts): at the
+        // start, at every observation that gave a history sample (for the peak energy, the
+        // balance's scale) and at the end (the balance itself is formed in `finish`)
+        if sampled || self.prev.is_none() || s.t >= self.end * (1.0 - 1e-12) {
+            let modal = system.modal_energy(s.q, s.v);
+            let stored = system.contact_energy(s.levels);
+            if self.prev.is_none() {
+                self.modal_initial = modal;
+                self.stored_initial = stored;
+            }
+            self.energy_peak = self.energy_peak.max(modal + stored);
+            self.last_energy = [
+                modal,
+                stored,
+                s.tally.input,
+                s.tally.damping,
+                s.tally.contact,
+                s.tally.hysteretic,
+            ];
+        }
+        if self.prev.is_some() {
+            self.steps += 1;
+        }
+        self.last_t = s.t;
+        self.prev = Some(main_sample);
+    }
+}
+
+/// Largest force of a rate-dependent law over an interval of length `h` (s) whose penetration
+/// is the cubic Hermite interpolant of (δ, δ̇) at its ends (m, m/s), with approach speed `v0`:
+/// golden-section search on θ ∈ [0, 1] (the force is unimodal over one step of an impact),
+/// 40 iterations (θ to 1e-8). Endpoints are included.
+fn rate_law_peak(law: &ContactForce, a: (f64, f64), b: (f64, f64), h: f64, v0: f64) -> f64 {
+    let f = |th: f64| {
+        let (t2, t3) = (th * th, th * th * th);
+        let d = (2.0 * t3 - 3.0 * t2 + 1.0) * a.0
+            + (t3 - 2.0 * t2 + th) * h * a.1
+            + (3.0 * t2 - 2.0 * t3) * b.0
+            + (t3 - t2) * h * b.1;
+        // dδ/dτ = (dδ/dθ)/h
+        let dd = ((6.0 * t2 - 6.0 * th) * a.0
+            + (3.0 * t2 - 4.0 * th + 1.0) * h * a.1
+            + (6.0 * th - 6.0 * t2) * b.0
+            + (3.0 * t2 - 2.0 * th) * h * b.1)
+            / h;
+        law.force(d, dd, v0)
+    };
+    const INV_PHI: f64 = 0.618_033_988_749_894_8;
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut x1 = hi - INV_PHI * (hi - lo);
+    let mut x2 = lo + INV_PHI * (hi - lo);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..40 {
+        if f1 < f2 {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + INV_PHI * (hi - lo);
+            f2 = f(x2);
+        } else {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - INV_PHI * (hi - lo);
+            f1 = f(x1);
+        }
+    }
+    f(0.0).max(f(1.0)).max(f1).max(f2)
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::Tally;
+    use crate::model::contact::ContactLaw;
+    use crate::model::ground_motion::GroundMotion;
+    use crate::model::structure::{Cantilever, Damping, Stiffness};
+    use crate::model::system::{ContactLevel, LevelState};
+
+    fn system(law: ContactLaw) -> System {
+        let st = |period: f64| Cantilever {
+            name: "s".into(),
+            length: 10.0,
+            mass: 2.0e6,
+            stiffness: Stiffness::Period(period),
+            modes: 2,
+            damping: Damping::Modal(vec![0.02]),
+        };
+        System::new(
+            [st(0.4).modal(), st(0.6).modal()],
+            &law,
+            &[ContactLevel {
+                height: 10.0,
+                gap: 0.01,
+            }],
+            GroundMotion::None,
+        )
+    }
+
+    /// Observes δ at t = 0, 1e-3, 2e-3 s with the given impulse tallies; returns the impacts.
+    fn episodes(sys: &System, deltas: [(f64, f64); 3], impulses: [f64; 3]) -> Vec<Impact> {
+        observed(sys, deltas, impulses).impacts
+    }
+
+    /// Observes δ at t = 0, 1e-3, 2e-3 s with the given impulse tallies; returns the record.
+    fn observed(sys: &System, deltas: [(f64, f64); 3], impulses: [f64; 3]) -> RunRecord {
+        let mut rec = Recorder::new(sys, &[10.0], 0.01, 0.002);
+        let (q, v) = (vec![0.0; 4], vec![0.0; 4]);
+        for i in 0..3 {
+            let (delta, delta_dot) = deltas[i];
+            let levels = [LevelState {
+                delta,
+                delta_dot,
+                force: 0.0,
+            }];
+            let tally = Tally {
+                impulse: vec![impulses[i]],
+                ..Tally::default()
+            };
+            let view = StepView {
+                t: i as f64 * 1e-3,
+                q: &q,
+                v: &v,
+                levels: &levels,
+                z: &[],
+                tally: &tally,
+            };
+            rec.observe(sys, &view);
+        }
+        rec.finish()
+    }
+
+    /// The largest penetration inside a step whose end slopes have one sign (δ̇ = +1 m/s at
+    /// both ends of two 1 ms steps, δ = 0.1 mm at every observation): the step's cubic
+    /// Hermite interpolant is δ(θ) = δ₀ + h·δ̇·θ(1 − θ)(1 − 2θ), whose maximum is at
+    /// θ = (3 − √3)/6 and worth δ₀ + h·δ̇·√3/18 (closed form). The episode's and the level's
+    /// largest penetration are that value, and the elastic peak force is Hertz's k·δ^1.5
+    /// there. (The old shortcut solved only where δ̇ changes sign from + to −, and reported
+    /// the end value 0.1 mm, 49 % low.)
+    #[test]
+    fn interior_penetration_maximum_without_a_slope_sign_change() {
+        let k = 2.8e10;
+        let sys = system(ContactLaw::Hertz { stiffness: k });
+        let (d0, v) = (1e-4, 1.0);
+        let r = observed(&sys, [(d0, v); 3], [0.0, 1.0, 2.0]);
+        let expected = d0 + 1e-3 * v * 3f64.sqrt() / 18.0;
+        // (the root of a quadratic and one evaluation of the cubic: a few ulps)
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b;
+        assert_eq!(r.impacts.len(), 1, "{:?}", r.impacts);
+        let i = &r.impacts[0];
+        assert!(
+            close(i.max_penetration, expected),
+            "{} vs {expected}",
+            i.max_penetration
+        );
+        assert!(close(r.levels[0].max_penetration, expected));
+        let force = k * expected.powf(1.5);
+        assert!(close(i.peak_force, force), "{} vs {force}", i.peak_force);
+        assert!(close(r.levels[0].peak_force, force));
+    }
+
+    /// Memory does not grow with the duration: over a run of 2·10⁶ samples (2000 s at 1 ms)
+    /// the sink receives every sample, in order, while the recorder keeps at most
+    /// [`MAX_KEPT_SAMPLES`] rows; the envelope keeps the extremes of the sampled series (its
+    /// maximum and minimum of w₁ equal those of the streamed samples) and its time range.
+    #[test]
+    fn long_run_keeps_a_bounded_history() {
+        struct Count {
+            n: u64,
+            last_t: f64,
+            max_w1: f64,
+            min_w1: f64,
+        }
+        impl HistorySink for Count {
+            fn row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
+                assert!(t > self.last_t || self.n == 0);
+                assert_eq!(forces.len(), 1);
+                self.n += 1;
+                self.last_t = t;
+                self.max_w1 = self.max_w1.max(w[0]);
+                self.min_w1 = self.min_w1.min(w[0]);
+            }
+        }
+        let base = system(ContactLaw::Hertz { stiffness: 2.8e10 });
+        let sys = System::new(
+            base.structures.clone(),
+            &ContactLaw::Hertz { stiffness: 2.8e10 },
+            &[ContactLevel {
+                height: 10.0,
+                gap: 0.01,
+            }],
+            GroundMotion::Harmonic(crate::model::ground_motion::Harmonic::from_pga_g(0.01, 0.5)),
+        );
+        let (interval, duration) = (1e-3, 2000.0);
+        let mut sink = Count {
+            n: 0,
+            last_t: 0.0,
+            max_w1: f64::NEG_INFINITY,
+            min_w1: f64::INFINITY,
+        };
+        let settings = crate::integrate::SolverSettings::new(
+            crate::integrate::Method::ExactModal,
+            0.01,
+            duration,
+        );
+        let mut rec = Recorder::new(&sys, &[10.0], interval, duration).with_sink(&mut sink);
+        crate::integrate::integrate(
+            &sys,
+            &settings,
+            &crate::integrate::InitialState::default(),
+            &mut rec,
+        )
+        .unwrap();
+        let run = rec.finish();
+        assert_eq!(sink.n, sample_count(interval, duration));
+        assert_eq!(sink.n, 2_000_001);
+        let h = &run.history;
+        assert!(h.stride > 1);
+        assert!(h.t.len() <= MAX_KEPT_SAMPLES, "{} rows kept", h.t.len());
+        assert_eq!(h.t.len(), h.w1.len());
+        assert_eq!(h.force[0].len(), h.t.len());
+        let max = h.w1.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let min = h.w1.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!(max, sink.max_w1);
+        assert_eq!(min, sink.min_w1);
+        assert!(sink.max_w1 > 0.0, "the ground moved the structure");
+        assert_eq!(h.t[0], 0.0);
+        assert_eq!(*h.t.last().unwrap(), sink.last_t);
+        // a run of at most MAX_KEPT_SAMPLES samples keeps every one
+        let short = Recorder::new(&sys, &[10.0], 0.01, 20.0);
+        assert_eq!(short.history.stride, 1);
+    }
+
+    /// A force law's round-off impulse over an interval where δ stays ≤ 0 (a step that ends on a
+    /// located onset) is no impact; a grazing contact between observations (δ > 0 inside the
+    /// interval) and a stereomechanical impulse at δ = 0 are.
+    #[test]
+    fn impulses_without_penetration() {
+        let hertz = system(ContactLaw::Hertz { stiffness: 2.8e10 });
+        // approaching, reaching δ = −1e-15 at the second observation: round-off impulse
+        let onset = [(-2e-3, 1.0), (-1e-15, 1.0), (-1e-3, -1.0)];
+        assert!(episodes(&hertz, onset, [0.0, 1e-12, 1e-12]).is_empty());
+        // δ < 0 at both ends but the cubic through (δ, δ̇) rises above 0 in between
+        let grazing = [(-2e-3, 1.0), (-2e-4, 1.0), (-1e-4, -1.0)];
+        let found = episodes(&hertz, grazing, [0.0, 0.0, 5.0]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].max_penetration > 0.0 && found[0].impulse == 5.0);
+        // an instantaneous impact: an impulse with δ ≤ 0 throughout
+        let stereo = system(ContactLaw::Stereomechanical { restitution: 0.6 });
+        let found = episodes(&stereo, onset, [0.0, 80.0, 80.0]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].impulse, 80.0);
+    }
+}

@@ -1,0 +1,4 @@
+//! Studies over many runs.
+
+pub mod rule_study;
+pub mod sweep;

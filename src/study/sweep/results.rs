@@ -1,0 +1,953 @@
+//! The results table of a sweep (`results.csv`), the journal that makes a sweep resumable,
+//! and merging the parts of a sharded sweep.
+//!
+//! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
+//! (`ok` or `failed: reason`), then [`FIELDS`] (docs/model.md §6 meanings, SI units), the last two of
+//! which are the case's self-check ([`crate::analysis::simulate::accuracy`]): `check_max_change`, the largest
+//! relative change of the checked quantities against the 100× tighter rerun (empty when not
+//! checked), and `converged` (`true`, `false`, or `unchecked` for a sweep run with
+//! `--no-check`). Rows are in `case` order. Numbers are written exactly as `summary.json` writes them (shortest form
+//! that reads back to the same `f64`), so a case's numbers are byte-identical to those of
+//! `pounding run` on the same scenario.
+//!
+//! When the base scenario has a `[separation]` table, one column per code follows the
+//! [`FIELDS`]: [`CODE_FIELDS`] (`sep_asce7`, `sep_is1893`, `sep_nbcc`, `sep_gb50011`,
+//! `sep_ntc`, the codes' required separations in m, `separation.codes` of summary.json), in
+//! that order, only those whose factors the scenario gives. A table without them is the v2
+//! table unchanged; a journal with them is version 3 ([`JOURNAL_VERSION_CODES`]), so that an
+//! older `pounding` refuses to resume it with a message instead of misreading it.
+//!
+//! The journal `journal.csv` (`journal-shard-K-of-N.csv` for a part) receives every finished
+//! row as soon as it is known, one `write` per row, in completion order. Its first line
+//! identifies the sweep (a hash of the sweep file and the base scenario, the part, the number
+//! of cases) and the format version (`v2`: with the self-check columns; a journal of another
+//! version is refused with a message saying so). A rerun reads it, drops a torn last line (a kill in the middle of a write) and
+//! runs only the cases not in it. `results.csv` is written from it, sorted, atomically.
+
+use std::collections::BTreeMap;
+use std::fs::{File, OpenOptions};
+use std::io::{Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+pub use crate::numerics::format::fmt_f64;
+
+use super::shard::Shard;
+use super::{Sweep, SweepError};
+use crate::analysis::simulate::Report;
+
+/// The result columns after `status`.
+pub const FIELDS: [&str; NFIELDS] = [
+    "peak_displacement_1",
+    "peak_displacement_2",
+    "peak_displacement_no_contact_1",
+    "peak_displacement_no_contact_2",
+    "change_percent_1",
+    "change_percent_2",
+    "peak_force",
+    "impacts",
+    "contact_time",
+    "sep_abs",
+    "sep_srss",
+    "sep_ddc",
+    "sep_time_history",
+    "check_max_change",
+    "converged",
+];
+
+/// Number of [`FIELDS`].
+pub const NFIELDS: usize = 15;
+
+/// The fields of the tables written before the self-check (journal v1): [`FIELDS`] without the
+/// last two. [`Table::read`] still reads such tables (the check columns are then NaN).
+pub const V1_FIELDS: usize = 13;
+
+/// Version of the journal format, in its first line.
+pub const JOURNAL_VERSION: u32 = 2;
+
+/// Version of the journal format of a sweep with code columns ([`CODE_FIELDS`]).
+pub const JOURNAL_VERSION_CODES: u32 = 3;
+
+/// The code columns that may follow [`FIELDS`], in this order (`sep_` + the key of
+/// [`crate::input::scenario::design::CODE_KEYS`]).
+pub const CODE_FIELDS: [&str; 5] = [
+    "sep_asce7",
+    "sep_is1893",
+    "sep_nbcc",
+    "sep_gb50011",
+    "sep_ntc",
+];
+
+/// The floor columns that may follow the code columns (a sweep whose base scenario has a
+/// building with floors): each building's largest peak absolute floor acceleration with and
+/// without pounding (m/s²) and its largest peak storey drift with pounding (m), over its floors
+/// (a cantilever's stations).
+pub const FLOOR_FIELDS: [&str; 6] = [
+    "peak_floor_acceleration_1",
+    "peak_floor_acceleration_2",
+    "peak_floor_acceleration_no_contact_1",
+    "peak_floor_acceleration_no_contact_2",
+    "peak_drift_1",
+    "peak_drift_2",
+];
+
+/// The ductility columns that follow the floor columns when the base scenario has a yielding
+/// building (`hysteresis` in a `[[structure]]`, issue 16): each building's largest peak
+/// ductility demand over its storeys (peak |drift|/d_y) with and without pounding; NaN for an
+/// elastic building.
+pub const DUCTILITY_FIELDS: [&str; 4] = [
+    "peak_ductility_1",
+    "peak_ductility_2",
+    "peak_ductility_no_contact_1",
+    "peak_ductility_no_contact_2",
+];
+
+/// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`]
+/// (codes, floors), else [`JOURNAL_VERSION`].
+pub fn journal_version(sweep: &Sweep) -> u32 {
+    if sweep.extra_columns().is_empty() {
+        JOURNAL_VERSION
+    } else {
+        JOURNAL_VERSION_CODES
+    }
+}
+
+/// The [`FIELDS`] of a report followed by its code columns for `sweep`
+/// ([`Sweep::code_columns`]): each code's required separation, or NaN if the report lacks it.
+pub fn case_fields(sweep: &Sweep, r: &Report) -> Vec<String> {
+    let mut out: Vec<String> = report_fields(r).into();
+    for col in sweep.extra_columns() {
+        if let Some(i) = DUCTILITY_FIELDS.iter().position(|f| *f == col) {
+            let s = &r.structures[i % 2];
+            let v = if i < 2 {
+                s.peak_ductility
+            } else {
+                s.peak_ductility_no_contact
+            };
+            out.push(fmt_f64(v.unwrap_or(f64::NAN)));
+            continue;
+        }
+        if let Some(i) = FLOOR_FIELDS.iter().position(|f| *f == col) {
+            let s = &r.structures[i % 2];
+            let pick = |f: &crate::analysis::simulate::FloorReport| match i / 2 {
+                0 => f.peak_acceleration,
+                1 => f.peak_acceleration_no_contact,
+                _ => f.peak_drift,
+            };
+            let v = s.floors.iter().map(pick).fold(f64::NAN, f64::max);
+            out.push(fmt_f64(v));
+            continue;
+        }
+        let key = col.trim_start_matches("sep_");
+        let v = r
+            .separation
+            .codes
+            .iter()
+            .find(|c| c.key == key)
+            .map_or(f64::NAN, |c| c.required);
+        out.push(fmt_f64(v));
+    }
+    out
+}
+
+/// The value of the `converged` column of a case run without its self-check.
+pub const UNCHECKED: &str = "unchecked";
+
+/// A field read back as a number: the `converged` column as 1 (`true`), 0 (`false`) or NaN
+/// (`unchecked`); `check_max_change` empty as NaN; every other field must be a number.
+fn parse_field(k: usize, x: &str) -> Option<f64> {
+    match FIELDS[k] {
+        "converged" => match x {
+            "true" => Some(1.0),
+            "false" => Some(0.0),
+            UNCHECKED => Some(f64::NAN),
+            _ => None,
+        },
+        "check_max_change" if x.is_empty() => Some(f64::NAN),
+        _ => x.parse().ok(),
+    }
+}
+
+/// The [`FIELDS`] of a report, formatted.
+pub fn report_fields(r: &Report) -> [String; NFIELDS] {
+    let [a, b] = &r.structures;
+    let s = &r.separation;
+    let acc = &r.accuracy;
+    [
+        fmt_f64(a.peak_displacement),
+        fmt_f64(b.peak_displacement),
+        fmt_f64(a.peak_displacement_no_contact),
+        fmt_f64(b.peak_displacement_no_contact),
+        fmt_f64(a.change_percent),
+        fmt_f64(b.change_percent),
+        fmt_f64(r.contact.peak_force),
+        r.contact.impacts.to_string(),
+        fmt_f64(r.contact.contact_time),
+        fmt_f64(s.abs),
+        fmt_f64(s.srss),
+        fmt_f64(s.ddc),
+        fmt_f64(s.time_history),
+        acc.max_change.map(fmt_f64).unwrap_or_default(),
+        match acc.converged {
+            _ if !acc.checked => UNCHECKED.to_string(),
+            Some(c) => c.to_string(),
+            None => "false".to_string(),
+        },
+    ]
+}
+
+/// A CSV field, quoted when needed (RFC 4180).
+pub fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// Split one CSV line (no line breaks inside fields) into fields; `None` if the quoting is
+/// broken.
+pub fn parse_csv_line(line: &str) -> Option<Vec<String>> {
+    let mut out = Vec::new();
+    let mut field = String::new();
+    let mut chars = line.chars().peekable();
+    let mut quoted = false;
+    let mut at_start = true;
+    while let Some(c) = chars.next() {
+        if quoted {
+            if c == '"' {
+                if chars.peek() == Some(&'"') {
+                    chars.next();
+                    field.push('"');
+                } else {
+                    quoted = false;
+                }
+            } else {
+                field.push(c);
+            }
+        } else if c == '"' && at_start {
+            quoted = true;
+            at_start = false;
+        } else if c == ',' {
+            out.push(std::mem::take(&mut field));
+            at_start = true;
+        } else {
+            field.push(c);
+            at_start = false;
+        }
+    }
+    if quoted {
+        return None;
+    }
+    out.push(field);
+    Some(out)
+}
+
+/// The header line of a sweep's results.
+pub fn header(sweep: &Sweep) -> String {
+    let mut cols = vec!["case".to_string()];
+    cols.extend(sweep.axes.iter().map(|a| csv_field(&a.key)));
+    cols.push("status".into());
+    cols.extend(FIELDS.iter().map(|f| f.to_string()));
+    cols.extend(sweep.extra_columns().iter().map(|f| f.to_string()));
+    cols.join(",")
+}
+
+/// One results row (without the line break). `outcome` is the fields, or the failure reason.
+/// `outcome` is [`case_fields`] (the [`FIELDS`] and the code columns), or the failure reason.
+pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) -> String {
+    let mut line = case.to_string();
+    for v in sweep.values(case) {
+        line.push(',');
+        line.push_str(&csv_field(&v.to_csv()));
+    }
+    match outcome {
+        Ok(fields) => {
+            line.push_str(",ok");
+            for f in fields {
+                line.push(',');
+                line.push_str(f);
+            }
+        }
+        Err(reason) => {
+            let reason: String = reason
+                .chars()
+                .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
+                .collect();
+            line.push(',');
+            line.push_str(&csv_field(&format!("failed: {reason}")));
+            line.push_str(&",".repeat(FIELDS.len() + sweep.extra_columns().len()));
+        }
+    }
+    line
+}
+
+/// A results table as typed columns, named as in [`header`] and in its order, from rows in
+/// the format of [`row`] (e.g. [`super::run::CaseResult::line`]): `case` whole numbers; an
+/// axis of numbers (whole numbers) as numbers (whole numbers), of text or lists as text (as
+/// written in the table); `status` and `converged` text; every other column numbers, the same
+/// `f64` the table holds (an empty field — a failed case, `check_max_change` unchecked — is
+/// NaN; `impacts` too, as a number). A row that is not of the sweep's format is an error.
+pub fn columns(
+    sweep: &Sweep,
+    rows: &[impl AsRef<str>],
+) -> Result<Vec<(String, crate::output::run::Column)>, SweepError> {
+    use crate::output::run::Column;
+    let names: Vec<String> = std::iter::once("case".to_string())
+        .chain(sweep.axes.iter().map(|a| a.key.clone()))
+        .chain(std::iter::once("status".to_string()))
+        .chain(FIELDS.iter().map(|f| f.to_string()))
+        .chain(sweep.extra_columns().iter().map(|f| f.to_string()))
+        .collect();
+    let mut cols: Vec<Column> = names
+        .iter()
+        .enumerate()
+        .map(|(j, name)| {
+            let axis = j.checked_sub(1).and_then(|a| sweep.axes.get(a));
+            match axis.and_then(|a| a.values.first()) {
+                Some(super::axes::AxisValue::Number(_)) => Column::Float(Vec::new()),
+                Some(super::axes::AxisValue::Integer(_)) => Column::Int(Vec::new()),
+                Some(_) => Column::Text(Vec::new()),
+                None if j == 0 => Column::Int(Vec::new()),
+                None if name == "status" || name == "converged" => Column::Text(Vec::new()),
+                None => Column::Float(Vec::new()),
+            }
+        })
+        .collect();
+    let bad = |i: usize, why: &str| SweepError::Usage(format!("results row {i}: {why}"));
+    for (i, line) in rows.iter().enumerate() {
+        let fields = parse_csv_line(line.as_ref()).ok_or_else(|| bad(i, "broken quoting"))?;
+        if fields.len() != names.len() {
+            return Err(bad(
+                i,
+                &format!(
+                    "{} fields, the table has {} columns",
+                    fields.len(),
+                    names.len()
+                ),
+            ));
+        }
+        for (col, f) in cols.iter_mut().zip(fields) {
+            match col {
+                Column::Int(v) => v.push(
+                    f.parse()
+                        .map_err(|_| bad(i, &format!("`{f}` is not a whole number")))?,
+                ),
+                Column::Float(v) => v.push(if f.is_empty() {
+                    f64::NAN
+                } else {
+                    f.parse()
+                        .map_err(|_| bad(i, &format!("`{f}` is not a number")))?
+                }),
+                Column::Text(v) => v.push(f),
+            }
+        }
+    }
+    Ok(names.into_iter().zip(cols).collect())
+}
+
+/// Checks a row read back: right number of fields, case in range, a known status, numbers
+/// where the status is `ok`. Returns the case and whether it failed.
+fn check_row(line: &str, columns: usize, codes: usize, cases: usize) -> Option<(usize, bool)> {
+    let f = parse_csv_line(line)?;
+    if f.len() != columns {
+        return None;
+    }
+    let case: usize = f[0].parse().ok()?;
+    if case >= cases {
+        return None;
+    }
+    let status = &f[columns - FIELDS.len() - codes - 1];
+    let nums = &f[columns - FIELDS.len() - codes..];
+    if status == "ok" {
+        if nums.iter().enumerate().all(|(k, x)| {
+            if k < NFIELDS {
+                parse_field(k, x).is_some()
+            } else {
+                x.parse::<f64>().is_ok()
+            }
+        }) {
+            Some((case, false))
+        } else {
+            None
+        }
+    } else if status.starts_with("failed: ") && nums.iter().all(String::is_empty) {
+        Some((case, true))
+    } else {
+        None
+    }
+}
+
+/// File names of a run's outputs in its directory.
+pub fn file_names(shard: Shard) -> (String, String) {
+    if shard.is_all() {
+        ("results.csv".into(), "journal.csv".into())
+    } else {
+        (
+            format!("results-shard-{}-of-{}.csv", shard.k, shard.n),
+            format!("journal-shard-{}-of-{}.csv", shard.k, shard.n),
+        )
+    }
+}
+
+/// The journal of finished rows, open for appending and locked against a second writer.
+#[derive(Debug)]
+pub struct Journal {
+    path: PathBuf,
+    file: File,
+    last_sync: Instant,
+    /// Rows already in the journal, by case: the line and whether the case failed.
+    pub rows: BTreeMap<usize, (String, bool)>,
+    /// Lines that were dropped on reading (torn or damaged).
+    pub dropped: usize,
+}
+
+impl Journal {
+    /// Open (or create) the journal of `sweep`'s part `shard` at `path`. Refuses a journal of
+    /// another sweep and a journal another process is writing.
+    pub fn open(path: &Path, sweep: &Sweep, shard: Shard) -> Result<Journal, SweepError> {
+        let io = |e: std::io::Error| SweepError::Write {
+            path: path.display().to_string(),
+            source: e,
+        };
+        let mut file = OpenOptions::new()
+            .read(true)
+            .append(true)
+            .create(true)
+            .open(path)
+            .map_err(io)?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: "another `pounding sweep` is writing this journal right now; wait for it or use another --out".into(),
+                });
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(io(e)),
+        }
+        let this_version = journal_version(sweep);
+        let version = format!("# pounding sweep journal v{this_version};");
+        let ident = format!(
+            "{version} identity={:016x}; shard={shard}; cases={}",
+            sweep.identity(),
+            sweep.len()
+        );
+        let head = header(sweep);
+        let preamble = format!("{ident}\n{head}\n");
+        let mut text = String::new();
+        file.read_to_string(&mut text)
+            .map_err(|e| SweepError::Journal {
+                path: path.display().to_string(),
+                message: format!("cannot be read ({e}); remove it to start the sweep afresh"),
+            })?;
+        let mut rows = BTreeMap::new();
+        let mut dropped = 0;
+        if text.len() < preamble.len() && preamble.starts_with(&text) {
+            // new, or killed while writing the preamble
+            file.set_len(0).map_err(io)?;
+            file.write_all(preamble.as_bytes()).map_err(io)?;
+        } else {
+            let mut lines = text.split_inclusive('\n');
+            let first = lines.next().unwrap_or("").trim_end();
+            if first.starts_with("# pounding sweep journal v") && !first.starts_with(&version) {
+                let other = first
+                    .trim_start_matches("# pounding sweep journal ")
+                    .split(';')
+                    .next()
+                    .unwrap_or("?");
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "this journal was written by another version of pounding (journal {other}, \
+                         this one v{this_version}: its rows lack or differ in the self-check \
+                         columns check_max_change and converged, or in the code columns sep_asce7 …). \
+                         Finish that sweep with the version that started it, or use another --out, \
+                         or delete the directory's journal and results to start afresh"
+                    ),
+                });
+            }
+            if first != ident {
+                let other = first
+                    .split("identity=")
+                    .nth(1)
+                    .and_then(|s| s.get(..16))
+                    .unwrap_or("unknown");
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "this directory holds results of a different sweep (identity {other}, this one {:016x}; \
+                         the sweep file, its base scenario or --shard changed). Use another --out, or delete \
+                         the directory's journal and results to start afresh",
+                        sweep.identity()
+                    ),
+                });
+            }
+            if lines.next().map(str::trim_end) != Some(head.as_str()) {
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message:
+                        "the header line is damaged; delete the file to start the sweep afresh"
+                            .into(),
+                });
+            }
+            let codes = sweep.extra_columns().len();
+            let columns = 2 + sweep.axes.len() + FIELDS.len() + codes;
+            let mut good_end = preamble.len();
+            let mut pos = preamble.len();
+            for line in lines {
+                pos += line.len();
+                let Some(body) = line.strip_suffix('\n') else {
+                    // torn last line: never completed
+                    dropped += 1;
+                    break;
+                };
+                good_end = pos;
+                match check_row(body, columns, codes, sweep.len()) {
+                    Some((case, failed)) if shard.contains(case) => {
+                        rows.entry(case).or_insert((body.to_string(), failed));
+                    }
+                    _ => dropped += 1,
+                }
+            }
+            if good_end < text.len() {
+                file.set_len(good_end as u64).map_err(io)?;
+                file.seek(SeekFrom::End(0)).map_err(io)?;
+            }
+        }
+        Ok(Journal {
+            path: path.to_path_buf(),
+            file,
+            last_sync: Instant::now(),
+            rows,
+            dropped,
+        })
+    }
+
+    /// Append a finished row (one write, so that a kill leaves at most a torn last line).
+    pub fn append(&mut self, case: usize, line: String, failed: bool) -> Result<(), SweepError> {
+        let mut buf = String::with_capacity(line.len() + 1);
+        buf.push_str(&line);
+        buf.push('\n');
+        let io = |e| SweepError::Write {
+            path: self.path.display().to_string(),
+            source: e,
+        };
+        self.file.write_all(buf.as_bytes()).map_err(io)?;
+        if self.last_sync.elapsed() > Duration::from_secs(5) {
+            self.file.sync_data().map_err(io)?;
+            self.last_sync = Instant::now();
+        }
+        self.rows.entry(case).or_insert((line, failed));
+        Ok(())
+    }
+
+    /// Flush to disk.
+    pub fn sync(&mut self) -> Result<(), SweepError> {
+        self.file.sync_data().map_err(|e| SweepError::Write {
+            path: self.path.display().to_string(),
+            source: e,
+        })
+    }
+}
+
+/// Write a results table: `header`, then the rows in case order, atomically.
+pub fn write_results<'a>(
+    path: &Path,
+    header: &str,
+    rows: impl Iterator<Item = &'a str>,
+) -> Result<(), SweepError> {
+    let mut out = String::with_capacity(1 << 16);
+    out.push_str(header);
+    out.push('\n');
+    for r in rows {
+        out.push_str(r);
+        out.push('\n');
+    }
+    crate::output::atomic::write_atomic(path, out.as_bytes()).map_err(|e| SweepError::Write {
+        path: path.display().to_string(),
+        source: std::io::Error::other(e.to_string()),
+    })
+}
+
+/// A results table read from a CSV file.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// Where it was read from.
+    pub path: PathBuf,
+    /// The header line.
+    pub header: String,
+    /// Axis keys (the columns between `case` and `status`).
+    pub axes: Vec<String>,
+    /// Rows by case.
+    pub rows: BTreeMap<usize, TableRow>,
+    /// The columns after [`FIELDS`] ([`CODE_FIELDS`], then [`FLOOR_FIELDS`], then
+    /// [`DUCTILITY_FIELDS`]: those the table has).
+    pub codes: Vec<String>,
+}
+
+/// One row of a [`Table`].
+#[derive(Debug, Clone)]
+pub struct TableRow {
+    /// The line as read.
+    pub line: String,
+    /// Axis values as written.
+    pub values: Vec<String>,
+    /// `ok` or `failed: …`.
+    pub status: String,
+    /// [`FIELDS`] values (NaN for a failed case; `converged` as 1, 0 or NaN when unchecked;
+    /// the check columns NaN in a table written before them).
+    pub fields: [f64; NFIELDS],
+    /// Values of the table's code columns ([`Table::codes`]), NaN when empty.
+    pub codes: Vec<f64>,
+}
+
+impl TableRow {
+    /// The value of column `name` of `table` (a [`FIELDS`] or code column), if it has it.
+    pub fn get(&self, table: &Table, name: &str) -> Option<f64> {
+        match Table::field_index(name) {
+            Some(i) => Some(self.fields[i]),
+            None => table
+                .codes
+                .iter()
+                .position(|c| c == name)
+                .map(|i| self.codes[i]),
+        }
+    }
+}
+
+impl Table {
+    /// Read a results CSV (`results.csv`, a part, or a merged table). Refuses duplicate cases.
+    pub fn read(path: &Path) -> Result<Table, SweepError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SweepError::Read {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        let bad = |line: usize, msg: String| SweepError::Journal {
+            path: format!("{}:{line}", path.display()),
+            message: msg,
+        };
+        let mut lines = text.lines();
+        let header = lines
+            .next()
+            .ok_or_else(|| bad(1, "empty file: not a sweep results table".into()))?
+            .to_string();
+        let all = parse_csv_line(&header).unwrap_or_default();
+        // trailing code columns, then the layout before them
+        let ncodes = all
+            .iter()
+            .rev()
+            .take_while(|c| {
+                CODE_FIELDS.contains(&c.as_str())
+                    || FLOOR_FIELDS.contains(&c.as_str())
+                    || DUCTILITY_FIELDS.contains(&c.as_str())
+            })
+            .count();
+        let codes: Vec<String> = all[all.len() - ncodes..].to_vec();
+        let cols = &all[..all.len() - ncodes];
+        let n = cols.len();
+        // the current layout, or that of tables written before the self-check columns
+        let shape = |nf: usize| {
+            n >= 2 + nf
+                && cols[0] == "case"
+                && cols[n - nf - 1] == "status"
+                && cols[n - nf..].iter().zip(FIELDS).all(|(a, b)| a == b)
+        };
+        let nf = if shape(NFIELDS) {
+            NFIELDS
+        } else if shape(V1_FIELDS) {
+            V1_FIELDS
+        } else {
+            return Err(bad(
+                1,
+                format!(
+                    "not a sweep results table: expected columns case, <axis keys>, status, {} \
+                     (then any of {})",
+                    FIELDS.join(", "),
+                    CODE_FIELDS.join(", ")
+                ),
+            ));
+        };
+        let axes = cols[1..n - nf - 1].to_vec();
+        let mut rows = BTreeMap::new();
+        for (i, line) in lines.enumerate() {
+            let lineno = i + 2;
+            if line.trim().is_empty() {
+                continue;
+            }
+            let f = parse_csv_line(line)
+                .filter(|f| f.len() == n + ncodes)
+                .ok_or_else(|| {
+                    bad(
+                        lineno,
+                        format!("expected {} comma-separated fields", n + ncodes),
+                    )
+                })?;
+            let case: usize = f[0]
+                .parse()
+                .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
+            let mut fields = [f64::NAN; NFIELDS];
+            for (k, x) in f[n - nf..n].iter().enumerate() {
+                if !x.is_empty() {
+                    fields[k] = parse_field(k, x).ok_or_else(|| {
+                        let what = if FIELDS[k] == "converged" {
+                            "true, false or unchecked"
+                        } else {
+                            "a number"
+                        };
+                        bad(lineno, format!("`{}` = `{x}` is not {what}", FIELDS[k]))
+                    })?;
+                }
+            }
+            let mut code_values = vec![f64::NAN; ncodes];
+            for (k, x) in f[n..].iter().enumerate() {
+                if !x.is_empty() {
+                    code_values[k] = x.parse().map_err(|_| {
+                        bad(lineno, format!("`{}` = `{x}` is not a number", codes[k]))
+                    })?;
+                }
+            }
+            let r = TableRow {
+                line: line.to_string(),
+                values: f[1..n - nf - 1].to_vec(),
+                status: f[n - nf - 1].clone(),
+                fields,
+                codes: code_values,
+            };
+            if rows.insert(case, r).is_some() {
+                return Err(bad(lineno, format!("case {case} appears twice")));
+            }
+        }
+        Ok(Table {
+            path: path.to_path_buf(),
+            header,
+            axes,
+            rows,
+            codes,
+        })
+    }
+
+    /// Index of a field in [`FIELDS`].
+    pub fn field_index(name: &str) -> Option<usize> {
+        FIELDS.iter().position(|f| *f == name)
+    }
+}
+
+/// What [`merge`] did.
+#[derive(Debug, Clone)]
+pub struct MergeSummary {
+    /// The parts read.
+    pub parts: Vec<PathBuf>,
+    /// Cases in the merged table.
+    pub cases: usize,
+    /// Of which failed.
+    pub failed: usize,
+}
+
+/// `results-shard-K-of-N.csv` → (K, N).
+fn shard_of(path: &Path) -> Option<(usize, usize)> {
+    let name = path.file_name()?.to_str()?;
+    let rest = name.strip_prefix("results-shard-")?.strip_suffix(".csv")?;
+    let (k, n) = rest.split_once("-of-")?;
+    Some((k.parse().ok()?, n.parse().ok()?))
+}
+
+/// Join the parts of a sharded sweep (files, or directories holding
+/// `results-shard-K-of-N.csv` files) into one table at `out`, checking that they belong to
+/// one sweep (same columns, consistent axis values), that no case appears twice and that
+/// none is missing (every part K of N present; cases 0 … n−1 with n the grid size).
+pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepError> {
+    let mut parts = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| SweepError::Read {
+                    path: p.display().to_string(),
+                    source: e,
+                })?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|f| shard_of(f).is_some())
+                .collect();
+            if found.is_empty() {
+                return Err(SweepError::Merge(format!(
+                    "{} holds no results-shard-K-of-N.csv file",
+                    p.display()
+                )));
+            }
+            found.sort();
+            parts.extend(found);
+        } else {
+            parts.push(p.clone());
+        }
+    }
+    if parts.is_empty() {
+        return Err(SweepError::Merge("no parts given".into()));
+    }
+    let tables = parts
+        .iter()
+        .map(|p| Table::read(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = &tables[0];
+    // parts named K-of-N: all of 1..N, once each
+    let named: Vec<(usize, usize)> = parts.iter().filter_map(|p| shard_of(p)).collect();
+    if named.len() == parts.len() {
+        let n = named[0].1;
+        if let Some(p) = named.iter().position(|s| s.1 != n) {
+            return Err(SweepError::Merge(format!(
+                "{} is a part of {} but {} is a part of {n}",
+                parts[p].display(),
+                named[p].1,
+                parts[0].display()
+            )));
+        }
+        let mut seen: Vec<Option<usize>> = vec![None; n + 1];
+        for (i, (k, _)) in named.iter().enumerate() {
+            if let Some(j) = seen[*k] {
+                return Err(SweepError::Merge(format!(
+                    "part {k} of {n} is given twice: {} and {}",
+                    parts[j].display(),
+                    parts[i].display()
+                )));
+            }
+            seen[*k] = Some(i);
+        }
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| seen[*k].is_none())
+            .map(|k| k.to_string())
+            .collect();
+        if !missing.is_empty() {
+            return Err(SweepError::Merge(format!(
+                "part(s) {} of {n} are missing (results-shard-K-of-{n}.csv)",
+                missing.join(", ")
+            )));
+        }
+    }
+    let mut rows: BTreeMap<usize, (&TableRow, usize)> = BTreeMap::new();
+    for (ti, t) in tables.iter().enumerate() {
+        if t.header != first.header {
+            return Err(SweepError::Merge(format!(
+                "{} and {} have different columns: not parts of one sweep",
+                first.path.display(),
+                t.path.display()
+            )));
+        }
+        for (case, r) in &t.rows {
+            if let Some((_, other)) = rows.insert(*case, (r, ti)) {
+                return Err(SweepError::Merge(format!(
+                    "case {case} is in both {} and {}",
+                    tables[other].path.display(),
+                    t.path.display()
+                )));
+            }
+        }
+    }
+    // the grid: the number of distinct values of each axis; the value of every axis must
+    // follow from the case number (first axis slowest)
+    let na = first.axes.len();
+    let mut distinct: Vec<Vec<&str>> = vec![Vec::new(); na];
+    for (r, _) in rows.values() {
+        for (j, v) in r.values.iter().enumerate() {
+            if !distinct[j].contains(&v.as_str()) {
+                distinct[j].push(v);
+            }
+        }
+    }
+    let sizes: Vec<usize> = distinct.iter().map(Vec::len).collect();
+    let total: usize = sizes.iter().product();
+    let mut at: Vec<Vec<Option<&str>>> = sizes.iter().map(|&n| vec![None; n]).collect();
+    for (case, (r, ti)) in &rows {
+        if *case >= total {
+            return Err(SweepError::Merge(format!(
+                "case {case} in {} is beyond the grid ({total} cases from the axis values): parts of different sweeps?",
+                tables[*ti].path.display()
+            )));
+        }
+        let mut rest = *case;
+        for j in (0..na).rev() {
+            let i = rest % sizes[j];
+            rest /= sizes[j];
+            let v = r.values[j].as_str();
+            match at[j][i] {
+                None => at[j][i] = Some(v),
+                Some(w) if w == v => {}
+                Some(w) => {
+                    return Err(SweepError::Merge(format!(
+                        "case {case} in {} has {} = {v} where the grid has {w}: parts of different sweeps?",
+                        tables[*ti].path.display(),
+                        first.axes[j]
+                    )));
+                }
+            }
+        }
+    }
+    let missing: Vec<usize> = (0..total).filter(|c| !rows.contains_key(c)).collect();
+    if !missing.is_empty() {
+        let list: Vec<String> = missing.iter().take(10).map(|c| c.to_string()).collect();
+        return Err(SweepError::Merge(format!(
+            "{} of {total} cases are missing (cases {}{}); rerun the parts that hold them",
+            missing.len(),
+            list.join(", "),
+            if missing.len() > 10 { ", …" } else { "" }
+        )));
+    }
+    write_results(
+        out,
+        &first.header,
+        rows.values().map(|(r, _)| r.line.as_str()),
+    )?;
+    Ok(MergeSummary {
+        parts,
+        cases: total,
+        failed: rows.values().filter(|(r, _)| r.status != "ok").count(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_round_trip() {
+        let fields = ["a", "b,c", "say \"hi\"", ""];
+        let line: Vec<String> = fields.iter().map(|f| csv_field(f)).collect();
+        let parsed = parse_csv_line(&line.join(",")).unwrap();
+        assert_eq!(parsed, fields);
+        assert!(parse_csv_line("\"open").is_none());
+    }
+
+    #[test]
+    fn tables_before_the_check_columns_still_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("old.csv");
+        let head = format!("case,pga,status,{}", FIELDS[..V1_FIELDS].join(","));
+        let row = format!("0,0.2,ok,{}", vec!["1.5"; V1_FIELDS].join(","));
+        std::fs::write(&p, format!("{head}\n{row}\n")).unwrap();
+        let t = Table::read(&p).unwrap();
+        assert_eq!(t.axes, ["pga"]);
+        let f = &t.rows[&0].fields;
+        assert!(f[..V1_FIELDS].iter().all(|&x| x == 1.5));
+        assert!(f[V1_FIELDS..].iter().all(|x| x.is_nan()));
+        // the current layout: `converged` is true/false/unchecked, the change may be empty
+        let head = format!("case,pga,status,{}", FIELDS.join(","));
+        let nums = vec!["1.5"; V1_FIELDS].join(",");
+        let text = format!("{head}\n0,0.2,ok,{nums},0.5,false\n1,0.3,ok,{nums},,unchecked\n");
+        std::fs::write(&p, text).unwrap();
+        let t = Table::read(&p).unwrap();
+        assert_eq!(t.rows[&0].fields[V1_FIELDS..], [0.5, 0.0]);
+        assert!(t.rows[&1].fields[V1_FIELDS..].iter().all(|x| x.is_nan()));
+        std::fs::write(&p, format!("{head}\n0,0.2,ok,{nums},0.5,maybe\n")).unwrap();
+        let e = Table::read(&p).unwrap_err().to_string();
+        assert!(e.contains("true, false or unchecked"), "{e}");
+    }
+
+    #[test]
+    fn numbers_as_json_writes_them() {
+        assert_eq!(fmt_f64(91490009.5168547), "91490009.5168547");
+        assert_eq!(fmt_f64(0.0), "0.0");
+        assert_eq!(fmt_f64(1e-7), "1e-7");
+        assert_eq!(fmt_f64(f64::NAN), "NaN");
+        for x in [0.1, 1.0 / 3.0, 2.808e10, 5e-324, 1.7976931348623157e308] {
+            assert_eq!(fmt_f64(x).parse::<f64>().unwrap(), x);
+        }
+    }
+}
