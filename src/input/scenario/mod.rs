@@ -21,6 +21,7 @@ mod floors;
 mod hysteresis;
 mod ranges;
 mod record_keys;
+pub mod suite;
 
 pub(crate) use ranges::unusual;
 pub use ranges::{
@@ -271,7 +272,7 @@ struct RawLevel {
     gap: Option<Spanned<f64>>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawGround {
     pub(crate) kind: Option<Spanned<String>>,
@@ -293,6 +294,9 @@ pub(crate) struct RawGround {
     pub(crate) ground_type: Option<Spanned<String>>,
     #[serde(rename = "type")]
     pub(crate) spectrum_type: Option<Spanned<toml::Value>>,
+    // kind = "suite": checked in `suite`
+    pub(crate) records: Option<Spanned<Vec<Spanned<suite::RawSuiteRecord>>>>,
+    pub(crate) scaling: Option<Spanned<suite::RawSuiteScaling>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -395,6 +399,8 @@ const TABLES: &[(&str, &[&str])] = &[
             "ag",
             "ground_type",
             "type",
+            "records",
+            "scaling",
         ],
     ),
     (
@@ -458,6 +464,9 @@ pub struct Scenario {
     /// A design spectrum (`[ground_motion] kind = "spectrum"`, then `ground_motion` is
     /// [`GroundMotion::None`]) and the code factors of `[separation]` ([`crate::input::scenario::design`]).
     pub design: crate::input::scenario::design::DesignInputs,
+    /// A suite of records (`[ground_motion] kind = "suite"`, then `ground_motion` is
+    /// [`GroundMotion::None`]): run by [`crate::study::suite`].
+    pub suite: Option<suite::Suite>,
 }
 
 impl Scenario {
@@ -854,7 +863,8 @@ impl Ctx<'_> {
     /// serde's list of expected keys (every table's key set is distinct, tested in
     /// `tests/unknown_keys.rs`).
     fn section_for(&self, expected: &[String]) -> (String, Vec<String>) {
-        for (name, keys) in TABLES.iter().chain(crate::input::scenario::design::TABLES) {
+        let tables = TABLES.iter().chain(crate::input::scenario::design::TABLES);
+        for (name, keys) in tables.chain(suite::TABLES) {
             if keys.len() == expected.len() && expected.iter().all(|k| keys.contains(&k.as_str())) {
                 return (
                     name.to_string(),
@@ -1144,8 +1154,14 @@ fn validate(
     };
     let min_length = structures[0].length().min(structures[1].length());
     let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
-    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
-    let (solver, output_interval) = solver(&c, raw.solver.as_ref(), &ground_motion, &mut defaults)?;
+    let suite = suite::suite(&c, &raw, base_dir, records)?;
+    let ground_motion = match suite {
+        Some(_) => GroundMotion::None,
+        None => ground(&c, raw.ground_motion.as_ref(), base_dir, records)?,
+    };
+    let from = suite::defaults_ground(suite.as_ref(), &ground_motion);
+    let (solver, output_interval) = solver(&c, raw.solver.as_ref(), from, &mut defaults)?;
+    suite::note_defaults(suite.as_ref(), &mut defaults);
     floors_at_contact(&c, &raw, &structures, &contact)?;
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
@@ -1202,6 +1218,7 @@ fn validate(
         defaults_applied: defaults,
         warnings,
         design,
+        suite,
     };
     // stability: needs the modal model (docs/model.md §2.9)
     if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
@@ -1829,7 +1846,7 @@ fn ground(
         _ => Err(c.invalid(
             kind,
             "ground_motion.kind",
-            "must be \"harmonic\", \"record\" or \"spectrum\"",
+            "must be \"harmonic\", \"record\", \"spectrum\" or \"suite\"",
         )),
     }
 }
