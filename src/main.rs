@@ -601,6 +601,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            if sc.suite.is_some() {
+                return run_suite(&sc, &name, &out, no_plot, no_check, quiet);
+            }
             pounding::analysis::simulate::require_time_history(&sc)?;
             pounding::output::budget::check_run(&sc, max_output_size)?;
             let mut writer = RunWriter::for_scenario(&out, &sc)?;
@@ -981,6 +984,45 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             Ok(())
         }
     }
+}
+
+/// `pounding run` on a suite of records (`[ground_motion] kind = "suite"`): every record run
+/// (in parallel), the files written (suite.csv, the representative record's run, summary.json
+/// with its `suite` section, last), the report printed.
+fn run_suite(
+    sc: &Scenario,
+    name: &str,
+    out: &Path,
+    no_plot: bool,
+    no_check: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    use pounding::study::suite;
+    if !quiet && std::io::stderr().is_terminal() {
+        let n = sc.suite.as_ref().map_or(0, |s| s.records.len());
+        eprintln!("  running {n} records (with and without pounding{}) …", if no_check { "" } else { ", self-checked" });
+    }
+    let run = suite::run(sc, !no_check).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
+    let written = suite::write::write(out, &run, draw)?;
+    if !quiet {
+        print!("{}", suite::report::text(&run, &sc.title, name));
+        println!();
+        println!("wrote {}", list_paths(&written));
+    }
+    // the scenario's own warnings once; then what a record's run adds
+    let mut seen: std::collections::BTreeSet<String> = sc.warnings.iter().cloned().collect();
+    for w in &sc.warnings {
+        eprintln!("warning: {w}");
+    }
+    for r in &run.records {
+        for w in &r.report.warnings {
+            if seen.insert(w.clone()) {
+                eprintln!("warning: {} (record {})", w, r.file);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Reads every record file with the same options; the error names the file.

@@ -3,3 +3,4 @@
 pub mod run;
 pub mod spectrum;
 pub mod sweep;
+pub mod suite;

@@ -2,3 +2,4 @@
 
 pub mod rule_study;
 pub mod sweep;
+pub mod suite;
