@@ -228,6 +228,9 @@ impl Suite {
             }
         }
         sc.ground_motion = GroundMotion::Record(record);
+        // what a scenario of the scaled record would be warned of (a PGA above 3 g …)
+        let more = super::plausibility(&sc.contact, &sc.ground_motion);
+        sc.warnings.extend(more);
         Ok(sc)
     }
 }

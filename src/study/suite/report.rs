@@ -66,8 +66,15 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
         .max()
         .unwrap_or(4)
         .clamp(4, 48);
+    let cw = run
+        .records
+        .iter()
+        .map(|r| r.component.as_deref().map_or(1, |c| c.chars().count()))
+        .max()
+        .unwrap_or(1)
+        .clamp(5, 24);
     let mut head = format!(
-        "  {:>3}  {:<width$}  {:>6}  {:>7}  {:>6}",
+        "  {:>3}  {:<width$}  {:<cw$}  {:>7}  {:>6}",
         "#", "file", "comp.", "factor", "PGA g"
     );
     for l in levels {
@@ -79,7 +86,7 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
         let h = &r.headline;
         let mark = if i == run.representative { "*" } else { " " };
         let mut line = format!(
-            "{mark} {:>3}  {:<width$}  {:>6}  {:>7.3}  {:>6.3}",
+            "{mark} {:>3}  {:<width$}  {:<cw$}  {:>7.3}  {:>6.3}",
             i + 1,
             r.file,
             r.component.as_deref().unwrap_or("-"),
@@ -110,7 +117,7 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
         ("84th percentile", |s| s.p84),
         ("max", |s| s.max),
     ] {
-        let mut line = format!("  {:<width$}", label, width = width + 38);
+        let mut line = format!("  {:<width$}", label, width = width + cw + 25);
         for l in levels {
             let _ = write!(line, "  {:>9}", mm(f(&l.statistics)));
         }
