@@ -229,8 +229,11 @@ impl Suite {
         }
         sc.ground_motion = GroundMotion::Record(record);
         // what a scenario of the scaled record would be warned of (a PGA above 3 g …)
-        let more = super::plausibility(&sc.contact, &sc.ground_motion);
-        sc.warnings.extend(more);
+        for w in super::plausibility(&sc.contact, &sc.ground_motion) {
+            if !sc.warnings.contains(&w) {
+                sc.warnings.push(w);
+            }
+        }
         Ok(sc)
     }
 }
