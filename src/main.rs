@@ -734,6 +734,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             pounding::analysis::simulate::require_time_history(&sc)?;
             if !quiet {
                 println!(
@@ -782,6 +783,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 },
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             let opts = pounding::opensees::ExportOptions {
                 elements,
                 dt,
@@ -964,6 +966,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             keep,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             let opts = pounding::opensees::compare::CrosscheckOptions {
                 export: pounding::opensees::ExportOptions {
                     elements,
@@ -1000,7 +1003,10 @@ fn run_suite(
     use pounding::study::suite;
     if !quiet && std::io::stderr().is_terminal() {
         let n = sc.suite.as_ref().map_or(0, |s| s.records.len());
-        eprintln!("  running {n} records (with and without pounding{}) …", if no_check { "" } else { ", self-checked" });
+        eprintln!(
+            "  running {n} records (with and without pounding{}) …",
+            if no_check { "" } else { ", self-checked" }
+        );
     }
     let run = suite::run(sc, !no_check).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
@@ -1023,6 +1029,14 @@ fn run_suite(
         }
     }
     Ok(())
+}
+
+/// Commands of one ground motion refuse a suite of records (which `pounding run` runs).
+fn refuse_suite(sc: &Scenario) -> anyhow::Result<()> {
+    match &sc.suite {
+        Some(s) => Err(pounding::integrate::SolveError::Suite(s.records.len()).into()),
+        None => Ok(()),
+    }
 }
 
 /// Reads every record file with the same options; the error names the file.

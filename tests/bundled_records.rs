@@ -8,7 +8,7 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use pounding::ground_motion::{Component, Record, RecordOptions, STANDARD_GRAVITY};
+use pounding::model::ground_motion::{Component, Record, RecordOptions, STANDARD_GRAVITY};
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/records");
 

@@ -21,8 +21,10 @@ fn record_text(a: f64, t: f64, n: usize, scale: f64) -> String {
     for k in 0..n {
         let x = k as f64 * dt;
         let env = (std::f64::consts::PI * k as f64 / (n - 1) as f64).sin();
-        let v = a * env * ((2.0 * std::f64::consts::PI * x / t).sin()
-            + 0.3 * (2.0 * std::f64::consts::PI * x * 2.7 / t).sin());
+        let v = a
+            * env
+            * ((2.0 * std::f64::consts::PI * x / t).sin()
+                + 0.3 * (2.0 * std::f64::consts::PI * x * 2.7 / t).sin());
         // (`{}` writes the shortest text that reads back to the same f64)
         out.push_str(&format!("{}\n", v * scale));
     }
@@ -43,8 +45,11 @@ fn write_records(dir: &Path) {
     .iter()
     .enumerate()
     {
-        std::fs::write(dir.join(format!("r{}.txt", i + 1)), record_text(*a, *t, 600, 1.0))
-            .unwrap();
+        std::fs::write(
+            dir.join(format!("r{}.txt", i + 1)),
+            record_text(*a, *t, 600, 1.0),
+        )
+        .unwrap();
     }
 }
 
@@ -221,7 +226,11 @@ fn one_record_suite_equals_the_single_record_run() {
         "[ground_motion]\nkind = \"record\"\nfile = \"r3.txt\"\nunits = \"g\"\ndt = 0.01\n",
     );
     let mut a = simulate_checked(&parse(&single, dir.path()), true).unwrap();
-    let text = scenario_text(0.02, 0.02, &suite_table(&["r3.txt"], "{ rule = \"none\" }", ""));
+    let text = scenario_text(
+        0.02,
+        0.02,
+        &suite_table(&["r3.txt"], "{ rule = \"none\" }", ""),
+    );
     let run = suite::run(&parse(&text, dir.path()), true).unwrap();
     let mut b = run.records[0].report.clone();
     assert!(a.contact.impacts > 0, "the case must pound");
@@ -230,7 +239,10 @@ fn one_record_suite_equals_the_single_record_run() {
     assert!(a == b, "the suite's run differs from the single record's");
     // its statistics are its own numbers
     assert_eq!(run.design.levels[0].required, a.levels[0].required_gap);
-    assert_eq!(run.design.levels[0].statistics.p84, a.levels[0].required_gap);
+    assert_eq!(
+        run.design.levels[0].statistics.p84,
+        a.levels[0].required_gap
+    );
 }
 
 /// `factor = 2` on a record gives exactly the run of a file holding the record's values × 2
@@ -253,7 +265,11 @@ fn a_factor_is_the_record_scaled() {
         let text = scenario_text(
             0.02,
             0.02,
-            &suite_table(&["base.txt"], "{ rule = \"none\" }", &format!(", factor = {f}")),
+            &suite_table(
+                &["base.txt"],
+                "{ rule = \"none\" }",
+                &format!(", factor = {f}"),
+            ),
         );
         let run = suite::run(&parse(&text, dir.path()), false).unwrap();
         assert_eq!(run.records[0].factor, f);
@@ -267,7 +283,10 @@ fn a_factor_is_the_record_scaled() {
             if exact {
                 assert_eq!(x, y, "{name}");
             } else {
-                assert!((x - y).abs() <= 1e-9 * x.abs().max(1e-12), "{name}: {x} vs {y}");
+                assert!(
+                    (x - y).abs() <= 1e-9 * x.abs().max(1e-12),
+                    "{name}: {x} vs {y}"
+                );
             }
         }
     }
@@ -280,7 +299,11 @@ fn a_factor_is_the_record_scaled() {
 fn the_files_of_a_suite_run() {
     let dir = tempfile::tempdir().unwrap();
     write_records(dir.path());
-    let text = scenario_text(0.02, 0.02, &suite_table(&["r1.txt", "r2.txt", "r3.txt"], EC8, ""));
+    let text = scenario_text(
+        0.02,
+        0.02,
+        &suite_table(&["r1.txt", "r2.txt", "r3.txt"], EC8, ""),
+    );
     std::fs::write(dir.path().join("s.toml"), &text).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_pounding"))
         .args(["run", "s.toml", "--out", "res", "--no-check"])
@@ -288,7 +311,11 @@ fn the_files_of_a_suite_run() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(stdout.contains("verdict: the gap"), "{stdout}");
     let res = dir.path().join("res");
     let csv = std::fs::read_to_string(res.join("suite.csv")).unwrap();
@@ -297,7 +324,14 @@ fn the_files_of_a_suite_run() {
     assert!(rows[0].starts_with("record,file,component,factor,pga,"));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(res.join("summary.json")).unwrap()).unwrap();
-    for key in ["structures", "contact", "levels", "separation", "accuracy", "solver"] {
+    for key in [
+        "structures",
+        "contact",
+        "levels",
+        "separation",
+        "accuracy",
+        "solver",
+    ] {
         assert!(summary.get(key).is_some(), "top-level `{key}`");
     }
     let s = &summary["suite"];
@@ -333,7 +367,12 @@ fn the_files_of_a_suite_run() {
     {
         use std::os::unix::fs::PermissionsExt;
         let mode = |f: &str| std::fs::metadata(res.join(f)).unwrap().permissions().mode();
-        for f in ["suite.csv", "history.csv", "suite-records.png", "suite-spectra.png"] {
+        for f in [
+            "suite.csv",
+            "history.csv",
+            "suite-records.png",
+            "suite-spectra.png",
+        ] {
             assert_eq!(mode(f), mode("summary.json"), "{f}");
         }
     }
@@ -346,33 +385,66 @@ fn bad_suites_are_refused_with_the_key() {
     write_records(dir.path());
     let s = |ground: &str| scenario_text(0.02, 0.02, ground);
     // a missing file: the key records[2].file and the file's name
-    let e = error(&s(&suite_table(&["r1.txt", "nope.txt"], EC8, "")), dir.path());
-    assert!(e.contains("ground_motion.records[2].file") && e.contains("nope.txt"), "{e}");
+    let e = error(
+        &s(&suite_table(&["r1.txt", "nope.txt"], EC8, "")),
+        dir.path(),
+    );
+    assert!(
+        e.contains("ground_motion.records[2].file") && e.contains("nope.txt"),
+        "{e}"
+    );
     // a component the file does not have (a one-column file has one)
     let e = error(
-        &s(&suite_table(&["r1.txt"], "{ rule = \"none\" }", ", component = \"EW\"")),
+        &s(&suite_table(
+            &["r1.txt"],
+            "{ rule = \"none\" }",
+            ", component = \"EW\"",
+        )),
         dir.path(),
     );
     assert!(e.contains("records[1]") && e.contains("r1.txt"), "{e}");
     // a factor with a code's rule
-    let e = error(&s(&suite_table(&["r1.txt"; 3], EC8, ", factor = 2.0")), dir.path());
-    assert!(e.contains("records[1].factor") && e.contains("rule = \"none\""), "{e}");
+    let e = error(
+        &s(&suite_table(&["r1.txt"; 3], EC8, ", factor = 2.0")),
+        dir.path(),
+    );
+    assert!(
+        e.contains("records[1].factor") && e.contains("rule = \"none\""),
+        "{e}"
+    );
     // an unknown key in a record, with the valid ones
-    let e = error(&s(&suite_table(&["r1.txt"], EC8, ", scale = 2.0")), dir.path());
-    assert!(e.contains("unknown key `scale`") && e.contains("factor"), "{e}");
+    let e = error(
+        &s(&suite_table(&["r1.txt"], EC8, ", scale = 2.0")),
+        dir.path(),
+    );
+    assert!(
+        e.contains("unknown key `scale`") && e.contains("factor"),
+        "{e}"
+    );
     // no scaling table; no target with a rule; a single-record key at the top
     let e = error(
-        &s("[ground_motion]\nkind = \"suite\"\nrecords = [{ file = \"r1.txt\", units = \"g\", dt = 0.01 }]\n"),
+        &s(
+            "[ground_motion]\nkind = \"suite\"\nrecords = [{ file = \"r1.txt\", units = \"g\", dt = 0.01 }]\n",
+        ),
         dir.path(),
     );
     assert!(e.contains("ground_motion.scaling"), "{e}");
-    let e = error(&s(&suite_table(&["r1.txt"], "{ rule = \"ec8\" }", "")), dir.path());
-    assert!(e.contains("ground_motion.scaling.target"), "{e}");
     let e = error(
-        &s(&format!("{}file = \"r1.txt\"\n", suite_table(&["r1.txt"], EC8, ""))),
+        &s(&suite_table(&["r1.txt"], "{ rule = \"ec8\" }", "")),
         dir.path(),
     );
-    assert!(e.contains("ground_motion.file") && e.contains("per record"), "{e}");
+    assert!(e.contains("ground_motion.scaling.target"), "{e}");
+    let e = error(
+        &s(&format!(
+            "{}file = \"r1.txt\"\n",
+            suite_table(&["r1.txt"], EC8, "")
+        )),
+        dir.path(),
+    );
+    assert!(
+        e.contains("ground_motion.file") && e.contains("per record"),
+        "{e}"
+    );
     // a target key out of range names its full key
     let bad = EC8.replace("ag = 2.5", "ag = 50.0");
     let e = error(&s(&suite_table(&["r1.txt"], &bad, "")), dir.path());
@@ -391,14 +463,31 @@ fn bad_suites_are_refused_with_the_key() {
 fn suites_that_cannot_meet_the_rule() {
     let dir = tempfile::tempdir().unwrap();
     write_records(dir.path());
-    let text = scenario_text(0.02, 0.02, &suite_table(&["r1.txt", "r2.txt", "r3.txt"], ASCE7, ""));
-    let e = suite::run(&parse(&text, dir.path()), false).unwrap_err().to_string();
-    assert!(e.contains("ASCE 7-16 §16.2.2 requires at least 11 records; 3 given"), "{e}");
+    let text = scenario_text(
+        0.02,
+        0.02,
+        &suite_table(&["r1.txt", "r2.txt", "r3.txt"], ASCE7, ""),
+    );
+    let e = suite::run(&parse(&text, dir.path()), false)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("ASCE 7-16 §16.2.2 requires at least 11 records; 3 given"),
+        "{e}"
+    );
     let held = format!("{}, factor_limits = [1.0, 1.0] }}", &EC8[..EC8.len() - 2]);
-    let text = scenario_text(0.02, 0.02, &suite_table(&["r1.txt", "r2.txt", "r3.txt"], &held, ""));
-    let e = suite::run(&parse(&text, dir.path()), false).unwrap_err().to_string();
+    let text = scenario_text(
+        0.02,
+        0.02,
+        &suite_table(&["r1.txt", "r2.txt", "r3.txt"], &held, ""),
+    );
+    let e = suite::run(&parse(&text, dir.path()), false)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("EN 1998-1") && e.contains("reaches only"), "{e}");
     // and `simulate` refuses a suite rather than running it without ground motion
-    let e = simulate_checked(&parse(&text, dir.path()), false).unwrap_err().to_string();
+    let e = simulate_checked(&parse(&text, dir.path()), false)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("suite of 3 records"), "{e}");
 }

@@ -380,14 +380,19 @@ fn column_dict<'py>(py: Python<'py>, cols: Vec<(String, Column)>) -> PyResult<Bo
 impl PyRunOutput {
     /// summary.json's text (exactly the file `pounding run` writes).
     fn summary_json(&self) -> PyResult<String> {
-        let section = self.suite.as_deref().map(pounding::study::suite::write::section);
+        let section = self
+            .suite
+            .as_deref()
+            .map(pounding::study::suite::write::section);
         pounding::output::run::summary_json_with(&self.scenario, &self.report, section.as_ref())
             .map_err(OutputError::new_err)
     }
 
     /// suite.csv's text for a suite of records (`None` for one record).
     fn suite_csv(&self) -> Option<String> {
-        self.suite.as_deref().map(pounding::study::suite::write::suite_csv)
+        self.suite
+            .as_deref()
+            .map(pounding::study::suite::write::suite_csv)
     }
 
     /// history.csv's columns: dict of float64 arrays.

@@ -2,5 +2,5 @@
 
 pub mod run;
 pub mod spectrum;
-pub mod sweep;
 pub mod suite;
+pub mod sweep;

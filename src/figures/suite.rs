@@ -135,11 +135,7 @@ pub fn records_figure(run: &SuiteRun, dir: &Path) -> Result<Vec<PathBuf>, String
         .find(|(k, _)| k == "peak_force")
         .map_or(f64::NAN, |(_, s)| s.design / 1e3);
     let force_line = [force_design; 2];
-    let force_label = format!(
-        "{} = {:.0} kN",
-        d.statistic.key(),
-        force_design
-    );
+    let force_label = format!("{} = {:.0} kN", d.statistic.key(), force_design);
     let sep_title = format!(
         "required separation by the time history; dashed: the design value ({}) per level",
         d.statistic.key()

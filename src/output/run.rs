@@ -612,9 +612,11 @@ impl RunWriter {
             }
         }
         let summary = self.dir.join("summary.json");
-        let json = summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| OutputError::Encode {
-            path: summary.clone(),
-            message,
+        let json = summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| {
+            OutputError::Encode {
+                path: summary.clone(),
+                message,
+            }
         })?;
         write_atomic(&summary, json.as_bytes())?;
         self.written(&summary, &mut written);

@@ -29,9 +29,7 @@ use std::sync::Arc;
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::{
-    Check, DEFAULT_DT, RawGround, RawScenario, RecordCache, ScenarioError, record_keys,
-};
+use super::{Check, DEFAULT_DT, RawGround, RawScenario, RecordCache, ScenarioError, record_keys};
 use crate::codes::spectrum::DesignSpectrum;
 use crate::model::ground_motion::{GroundMotion, Record};
 
@@ -275,7 +273,10 @@ pub(super) fn suite(
         reason: why.to_string(),
     };
     if kind != "suite" {
-        for (k, p) in [("records", gr.records.is_some()), ("scaling", gr.scaling.is_some())] {
+        for (k, p) in [
+            ("records", gr.records.is_some()),
+            ("scaling", gr.scaling.is_some()),
+        ] {
             if p {
                 return Err(given(k, &format!("not used with kind = \"{kind}\"")));
             }
@@ -375,7 +376,10 @@ pub(super) fn suite(
             other => other.to_string(),
         });
         records.push(SuiteRecord {
-            file: e.file.as_ref().map_or_else(String::new, |f| f.get_ref().clone()),
+            file: e
+                .file
+                .as_ref()
+                .map_or_else(String::new, |f| f.get_ref().clone()),
             component: record.component.clone().or(given_component),
             factor,
             record,
@@ -402,7 +406,10 @@ pub(super) fn suite(
 
 /// The ground motion the solver's defaults are taken from: the suite's longest record (a
 /// suite's own defaults are each record's, [`Suite::member_scenario`]).
-pub(super) fn defaults_ground<'a>(suite: Option<&'a Suite>, other: &'a GroundMotion) -> &'a GroundMotion {
+pub(super) fn defaults_ground<'a>(
+    suite: Option<&'a Suite>,
+    other: &'a GroundMotion,
+) -> &'a GroundMotion {
     suite.map_or(other, |s| &s.longest)
 }
 
@@ -479,11 +486,22 @@ fn scaling(
         "asce7" => SuiteRule::Asce7,
         "ec8" => SuiteRule::Ec8,
         "none" => SuiteRule::None,
-        _ => return Err(c.invalid(rule_v, &key("rule"), "must be \"asce7\", \"ec8\" or \"none\"")),
+        _ => {
+            return Err(c.invalid(
+                rule_v,
+                &key("rule"),
+                "must be \"asce7\", \"ec8\" or \"none\"",
+            ));
+        }
     };
-    let pair = |v: &Spanned<Vec<f64>>, k: &str, what: &str, strict: bool| {
-        match v.get_ref().as_slice() {
-            [a, b] if a.is_finite() && b.is_finite() && *a > 0.0 && (if strict { a < b } else { a <= b }) => {
+    let pair =
+        |v: &Spanned<Vec<f64>>, k: &str, what: &str, strict: bool| match v.get_ref().as_slice() {
+            [a, b]
+                if a.is_finite()
+                    && b.is_finite()
+                    && *a > 0.0
+                    && (if strict { a < b } else { a <= b }) =>
+            {
                 Ok((*a, *b))
             }
             _ => Err(ScenarioError::Invalid {
@@ -492,8 +510,7 @@ fn scaling(
                 value: format!("{:?}", v.get_ref()),
                 reason: what.to_string(),
             }),
-        }
-    };
+        };
     if rule == SuiteRule::None {
         for (k, p) in [
             ("target", s.target.is_some()),

@@ -17,8 +17,8 @@ use serde::Serialize;
 use serde::ser::SerializeMap;
 
 use crate::analysis::record_spectrum::{
-    PeriodRange, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember,
-    SuiteScaling, Target,
+    PeriodRange, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember, SuiteScaling,
+    Target,
 };
 use crate::analysis::simulate::{Report, RunCapture, simulate_streaming};
 use crate::input::scenario::suite::{Suite, SuiteRule};
@@ -46,7 +46,7 @@ pub enum SuiteError {
         /// The file.
         file: String,
         /// Why.
-        source: SolveError,
+        source: Box<SolveError>,
     },
 }
 
@@ -81,10 +81,7 @@ impl Headline {
             ("impacts".into(), report.contact.impacts as f64),
             ("contact_time".into(), report.contact.contact_time),
             ("max_penetration".into(), report.contact.max_penetration),
-            (
-                "required_separation".into(),
-                report.separation.time_history,
-            ),
+            ("required_separation".into(), report.separation.time_history),
         ];
         for (k, l) in report.levels.iter().enumerate() {
             let n = k + 1;
@@ -250,7 +247,11 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
     let scaling = scale(scenario, suite)?;
     let factors: Vec<f64> = match &scaling {
         Some(s) => s.records.iter().map(|r| r.factor).collect(),
-        None => suite.records.iter().map(|m| m.factor.unwrap_or(1.0)).collect(),
+        None => suite
+            .records
+            .iter()
+            .map(|m| m.factor.unwrap_or(1.0))
+            .collect(),
     };
     let scenarios: Vec<Scenario> = factors
         .iter()
@@ -267,7 +268,7 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
                 .map_err(|source| SuiteError::Solve {
                     index: i + 1,
                     file: suite.records[i].file.clone(),
-                    source,
+                    source: Box::new(source),
                 })
         })
         .collect::<Result<_, _>>()?;

@@ -45,7 +45,10 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
             );
         }
         None => {
-            let _ = writeln!(o, "  suite of {n} records at their own factors (rule \"none\")");
+            let _ = writeln!(
+                o,
+                "  suite of {n} records at their own factors (rule \"none\")"
+            );
         }
     }
     let levels = &run.design.levels;
@@ -112,7 +115,10 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
     }
     let _ = writeln!(o);
     for (label, f) in [
-        ("mean", (|s: &super::Statistics| s.mean) as fn(&super::Statistics) -> f64),
+        (
+            "mean",
+            (|s: &super::Statistics| s.mean) as fn(&super::Statistics) -> f64,
+        ),
         ("median", |s| s.median),
         ("84th percentile", |s| s.p84),
         ("max", |s| s.max),
@@ -143,7 +149,11 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
             l.height,
             mm(l.required),
             mm(l.gap),
-            if l.sufficient { "suffices" } else { "TOO SMALL" },
+            if l.sufficient {
+                "suffices"
+            } else {
+                "TOO SMALL"
+            },
             l.margin * 1e3
         );
     }
@@ -162,7 +172,11 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
         mm(g.required),
         mm(g.gap),
         if d.insufficient_levels > 0 {
-            format!(" ({} of {} levels too small)", d.insufficient_levels, levels.len())
+            format!(
+                " ({} of {} levels too small)",
+                d.insufficient_levels,
+                levels.len()
+            )
         } else {
             String::new()
         }
