@@ -421,6 +421,32 @@ fn bad_suites_are_refused_with_the_key() {
         e.contains("unknown key `scale`") && e.contains("factor"),
         "{e}"
     );
+    // unknown keys in the scaling and its target name their table and its keys
+    let e = error(
+        &s(&suite_table(
+            &["r1.txt"],
+            &EC8.replace("rule =", "rul = 1, rule ="),
+            "",
+        )),
+        dir.path(),
+    );
+    assert!(
+        e.contains("unknown key `rul` in ground_motion.scaling") && e.contains("factor_limits"),
+        "{e}"
+    );
+    let e = error(
+        &s(&suite_table(
+            &["r1.txt"],
+            &EC8.replace("ag = 2.5", "ag = 2.5, a_g = 2.5"),
+            "",
+        )),
+        dir.path(),
+    );
+    assert!(
+        e.contains("unknown key `a_g` in ground_motion.scaling.target")
+            && e.contains("ground_type"),
+        "{e}"
+    );
     // no scaling table; no target with a rule; a single-record key at the top
     let e = error(
         &s(
