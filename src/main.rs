@@ -601,6 +601,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             max_output_size,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            if sc.suite.is_some() {
+                return run_suite(&sc, &name, &out, no_plot, no_check, quiet);
+            }
             pounding::analysis::simulate::require_time_history(&sc)?;
             pounding::output::budget::check_run(&sc, max_output_size)?;
             let mut writer = RunWriter::for_scenario(&out, &sc)?;
@@ -731,6 +734,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
             }
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             pounding::analysis::simulate::require_time_history(&sc)?;
             if !quiet {
                 println!(
@@ -779,6 +783,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 },
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             let opts = pounding::opensees::ExportOptions {
                 elements,
                 dt,
@@ -961,6 +966,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             keep,
         } => {
             let (sc, name) = load(scenario.as_deref())?;
+            refuse_suite(&sc)?;
             let opts = pounding::opensees::compare::CrosscheckOptions {
                 export: pounding::opensees::ExportOptions {
                     elements,
@@ -980,6 +986,56 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             print!("{}", c.table());
             Ok(())
         }
+    }
+}
+
+/// `pounding run` on a suite of records (`[ground_motion] kind = "suite"`): every record run
+/// (in parallel), the files written (suite.csv, the representative record's run, summary.json
+/// with its `suite` section, last), the report printed.
+fn run_suite(
+    sc: &Scenario,
+    name: &str,
+    out: &Path,
+    no_plot: bool,
+    no_check: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    use pounding::study::suite;
+    if !quiet && std::io::stderr().is_terminal() {
+        let n = sc.suite.as_ref().map_or(0, |s| s.records.len());
+        eprintln!(
+            "  running {n} records (with and without pounding{}) …",
+            if no_check { "" } else { ", self-checked" }
+        );
+    }
+    let run = suite::run(sc, !no_check).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+    let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
+    let written = suite::write::write(out, &run, draw)?;
+    if !quiet {
+        print!("{}", suite::report::text(&run, &sc.title, name));
+        println!();
+        println!("wrote {}", list_paths(&written));
+    }
+    // the scenario's own warnings once; then what a record's run adds
+    let mut seen: std::collections::BTreeSet<String> = sc.warnings.iter().cloned().collect();
+    for w in &sc.warnings {
+        eprintln!("warning: {w}");
+    }
+    for r in &run.records {
+        for w in &r.report.warnings {
+            if seen.insert(w.clone()) {
+                eprintln!("warning: {} (record {})", w, r.file);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Commands of one ground motion refuse a suite of records (which `pounding run` runs).
+fn refuse_suite(sc: &Scenario) -> anyhow::Result<()> {
+    match &sc.suite {
+        Some(s) => Err(pounding::integrate::SolveError::Suite(s.records.len()).into()),
+        None => Ok(()),
     }
 }
 

@@ -528,6 +528,15 @@ fn readme_quick_start_is_what_the_default_prints() {
     let printed = text(&out.stdout);
     assert!(printed.contains("self-check: converged"), "{printed}");
     for (k, (a, b)) in shown.lines().zip(printed.lines()).enumerate() {
+        // The energy balance's residual is round-off (~1e-14): its digits move with any change
+        // of the order of floating-point operations anywhere in the run, so the README shows
+        // it and the test checks that both shown and printed values are round-off, not equal.
+        if let (Some(x), Some(y)) = (energy_errors(a), energy_errors(b)) {
+            for v in x.into_iter().chain(y) {
+                assert!(v < 1e-11, "README Quick start, line {}: {b}", k + 1);
+            }
+            continue;
+        }
         assert_eq!(a, b, "README Quick start, line {} of the output", k + 1);
     }
     assert_eq!(shown.lines().count(), printed.lines().count(), "{printed}");
@@ -660,4 +669,12 @@ fn the_acceleration_pulse_is_named_in_the_summary() {
         );
         assert!(printed.contains(&line), "{line}\n{printed}");
     }
+}
+
+/// The two numbers of the summary's "energy balance error: A with contact, B without" line.
+fn energy_errors(line: &str) -> Option<[f64; 2]> {
+    let rest = line.trim().strip_prefix("energy balance error: ")?;
+    let (a, rest) = rest.split_once(" with contact, ")?;
+    let b = rest.strip_suffix(" without")?;
+    Some([a.parse().ok()?, b.parse().ok()?])
 }

@@ -488,33 +488,46 @@ fn bundled_examples_run_without_warnings() {
         if pounding::analysis::simulate::require_time_history(&sc).is_err() {
             continue;
         }
-        let report = pounding::analysis::simulate::simulate_checked(&sc, true)
-            .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        // a suite of records: every record's run (issue 27)
+        let reports = match sc.suite {
+            Some(_) => pounding::study::suite::run(&sc, true)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+                .records
+                .into_iter()
+                .map(|r| r.report)
+                .collect(),
+            None => vec![
+                pounding::analysis::simulate::simulate_checked(&sc, true)
+                    .unwrap_or_else(|e| panic!("{}: {e}", p.display())),
+            ],
+        };
         ran += 1;
         let expected = expected_kinds(&text);
-        for k in &expected {
+        for report in &reports {
+            for k in &expected {
+                assert!(
+                    k != "other" && report.warnings.iter().any(|w| warning_kind(w) == k),
+                    "{}: the header expects a `{k}` warning, which the run does not give (remove \
+                     it from the header): {:?}",
+                    p.display(),
+                    report.warnings
+                );
+            }
+            for w in &report.warnings {
+                assert!(
+                    expected.iter().any(|k| k == warning_kind(w)),
+                    "{}: warning of kind `{}` not declared by an `# expect-warning:` header: {w}",
+                    p.display(),
+                    warning_kind(w)
+                );
+            }
             assert!(
-                k != "other" && report.warnings.iter().any(|w| warning_kind(w) == k),
-                "{}: the header expects a `{k}` warning, which the run does not give (remove \
-                 it from the header): {:?}",
+                report.accuracy.is_converged() || expected.iter().any(|k| k == "self-check"),
+                "{}: not converged: {:?}",
                 p.display(),
-                report.warnings
+                report.accuracy
             );
         }
-        for w in &report.warnings {
-            assert!(
-                expected.iter().any(|k| k == warning_kind(w)),
-                "{}: warning of kind `{}` not declared by an `# expect-warning:` header: {w}",
-                p.display(),
-                warning_kind(w)
-            );
-        }
-        assert!(
-            report.accuracy.is_converged() || expected.iter().any(|k| k == "self-check"),
-            "{}: not converged: {:?}",
-            p.display(),
-            report.accuracy
-        );
     }
     // every sweep's base scenario is one of the examples just run
     for (p, _) in &bases {

@@ -59,6 +59,15 @@ class RunResult:
     - ``floors``: dict of 1-D float64 arrays keyed by floors.csv's columns (``t``, then
       ``w1_<h>``, ``a1_<h>``, … with pounding, then the same with ``_free``);
     - ``warnings``: list of the run's warnings (as ``pounding run`` prints them).
+
+    For a suite of records (``[ground_motion] kind = "suite"``) the tables and the top level of
+    ``summary`` are the representative record's run (as ``pounding run`` writes them), and
+
+    - ``suite``: dict, summary.json's ``suite`` section (``records``, ``scaling``,
+      ``statistics``, ``design``, ``representative``), ``None`` for one record;
+    - ``records``: list of dicts, one per record (file, component, factor, headline numbers);
+    - ``statistics``: dict, per headline number its ``mean``, ``median``, ``p84``, ``min``,
+      ``max`` and ``design`` value across the records.
     """
 
     __slots__ = ("_out", "_cache")
@@ -101,6 +110,23 @@ class RunResult:
     def warnings(self) -> list[str]:
         """The run's warnings."""
         return self._out.warnings
+
+    @property
+    def suite(self) -> dict[str, Any] | None:
+        """A suite's section of summary.json, or None for one record."""
+        return self.summary.get("suite")
+
+    @property
+    def records(self) -> list[dict[str, Any]]:
+        """A suite's records with their headline numbers (empty for one record)."""
+        s = self.suite
+        return [] if s is None else s["records"]
+
+    @property
+    def statistics(self) -> dict[str, Any]:
+        """A suite's statistics across its records (empty for one record)."""
+        s = self.suite
+        return {} if s is None else s["statistics"]
 
     def to_pandas(self) -> dict[str, Any]:
         """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""

@@ -81,6 +81,8 @@ class RunOutput:
         """impacts.csv's columns (`level` int64, the rest float64)."""
     def floors(self) -> dict[str, npt.NDArray[np.float64]]:
         """floors.csv's columns."""
+    def suite_csv(self) -> str | None:
+        """suite.csv's text for a suite of records; None for one record."""
     @property
     def warnings(self) -> list[str]:
         """The run's warnings."""

@@ -351,6 +351,9 @@ struct PyRunOutput {
     report: Report,
     capture: RunCapture,
     floor_columns: Vec<String>,
+    /// A suite of records: every record's run (the fields above are the representative
+    /// record's, the top level of summary.json).
+    suite: Option<Arc<pounding::study::suite::SuiteRun>>,
 }
 
 fn float_dict<'py>(py: Python<'py>, cols: Vec<(String, Vec<f64>)>) -> PyResult<Bound<'py, PyDict>> {
@@ -377,8 +380,19 @@ fn column_dict<'py>(py: Python<'py>, cols: Vec<(String, Column)>) -> PyResult<Bo
 impl PyRunOutput {
     /// summary.json's text (exactly the file `pounding run` writes).
     fn summary_json(&self) -> PyResult<String> {
-        pounding::output::run::summary_json(&self.scenario, &self.report)
+        let section = self
+            .suite
+            .as_deref()
+            .map(pounding::study::suite::write::section);
+        pounding::output::run::summary_json_with(&self.scenario, &self.report, section.as_ref())
             .map_err(OutputError::new_err)
+    }
+
+    /// suite.csv's text for a suite of records (`None` for one record).
+    fn suite_csv(&self) -> Option<String> {
+        self.suite
+            .as_deref()
+            .map(pounding::study::suite::write::suite_csv)
     }
 
     /// history.csv's columns: dict of float64 arrays.
@@ -412,6 +426,11 @@ impl PyRunOutput {
     fn save(&self, py: Python<'_>, dir: PathBuf, plots: bool) -> PyResult<Vec<PathBuf>> {
         py.detach(|| {
             no_panic(|| {
+                if let Some(run) = self.suite.as_deref() {
+                    let draw = plots.then(|| pounding::figures::suite::suite_pictures(run));
+                    return pounding::study::suite::write::write(&dir, run, draw)
+                        .map_err(|e| OutputError::new_err(e.to_string()));
+                }
                 let draw = plots
                     .then(|| pounding::figures::run::run_pictures(&self.scenario, &self.report));
                 pounding::output::run::write_run(
@@ -440,6 +459,22 @@ fn run(
     let sc = scenario.get().inner.clone();
     py.detach(|| {
         no_panic(|| {
+            if sc.suite.is_some() {
+                // every record (issue 27); the representative record's run is the top level
+                use pounding::study::suite::SuiteError as E;
+                let run = pounding::study::suite::run(&sc, check).map_err(|e| match e {
+                    E::Solve { .. } => SolveError::new_err(e.to_string()),
+                    _ => ScenarioError::new_err(e.to_string()),
+                })?;
+                let rep = &run.records[run.representative];
+                return Ok(PyRunOutput {
+                    scenario: Arc::new(rep.scenario.clone()),
+                    report: rep.report.clone(),
+                    capture: rep.capture.clone(),
+                    floor_columns: pounding::output::run::floor_columns(&rep.scenario),
+                    suite: Some(Arc::new(run)),
+                });
+            }
             pounding::analysis::simulate::require_time_history(&sc)
                 .map_err(|e| SolveError::new_err(e.to_string()))?;
             pounding::output::budget::check_run(&sc, max_output_size)
@@ -453,6 +488,7 @@ fn run(
                 report,
                 capture,
                 floor_columns,
+                suite: None,
             })
         })
     })

@@ -3,4 +3,5 @@
 pub mod rules;
 pub mod run;
 pub mod spectrum;
+pub mod suite;
 pub mod sweep;

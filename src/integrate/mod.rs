@@ -386,6 +386,14 @@ pub enum SolveError {
         /// The relative tolerance.
         rtol: f64,
     },
+    /// The scenario is a suite of records (`[ground_motion] kind = "suite"`): one run per record,
+    /// by `pounding run` (the library's `study::suite::run`), not one simulation.
+    #[error(
+        "the ground motion is a suite of {0} records, which is run record by record: use \
+         `pounding run SCENARIO` (or `pounding.run` in Python), or give one record (kind = \"record\") \
+         for this command"
+    )]
+    Suite(usize),
 }
 
 impl SolverSettings {

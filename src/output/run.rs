@@ -53,11 +53,24 @@ struct Summary<'a> {
     solver: SolverInfo,
     /// Keys the scenario left out and the defaults used for them (`key = value`).
     defaults_applied: &'a [String],
+    /// A suite's own section ([`RunWriter::with_suite`]); absent for one record.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    suite: Option<&'a serde_json::Value>,
 }
 
 /// The summary as JSON text (docs/model.md §6 fields plus levels, energy, impacts, warnings,
 /// solver, defaults applied).
 pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, String> {
+    summary_json_with(scenario, report, None)
+}
+
+/// [`summary_json`] with a suite's section `suite` last (the top-level keys are then the
+/// run of the suite's representative record, `scenario`).
+pub fn summary_json_with(
+    scenario: &Scenario,
+    report: &Report,
+    suite: Option<&serde_json::Value>,
+) -> Result<String, String> {
     let adaptive = scenario.solver.method == Method::Adaptive;
     let s = Summary {
         report,
@@ -82,6 +95,7 @@ pub fn summary_json(scenario: &Scenario, report: &Report) -> Result<String, Stri
             energy_relative_error_no_contact: report.energy_no_contact.relative_error,
         },
         defaults_applied: &scenario.defaults_applied,
+        suite,
     };
     serde_json::to_string_pretty(&s).map_err(|e| e.to_string())
 }
@@ -283,6 +297,8 @@ pub struct RunWriter {
     created_dir: bool,
     /// floors.csv being written, when asked for ([`RunWriter::with_floors`]).
     floors: Option<crate::output::floors_csv::FloorsCsv>,
+    /// A suite's section of summary.json ([`RunWriter::with_suite`]).
+    suite: Option<serde_json::Value>,
 }
 
 impl Drop for RunWriter {
@@ -339,6 +355,7 @@ impl RunWriter {
             on_written: None,
             created_dir,
             floors: None,
+            suite: None,
         })
     }
 
@@ -357,6 +374,13 @@ impl RunWriter {
                 .map_err(|source| OutputError::Io { path, source })?,
         );
         Ok(self)
+    }
+
+    /// Add `section` as the key `suite` of summary.json (a suite of records,
+    /// written by the suite driver of the study layer).
+    pub fn with_suite(mut self, section: serde_json::Value) -> RunWriter {
+        self.suite = Some(section);
+        self
     }
 
     /// Call `hook` with the path of every file once it is complete and in place, in the order
@@ -453,9 +477,11 @@ impl RunWriter {
             }
         }
         let summary = self.dir.join("summary.json");
-        let json = summary_json(scenario, report).map_err(|message| OutputError::Encode {
-            path: summary.clone(),
-            message,
+        let json = summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| {
+            OutputError::Encode {
+                path: summary.clone(),
+                message,
+            }
         })?;
         write_atomic(&summary, json.as_bytes())?;
         self.written(&summary, &mut written);

@@ -40,7 +40,8 @@ pub enum AxisScale {
 /// at any point whose `x` or `y` is not finite.
 #[derive(Debug, Clone)]
 pub struct Series<'a> {
-    /// Legend text (a legend is shown when the panel has more than one series).
+    /// Legend text (a legend is shown when the panel has more than one series); empty: not in
+    /// the legend.
     pub label: &'a str,
     /// Abscissae, normally increasing.
     pub x: &'a [f64],
@@ -181,6 +182,7 @@ impl Render for Figure<'_> {
         let legend_w = |p: &Panel| -> i32 {
             p.series
                 .iter()
+                .filter(|s| !s.label.is_empty())
                 .map(|s| LEGEND_SAMPLE + 8 + text_width(s.label, f.tick) + 22)
                 .sum()
         };
@@ -235,6 +237,9 @@ impl Render for Figure<'_> {
                 let cy = header_h - line_h / 2;
                 let mut lx = w - right - legend_w(p) + 22;
                 for (k, s) in p.series.iter().enumerate() {
+                    if s.label.is_empty() {
+                        continue;
+                    }
                     let (bx, by) = header.get_base_pixel();
                     let pts = [(bx + lx, by + cy), (bx + lx + LEGEND_SAMPLE, by + cy)];
                     draw_line(root, &pts, color(s.color.unwrap_or(k)), s.style, bitmap)?;

@@ -584,6 +584,9 @@ fn separations(system: &System, without: &RunRecord) -> Separations {
 
 /// A design spectrum has no time history: refuse it before integrating nothing.
 fn no_spectrum(scenario: &Scenario) -> Result<(), SolveError> {
+    if let Some(s) = &scenario.suite {
+        return Err(SolveError::Suite(s.records.len()));
+    }
     match &scenario.design.spectrum {
         Some(s) => Err(SolveError::NoTimeHistory(s.name())),
         None => Ok(()),

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use toml::Spanned;
 
 use super::MIN_RESTITUTION;
-use super::keys::{SEPARATION_TABLES, TABLES};
+use super::keys::{SEPARATION_TABLES, SUITE_TABLES, TABLES};
 use super::ranges::{physical_range, unusual};
 
 /// Where in a scenario file something is.
@@ -216,7 +216,8 @@ impl Ctx<'_> {
     /// serde's list of expected keys (every table's key set is distinct, tested in
     /// `tests/unknown_keys.rs`).
     pub(super) fn section_for(&self, expected: &[String]) -> (String, Vec<String>) {
-        for (name, keys) in TABLES.iter().chain(SEPARATION_TABLES) {
+        let tables = TABLES.iter().chain(SEPARATION_TABLES);
+        for (name, keys) in tables.chain(SUITE_TABLES) {
             if keys.len() == expected.len() && expected.iter().all(|k| keys.contains(&k.as_str())) {
                 return (
                     name.to_string(),

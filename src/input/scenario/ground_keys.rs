@@ -159,7 +159,7 @@ pub(super) fn ground(
         _ => Err(c.invalid(
             kind,
             "ground_motion.kind",
-            "must be \"harmonic\", \"record\" or \"spectrum\"",
+            "must be \"harmonic\", \"record\", \"spectrum\" or \"suite\"",
         )),
     }
 }

@@ -90,6 +90,8 @@ pub(super) const TABLES: &[(&str, &[&str])] = &[
             "ag",
             "ground_type",
             "type",
+            "records",
+            "scaling",
         ],
     ),
     (
@@ -144,3 +146,36 @@ pub const SEPARATION_TABLES: &[(&str, &[&str])] = &[
 
 /// Valid keys of `ground_motion.processing`, for suggestions.
 pub(crate) const PROCESSING_KEYS: &[&str] = &["baseline", "highpass_hz", "lowpass_hz", "order"];
+
+/// Valid keys of the tables of `[ground_motion] kind = "suite"` (module `suite`), for the unknown-key suggestions.
+pub(super) const SUITE_TABLES: &[(&str, &[&str])] = &[
+    (
+        "ground_motion.records",
+        &["file", "component", "factor", "units", "dt", "processing"],
+    ),
+    (
+        "ground_motion.scaling",
+        &[
+            "rule",
+            "target",
+            "range",
+            "ratio",
+            "factor_limits",
+            "target_scale",
+        ],
+    ),
+    (
+        "ground_motion.scaling.target",
+        &[
+            "spectrum",
+            "sds",
+            "sd1",
+            "tl",
+            "ag",
+            "units",
+            "ground_type",
+            "type",
+            "file",
+        ],
+    ),
+];

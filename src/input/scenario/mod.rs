@@ -25,10 +25,12 @@ mod floors;
 mod ground_keys;
 mod hysteresis;
 mod keys;
+mod plausibility;
 mod ranges;
 mod record_keys;
 mod solver_keys;
 mod structure_keys;
+pub mod suite;
 mod validate;
 
 pub use diagnostics::{Location, ScenarioError};
@@ -182,7 +184,7 @@ struct RawLevel {
     gap: Option<Spanned<f64>>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawGround {
     pub(crate) kind: Option<Spanned<String>>,
@@ -204,6 +206,9 @@ pub(crate) struct RawGround {
     pub(crate) ground_type: Option<Spanned<String>>,
     #[serde(rename = "type")]
     pub(crate) spectrum_type: Option<Spanned<toml::Value>>,
+    // kind = "suite": checked in `suite`
+    pub(crate) records: Option<Spanned<Vec<Spanned<suite::RawSuiteRecord>>>>,
+    pub(crate) scaling: Option<Spanned<suite::RawSuiteScaling>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -255,6 +260,9 @@ pub struct Scenario {
     /// A design spectrum (`[ground_motion] kind = "spectrum"`, then `ground_motion` is
     /// [`GroundMotion::None`]) and the code factors of `[separation]` ([`crate::input::scenario::design`]).
     pub design: crate::input::scenario::design::DesignInputs,
+    /// A suite of records (`[ground_motion] kind = "suite"`, then `ground_motion` is
+    /// [`GroundMotion::None`]): run by [`crate::study::suite`].
+    pub suite: Option<suite::Suite>,
 }
 
 impl Scenario {

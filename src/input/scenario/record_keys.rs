@@ -10,7 +10,7 @@ use crate::model::ground_motion::processing::{Baseline, DEFAULT_ORDER, MAX_ORDER
 use crate::model::ground_motion::{AccelUnits, Component};
 
 /// `processing = { baseline = "linear", highpass_hz = 0.1, lowpass_hz = 25, order = 4 }`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawProcessing {
     baseline: Option<Spanned<String>>,

@@ -12,12 +12,12 @@ use super::contact_keys::contact;
 use super::diagnostics::{Check, Ctx, Location, ScenarioError, quoted};
 use super::floors;
 use super::ground_keys::ground;
-use super::ranges::{
-    PLAUSIBLE_MIN_PGA, USUAL_DAMPING_RATIO, USUAL_RECORD_DT, USUAL_STRUCTURE_PERIOD,
-};
+use super::plausibility::plausibility;
+use super::ranges::{USUAL_DAMPING_RATIO, USUAL_STRUCTURE_PERIOD};
 use super::solver_keys::solver;
 use super::structure_keys::structure;
-use super::{ContactSpec, DEFAULT_MODES, PLAUSIBLE_GAP, PLAUSIBLE_PGA, RecordCache, Scenario};
+use super::suite;
+use super::{ContactSpec, DEFAULT_MODES, RecordCache, Scenario};
 
 /// Every required key the file lacks (with its place and what is expected), before any value
 /// is checked: so that one message lists them all.
@@ -255,15 +255,15 @@ pub(super) fn validate(
     };
     let min_length = structures[0].length().min(structures[1].length());
     let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
-    let ground_motion = ground(&c, raw.ground_motion.as_ref(), base_dir, records)?;
+    let suite = suite::suite(&c, &raw, base_dir, records)?;
+    let ground_motion = match suite {
+        Some(_) => GroundMotion::None,
+        None => ground(&c, raw.ground_motion.as_ref(), base_dir, records)?,
+    };
+    let from = suite::defaults_ground(suite.as_ref(), &ground_motion);
     let yielding = structures.iter().any(|s| s.hysteresis().is_some());
-    let (solver, output_interval) = solver(
-        &c,
-        raw.solver.as_ref(),
-        &ground_motion,
-        yielding,
-        &mut defaults,
-    )?;
+    let (solver, output_interval) = solver(&c, raw.solver.as_ref(), from, yielding, &mut defaults)?;
+    suite::note_defaults(suite.as_ref(), &mut defaults);
     floors_at_contact(&c, &raw, &structures, &contact)?;
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
@@ -322,6 +322,7 @@ pub(super) fn validate(
         defaults_applied: defaults,
         warnings,
         design,
+        suite,
     };
     // stability: needs the modal model (docs/model.md §2.9)
     if let Err(e) = solver.check_stability(&scenario.system().without_contact()) {
@@ -392,57 +393,6 @@ pub(super) fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
                  their units (c_s/E in s, c_a in N·s/m²)",
                 i + 1,
                 st.name()
-            ));
-        }
-    }
-    out
-}
-
-/// Warnings about values that are valid but implausible, each saying why.
-pub(super) fn plausibility(contact: &ContactSpec, ground: &GroundMotion) -> Vec<String> {
-    let mut out = Vec::new();
-    let pga_g = ground.pga() / crate::model::ground_motion::STANDARD_GRAVITY;
-    if matches!(ground, GroundMotion::Harmonic(_) | GroundMotion::Record(_))
-        && pga_g < PLAUSIBLE_MIN_PGA
-    {
-        out.push(format!(
-            "the ground motion's PGA is {pga_g:.3e} g, below {PLAUSIBLE_MIN_PGA} g: shaking that \
-             people barely feel, far below any that makes buildings pound; PGA is in g — was it \
-             given in cm/s² or scaled twice?"
-        ));
-    }
-    if let GroundMotion::Record(r) = ground {
-        let (lo, hi) = USUAL_RECORD_DT;
-        if !(lo..=hi).contains(&r.dt) {
-            out.push(format!(
-                "the record is sampled every {} s, outside the usual [{lo}, {hi}] s of \
-                 accelerograms (50 Hz to 10 kHz); check `ground_motion.dt` or the file's time \
-                 column (in s)",
-                r.dt
-            ));
-        }
-    }
-    if pga_g > PLAUSIBLE_PGA {
-        out.push(format!(
-            "the ground motion's PGA is {pga_g:.3} g, above {PLAUSIBLE_PGA} g: beyond the strongest \
-             shaking ever recorded (about 3–4 g) and far beyond design levels (≤ 1–1.5 g); \
-             PGA is in g — was it given in m/s²?"
-        ));
-    }
-    let key = |k: usize| {
-        if contact.levels.len() > 1 {
-            format!("contact.level[{}].gap", k + 1)
-        } else {
-            "contact.gap".into()
-        }
-    };
-    for (k, l) in contact.levels.iter().enumerate() {
-        if l.gap >= PLAUSIBLE_GAP {
-            out.push(format!(
-                "`{}` = {} m: a gap of metres between adjacent buildings (usual gaps are \
-                 centimetres); the unit is m — was it given in mm or cm?",
-                key(k),
-                l.gap
             ));
         }
     }

@@ -151,6 +151,23 @@ pub(crate) fn validate(
     Ok(DesignInputs { spectrum, codes })
 }
 
+/// The spectrum of a table of spectrum keys (`kind` set to "spectrum"): the target of a
+/// suite's scaling ([`crate::input::scenario::suite`]); `prefix` names its keys in messages.
+pub(crate) fn target_spectrum(
+    c: &Check,
+    raw: &Spanned<RawGround>,
+    base_dir: &Path,
+    prefix: &str,
+) -> Result<DesignSpectrum, ScenarioError> {
+    spectrum_keys::spectrum(c, raw, base_dir, prefix)?.ok_or_else(|| {
+        c.missing(
+            &format!("{prefix}spectrum"),
+            "\"asce7\", \"ec8\" or \"table\"",
+            Some(raw.span().start),
+        )
+    })
+}
+
 /// A number or two numbers `[structure 1, structure 2]` in `[lo, hi]` (`open_lo`: `(lo, hi]`).
 fn per_structure(
     c: &Check,
