@@ -161,6 +161,9 @@ pub(super) struct Elastic<'a, O: Observer> {
     amp: Vec<f64>,
     /// sin Ωt, cos Ωt at the current time (harmonic), carried by rotations along the grid.
     trig_now: Trig,
+    /// The last `gm.trig` evaluated (a contact step's trials and its acceptance all start at
+    /// the same instant, which the previous step's end evaluated: one libm call per step).
+    trig_memo: Trig,
     since_sync: u32,
     htally: Option<HarmonicTally>,
     sums: StateSums,
@@ -312,6 +315,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             vs: vec![0.0; n],
             amp: vec![0.0; n],
             trig_now: gm.trig(t0),
+            trig_memo: Trig {
+                t: f64::NAN,
+                ..Trig::default()
+            },
             since_sync: 0,
             htally,
             sums: StateSums::default(),
@@ -382,6 +389,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let s0 = r.states.clone();
         update_onsets(&mut r.onset, &s0, &r.states, 0.0);
         r
+    }
+
+    /// sin Ωt, cos Ωt at t, evaluated directly (memoised: see `trig_memo`).
+    #[inline]
+    fn exact_trig(&mut self, t: f64) -> Trig {
+        if self.trig_memo.t != t {
+            self.trig_memo = self.gm.trig(t);
+            self.trig_memo.t = t;
+        }
+        self.trig_memo
     }
 
     fn observe(&mut self) {
@@ -811,7 +828,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // a grid step keeps its data (its length recurs); a one-off length does not
         let on_grid = ((self.t - start) / hh - ((self.t - start) / hh).round()).abs() < 1e-9;
         if self.since_sync == 0 || !on_grid {
-            self.trig_now = self.gm.trig(self.t);
+            self.trig_now = self.exact_trig(self.t);
         }
         self.since_sync = (self.since_sync + 1) % 16;
         let fd = self.free_index(h, on_grid);
@@ -860,7 +877,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     let tr = self.free_prop(fd1, &piece, self.trig_now, self.t, tau, false, false);
                     let t_on = self.t + tau;
                     self.commit_free(fd1, &piece, tau, t_on, tr);
-                    self.trig_now = self.gm.trig(self.t);
+                    self.trig_now = self.exact_trig(self.t);
                     self.since_sync = 1;
                     self.observe();
                     return self.check_finite();
@@ -879,7 +896,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     fn finish_segment(&mut self, on_grid: bool) -> Result<(), SolveError> {
         self.zeno = 0;
         if !on_grid {
-            self.trig_now = self.gm.trig(self.t);
+            self.trig_now = self.exact_trig(self.t);
         }
         self.observe();
         self.check_finite()
@@ -1120,6 +1137,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     fn trial(&mut self, k: Option<usize>, h: f64, piece: &Piece) -> Result<Trial, NoConvergence> {
         let (n, nl) = (self.n, self.nl);
         let sys = self.sys;
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
         self.table(k, h);
         let tab: &Table = match k {
             Some(k) => self.tables[k].as_deref().expect("table"),
@@ -1131,8 +1150,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // the start, then two dot products per node and level with the coupled propagators;
         // the particular solutions' projections come per level
         self.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
-        let t0 = self.t;
-        let tr0 = self.gm.trig(t0);
         let (q, v) = (&self.q[..n], &self.v[..n]);
         let (x0s, y0s) = (&mut self.x0[..n], &mut self.y0[..n]);
         let gm = &self.gm;
@@ -1708,6 +1725,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (n, nl) = (self.n, self.nl);
         let h = trial.h;
         let bases = collocation::bases();
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
         let tab: &Table = match trial.k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -1716,8 +1735,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             .trace
             .is_some()
             .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
-        let t0 = self.t;
-        let tr0 = self.gm.trig(t0);
         // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
         let trs: [Trig; 5] = std::array::from_fn(|p| {
             if p == 0 {
@@ -1752,7 +1769,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         let gm = &self.gm;
         let harmonic = gm.harmonic_plain();
-        let zero = [0.0; 3];
         let mut sums = StateSums::default();
         let (mut input, mut d_energy) = (0.0, 0.0);
         let proj = &mut self.proj;
@@ -1763,21 +1779,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
         for j in 0..n {
             let ms = &modes[j];
             // the particular solution at the end (and at the interior nodes for dense output)
-            let part = |p: usize| -> (f64, f64) {
-                match (piece, harmonic) {
-                    (Piece::Harmonic, Some((big, g_re, g_im))) => {
-                        let (gr, gi, tr) = (g_re[j], g_im[j], &trs[p]);
-                        (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
-                    }
-                    (Piece::Poly { .. }, _) => {
-                        let [pa, pb, pc] = self.pcoef[j];
-                        let tau = THETA8[p] * h;
-                        (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
-                    }
-                    (Piece::Zero, _) => (0.0, 0.0),
-                    _ => gm.particular(j, piece, &zero, THETA8[p] * h, &trs[p]),
-                }
-            };
+            // (a plain fn, not a closure: inlined into this loop)
+            let pcoef = &self.pcoef[j];
+            let part =
+                |p: usize| particular_at(gm, piece, harmonic, pcoef, j, THETA8[p] * h, &trs[p]);
             let (x0, y0) = (x0s[j], y0s[j]);
             let mut g = [0.0; 5];
             for kk in 0..nl {
@@ -1943,7 +1948,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         self.last_h = if self.in_contact() { h } else { 0.0 };
         self.stats.steps += 1;
-        self.trig_now = self.gm.trig(self.t);
+        self.trig_now = self.exact_trig(self.t);
         self.since_sync = 1;
         if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
             let companion = (0..nl).map(|kk| self.nodal6[kk * 3 + 2]).collect();
@@ -1963,6 +1968,32 @@ impl<'a, O: Observer> Elastic<'a, O> {
             });
         }
         self.observe();
+    }
+}
+
+/// Mode j's particular solution (η_p, η̇_p) at τ into a step (sin, cos at that instant in `tr`),
+/// the record's polynomial one from its coefficients `pcoef`.
+#[inline(always)]
+fn particular_at(
+    gm: &GroundModes,
+    piece: &Piece,
+    harmonic: Option<(f64, &[f64], &[f64])>,
+    pcoef: &[f64; 3],
+    j: usize,
+    tau: f64,
+    tr: &Trig,
+) -> (f64, f64) {
+    match (piece, harmonic) {
+        (Piece::Harmonic, Some((big, g_re, g_im))) => {
+            let (gr, gi) = (g_re[j], g_im[j]);
+            (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+        }
+        (Piece::Poly { .. }, _) => {
+            let [pa, pb, pc] = *pcoef;
+            (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
+        }
+        (Piece::Zero, _) => (0.0, 0.0),
+        _ => gm.particular(j, piece, &[0.0; 3], tau, tr),
     }
 }
 
