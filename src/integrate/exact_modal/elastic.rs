@@ -40,6 +40,7 @@ use super::super::linear::{
     GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
     mode_work, poly_coefficients, poly_ground_work, propagator,
 };
+use super::super::poly_tally::{PolySums, PolyTally};
 use super::super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
@@ -167,6 +168,14 @@ pub(super) struct Elastic<'a, O: Observer> {
     since_sync: u32,
     htally: Option<HarmonicTally>,
     sums: StateSums,
+    /// Records: the free flight's ground work regrouped ([`PolyTally`]), its sums at the
+    /// current state (when `psums_ok`) and at the free pass's end, and the pass's ground
+    /// factors (a_g, v_g, a1).
+    ptally: PolyTally,
+    psums: PolySums,
+    psums_ok: bool,
+    fpsums: PolySums,
+    fground: (f64, f64, f64),
     /// Each mode's ground load over the current step (records), and its particular solution's
     /// coefficients.
     cpoly: Vec<[f64; 3]>,
@@ -213,11 +222,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     at: Vec<(f64, f64)>,
     proj: Vec<(f64, f64)>,
     /// The free flight's pass (see [`Self::free_prop`]): every level's projections of the end
-    /// state and margin, the harmonic sums, the ground's work and the modal energy at the end.
+    /// state and margin, the harmonic sums, the records' ground-work sums and the modal energy at the end.
     fproj: Vec<(f64, f64)>,
     fmargin: Vec<f64>,
     fsums: StateSums,
-    finput: f64,
     fenergy: f64,
     /// The modal energy at the current state, J.
     energy: f64,
@@ -322,6 +330,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
             since_sync: 0,
             htally,
             sums: StateSums::default(),
+            ptally: PolyTally::new(&gm.la, &gm.lv, &gm.damp, &gm.inv_w2),
+            psums: PolySums::default(),
+            psums_ok: false,
+            fpsums: PolySums::default(),
+            fground: (0.0, 0.0, 0.0),
             cpoly: vec![[0.0; 3]; n],
             pcoef: vec![[0.0; 3]; n],
             tables: (0..DYADIC + MAX_LEVEL + 1).map(|_| None).collect(),
@@ -363,7 +376,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
             fsums: StateSums::default(),
-            finput: 0.0,
             fenergy: 0.0,
             energy: 0.0,
             cabs_t: (0..nl)
@@ -525,7 +537,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
     /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
     /// (`amp`) and every level's (`fmargin`), and what the step's exact tallies need (`fsums`,
-    /// `finput`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
+    /// `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
     #[allow(clippy::too_many_arguments)]
     fn free_prop(
         &mut self,
@@ -564,7 +576,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let gm = &self.gm;
         let w2 = &gm.w2[..n];
         let mut sums = StateSums::default();
-        let mut input = 0.0;
+        let mut energy = None;
         match (piece, gm.harmonic_plain(), &self.htally) {
             (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
                 let hp = fd.herm_part;
@@ -601,12 +613,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
             ) => {
                 // a recorded motion: each mode's load c0 + c1τ + c2τ² from t0 on, its
                 // particular solution A + Bτ + Cτ² (exact under the cubic Hermite), and the
-                // ground's exact work from the moments of its equation of motion
+                // sums of the end state that the ground's exact work needs (PolyTally)
                 let tau = t0 - start;
                 let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
                 let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
                 let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
                 let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
+                let pt = &self.ptally;
+                let mut ps = PolySums::default();
+                let mut e = 0.0;
                 for j in 0..n {
                     let c = [
                         la[j] * ag + lv[j] * vg,
@@ -628,9 +643,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
                         0.0
                     };
                     amp[j] = a;
-                    input +=
-                        poly_ground_work((damp[j], iw2[j]), h, (q[j], v[j]), (x, y), &c, 0.0, 0.0);
+                    pt.add(&mut ps, j, x, y);
+                    e += y * y + w2[j] * x * x;
                 }
+                self.fpsums = ps;
+                self.fground = (ag, vg, *a1);
+                energy = Some(0.5 * e);
             }
             _ => {
                 // no ground load, or harmonic motion with a mode at undamped resonance (its
@@ -667,8 +685,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 0.0
             };
         }
-        self.fenergy = match &self.htally {
-            Some(_) if matches!(piece, Piece::Harmonic) => sums.energy,
+        self.fenergy = match (&self.htally, energy) {
+            (_, Some(e)) => e,
+            (Some(_), _) if matches!(piece, Piece::Harmonic) => sums.energy,
             _ => {
                 let (qb, vb) = (&self.qb[..n], &self.vb[..n]);
                 let mut e = 0.0;
@@ -679,7 +698,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
         };
         self.fsums = sums;
-        self.finput = input;
         tr1
     }
 
@@ -721,7 +739,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
-    /// free data `fd`, the pass's sums in `fsums`, `finput`, `fenergy`, `fproj`): exact
+    /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
     /// tallies (the ground's work; the dissipation from the modal energy balance), the new
     /// state (no observation).
     fn commit_free(&mut self, fd: Option<usize>, piece: &Piece, h: f64, t_end: f64, tr1: Trig) {
@@ -735,7 +753,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 self.sums = self.fsums;
                 input
             }
-            (Piece::Poly { .. }, _, _) => self.finput,
+            (Piece::Poly { .. }, _, _) => {
+                if !self.psums_ok {
+                    self.psums = self.ptally.sums(&self.q[..n], &self.v[..n]);
+                }
+                let w = self
+                    .ptally
+                    .input(h, self.fground, &self.psums, &self.fpsums);
+                self.psums = self.fpsums;
+                w
+            }
             (Piece::Zero, _, _) => 0.0,
             _ => {
                 // harmonic motion with a mode at undamped resonance
@@ -761,6 +788,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     .sum()
             }
         };
+        self.psums_ok = matches!(piece, Piece::Poly { .. });
         self.tally.input += input;
         self.tally.damping += input - (self.fenergy - self.energy);
         self.energy = self.fenergy;
@@ -793,6 +821,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 &mut self.tally.contact,
             )
         {
+            self.psums_ok = false;
             self.evaluate_states();
             self.resync_sums();
             self.energy = self.modal_energy();
@@ -1875,6 +1904,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             d_energy = sums.energy - self.sums.energy;
         }
         self.sums = sums;
+        self.psums_ok = false;
         // the contact load's work on the modes (Lobatto, 5 nodes), and the work into the
         // contacts with the law along the motion (the 7-point rule on every point of the step
         // whose state is known: the law against the force quartic between the nodes)
