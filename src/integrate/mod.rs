@@ -20,6 +20,7 @@ mod collocation;
 mod exact_modal;
 mod hysteretic;
 pub mod linear;
+mod poly_tally;
 mod rk4;
 
 pub use exact_modal::SUBSTEP_ALPHA;

@@ -40,6 +40,7 @@ use super::super::linear::{
     GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
     mode_work, poly_coefficients, poly_ground_work, propagator,
 };
+use super::super::poly_tally::{PolySums, PolyTally};
 use super::super::{
     InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
@@ -162,9 +163,20 @@ pub(super) struct Elastic<'a, O: Observer> {
     amp: Vec<f64>,
     /// sin Ωt, cos Ωt at the current time (harmonic), carried by rotations along the grid.
     trig_now: Trig,
+    /// The last `gm.trig` evaluated (a contact step's trials and its acceptance all start at
+    /// the same instant, which the previous step's end evaluated: one libm call per step).
+    trig_memo: Trig,
     since_sync: u32,
     htally: Option<HarmonicTally>,
     sums: StateSums,
+    /// Records: the free flight's ground work regrouped ([`PolyTally`]), its sums at the
+    /// current state (when `psums_ok`) and at the free pass's end, and the pass's ground
+    /// factors (a_g, v_g, a1).
+    ptally: PolyTally,
+    psums: PolySums,
+    psums_ok: bool,
+    fpsums: PolySums,
+    fground: (f64, f64, f64),
     /// Each mode's ground load over the current step (records), and its particular solution's
     /// coefficients.
     cpoly: Vec<[f64; 3]>,
@@ -211,11 +223,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     at: Vec<(f64, f64)>,
     proj: Vec<(f64, f64)>,
     /// The free flight's pass (see [`Self::free_prop`]): every level's projections of the end
-    /// state and margin, the harmonic sums, the ground's work and the modal energy at the end.
+    /// state and margin, the harmonic sums, the records' ground-work sums and the modal energy at the end.
     fproj: Vec<(f64, f64)>,
     fmargin: Vec<f64>,
     fsums: StateSums,
-    finput: f64,
     fenergy: f64,
     /// The modal energy at the current state, J.
     energy: f64,
@@ -313,9 +324,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
             vs: vec![0.0; n],
             amp: vec![0.0; n],
             trig_now: gm.trig(t0),
+            trig_memo: Trig {
+                t: f64::NAN,
+                ..Trig::default()
+            },
             since_sync: 0,
             htally,
             sums: StateSums::default(),
+            ptally: PolyTally::new(&gm.la, &gm.lv, &gm.damp, &gm.inv_w2),
+            psums: PolySums::default(),
+            psums_ok: false,
+            fpsums: PolySums::default(),
+            fground: (0.0, 0.0, 0.0),
             cpoly: vec![[0.0; 3]; n],
             pcoef: vec![[0.0; 3]; n],
             tables: (0..DYADIC + MAX_LEVEL + 1).map(|_| None).collect(),
@@ -357,7 +377,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
             fsums: StateSums::default(),
-            finput: 0.0,
             fenergy: 0.0,
             energy: 0.0,
             cabs_t: (0..nl)
@@ -383,6 +402,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let s0 = r.states.clone();
         update_onsets(&mut r.onset, &s0, &r.states, 0.0);
         r
+    }
+
+    /// sin Ωt, cos Ωt at t, evaluated directly (memoised: see `trig_memo`).
+    #[inline]
+    fn exact_trig(&mut self, t: f64) -> Trig {
+        if self.trig_memo.t != t {
+            self.trig_memo = self.gm.trig(t);
+            self.trig_memo.t = t;
+        }
+        self.trig_memo
     }
 
     fn observe(&mut self) {
@@ -509,7 +538,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
     /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
     /// (`amp`) and every level's (`fmargin`), and what the step's exact tallies need (`fsums`,
-    /// `finput`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
+    /// `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
     #[allow(clippy::too_many_arguments)]
     fn free_prop(
         &mut self,
@@ -548,7 +577,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let gm = &self.gm;
         let w2 = &gm.w2[..n];
         let mut sums = StateSums::default();
-        let mut input = 0.0;
+        let mut energy = None;
         match (piece, gm.harmonic_plain(), &self.htally) {
             (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
                 let hp = fd.herm_part;
@@ -585,12 +614,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
             ) => {
                 // a recorded motion: each mode's load c0 + c1τ + c2τ² from t0 on, its
                 // particular solution A + Bτ + Cτ² (exact under the cubic Hermite), and the
-                // ground's exact work from the moments of its equation of motion
+                // sums of the end state that the ground's exact work needs (PolyTally)
                 let tau = t0 - start;
                 let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
                 let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
                 let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
                 let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
+                let pt = &self.ptally;
+                let mut ps = PolySums::default();
+                let mut e = 0.0;
                 for j in 0..n {
                     let c = [
                         la[j] * ag + lv[j] * vg,
@@ -612,9 +644,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
                         0.0
                     };
                     amp[j] = a;
-                    input +=
-                        poly_ground_work((damp[j], iw2[j]), h, (q[j], v[j]), (x, y), &c, 0.0, 0.0);
+                    pt.add(&mut ps, j, x, y);
+                    e += y * y + w2[j] * x * x;
                 }
+                self.fpsums = ps;
+                self.fground = (ag, vg, *a1);
+                energy = Some(0.5 * e);
             }
             _ => {
                 // no ground load, or harmonic motion with a mode at undamped resonance (its
@@ -651,8 +686,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 0.0
             };
         }
-        self.fenergy = match &self.htally {
-            Some(_) if matches!(piece, Piece::Harmonic) => sums.energy,
+        self.fenergy = match (&self.htally, energy) {
+            (_, Some(e)) => e,
+            (Some(_), _) if matches!(piece, Piece::Harmonic) => sums.energy,
             _ => {
                 let (qb, vb) = (&self.qb[..n], &self.vb[..n]);
                 let mut e = 0.0;
@@ -663,7 +699,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
         };
         self.fsums = sums;
-        self.finput = input;
         tr1
     }
 
@@ -705,7 +740,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
-    /// free data `fd`, the pass's sums in `fsums`, `finput`, `fenergy`, `fproj`): exact
+    /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
     /// tallies (the ground's work; the dissipation from the modal energy balance), the new
     /// state (no observation).
     fn commit_free(&mut self, fd: Option<usize>, piece: &Piece, h: f64, t_end: f64, tr1: Trig) {
@@ -719,7 +754,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 self.sums = self.fsums;
                 input
             }
-            (Piece::Poly { .. }, _, _) => self.finput,
+            (Piece::Poly { .. }, _, _) => {
+                if !self.psums_ok {
+                    self.psums = self.ptally.sums(&self.q[..n], &self.v[..n]);
+                }
+                let w = self
+                    .ptally
+                    .input(h, self.fground, &self.psums, &self.fpsums);
+                self.psums = self.fpsums;
+                w
+            }
             (Piece::Zero, _, _) => 0.0,
             _ => {
                 // harmonic motion with a mode at undamped resonance
@@ -745,6 +789,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     .sum()
             }
         };
+        self.psums_ok = matches!(piece, Piece::Poly { .. });
         self.tally.input += input;
         self.tally.damping += input - (self.fenergy - self.energy);
         self.energy = self.fenergy;
@@ -777,6 +822,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 &mut self.tally.contact,
             )
         {
+            self.psums_ok = false;
             self.evaluate_states();
             self.resync_sums();
             self.energy = self.modal_energy();
@@ -812,7 +858,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // a grid step keeps its data (its length recurs); a one-off length does not
         let on_grid = ((self.t - start) / hh - ((self.t - start) / hh).round()).abs() < 1e-9;
         if self.since_sync == 0 || !on_grid {
-            self.trig_now = self.gm.trig(self.t);
+            self.trig_now = self.exact_trig(self.t);
         }
         self.since_sync = (self.since_sync + 1) % 16;
         let fd = self.free_index(h, on_grid);
@@ -861,7 +907,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     let tr = self.free_prop(fd1, &piece, self.trig_now, self.t, tau, false, false);
                     let t_on = self.t + tau;
                     self.commit_free(fd1, &piece, tau, t_on, tr);
-                    self.trig_now = self.gm.trig(self.t);
+                    self.trig_now = self.exact_trig(self.t);
                     self.since_sync = 1;
                     self.observe();
                     return self.check_finite();
@@ -880,7 +926,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     fn finish_segment(&mut self, on_grid: bool) -> Result<(), SolveError> {
         self.zeno = 0;
         if !on_grid {
-            self.trig_now = self.gm.trig(self.t);
+            self.trig_now = self.exact_trig(self.t);
         }
         self.observe();
         self.check_finite()
@@ -1121,6 +1167,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     fn trial(&mut self, k: Option<usize>, h: f64, piece: &Piece) -> Result<Trial, NoConvergence> {
         let (n, nl) = (self.n, self.nl);
         let sys = self.sys;
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
         self.table(k, h);
         let tab: &Table = match k {
             Some(k) => self.tables[k].as_deref().expect("table"),
@@ -1132,8 +1180,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // the start, then two dot products per node and level with the coupled propagators;
         // the particular solutions' projections come per level
         self.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
-        let t0 = self.t;
-        let tr0 = self.gm.trig(t0);
         let (q, v) = (&self.q[..n], &self.v[..n]);
         let (x0s, y0s) = (&mut self.x0[..n], &mut self.y0[..n]);
         let gm = &self.gm;
@@ -1709,6 +1755,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (n, nl) = (self.n, self.nl);
         let h = trial.h;
         let bases = collocation::bases();
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
         let tab: &Table = match trial.k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -1717,8 +1765,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             .trace
             .is_some()
             .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
-        let t0 = self.t;
-        let tr0 = self.gm.trig(t0);
         // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
         let trs: [Trig; 5] = std::array::from_fn(|p| {
             if p == 0 {
@@ -1753,7 +1799,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         let gm = &self.gm;
         let harmonic = gm.harmonic_plain();
-        let zero = [0.0; 3];
         let mut sums = StateSums::default();
         let (mut input, mut d_energy) = (0.0, 0.0);
         let proj = &mut self.proj;
@@ -1764,21 +1809,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
         for j in 0..n {
             let ms = &modes[j];
             // the particular solution at the end (and at the interior nodes for dense output)
-            let part = |p: usize| -> (f64, f64) {
-                match (piece, harmonic) {
-                    (Piece::Harmonic, Some((big, g_re, g_im))) => {
-                        let (gr, gi, tr) = (g_re[j], g_im[j], &trs[p]);
-                        (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
-                    }
-                    (Piece::Poly { .. }, _) => {
-                        let [pa, pb, pc] = self.pcoef[j];
-                        let tau = THETA8[p] * h;
-                        (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
-                    }
-                    (Piece::Zero, _) => (0.0, 0.0),
-                    _ => gm.particular(j, piece, &zero, THETA8[p] * h, &trs[p]),
-                }
-            };
+            // (a plain fn, not a closure: inlined into this loop)
+            let pcoef = &self.pcoef[j];
+            let part =
+                |p: usize| particular_at(gm, piece, harmonic, pcoef, j, THETA8[p] * h, &trs[p]);
             let (x0, y0) = (x0s[j], y0s[j]);
             let mut g = [0.0; 5];
             for kk in 0..nl {
@@ -1871,6 +1905,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             d_energy = sums.energy - self.sums.energy;
         }
         self.sums = sums;
+        self.psums_ok = false;
         // the contact load's work on the modes (Lobatto, 5 nodes), and the work into the
         // contacts with the law along the motion (the 7-point rule on every point of the step
         // whose state is known: the law against the force quartic between the nodes)
@@ -1944,7 +1979,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         self.last_h = if self.in_contact() { h } else { 0.0 };
         self.stats.steps += 1;
-        self.trig_now = self.gm.trig(self.t);
+        self.trig_now = self.exact_trig(self.t);
         self.since_sync = 1;
         if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
             let companion = (0..nl).map(|kk| self.nodal6[kk * 3 + 2]).collect();
@@ -1964,6 +1999,32 @@ impl<'a, O: Observer> Elastic<'a, O> {
             });
         }
         self.observe();
+    }
+}
+
+/// Mode j's particular solution (η_p, η̇_p) at τ into a step (sin, cos at that instant in `tr`),
+/// the record's polynomial one from its coefficients `pcoef`.
+#[inline(always)]
+fn particular_at(
+    gm: &GroundModes,
+    piece: &Piece,
+    harmonic: Option<(f64, &[f64], &[f64])>,
+    pcoef: &[f64; 3],
+    j: usize,
+    tau: f64,
+    tr: &Trig,
+) -> (f64, f64) {
+    match (piece, harmonic) {
+        (Piece::Harmonic, Some((big, g_re, g_im))) => {
+            let (gr, gi) = (g_re[j], g_im[j]);
+            (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+        }
+        (Piece::Poly { .. }, _) => {
+            let [pa, pb, pc] = *pcoef;
+            (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
+        }
+        (Piece::Zero, _) => (0.0, 0.0),
+        _ => gm.particular(j, piece, &[0.0; 3], tau, tr),
     }
 }
 
