@@ -841,7 +841,7 @@ pub(crate) fn run_traced<O: Observer>(
         } else {
             t + h_taken
         };
-        progress.accepting(sys, &states, t, t_end)?;
+        progress.accepting(sys, &states, t, t_end, h_taken)?;
         if tr.free {
             let tm = match piece {
                 Piece::Harmonic => gm.harmonic_omega().map(|big| {

@@ -321,7 +321,7 @@ pub(crate) fn run_traced<O: Observer>(
         if to_limit && piece_end >= duration {
             t_end = duration;
         }
-        progress.accepting(sys, &w.states, t, t_end)?;
+        progress.accepting(sys, &w.states, t, t_end, hs)?;
         // accept: tallies with the fifth-order weights
         for i in 0..7 {
             let b = hs * B[i];

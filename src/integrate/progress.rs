@@ -124,8 +124,8 @@ impl Progress {
         Ok(())
     }
 
-    /// A step about to be accepted from `t0` to `t1` (s; base step `dt`): an error if it does
-    /// not move time forward (before the state is touched).
+    /// A step of length `h` about to be accepted from `t0` to `t1` (s): an error if it does
+    /// not move time forward (checked before the state is touched).
     #[inline]
     pub(crate) fn accepting(
         &mut self,
@@ -133,10 +133,11 @@ impl Progress {
         states: &[LevelState],
         t0: f64,
         t1: f64,
+        h: f64,
     ) -> Result<(), SolveError> {
         self.rejections = 0;
         if t1 <= t0 || t1.is_nan() {
-            return Err(self.failure(sys, states, t0, t1 - t0, StepFailure::NoProgress));
+            return Err(self.failure(sys, states, t0, h, StepFailure::NoProgress));
         }
         Ok(())
     }
@@ -163,5 +164,123 @@ impl Progress {
             return Err(self.failure(sys, states, t1, t1 - t0, StepFailure::Stalled));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::scenario::Scenario;
+
+    /// Two cantilevers with contact levels at 10 m and 6 m.
+    fn system() -> System {
+        let text = "[[structure]]\nlength = 10.0\nmass = 2.273e6\nperiod = 0.3\n\
+             damping_ratio = 0.01\n[[structure]]\nlength = 10.0\nmass = 2.273e6\n\
+             period = 0.6\ndamping_ratio = 0.01\n[contact]\nlaw = \"hertz\"\n\
+             stiffness = 2.8e10\n[[contact.level]]\nheight = 10.0\ngap = 0.01\n\
+             [[contact.level]]\nheight = 6.0\ngap = 0.01\n[ground_motion]\n\
+             kind = \"harmonic\"\npga = 0.5\nperiod = 0.8\n";
+        Scenario::from_toml(text, "case.toml", std::path::Path::new("."))
+            .expect("valid scenario")
+            .system()
+    }
+
+    /// The level at 6 m penetrating, the one at 10 m open.
+    fn states() -> Vec<LevelState> {
+        vec![
+            LevelState {
+                delta: -0.003,
+                ..LevelState::default()
+            },
+            LevelState {
+                delta: 0.002,
+                delta_dot: 0.1,
+                force: 1e6,
+            },
+        ]
+    }
+
+    /// Each bound fires exactly past its count, names the method, the time, the penetrating
+    /// level and the other method, and an advancing step resets the counts.
+    #[test]
+    fn every_bound_stops_the_run_past_its_count() {
+        let (sys, st) = (system(), states());
+        let mut p = Progress::new(Method::Adaptive);
+        for _ in 0..MAX_REJECTIONS {
+            p.rejected(&sys, &st, 3.0, 1e-9).expect("within the bound");
+        }
+        let e = p
+            .rejected(&sys, &st, 3.0, 1e-9)
+            .expect_err("past the bound");
+        assert_eq!(
+            e,
+            SolveError::StepFailed {
+                method: "adaptive",
+                t: 3.0,
+                level: Some(2),
+                height: Some(6.0),
+                h: 1e-9,
+                reason: StepFailure::Rejected,
+                alternative: "exact-modal",
+            }
+        );
+        let msg = e.to_string();
+        for part in [
+            "adaptive could not advance",
+            "t = 3.000000000 s",
+            "level 2 (h = 6 m)",
+        ] {
+            assert!(msg.contains(part), "{part} in {msg}");
+        }
+        // an accepted step resets the rejections
+        p.accepting(&sys, &st, 3.0, 3.001, 1e-3).expect("advances");
+        p.rejected(&sys, &st, 3.001, 1e-3).expect("counted from 0");
+        // a step that does not move time, or moves it to NaN
+        let mut p = Progress::new(Method::ExactModal);
+        for t1 in [3.0, 3.0 + 1e-17, 2.0, f64::NAN] {
+            let e = p
+                .accepting(&sys, &st, 3.0, t1, 1e-17)
+                .expect_err("no progress");
+            assert!(
+                matches!(
+                    e,
+                    SolveError::StepFailed {
+                        reason: StepFailure::NoProgress,
+                        alternative: "adaptive",
+                        ..
+                    }
+                ),
+                "{e}"
+            );
+        }
+        // passes shorter than time's resolution: MAX_STALLS in a row pass, one more fails;
+        // one pass of a normal length in between resets the count
+        let floor = time_floor(3.0, 1e-3);
+        assert!(floor > 3.0 * f64::EPSILON && floor < 1e-13, "{floor}");
+        for i in 0..2 * MAX_STALLS {
+            let t1 = if i == MAX_STALLS { 3.0 + 1e-3 } else { 3.0 };
+            p.passed(&sys, &st, 3.0, t1, 1e-3)
+                .expect("within the bound");
+        }
+        let mut p = Progress::new(Method::ExactModal);
+        for _ in 0..MAX_STALLS {
+            p.passed(&sys, &st, 3.0, 3.0 + 0.5 * floor, 1e-3)
+                .expect("within the bound");
+        }
+        let e = p
+            .passed(&sys, &st, 3.0, 3.0 + 0.5 * floor, 1e-3)
+            .expect_err("stalled");
+        assert!(
+            matches!(
+                e,
+                SolveError::StepFailed {
+                    reason: StepFailure::Stalled,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        // without contact levels: no level named
+        assert_eq!(governing_level(&[]), None);
     }
 }

@@ -265,23 +265,27 @@ pub(super) fn run<O: Observer>(
     trace: Option<&mut Vec<StepTrace>>,
 ) -> Result<Stats, SolveError> {
     let (q0, v0) = initial.resolved(sys.len());
-    let mut r = Elastic::new(sys, settings, observer, trace, 0.0, q0, v0, None);
-    r.observe();
-    let end = settings.duration;
-    while r.t < end {
-        let t0 = r.t;
-        if r.in_contact() {
-            r.contact_step()?;
-        } else {
-            r.free_segment()?;
-        }
-        r.progress.passed(sys, &r.states, t0, r.t, r.dt)?;
-    }
-    r.stats.max_contact_omega_dt = r.max_contact_w2h2.sqrt();
-    Ok(r.stats)
+    Elastic::new(sys, settings, observer, trace, 0.0, q0, v0, None).drive()
 }
 
 impl<'a, O: Observer> Elastic<'a, O> {
+    /// The run from the current state to the end of the duration.
+    fn drive(mut self) -> Result<Stats, SolveError> {
+        self.observe();
+        while self.t < self.duration {
+            let t0 = self.t;
+            if self.in_contact() {
+                self.contact_step()?;
+            } else {
+                self.free_segment()?;
+            }
+            self.progress
+                .passed(self.sys, &self.states, t0, self.t, self.dt)?;
+        }
+        self.stats.max_contact_omega_dt = self.max_contact_w2h2.sqrt();
+        Ok(self.stats)
+    }
+
     /// The integrator at time `t0` in the modal state (q0, v0); `onset`: the approach speeds of
     /// the contact episodes in force (`None`: none).
     #[allow(clippy::too_many_arguments)]
@@ -1691,7 +1695,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 self.t + trial.h
             };
             self.progress
-                .accepting(self.sys, &self.states, self.t, t_end)?;
+                .accepting(self.sys, &self.states, self.t, t_end, trial.h)?;
             self.force_contact = false;
             self.accept(&piece, trial, t_end);
             // next length from the estimate (err ∝ h⁷); no growth right after a rejection.
@@ -2248,6 +2252,71 @@ mod tests {
         (0..sys.levels.len())
             .map(|k| (r.states[k].delta, r.states[k].delta_dot))
             .collect()
+    }
+
+    /// The guard: with the kink floor off (`kink_floor_ulps = 0`, the defect of
+    /// tests/data/jankowski-kink.toml back: a Jankowski switch re-found at every step's start,
+    /// steps that do not move time) the run stops at once with `StepFailed`, naming exact-modal,
+    /// the instant (t = 9.6066 s, where the located switch sits), the level in contact (the
+    /// top, level 1: the only one penetrating there) and `adaptive`; with the floor on it runs
+    /// to the end.
+    #[test]
+    fn a_step_that_cannot_advance_time_stops_the_run() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+        let text = include_str!("../../../tests/data/jankowski-kink.toml");
+        let suite = Scenario::from_toml(text, "jankowski-kink.toml", &dir).expect("valid");
+        let members = suite.suite.as_ref().expect("a suite");
+        let f = members.records[0].factor.expect("factor");
+        let sc = members.member_scenario(&suite, 0, f).expect("scales");
+        let sys = sc.system();
+        // (the self-check's tolerance, 100× tighter than the default: the run that stalled)
+        let settings = sc.solver.with_rtol(1e-10);
+        let run = |floor: f64| {
+            let (q0, v0) = InitialState::default().resolved(sys.len());
+            let mut quiet = Quiet;
+            let mut r = Elastic::new(&sys, &settings, &mut quiet, None, 0.0, q0, v0, None);
+            r.kink_floor_ulps = floor;
+            r.drive()
+        };
+        let e = run(0.0).expect_err("stops");
+        let SolveError::StepFailed {
+            method,
+            t,
+            level,
+            height,
+            reason,
+            alternative,
+            h,
+        } = e.clone()
+        else {
+            panic!("{e}");
+        };
+        assert_eq!(
+            (method, level, height, reason, alternative),
+            (
+                "exact-modal",
+                Some(1),
+                Some(14.0),
+                crate::integrate::StepFailure::NoProgress,
+                "adaptive"
+            ),
+            "{e}"
+        );
+        // (the located switch, to the ms of the trace that found it; the step that did not
+        // advance t there was 2.9e-25 s, below t's resolution of 1.8e-15 s)
+        assert!((t - 9.6066).abs() < 1e-3, "{e}");
+        assert!(h > 0.0 && t + h == t, "{e}");
+        let msg = e.to_string();
+        for part in [
+            "exact-modal",
+            "t = 9.606",
+            "contact level 1",
+            "\"adaptive\"",
+        ] {
+            assert!(msg.contains(part), "{part} in {msg}");
+        }
+        let stats = run(KINK_FLOOR_ULPS).expect("runs with the floor");
+        assert!(stats.steps > 0);
     }
 
     #[test]
