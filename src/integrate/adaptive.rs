@@ -46,8 +46,9 @@ use super::linear::{
     GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
     mode_work, monomial_influence, propagator,
 };
+use super::progress::Progress;
 use super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
 use crate::model::ground_motion::GroundMotion;
@@ -704,6 +705,7 @@ pub(crate) fn run_traced<O: Observer>(
     let mut k_onset: usize = 0;
     let mut err_old: f64 = 1e-4;
     let mut rejected_last = false;
+    let mut progress = Progress::new(Method::Adaptive);
     let mut t = 0.0;
     while t < duration {
         let (piece, piece_end) = gm.piece_at(t);
@@ -782,6 +784,7 @@ pub(crate) fn run_traced<O: Observer>(
         }
         if err.is_nan() || err > 1.0 {
             stats.rejected += 1;
+            progress.rejected(sys, &states, t, h_taken)?;
             let fac = if err.is_finite() {
                 (0.9 * err.powf(-1.0 / ORDER)).clamp(0.2, 0.9)
             } else {
@@ -833,6 +836,12 @@ pub(crate) fn run_traced<O: Observer>(
             k_onset = quantise_down(h_taken, hmax);
         }
         // accept
+        let t_end = if h_taken == limit {
+            t + limit
+        } else {
+            t + h_taken
+        };
+        progress.accepting(sys, &states, t, t_end, h_taken)?;
         if tr.free {
             let tm = match piece {
                 Piece::Harmonic => gm.harmonic_omega().map(|big| {
@@ -890,11 +899,7 @@ pub(crate) fn run_traced<O: Observer>(
         }
         std::mem::swap(&mut w.q, &mut w.qn);
         std::mem::swap(&mut w.v, &mut w.vn);
-        t = if h_taken == limit {
-            t + limit
-        } else {
-            t + h_taken
-        };
+        t = t_end;
         prev_states.copy_from_slice(&states);
         level_states(sys, &w.q, &w.v, &onset, &mut states);
         update_onsets(&mut onset, &prev_states, &states, h_taken);

@@ -31,8 +31,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::GroundModes;
+use super::progress::Progress;
 use super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
 use crate::model::system::{LevelState, Powers, System};
@@ -230,6 +231,7 @@ pub(crate) fn run_traced<O: Observer>(
     let mut h_before: f64 = h;
     let mut located: Option<usize> = None;
     let mut skip: Option<usize> = None;
+    let mut progress = Progress::new(Method::Adaptive);
     while t < duration {
         let (_, piece_end) = gm.piece_at(t);
         let limit = piece_end.min(duration) - t;
@@ -279,6 +281,7 @@ pub(crate) fn run_traced<O: Observer>(
             forced = false;
             located = None;
             stats.rejected += 1;
+            progress.rejected(sys, &w.states, t, hs)?;
             let fac = if err.is_finite() {
                 (0.9 * err.powf(-0.2)).clamp(0.2, 0.9)
             } else {
@@ -314,6 +317,11 @@ pub(crate) fn run_traced<O: Observer>(
                 companion: Vec::new(),
             });
         }
+        let mut t_end = if to_limit { t + limit } else { t + hs };
+        if to_limit && piece_end >= duration {
+            t_end = duration;
+        }
+        progress.accepting(sys, &w.states, t, t_end, hs)?;
         // accept: tallies with the fifth-order weights
         for i in 0..7 {
             let b = hs * B[i];
@@ -333,10 +341,7 @@ pub(crate) fn run_traced<O: Observer>(
             }
         }
         std::mem::swap(&mut w.y, &mut w.y1);
-        t = if to_limit { t + limit } else { t + hs };
-        if to_limit && piece_end >= duration {
-            t = duration;
-        }
+        t = t_end;
         // the last stage is the derivative at the new state (FSAL)
         w.k.swap(0, 6);
         w.pw.swap(0, 6);

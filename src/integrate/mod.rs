@@ -21,9 +21,11 @@ mod exact_modal;
 mod hysteretic;
 pub mod linear;
 mod poly_tally;
+mod progress;
 mod rk4;
 
 pub use exact_modal::SUBSTEP_ALPHA;
+pub use progress::StepFailure;
 pub use rk4::{rk4_max_stable_dt, rk4_stability_limit};
 
 use crate::model::system::{LevelState, System};
@@ -387,6 +389,33 @@ pub enum SolveError {
         /// The relative tolerance.
         rtol: f64,
     },
+    /// An error-controlled method could not make a step at an instant: it stopped rather than
+    /// loop without end (accepted steps that do not move time, a rejected step retried without
+    /// shrinking; see [`StepFailure`]). A failure of the method on this motion, not of the
+    /// scenario: the other error-controlled method integrates it.
+    #[error(
+        "{method} could not advance past t = {t:.9} s{}: {reason} (last step {h:.3e} s). This is \
+         a failure of the method on this motion, not of the scenario: run it with \
+         solver.method = \"{alternative}\"",
+        at_level(*.level, *.height)
+    )]
+    StepFailed {
+        /// Method name.
+        method: &'static str,
+        /// Time, s.
+        t: f64,
+        /// The contact level the step was resolving (1-based, in the order of the scenario):
+        /// the deepest penetrating one; `None` without contact levels.
+        level: Option<usize>,
+        /// Its height, m.
+        height: Option<f64>,
+        /// Last step length tried, s.
+        h: f64,
+        /// What failed.
+        reason: StepFailure,
+        /// The method to run the scenario with instead.
+        alternative: &'static str,
+    },
     /// The scenario is a suite of records (`[ground_motion] kind = "suite"`): one run per record,
     /// by `pounding run` (the library's `study::suite::run`), not one simulation.
     #[error(
@@ -395,6 +424,14 @@ pub enum SolveError {
          for this command"
     )]
     Suite(usize),
+}
+
+/// " at contact level k (height h m)" of [`SolveError::StepFailed`]'s message.
+fn at_level(level: Option<usize>, height: Option<f64>) -> String {
+    match (level, height) {
+        (Some(k), Some(h)) => format!(" at contact level {k} (h = {h} m)"),
+        _ => String::new(),
+    }
 }
 
 impl SolverSettings {

@@ -41,8 +41,9 @@ use super::super::linear::{
     mode_work, poly_coefficients, poly_ground_work, propagator,
 };
 use super::super::poly_tally::{PolySums, PolyTally};
+use super::super::progress::Progress;
 use super::super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
     update_onsets,
 };
 use super::{SubstepTolerance, hermite_gap_factor};
@@ -70,6 +71,9 @@ const FREE_CACHE: usize = 24;
 const ZENO: u32 = 16;
 /// Depth of the dyadic search for an onset inside a free step.
 const MAX_SCAN: u32 = 24;
+/// A law's kink closer than this many units in the last place of t (and of dt) to a contact
+/// step's start or end is taken as at it (see [`Elastic::law_kink_inside`]).
+const KINK_FLOOR_ULPS: f64 = 64.0;
 
 /// The free flight over one step length: every mode's propagator and its Hermite margin.
 struct FreeData {
@@ -247,6 +251,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// A level touches now with δ̇ = 0 (an onset at the current instant that is not
     /// approaching yet): the next step is a contact step.
     force_contact: bool,
+    /// The guard against steps that cannot be made ([`Progress`]).
+    progress: Progress,
+    /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
+    kink_floor_ulps: f64,
 }
 
 pub(super) fn run<O: Observer>(
@@ -257,21 +265,27 @@ pub(super) fn run<O: Observer>(
     trace: Option<&mut Vec<StepTrace>>,
 ) -> Result<Stats, SolveError> {
     let (q0, v0) = initial.resolved(sys.len());
-    let mut r = Elastic::new(sys, settings, observer, trace, 0.0, q0, v0, None);
-    r.observe();
-    let end = settings.duration;
-    while r.t < end {
-        if r.in_contact() {
-            r.contact_step()?;
-        } else {
-            r.free_segment()?;
-        }
-    }
-    r.stats.max_contact_omega_dt = r.max_contact_w2h2.sqrt();
-    Ok(r.stats)
+    Elastic::new(sys, settings, observer, trace, 0.0, q0, v0, None).drive()
 }
 
 impl<'a, O: Observer> Elastic<'a, O> {
+    /// The run from the current state to the end of the duration.
+    fn drive(mut self) -> Result<Stats, SolveError> {
+        self.observe();
+        while self.t < self.duration {
+            let t0 = self.t;
+            if self.in_contact() {
+                self.contact_step()?;
+            } else {
+                self.free_segment()?;
+            }
+            self.progress
+                .passed(self.sys, &self.states, t0, self.t, self.dt)?;
+        }
+        self.stats.max_contact_omega_dt = self.max_contact_w2h2.sqrt();
+        Ok(self.stats)
+    }
+
     /// The integrator at time `t0` in the modal state (q0, v0); `onset`: the approach speeds of
     /// the contact episodes in force (`None`: none).
     #[allow(clippy::too_many_arguments)]
@@ -373,6 +387,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             at: vec![(0.0, 0.0); nl],
             proj: vec![(0.0, 0.0); nl],
             force_contact: false,
+            progress: Progress::new(Method::ExactModal),
+            kink_floor_ulps: KINK_FLOOR_ULPS,
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
@@ -1399,11 +1415,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// Hertz law's no-tension clamp, Jankowski's switch at δ̇ = 0: [`ContactForce::kink`]
     /// changing sign), as a fraction of the step: the root of the quartic through the kink
     /// function's values at the nodes (it is smooth across the kink, the force is not). Kinks
-    /// within a thousandth of the step's ends are left where they are.
+    /// within 1e-9 of the step (length h) of its ends, or within time's resolution of them
+    /// ([`KINK_FLOOR_ULPS`] units in the last place of t), are left where they are: a step
+    /// that ends there cannot be told from the step's start in time, and after a kink located
+    /// a round-off short of it (the kink function, e.g. Jankowski's δ̇, at a round-off of 0 on
+    /// its side) its roots would be re-found at the next step's start without end, each
+    /// located step shorter and none advancing time. Straddled, a kink that close errs by the
+    /// jump of the force's slope times that offset: nothing.
     ///
     /// [`ContactForce::kink`]: crate::model::contact::ContactForce::kink
-    fn law_kink_inside(&self) -> Option<(usize, f64, f64)> {
+    fn law_kink_inside(&self, h: f64) -> Option<(usize, f64, f64)> {
         let bases = collocation::bases();
+        let floor = self.kink_floor_ulps * f64::EPSILON * (self.t.abs() + self.dt) / h;
+        let (first, last) = (floor.max(1e-9), 1.0 - floor.max(1e-9));
         let mut best: Option<(usize, f64, f64)> = None;
         for k in 0..self.nl {
             let st = &self.states[k];
@@ -1441,7 +1465,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             let theta = 0.5 * (lo + hi);
             let scale = g.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-            if theta > 1e-9 && theta < 1.0 - 1e-9 && best.is_none_or(|b| theta < b.1) {
+            if theta > first && theta < last && best.is_none_or(|b| theta < b.1) {
                 best = Some((k, theta, scale));
             }
         }
@@ -1593,7 +1617,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // a kink of the law inside contact is one the two schemes err on alike (the
             // estimate can miss it by several times): such a step always ends there
             if trial.err.is_finite()
-                && let Some((lev, th, scale)) = self.law_kink_inside()
+                && let Some((lev, th, scale)) = self.law_kink_inside(h)
             {
                 trial = self.locate_kink(&piece, h, lev, th, scale);
                 self.kink = true;
@@ -1623,6 +1647,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             if trial.err > 1.0 {
                 self.stats.rejected += 1;
                 rejected = true;
+                self.progress
+                    .rejected(self.sys, &self.states, self.t, trial.h)?;
                 // (a step over an onset or a release, or near one, errs like h^{3/2 + 2}: a
                 // failed step is cut as if the order were 4, not 7)
                 let fac = if trial.err.is_finite() {
@@ -1668,6 +1694,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             } else {
                 self.t + trial.h
             };
+            self.progress
+                .accepting(self.sys, &self.states, self.t, t_end, trial.h)?;
             self.force_contact = false;
             self.accept(&piece, trial, t_end);
             // next length from the estimate (err ∝ h⁷); no growth right after a rejection.
@@ -2224,6 +2252,71 @@ mod tests {
         (0..sys.levels.len())
             .map(|k| (r.states[k].delta, r.states[k].delta_dot))
             .collect()
+    }
+
+    /// The guard: with the kink floor off (`kink_floor_ulps = 0`, the defect of
+    /// tests/data/jankowski-kink.toml back: a Jankowski switch re-found at every step's start,
+    /// steps that do not move time) the run stops at once with `StepFailed`, naming exact-modal,
+    /// the instant (t = 9.6066 s, where the located switch sits), the level in contact (the
+    /// top, level 1: the only one penetrating there) and `adaptive`; with the floor on it runs
+    /// to the end.
+    #[test]
+    fn a_step_that_cannot_advance_time_stops_the_run() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+        let text = include_str!("../../../tests/data/jankowski-kink.toml");
+        let suite = Scenario::from_toml(text, "jankowski-kink.toml", &dir).expect("valid");
+        let members = suite.suite.as_ref().expect("a suite");
+        let f = members.records[0].factor.expect("factor");
+        let sc = members.member_scenario(&suite, 0, f).expect("scales");
+        let sys = sc.system();
+        // (the self-check's tolerance, 100× tighter than the default: the run that stalled)
+        let settings = sc.solver.with_rtol(1e-10);
+        let run = |floor: f64| {
+            let (q0, v0) = InitialState::default().resolved(sys.len());
+            let mut quiet = Quiet;
+            let mut r = Elastic::new(&sys, &settings, &mut quiet, None, 0.0, q0, v0, None);
+            r.kink_floor_ulps = floor;
+            r.drive()
+        };
+        let e = run(0.0).expect_err("stops");
+        let SolveError::StepFailed {
+            method,
+            t,
+            level,
+            height,
+            reason,
+            alternative,
+            h,
+        } = e.clone()
+        else {
+            panic!("{e}");
+        };
+        assert_eq!(
+            (method, level, height, reason, alternative),
+            (
+                "exact-modal",
+                Some(1),
+                Some(14.0),
+                crate::integrate::StepFailure::NoProgress,
+                "adaptive"
+            ),
+            "{e}"
+        );
+        // (the located switch, to the ms of the trace that found it; the step that did not
+        // advance t there was 2.9e-25 s, below t's resolution of 1.8e-15 s)
+        assert!((t - 9.6066).abs() < 1e-3, "{e}");
+        assert!(h > 0.0 && t + h == t, "{e}");
+        let msg = e.to_string();
+        for part in [
+            "exact-modal",
+            "t = 9.606",
+            "contact level 1",
+            "\"adaptive\"",
+        ] {
+            assert!(msg.contains(part), "{part} in {msg}");
+        }
+        let stats = run(KINK_FLOOR_ULPS).expect("runs with the floor");
+        assert!(stats.steps > 0);
     }
 
     #[test]
