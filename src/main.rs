@@ -1032,9 +1032,13 @@ fn run_fragility(
         Path::new("out").join(stem)
     });
     if !quiet && std::io::stderr().is_terminal() {
-        eprintln!("  running {} runs (with and without contact) …", study.runs());
+        eprintln!(
+            "  running {} runs (with and without contact) …",
+            study.runs()
+        );
     }
-    let run = fragility::run(&study, jobs).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let run =
+        fragility::run(&study, jobs).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let mut failed = None;
     let written = fragility::write::write(&run, &out, || {
         if no_plot {

@@ -48,7 +48,13 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
                 .runs
                 .iter()
                 .zip(&c.exceedances)
-                .map(|(n, z)| if *n > 0 { *z as f64 / *n as f64 } else { f64::NAN })
+                .map(|(n, z)| {
+                    if *n > 0 {
+                        *z as f64 / *n as f64
+                    } else {
+                        f64::NAN
+                    }
+                })
                 .collect();
             let label = match c.model {
                 0 => "with pounding (runs with contact)".to_string(),
@@ -145,25 +151,23 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     let s = &run.study;
     let t = &run.pounding;
     let gaps_mm: Vec<f64> = t.gaps.iter().map(|g| 1e3 * g).collect();
-    let labels: Vec<String> = t
-        .im
-        .iter()
-        .map(|x| format!("{} = {x} {}", s.measure.short(), s.units.key()))
-        .collect();
-    let mut lines: Vec<XyLine> = t
-        .p
-        .iter()
-        .zip(&labels)
-        .enumerate()
-        .map(|(j, (p, l))| XyLine {
-            label: l,
-            x: &gaps_mm,
-            y: p,
-            style: LineStyle::Solid,
-            color: LineColor::Palette(j),
-            width: 3,
-        })
-        .collect();
+    let labels: Vec<String> =
+        t.im.iter()
+            .map(|x| format!("{} = {x} {}", s.measure.short(), s.units.key()))
+            .collect();
+    let mut lines: Vec<XyLine> =
+        t.p.iter()
+            .zip(&labels)
+            .enumerate()
+            .map(|(j, (p, l))| XyLine {
+                label: l,
+                x: &gaps_mm,
+                y: p,
+                style: LineStyle::Solid,
+                color: LineColor::Palette(j),
+                width: 3,
+            })
+            .collect();
     let target_x;
     let target_y;
     let target_label;

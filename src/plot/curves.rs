@@ -81,8 +81,7 @@ pub fn write_curves(fig: &CurveFigure, stem: &Path) -> Result<Vec<PathBuf>, Plot
     if fig.panels.is_empty() {
         return Err(PlotError::NoData("the figure has no panels".into()));
     }
-    if !(fig.y_range.0.is_finite() && fig.y_range.1.is_finite() && fig.y_range.0 < fig.y_range.1)
-    {
+    if !(fig.y_range.0.is_finite() && fig.y_range.1.is_finite() && fig.y_range.0 < fig.y_range.1) {
         return Err(PlotError::InvalidInput("the y range is empty".into()));
     }
     write_both(fig, stem, fig.width, fig.height)
@@ -121,11 +120,7 @@ impl Render for CurveFigure<'_> {
             .iter()
             .max_by_key(|p| p.curves.iter().filter(|c| !c.label.is_empty()).count())
             .unwrap_or(&self.panels[0]);
-        let legend: Vec<&BandCurve> = most
-            .curves
-            .iter()
-            .filter(|c| !c.label.is_empty())
-            .collect();
+        let legend: Vec<&BandCurve> = most.curves.iter().filter(|c| !c.label.is_empty()).collect();
         let line_h = (f.tick * 1.8) as i32;
         if !legend.is_empty() {
             let mut x = 20;
@@ -193,13 +188,12 @@ impl Render for CurveFigure<'_> {
                 let col = PALETTE[c.color % PALETTE.len()];
                 let (lo, hi) = c.band;
                 if !lo.is_empty() && lo.len() == c.x.len() && hi.len() == c.x.len() {
-                    let mut poly: Vec<(f64, f64)> = c
-                        .x
-                        .iter()
-                        .zip(hi)
-                        .filter(|(x, y)| x.is_finite() && y.is_finite())
-                        .map(|(x, y)| (*x, y.clamp(ylo, yhi)))
-                        .collect();
+                    let mut poly: Vec<(f64, f64)> =
+                        c.x.iter()
+                            .zip(hi)
+                            .filter(|(x, y)| x.is_finite() && y.is_finite())
+                            .map(|(x, y)| (*x, y.clamp(ylo, yhi)))
+                            .collect();
                     poly.extend(
                         c.x.iter()
                             .zip(lo)
@@ -213,13 +207,12 @@ impl Render for CurveFigure<'_> {
                             .map_err(draw_err)?;
                     }
                 }
-                let pts: Vec<(f64, f64)> = c
-                    .x
-                    .iter()
-                    .zip(c.y)
-                    .filter(|(x, y)| x.is_finite() && y.is_finite())
-                    .map(|(x, y)| (*x, y.clamp(ylo, yhi)))
-                    .collect();
+                let pts: Vec<(f64, f64)> =
+                    c.x.iter()
+                        .zip(c.y)
+                        .filter(|(x, y)| x.is_finite() && y.is_finite())
+                        .map(|(x, y)| (*x, y.clamp(ylo, yhi)))
+                        .collect();
                 let stroke = col.stroke_width(3);
                 match c.style {
                     LineStyle::Solid => {

@@ -60,7 +60,13 @@ pub fn normal_quantile(p: f64) -> f64 {
 }
 
 /// −ln L of (θ, β) on stripe counts: `im` the stripes (> 0), `runs` n_j, `exceed` z_j.
-pub fn neg_log_likelihood(theta: f64, beta: f64, im: &[f64], runs: &[usize], exceed: &[usize]) -> f64 {
+pub fn neg_log_likelihood(
+    theta: f64,
+    beta: f64,
+    im: &[f64],
+    runs: &[usize],
+    exceed: &[usize],
+) -> f64 {
     let mut s = 0.0;
     for ((&x, &n), &z) in im.iter().zip(runs).zip(exceed) {
         let u = (x / theta).ln() / beta;
@@ -147,7 +153,11 @@ impl CostFunction for Probit<'_> {
 }
 
 /// The maximum-likelihood lognormal fit to stripe counts (see the module).
-pub fn fit_lognormal(im: &[f64], runs: &[usize], exceed: &[usize]) -> Result<LognormalFit, FitError> {
+pub fn fit_lognormal(
+    im: &[f64],
+    runs: &[usize],
+    exceed: &[usize],
+) -> Result<LognormalFit, FitError> {
     if im.len() != runs.len()
         || im.len() != exceed.len()
         || im.is_empty()
@@ -287,7 +297,11 @@ pub fn bootstrap(
     let mut rng = Pcg64::seed_from_u64(seed);
     // (n ≤ millions: the modulo bias of next_u64 % n is below n / 2⁶⁴, nothing)
     let draws: Vec<Vec<usize>> = (0..resamples)
-        .map(|_| (0..n).map(|_| (rng.next_u64() % n as u64) as usize).collect())
+        .map(|_| {
+            (0..n)
+                .map(|_| (rng.next_u64() % n as u64) as usize)
+                .collect()
+        })
         .collect();
     let fits: Vec<Option<LognormalFit>> = draws
         .par_iter()
@@ -323,7 +337,11 @@ pub fn bootstrap(
 }
 
 /// Runs and exceedances per stripe over the records `pick` (with repetition).
-pub fn counts(outcomes: &[Vec<Option<bool>>], stripes: usize, pick: &[usize]) -> (Vec<usize>, Vec<usize>) {
+pub fn counts(
+    outcomes: &[Vec<Option<bool>>],
+    stripes: usize,
+    pick: &[usize],
+) -> (Vec<usize>, Vec<usize>) {
     let mut runs = vec![0; stripes];
     let mut exceed = vec![0; stripes];
     for &r in pick {

@@ -32,7 +32,9 @@ pub use pounding::{GapForTarget, PoundingTable};
 #[derive(Debug, thiserror::Error)]
 pub enum FragilityError {
     /// A record's IM is not positive (a record of zeros): it cannot be scaled to a stripe.
-    #[error("record {index} ({file}): its {measure} is {value} m/s²: it cannot be scaled to a stripe")]
+    #[error(
+        "record {index} ({file}): its {measure} is {value} m/s²: it cannot be scaled to a stripe"
+    )]
     ZeroIntensity {
         /// 1-based.
         index: usize,
@@ -282,7 +284,13 @@ pub fn assemble(
     let stripes: Vec<f64> = study.stripes.iter().map(|s| s / u).collect();
     let ns = stripes.len();
     let nr = record_im.len();
-    let gaps: Vec<f64> = study.scenario.contact.levels.iter().map(|l| l.gap).collect();
+    let gaps: Vec<f64> = study
+        .scenario
+        .contact
+        .levels
+        .iter()
+        .map(|l| l.gap)
+        .collect();
     let (lo, hi) = (stripes[0], stripes[ns - 1]);
     let (lo, hi) = (lo * 0.5, hi * 1.5);
     let band_im: Vec<f64> = (0..=120)
@@ -329,7 +337,12 @@ pub fn assemble(
         .map(|j| {
             (0..nr)
                 .map(|r| {
-                    pounding::critical_gap(&outcomes[r * ns + j].required, &gaps, top, study.gap_mode)
+                    pounding::critical_gap(
+                        &outcomes[r * ns + j].required,
+                        &gaps,
+                        top,
+                        study.gap_mode,
+                    )
                 })
                 .collect()
         })

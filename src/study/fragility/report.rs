@@ -54,7 +54,11 @@ pub fn report(run: &FragilityRun) -> String {
     for c in &run.curves {
         let ls = &s.limit_states[c.limit_state];
         let counts: Vec<String> = c.exceedances.iter().map(|z| z.to_string()).collect();
-        let counts = format!("{}/{}", counts.join(" "), c.runs.first().copied().unwrap_or(0));
+        let counts = format!(
+            "{}/{}",
+            counts.join(" "),
+            c.runs.first().copied().unwrap_or(0)
+        );
         let (theta, ti, beta, bi) = match &c.fit {
             Ok(fit) => {
                 let (ti, bi) = c.intervals.as_ref().map_or(("–".into(), "–".into()), |b| {
@@ -70,7 +74,12 @@ pub fn report(run: &FragilityRun) -> String {
                 };
                 (format!("{:.3}", fit.theta), ti, beta, bi)
             }
-            Err(e) => (format!("({e})"), String::new(), String::new(), String::new()),
+            Err(e) => (
+                format!("({e})"),
+                String::new(),
+                String::new(),
+                String::new(),
+            ),
         };
         let _ = writeln!(
             o,
@@ -139,7 +148,10 @@ pub fn report(run: &FragilityRun) -> String {
             g.pounding_records,
             g.records,
             match g.lognormal {
-                Some(l) => format!("; {:.1} mm from a lognormal fitted to the critical gaps", 1e3 * l),
+                Some(l) => format!(
+                    "; {:.1} mm from a lognormal fitted to the critical gaps",
+                    1e3 * l
+                ),
                 None => String::new(),
             }
         );

@@ -92,7 +92,14 @@ pub fn runs_csv(run: &FragilityRun) -> String {
     out.push_str(",converged\n");
     let u = run.study.units.factor();
     let stripes = run.stripes();
-    let gaps: Vec<f64> = run.study.scenario.contact.levels.iter().map(|l| l.gap).collect();
+    let gaps: Vec<f64> = run
+        .study
+        .scenario
+        .contact
+        .levels
+        .iter()
+        .map(|l| l.gap)
+        .collect();
     let top = crate::input::fragility::top_gap(&run.study.scenario);
     for o in &run.outcomes {
         out.push_str(&format!(
