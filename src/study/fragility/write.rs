@@ -224,6 +224,12 @@ pub fn fit_json(run: &FragilityRun) -> Value {
     })
 }
 
+/// `fit.json`'s text (pretty-printed, a final newline).
+pub fn fit_json_text(run: &FragilityRun) -> String {
+    // (a `Value` of finite numbers and strings always serialises)
+    serde_json::to_string_pretty(&fit_json(run)).unwrap_or_default() + "\n"
+}
+
 /// Write every file into `dir` (created if missing), `fit.json` last, after `pictures` (the
 /// figures, drawn by the caller into `dir`: this layer knows no pictures); returns the paths.
 pub fn write(
@@ -235,15 +241,11 @@ pub fn write(
         path: dir.to_path_buf(),
         source,
     })?;
-    let json = serde_json::to_string_pretty(&fit_json(run)).map_err(|e| OutputError::Encode {
-        path: dir.join(FILES[3]),
-        message: e.to_string(),
-    })?;
     let texts = [
         fragility_csv(run),
         p_pounding_csv(run),
         runs_csv(run),
-        json + "\n",
+        fit_json_text(run),
     ];
     let mut written = Vec::new();
     let mut pictures = Some(pictures);
