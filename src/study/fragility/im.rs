@@ -1,8 +1,8 @@
 //! The intensity measure of a record (m/s²): PGA, the 5 %-damped pseudo-spectral acceleration
 //! at a period (the exact piecewise-linear oscillator of `pounding spectrum`,
 //! [`spectral_point`]), or Sa_avg, the geometric mean of those over a set of periods
-//! (Baker & Cornell 2006; Eads, Miranda & Lignos 2015). All three scale linearly with the
-//! record, so the factor to a stripe is level / IM.
+//! (Eads, Miranda & Lignos 2015, Earthquake Engng Struct. Dyn. 44(12)). All three scale
+//! linearly with the record, so the factor to a stripe is level / IM.
 
 use crate::analysis::record_spectrum::spectral_point;
 use crate::input::fragility::IntensityMeasure;
