@@ -436,6 +436,27 @@ enum Command {
         #[arg(long)]
         dt: Option<f64>,
     },
+    /// How likely pounding is: a fragility study (multi-stripe analysis). Every record of the
+    /// study's suite is scaled to each intensity level (stripe) and run with and without
+    /// contact; per limit state the fraction exceeding at each stripe and a lognormal fit
+    /// (maximum likelihood, bootstrap intervals over records); P(pounding | IM, gap) for every
+    /// gap from the runs without contact and the gap for a target probability.
+    ///
+    /// Writes into DIR: fragility.csv, p_pounding.csv, runs.csv, the figures fragility.png/.svg
+    /// and p-pounding.png/.svg, and fit.json last. See the README, "Fragility".
+    Fragility {
+        /// The study file (TOML).
+        study: PathBuf,
+        /// Output directory (created if missing) [default: out/<study file name>].
+        #[arg(short, long)]
+        out: Option<PathBuf>,
+        /// Worker threads [default: the number of CPUs].
+        #[arg(short, long)]
+        jobs: Option<usize>,
+        /// Do not draw the figures.
+        #[arg(long)]
+        no_plot: bool,
+    },
 }
 
 /// Targets of `pounding export`.
@@ -986,7 +1007,60 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             print!("{}", c.table());
             Ok(())
         }
+        Command::Fragility {
+            study,
+            out,
+            jobs,
+            no_plot,
+        } => run_fragility(&study, out, jobs, no_plot, quiet),
     }
+}
+
+/// `pounding fragility`: the study run, its files and figures written (fit.json last), its
+/// report printed (`study::fragility::report`).
+fn run_fragility(
+    path: &Path,
+    out: Option<PathBuf>,
+    jobs: Option<usize>,
+    no_plot: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    use pounding::study::fragility;
+    let study = pounding::input::fragility::FragilityStudy::from_file(path)?;
+    let out = out.unwrap_or_else(|| {
+        let stem = path.file_stem().unwrap_or_default();
+        Path::new("out").join(stem)
+    });
+    if !quiet && std::io::stderr().is_terminal() {
+        eprintln!(
+            "  running {} runs (with and without contact) …",
+            study.runs()
+        );
+    }
+    let run =
+        fragility::run(&study, jobs).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mut failed = None;
+    let written = fragility::write::write(&run, &out, || {
+        if no_plot {
+            return Vec::new();
+        }
+        pounding::figures::fragility::pictures(&run, &out).unwrap_or_else(|e| {
+            failed = Some(e);
+            Vec::new()
+        })
+    })?;
+    if !quiet {
+        print!("{}", fragility::report::report(&run));
+        println!();
+        println!("wrote {}", list_paths(&written));
+    }
+    for w in fragility::report::warnings(&run) {
+        eprintln!("warning: {w}");
+    }
+    if let Some(e) = failed {
+        anyhow::bail!("the figures could not be drawn: {e}");
+    }
+    Ok(())
 }
 
 /// `pounding run` on a suite of records (`[ground_motion] kind = "suite"`): every record run

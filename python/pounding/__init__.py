@@ -33,6 +33,8 @@ __all__ = [
     "run",
     "sweep",
     "plan_sweep",
+    "fragility",
+    "FragilityResult",
     "ScenarioError",
     "SweepError",
     "SolveError",
@@ -222,3 +224,77 @@ def sweep(
     jobs = _core.available_parallelism() if jobs is None else int(jobs)
     rows = plan.run_all(jobs, check)
     return SweepTable(plan.columns(rows))
+
+
+def _columns(text: str) -> dict[str, Any]:
+    """CSV text → dict of columns: numbers as float64 arrays (an empty field NaN, ``inf``
+    infinity), other columns as lists of str."""
+    import csv
+    import io
+
+    import numpy as np
+
+    rows = list(csv.reader(io.StringIO(text)))
+    if not rows:
+        return {}
+    head, body = rows[0], rows[1:]
+    out: dict[str, Any] = {}
+    for k, name in enumerate(head):
+        col = [r[k] for r in body]
+        try:
+            out[name] = np.array([float(v) if v != "" else np.nan for v in col], dtype=np.float64)
+        except ValueError:
+            out[name] = col
+    return out
+
+
+class FragilityResult:
+    """The outcome of :func:`fragility`: the tables ``pounding fragility`` writes.
+
+    ``fragility`` (fragility.csv: ``limit_state``, ``model``, ``im``, ``runs``,
+    ``exceedances``, ``fraction``), ``p_pounding`` (p_pounding.csv: ``im``, ``gap`` [m],
+    ``p_pounding``), ``runs`` (runs.csv, one row per record and stripe) — each a dict of
+    columns (float64 arrays; text columns lists of str); ``fit`` (fit.json as a dict) and
+    ``fits`` (its list: per limit state and model ``theta``, ``beta``, ``theta_interval``,
+    ``beta_interval``, …); ``target_gap`` (the gap for the target probability, or None);
+    ``report`` (the printed text).
+    """
+
+    def __init__(self, parts: dict[str, str]) -> None:
+        self.report: str = parts["report"]
+        self.fit: dict[str, Any] = json.loads(parts["fit_json"])
+        self.fits: list[dict[str, Any]] = self.fit["fits"]
+        self.target_gap: dict[str, Any] | None = self.fit.get("target_gap")
+        self.fragility: dict[str, Any] = _columns(parts["fragility_csv"])
+        self.p_pounding: dict[str, Any] = _columns(parts["p_pounding_csv"])
+        self.runs: dict[str, Any] = _columns(parts["runs_csv"])
+
+    def to_pandas(self, table: str = "fragility") -> Any:
+        """One table (``fragility``, ``p_pounding`` or ``runs``) as a pandas DataFrame (needs
+        pandas)."""
+        import pandas as pd  # optional dependency
+
+        if table not in ("fragility", "p_pounding", "runs"):
+            raise ValueError(f"table must be 'fragility', 'p_pounding' or 'runs', not {table!r}")
+        return pd.DataFrame(getattr(self, table))
+
+    def __repr__(self) -> str:
+        return f"FragilityResult({self.fit['title']!r}: {self.fit['runs']} runs, {len(self.fits)} fits)"
+
+
+def fragility(
+    path: PathLike,
+    *,
+    jobs: int | None = None,
+    out: PathLike | None = None,
+    plots: bool = True,
+) -> FragilityResult:
+    """Run a fragility study file, as ``pounding fragility`` does (README, "Fragility"), on
+    ``jobs`` threads (default: every core), with the GIL released, and return its tables and
+    fits (:class:`FragilityResult`). With ``out``, also write the files there (the figures
+    unless ``plots`` is false; fit.json last). Raises :class:`ScenarioError` (the study or its
+    scenario refused), :class:`SolveError` (a run failed), :class:`OutputError`."""
+    parts = _core.fragility(
+        os.fspath(path), None if jobs is None else int(jobs), None if out is None else os.fspath(out), plots
+    )
+    return FragilityResult(dict(parts))

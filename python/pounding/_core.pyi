@@ -133,3 +133,9 @@ class Sweep:
 
 def available_parallelism() -> int:
     """The number of threads the machine offers."""
+
+def fragility(
+    path: _Path, jobs: int | None = None, out: _Path | None = None, plots: bool = True
+) -> list[tuple[str, str]]:
+    """Run a fragility study file (`pounding fragility`): (name, text) pairs fragility_csv,
+    p_pounding_csv, runs_csv, fit_json, report; with `out`, the files written there too."""

@@ -680,6 +680,59 @@ fn available_parallelism() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
+// ---------------------------------------------------------------------------------------------
+// Fragility studies (issue 28)
+
+/// Run a fragility study file, as `pounding fragility` does, with the GIL released: a dict
+/// of its tables as CSV text (`fragility_csv`, `p_pounding_csv`, `runs_csv`), `fit_json` and
+/// `report` (the printed text). With `out`, the files (and with `plots` the figures) are
+/// written there too, `fit.json` last.
+#[pyfunction]
+#[pyo3(signature = (path, jobs = None, out = None, plots = true))]
+fn fragility(
+    py: Python<'_>,
+    path: PathBuf,
+    jobs: Option<usize>,
+    out: Option<PathBuf>,
+    plots: bool,
+) -> PyResult<Vec<(String, String)>> {
+    use pounding::study::fragility as fr;
+    py.detach(|| {
+        no_panic(|| {
+            let study = pounding::input::fragility::FragilityStudy::from_file(&path)
+                .map_err(|e| ScenarioError::new_err(e.to_string()))?;
+            let run = fr::run(&study, jobs).map_err(|e| match e {
+                fr::FragilityError::Solve { .. } => SolveError::new_err(e.to_string()),
+                _ => ScenarioError::new_err(e.to_string()),
+            })?;
+            if let Some(dir) = &out {
+                let mut failed = None;
+                fr::write::write(&run, dir, || {
+                    if !plots {
+                        return Vec::new();
+                    }
+                    pounding::figures::fragility::pictures(&run, dir).unwrap_or_else(|e| {
+                        failed = Some(e.to_string());
+                        Vec::new()
+                    })
+                })
+                .map_err(|e| OutputError::new_err(e.to_string()))?;
+                if let Some(e) = failed {
+                    return Err(OutputError::new_err(format!("the figures: {e}")));
+                }
+            }
+            let fit = fr::write::fit_json_text(&run);
+            Ok(vec![
+                ("fragility_csv".into(), fr::write::fragility_csv(&run)),
+                ("p_pounding_csv".into(), fr::write::p_pounding_csv(&run)),
+                ("runs_csv".into(), fr::write::runs_csv(&run)),
+                ("fit_json".into(), fit),
+                ("report".into(), fr::report::report(&run)),
+            ])
+        })
+    })
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -691,6 +744,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyRunOutput>()?;
     m.add_class::<PySweep>()?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(fragility, m)?)?;
     m.add_function(wrap_pyfunction!(available_parallelism, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

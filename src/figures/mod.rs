@@ -1,5 +1,6 @@
 //! The project's pictures, drawn with [`crate::plot`].
 
+pub mod fragility;
 pub mod rules;
 pub mod run;
 pub mod spectrum;

@@ -1,4 +1,5 @@
 //! What the user gives.
 
 pub mod file;
+pub mod fragility;
 pub mod scenario;

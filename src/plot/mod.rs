@@ -26,6 +26,7 @@ use plotters::coord::Shift;
 use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
 
+pub mod curves;
 pub mod heatmap;
 pub mod lines;
 pub mod profile;

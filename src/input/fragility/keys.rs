@@ -1,0 +1,584 @@
+//! The study file's raw keys (serde, with their positions) and their checks, each error
+//! naming the key and its file:line:col.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::{
+    G, GapMode, ImUnits, IntensityMeasure, LimitKind, LimitState, PoundingTarget, StudyError,
+    top_gap,
+};
+use crate::input::scenario::{Location, Scenario};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawStudy {
+    pub(super) title: Option<String>,
+    pub(super) scenario: Option<Spanned<String>>,
+    pub(super) ground_motion: Option<Spanned<toml::Table>>,
+    pub(super) intensity: Option<Spanned<RawIntensity>>,
+    pub(super) limit_state: Option<Vec<Spanned<RawLimit>>>,
+    pub(super) fragility: Option<Spanned<RawFragility>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawIntensity {
+    measure: Option<Spanned<String>>,
+    structure: Option<Spanned<i64>>,
+    periods: Option<Spanned<Vec<f64>>>,
+    count: Option<Spanned<i64>>,
+    units: Option<Spanned<String>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawLimit {
+    kind: Option<Spanned<String>>,
+    value: Option<Spanned<f64>>,
+    structure: Option<Spanned<i64>>,
+    units: Option<Spanned<String>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawGaps {
+    List(Vec<f64>),
+    Range { to: f64, count: Option<i64> },
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawTarget {
+    im: Option<Spanned<f64>>,
+    probability: Option<Spanned<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawFragility {
+    pub(super) stripes: Option<Spanned<Vec<f64>>>,
+    pub(super) gaps: Option<Spanned<RawGaps>>,
+    pub(super) gap_mode: Option<Spanned<String>>,
+    pub(super) target: Option<Spanned<RawTarget>>,
+    pub(super) bootstrap: Option<Spanned<i64>>,
+    pub(super) seed: Option<Spanned<i64>>,
+    pub(super) confidence: Option<Spanned<f64>>,
+    pub(super) check: Option<bool>,
+}
+
+/// Where a byte offset of the text lies: file:line:col.
+pub(super) struct Here<'a> {
+    pub(super) text: &'a str,
+    pub(super) file: Arc<str>,
+}
+
+impl Here<'_> {
+    pub(super) fn at(&self, offset: Option<usize>) -> Location {
+        Location {
+            file: self.file.clone(),
+            line_col: offset.map(|o| {
+                let mut o = o.min(self.text.len());
+                while !self.text.is_char_boundary(o) {
+                    o -= 1;
+                }
+                let before = &self.text[..o];
+                let line = before.matches('\n').count() + 1;
+                let col = before.rfind('\n').map_or(o, |p| o - p - 1) + 1;
+                (line as u32, col as u32)
+            }),
+        }
+    }
+
+    pub(super) fn invalid<T: std::fmt::Debug>(
+        &self,
+        v: &Spanned<T>,
+        key: &str,
+        reason: &str,
+    ) -> StudyError {
+        StudyError::Invalid {
+            at: self.at(Some(v.span().start)),
+            key: key.into(),
+            value: format!("{:?}", v.get_ref()).trim_matches('"').to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    pub(super) fn missing(&self, key: &str, expected: &str, near: Option<usize>) -> StudyError {
+        StudyError::Missing {
+            at: self.at(near),
+            key: key.into(),
+            expected: expected.into(),
+        }
+    }
+}
+
+/// The base scenario with the study's `[ground_motion]` as its suite: record files relative
+/// to the study are made absolute so that the scenario's own relative paths still work.
+pub(super) fn suite_in_study(
+    here: &Here,
+    gm: &Spanned<toml::Table>,
+    sc_text: &str,
+    sc_path: &Path,
+    dir: &Path,
+) -> Result<(Scenario, Vec<String>), StudyError> {
+    let near = Some(gm.span().start);
+    let mut g = gm.get_ref().clone();
+    for k in ["kind", "scaling"] {
+        if let Some(v) = g.get(k)
+            && !(k == "kind" && v.as_str() == Some("suite"))
+        {
+            return Err(StudyError::Invalid {
+                at: here.at(near),
+                key: format!("ground_motion.{k}"),
+                value: v.to_string(),
+                reason: "a study's [ground_motion] is a suite of records (records = [ … ]) \
+                         scaled to each stripe by the study: no kind other than \"suite\", no \
+                         scaling"
+                    .into(),
+            });
+        }
+    }
+    let base = std::fs::canonicalize(dir).unwrap_or_else(|_| PathBuf::from(dir));
+    let mut names = Vec::new();
+    let Some(toml::Value::Array(records)) = g.get_mut("records") else {
+        return Err(here.missing(
+            "ground_motion.records",
+            "records = [{ file = \"…\", component = … }, …]",
+            near,
+        ));
+    };
+    for (i, r) in records.iter_mut().enumerate() {
+        let key = format!("ground_motion.records[{}]", i + 1);
+        let Some(t) = r.as_table_mut() else {
+            return Err(StudyError::Invalid {
+                at: here.at(near),
+                key,
+                value: r.to_string(),
+                reason: "each record is a table { file = \"…\", … }".into(),
+            });
+        };
+        if t.contains_key("factor") {
+            return Err(StudyError::Invalid {
+                at: here.at(near),
+                key: format!("{key}.factor"),
+                value: "(given)".into(),
+                reason: "the study scales every record to each stripe itself".into(),
+            });
+        }
+        if let Some(toml::Value::String(f)) = t.get("file").cloned() {
+            names.push(f.clone());
+            let p = Path::new(&f);
+            if p.is_relative() {
+                t.insert(
+                    "file".into(),
+                    toml::Value::String(base.join(p).display().to_string()),
+                );
+            }
+        } else {
+            names.push(String::new());
+        }
+    }
+    g.insert("kind".into(), toml::Value::String("suite".into()));
+    let mut scaling = toml::Table::new();
+    scaling.insert("rule".into(), toml::Value::String("none".into()));
+    g.insert("scaling".into(), toml::Value::Table(scaling));
+    let mut table: toml::Table = toml::from_str(sc_text).map_err(|e| StudyError::Syntax {
+        at: Location {
+            file: Arc::from(sc_path.display().to_string()),
+            line_col: None,
+        },
+        message: e.message().trim().to_string(),
+    })?;
+    table.insert("ground_motion".into(), toml::Value::Table(g));
+    // (positions in messages are of the merged text: the key names the place)
+    let origin = format!(
+        "{} with the [ground_motion] of {} (merged)",
+        sc_path.display(),
+        here.file
+    );
+    let sc_dir = sc_path.parent().unwrap_or(Path::new("."));
+    let sc = Scenario::from_table(&table, &origin, sc_dir)?;
+    Ok((sc, names))
+}
+
+fn structure_index(here: &Here, v: &Spanned<i64>, key: &str) -> Result<usize, StudyError> {
+    match *v.get_ref() {
+        1 => Ok(0),
+        2 => Ok(1),
+        _ => Err(here.invalid(v, key, "must be 1 or 2")),
+    }
+}
+
+pub(super) fn intensity_measure(
+    here: &Here,
+    raw: &Spanned<RawIntensity>,
+    scenario: &Scenario,
+) -> Result<(IntensityMeasure, ImUnits), StudyError> {
+    let r = raw.get_ref();
+    let near = Some(raw.span().start);
+    let m = r.measure.as_ref().ok_or_else(|| {
+        here.missing(
+            "intensity.measure",
+            "\"pga\", \"sa\" (5 %-damped Sa(T1) of `structure`) or \"sa_avg\" (geometric mean \
+             over `periods`)",
+            near,
+        )
+    })?;
+    let refuse = |present: bool, key: &str, why: &str| -> Result<(), StudyError> {
+        if present {
+            Err(StudyError::Invalid {
+                at: here.at(near),
+                key: format!("intensity.{key}"),
+                value: "(given)".into(),
+                reason: why.into(),
+            })
+        } else {
+            Ok(())
+        }
+    };
+    let measure = match m.get_ref().as_str() {
+        "pga" => {
+            refuse(
+                r.structure.is_some(),
+                "structure",
+                "not used with measure = \"pga\"",
+            )?;
+            refuse(
+                r.periods.is_some(),
+                "periods",
+                "not used with measure = \"pga\"",
+            )?;
+            refuse(
+                r.count.is_some(),
+                "count",
+                "not used with measure = \"pga\"",
+            )?;
+            IntensityMeasure::Pga
+        }
+        "sa" => {
+            refuse(
+                r.periods.is_some(),
+                "periods",
+                "not used with measure = \"sa\"",
+            )?;
+            refuse(r.count.is_some(), "count", "not used with measure = \"sa\"")?;
+            let s = r.structure.as_ref().ok_or_else(|| {
+                here.missing(
+                    "intensity.structure",
+                    "1 or 2: whose first-mode period T1 Sa is taken at",
+                    near,
+                )
+            })?;
+            let i = structure_index(here, s, "intensity.structure")?;
+            let period = scenario.structures[i]
+                .modal()
+                .periods()
+                .first()
+                .copied()
+                .unwrap_or(f64::NAN);
+            IntensityMeasure::Sa {
+                structure: i,
+                period,
+            }
+        }
+        "sa_avg" => {
+            refuse(
+                r.structure.is_some(),
+                "structure",
+                "not used with measure = \"sa_avg\"",
+            )?;
+            let p = r.periods.as_ref().ok_or_else(|| {
+                here.missing(
+                    "intensity.periods",
+                    "[shortest, longest] period of the average, s (e.g. 0.2 T1 to 3 T1)",
+                    near,
+                )
+            })?;
+            let (lo, hi) = match p.get_ref().as_slice() {
+                [a, b] if a.is_finite() && b.is_finite() && *a > 0.0 && a < b && *b <= 20.0 => {
+                    (*a, *b)
+                }
+                _ => {
+                    return Err(here.invalid(
+                        p,
+                        "intensity.periods",
+                        "must be [shortest, longest] in s, 0 < shortest < longest ≤ 20",
+                    ));
+                }
+            };
+            let n = match &r.count {
+                None => 10,
+                Some(c) => usize::try_from(*c.get_ref())
+                    .ok()
+                    .filter(|n| (2..=100).contains(n))
+                    .ok_or_else(|| here.invalid(c, "intensity.count", "must be in 2..=100"))?,
+            };
+            let periods = (0..n)
+                .map(|k| lo * (hi / lo).powf(k as f64 / (n - 1) as f64))
+                .collect();
+            IntensityMeasure::SaAvg { periods }
+        }
+        _ => {
+            return Err(here.invalid(
+                m,
+                "intensity.measure",
+                "must be \"pga\", \"sa\" or \"sa_avg\"",
+            ));
+        }
+    };
+    let units = match r.units.as_ref() {
+        None => ImUnits::G,
+        Some(u) => match u.get_ref().as_str() {
+            "g" => ImUnits::G,
+            "m/s2" | "m/s^2" | "m/s²" => ImUnits::Ms2,
+            _ => return Err(here.invalid(u, "intensity.units", "must be \"g\" or \"m/s2\"")),
+        },
+    };
+    Ok((measure, units))
+}
+
+pub(super) fn limit_state(
+    here: &Here,
+    i: usize,
+    raw: &Spanned<RawLimit>,
+    scenario: &Scenario,
+) -> Result<LimitState, StudyError> {
+    let r = raw.get_ref();
+    let near = Some(raw.span().start);
+    let key = |k: &str| format!("limit_state[{}].{k}", i + 1);
+    let k = r.kind.as_ref().ok_or_else(|| {
+        here.missing(
+            &key("kind"),
+            "\"pounding\", \"contact_force\", \"ductility\", \"drift_ratio\" or \
+             \"floor_acceleration\"",
+            near,
+        )
+    })?;
+    let kind = match k.get_ref().as_str() {
+        "pounding" => LimitKind::Pounding,
+        "contact_force" => LimitKind::ContactForce,
+        "ductility" => LimitKind::Ductility,
+        "drift_ratio" => LimitKind::DriftRatio,
+        "floor_acceleration" => LimitKind::FloorAcceleration,
+        _ => {
+            return Err(here.invalid(
+                k,
+                &key("kind"),
+                "must be \"pounding\", \"contact_force\", \"ductility\", \"drift_ratio\" or \
+                 \"floor_acceleration\"",
+            ));
+        }
+    };
+    let structure = r
+        .structure
+        .as_ref()
+        .map(|s| structure_index(here, s, &key("structure")))
+        .transpose()?;
+    let (unit_factor, unit) = match (&r.units, kind) {
+        (None, LimitKind::ContactForce) => (1.0, "N"),
+        (None, LimitKind::FloorAcceleration) => (1.0, "m/s2"),
+        (None, _) => (1.0, ""),
+        (Some(u), LimitKind::FloorAcceleration) => match u.get_ref().as_str() {
+            "g" => (G, "g"),
+            "m/s2" | "m/s^2" | "m/s²" => (1.0, "m/s2"),
+            _ => return Err(here.invalid(u, &key("units"), "must be \"g\" or \"m/s2\"")),
+        },
+        (Some(u), _) => {
+            return Err(here.invalid(
+                u,
+                &key("units"),
+                "only with kind = \"floor_acceleration\" (\"g\" or \"m/s2\"); the other \
+                 thresholds are SI (N) or ratios",
+            ));
+        }
+    };
+    if let (LimitKind::Pounding | LimitKind::ContactForce, Some(st)) = (kind, &r.structure) {
+        return Err(here.invalid(
+            st,
+            &key("structure"),
+            "not used with this kind: it concerns both structures",
+        ));
+    }
+    let value = if kind == LimitKind::Pounding {
+        if let Some(v) = &r.value {
+            return Err(here.invalid(
+                v,
+                &key("value"),
+                "not used with kind = \"pounding\" (any contact; the gaps are the scenario's)",
+            ));
+        }
+        0.0
+    } else {
+        let v = r.value.as_ref().ok_or_else(|| {
+            here.missing(
+                &key("value"),
+                match kind {
+                    LimitKind::ContactForce => "the peak contact force not to exceed, N",
+                    LimitKind::Ductility => "the storey ductility demand not to exceed (> 1)",
+                    LimitKind::DriftRatio => "the storey drift ratio not to exceed (0.01 = 1 %)",
+                    _ => "the floor acceleration not to exceed, m/s² (or units = \"g\")",
+                },
+                near,
+            )
+        })?;
+        let x = *v.get_ref();
+        let ok = x.is_finite()
+            && match kind {
+                LimitKind::Ductility => x > 1.0 && x <= 1000.0,
+                LimitKind::DriftRatio => x > 0.0 && x <= 1.0,
+                _ => x > 0.0,
+            };
+        if !ok {
+            return Err(here.invalid(
+                v,
+                &key("value"),
+                match kind {
+                    LimitKind::Ductility => "must be in (1, 1000]",
+                    LimitKind::DriftRatio => "must be in (0, 1] (a ratio: 0.01 = 1 %)",
+                    _ => "must be positive",
+                },
+            ));
+        }
+        x * unit_factor
+    };
+    if kind == LimitKind::Ductility {
+        let yielding: Vec<usize> = (0..2)
+            .filter(|&s| scenario.structures[s].hysteresis().is_some())
+            .collect();
+        let ok = match structure {
+            Some(s) => yielding.contains(&s),
+            None => !yielding.is_empty(),
+        };
+        if !ok {
+            return Err(here.invalid(
+                k,
+                &key("kind"),
+                &match structure {
+                    Some(s) => format!(
+                        "structure {} has no yielding storeys (a ductility needs `hysteresis`)",
+                        s + 1
+                    ),
+                    None => "neither structure has yielding storeys (a ductility needs \
+                             `hysteresis`)"
+                        .to_string(),
+                },
+            ));
+        }
+    }
+    // the name as the user wrote the threshold: `ductility>4(2)`, `floor_acceleration>1g(1)`
+    let who = structure.map_or(String::new(), |s| format!("({})", s + 1));
+    let given = format!("{}", value / unit_factor);
+    let name = match kind {
+        LimitKind::Pounding => "pounding".to_string(),
+        _ => format!("{}>{given}{unit}{who}", kind.key()),
+    };
+    Ok(LimitState {
+        kind,
+        value,
+        structure,
+        name,
+    })
+}
+
+pub(super) fn gap_axis(
+    here: &Here,
+    raw: Option<&Spanned<RawGaps>>,
+    scenario: &Scenario,
+    mode: GapMode,
+) -> Result<Vec<f64>, StudyError> {
+    let key = "fragility.gaps";
+    let Some(g) = raw else {
+        // 0 to twice the scenario's gap (at the highest level in "scaled" mode, else the
+        // largest), 41 values
+        let g0 = match mode {
+            GapMode::Scaled => top_gap(scenario),
+            GapMode::Uniform => scenario
+                .contact
+                .levels
+                .iter()
+                .map(|l| l.gap)
+                .fold(0.0, f64::max),
+        };
+        let to = if g0 > 0.0 { 2.0 * g0 } else { 0.5 };
+        return Ok((0..=40).map(|k| to * k as f64 / 40.0).collect());
+    };
+    let v: Vec<f64> = match g.get_ref() {
+        RawGaps::List(v) => v.clone(),
+        RawGaps::Range { to, count } => {
+            let n = count.unwrap_or(41);
+            if !(to.is_finite() && *to > 0.0 && *to <= 100.0 && (2..=10_000).contains(&n)) {
+                return Err(here.invalid(
+                    g,
+                    key,
+                    "{ to, count }: 0 < to ≤ 100 m, count in 2..=10000",
+                ));
+            }
+            (0..n).map(|k| to * k as f64 / (n - 1) as f64).collect()
+        }
+    };
+    if v.is_empty()
+        || v.len() > 10_000
+        || v.iter()
+            .any(|x| !(x.is_finite() && *x >= 0.0 && *x <= 100.0))
+        || v.windows(2).any(|w| w[1] <= w[0])
+    {
+        return Err(here.invalid(
+            g,
+            key,
+            "must be a list of 1 to 10000 gaps in m, 0 ≤ gap ≤ 100, strictly increasing, or \
+             { to = …, count = … }",
+        ));
+    }
+    Ok(v)
+}
+
+pub(super) fn target(
+    here: &Here,
+    t: &Spanned<RawTarget>,
+    stripes: &[f64],
+    units: ImUnits,
+) -> Result<PoundingTarget, StudyError> {
+    let near = Some(t.span().start);
+    let r = t.get_ref();
+    let im = r.im.as_ref().ok_or_else(|| {
+        here.missing(
+            "fragility.target.im",
+            "the design intensity, one of the stripes",
+            near,
+        )
+    })?;
+    let stripe = stripes
+        .iter()
+        .position(|s| (s - im.get_ref()).abs() <= 1e-9 * s.abs())
+        .ok_or_else(|| {
+            here.invalid(
+                im,
+                "fragility.target.im",
+                &format!(
+                    "must be one of the stripes {:?} (the gap is read from the runs at that \
+                     intensity)",
+                    stripes
+                ),
+            )
+        })?;
+    let p = r.probability.as_ref().ok_or_else(|| {
+        here.missing(
+            "fragility.target.probability",
+            "the accepted probability of pounding at that intensity, e.g. 0.1",
+            near,
+        )
+    })?;
+    let x = *p.get_ref();
+    if !(x.is_finite() && x > 0.0 && x < 1.0) {
+        return Err(here.invalid(p, "fragility.target.probability", "must be in (0, 1)"));
+    }
+    Ok(PoundingTarget {
+        im: stripes[stripe] * units.factor(),
+        stripe,
+        probability: x,
+    })
+}

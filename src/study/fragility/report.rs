@@ -1,0 +1,202 @@
+//! The text report of a fragility study (what `pounding fragility` prints).
+
+use std::fmt::Write as _;
+
+use super::{FragilityRun, MODELS};
+
+/// The report: the study, the fit of every limit state with and without pounding, the
+/// P(pounding) at the stripes for a few gaps, the gap for the target probability.
+pub fn report(run: &FragilityRun) -> String {
+    let s = &run.study;
+    let u = s.units.key();
+    let mut o = String::new();
+    let stripes = run.stripes();
+    let _ = writeln!(o, "{}", s.title);
+    let _ = writeln!(
+        o,
+        "  {} records × {} stripes = {} runs (each with and without contact{}), scenario {}",
+        s.record_names.len(),
+        stripes.len(),
+        run.outcomes.len(),
+        if s.check { ", self-checked" } else { "" },
+        s.scenario_file
+    );
+    let _ = writeln!(
+        o,
+        "  intensity measure {} [{u}]; stripes {}",
+        s.measure.label(),
+        stripes
+            .iter()
+            .map(|x| format!("{x}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let f: Vec<f64> = run.outcomes.iter().map(|r| r.factor).collect();
+    let (lo, hi) = f
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    let _ = writeln!(o, "  scale factors {lo:.3}–{hi:.3}");
+    for n in &s.notes {
+        let _ = writeln!(o, "  note: {n}");
+    }
+    let _ = writeln!(o);
+    let _ = writeln!(
+        o,
+        "  {:<34} {:<8} {:>26}   {:>10} {:>22} {:>7} {:>16}",
+        "limit state",
+        "model",
+        "exceedances per stripe",
+        format!("θ [{u}]"),
+        format!("{:.0} % interval", 100.0 * s.confidence),
+        "β",
+        "interval"
+    );
+    for c in &run.curves {
+        let ls = &s.limit_states[c.limit_state];
+        let counts: Vec<String> = c.exceedances.iter().map(|z| z.to_string()).collect();
+        let counts = format!(
+            "{}/{}",
+            counts.join(" "),
+            c.runs.first().copied().unwrap_or(0)
+        );
+        let (theta, ti, beta, bi) = match &c.fit {
+            Ok(fit) => {
+                let (ti, bi) = c.intervals.as_ref().map_or(("–".into(), "–".into()), |b| {
+                    (
+                        format!("{:.3}–{:.3}", b.theta.lo, b.theta.hi),
+                        format!("{:.2}–{:.2}", b.beta.lo, b.beta.hi),
+                    )
+                });
+                let beta = if fit.at_bound {
+                    format!("{:.2}*", fit.beta)
+                } else {
+                    format!("{:.2}", fit.beta)
+                };
+                (format!("{:.3}", fit.theta), ti, beta, bi)
+            }
+            Err(e) => (
+                format!("({e})"),
+                String::new(),
+                String::new(),
+                String::new(),
+            ),
+        };
+        let _ = writeln!(
+            o,
+            "  {:<34} {:<8} {:>26}   {:>10} {:>22} {:>7} {:>16}",
+            ls.name, MODELS[c.model], counts, theta, ti, beta, bi
+        );
+    }
+    if run
+        .curves
+        .iter()
+        .any(|c| c.fit.as_ref().is_ok_and(|f| f.at_bound))
+    {
+        let _ = writeln!(
+            o,
+            "  (* β at its bound: the counts jump from none to all between two stripes; add \
+             stripes there)"
+        );
+    }
+    let _ = writeln!(
+        o,
+        "  model: with = the run with contact, without = the run without; for `pounding`, \
+         without = the relative displacement passes the gap at some level"
+    );
+    // P(pounding) at a few gaps
+    let t = &run.pounding;
+    let picks: Vec<usize> = {
+        let n = t.gaps.len();
+        let mut v: Vec<usize> = (0..5).map(|k| k * (n - 1) / 4).collect();
+        v.dedup();
+        v
+    };
+    let _ = writeln!(o);
+    let _ = writeln!(
+        o,
+        "  P(pounding | IM, gap) from the runs without contact ({} gap at every level{}):",
+        match s.gap_mode {
+            crate::input::fragility::GapMode::Uniform => "the same",
+            crate::input::fragility::GapMode::Scaled => "the scenario's gaps scaled; the",
+        },
+        match s.gap_mode {
+            crate::input::fragility::GapMode::Uniform => "",
+            crate::input::fragility::GapMode::Scaled => " at the highest level",
+        }
+    );
+    let mut head = format!("  {:>12}", format!("IM [{u}]"));
+    for &k in &picks {
+        let _ = write!(head, " {:>12}", format!("{:.0} mm", 1e3 * t.gaps[k]));
+    }
+    let _ = writeln!(o, "{head}");
+    for (j, x) in t.im.iter().enumerate() {
+        let mut line = format!("  {x:>12}");
+        for &k in &picks {
+            let _ = write!(line, " {:>12.2}", t.p[j][k]);
+        }
+        let _ = writeln!(o, "{line}");
+    }
+    if let Some(g) = &run.target_gap {
+        let _ = writeln!(o);
+        let _ = writeln!(
+            o,
+            "  gap for P(pounding) ≤ {:.0} % at IM = {} {u}: {:.1} mm ({} of {} records pound \
+             at it; the records' critical gaps ranked){}",
+            100.0 * g.probability,
+            g.im,
+            1e3 * g.empirical,
+            g.pounding_records,
+            g.records,
+            match g.lognormal {
+                Some(l) => format!(
+                    "; {:.1} mm from a lognormal fitted to the critical gaps",
+                    1e3 * l
+                ),
+                None => String::new(),
+            }
+        );
+    }
+    let bad = run.unconverged();
+    if bad > 0 {
+        let _ = writeln!(
+            o,
+            "  warning: {bad} of {} runs did not pass the self-check (runs.csv, converged)",
+            run.outcomes.len()
+        );
+    }
+    o
+}
+
+/// The runs' warnings, each once, with the first record and stripe that gave it.
+pub fn warnings(run: &FragilityRun) -> Vec<String> {
+    let mut seen = std::collections::BTreeSet::new();
+    let mut out = Vec::new();
+    for w in &run.study.scenario.warnings {
+        if seen.insert(w.clone()) {
+            out.push(w.clone());
+        }
+    }
+    let stripes = run.stripes();
+    let mut more = 0;
+    for o in &run.outcomes {
+        for w in &o.warnings {
+            // (a warning's numbers differ from run to run: ten are enough to see what is wrong)
+            if out.len() >= 10 {
+                more += usize::from(seen.insert(w.clone()));
+                continue;
+            }
+            if seen.insert(w.clone()) {
+                out.push(format!(
+                    "{w} (record {}, IM = {} {}; and maybe others)",
+                    run.study.record_names[o.record],
+                    stripes[o.stripe],
+                    run.study.units.key()
+                ));
+            }
+        }
+    }
+    if more > 0 {
+        out.push(format!("… and {more} more warnings of other runs"));
+    }
+    out
+}

@@ -1,0 +1,263 @@
+//! The files of a fragility study (a contract for scripts), each written atomically
+//! (temporary file then rename), `fit.json` last:
+//!
+//! - `fragility.csv`: `limit_state`, `model` (`with` / `without` contact), `im` (the stripe,
+//!   in the study's IM units), `runs`, `exceedances`, `fraction`;
+//! - `p_pounding.csv`: `im`, `gap` (m), `p_pounding`, from the runs without contact;
+//! - `runs.csv`: one row per record and stripe: `record`, `file`, `stripe`, `im`, `factor`,
+//!   `record_im` (the record's own IM, study units), `critical_gap` (m), per level
+//!   `levelk_required_separation` (m), `impacts`, `peak_force` (N), per structure i
+//!   `ductility_i`, `ductility_no_contact_i`, `drift_ratio_i`, `drift_ratio_no_contact_i`,
+//!   `floor_acceleration_i`, `floor_acceleration_no_contact_i` (m/s²), `converged`;
+//! - `fit.json`: the study (measure, units, stripes, records), per limit state and model the
+//!   fit (`theta` in IM units, `beta`, `theta_interval`, `beta_interval`, …), the gap for the
+//!   target probability.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+use super::{FragilityRun, MODELS, pounding};
+use crate::input::fragility::{GapMode, IntensityMeasure};
+use crate::output::atomic::{OutputError, write_atomic};
+
+/// The files, in the order written.
+pub const FILES: [&str; 4] = ["fragility.csv", "p_pounding.csv", "runs.csv", "fit.json"];
+
+fn num(out: &mut String, x: f64) {
+    if x.is_finite() {
+        out.push_str(&crate::numerics::format::fmt_f64(x));
+    } else if x == f64::INFINITY {
+        out.push_str("inf");
+    }
+}
+
+fn text(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// `fragility.csv`.
+pub fn fragility_csv(run: &FragilityRun) -> String {
+    let mut out = String::from("limit_state,model,im,runs,exceedances,fraction\n");
+    let stripes = run.stripes();
+    for c in &run.curves {
+        let name = &run.study.limit_states[c.limit_state].name;
+        for (j, x) in stripes.iter().enumerate() {
+            out.push_str(&format!("{},{},", text(name), MODELS[c.model]));
+            num(&mut out, *x);
+            out.push_str(&format!(",{},{},", c.runs[j], c.exceedances[j]));
+            if c.runs[j] > 0 {
+                num(&mut out, c.exceedances[j] as f64 / c.runs[j] as f64);
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// `p_pounding.csv`.
+pub fn p_pounding_csv(run: &FragilityRun) -> String {
+    let t = &run.pounding;
+    let mut out = String::from("im,gap,p_pounding\n");
+    for (j, x) in t.im.iter().enumerate() {
+        for (k, g) in t.gaps.iter().enumerate() {
+            num(&mut out, *x);
+            out.push(',');
+            num(&mut out, *g);
+            out.push(',');
+            num(&mut out, t.p[j][k]);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// `runs.csv`.
+pub fn runs_csv(run: &FragilityRun) -> String {
+    let levels = run.study.scenario.contact.levels.len();
+    let mut out = String::from("record,file,stripe,im,factor,record_im,critical_gap");
+    for k in 1..=levels {
+        out.push_str(&format!(",level{k}_required_separation"));
+    }
+    out.push_str(",impacts,peak_force");
+    for what in ["ductility", "drift_ratio", "floor_acceleration"] {
+        for i in 1..=2 {
+            out.push_str(&format!(",{what}_{i},{what}_no_contact_{i}"));
+        }
+    }
+    out.push_str(",converged\n");
+    let u = run.study.units.factor();
+    let stripes = run.stripes();
+    let gaps: Vec<f64> = run
+        .study
+        .scenario
+        .contact
+        .levels
+        .iter()
+        .map(|l| l.gap)
+        .collect();
+    let top = crate::input::fragility::top_gap(&run.study.scenario);
+    for o in &run.outcomes {
+        out.push_str(&format!(
+            "{},{},{},",
+            o.record + 1,
+            text(&run.study.record_names[o.record]),
+            o.stripe + 1
+        ));
+        num(&mut out, stripes[o.stripe]);
+        out.push(',');
+        num(&mut out, o.factor);
+        out.push(',');
+        num(&mut out, run.record_im[o.record] / u);
+        out.push(',');
+        num(
+            &mut out,
+            pounding::critical_gap(&o.required, &gaps, top, run.study.gap_mode),
+        );
+        for r in &o.required {
+            out.push(',');
+            num(&mut out, *r);
+        }
+        out.push_str(&format!(",{},", o.impacts));
+        num(&mut out, o.peak_force);
+        for i in 0..2 {
+            for m in 0..2 {
+                out.push(',');
+                if let Some(d) = o.ductility[i][m] {
+                    num(&mut out, d);
+                }
+            }
+        }
+        for v in [&o.drift_ratio, &o.floor_acceleration] {
+            for row in v {
+                for x in row {
+                    out.push(',');
+                    num(&mut out, *x);
+                }
+            }
+        }
+        out.push(',');
+        out.push_str(match o.converged {
+            Some(true) => "true",
+            Some(false) => "false",
+            None => "unchecked",
+        });
+        out.push('\n');
+    }
+    out
+}
+
+fn finite(x: f64) -> Value {
+    if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+/// `fit.json`.
+pub fn fit_json(run: &FragilityRun) -> Value {
+    let s = &run.study;
+    let measure = match &s.measure {
+        IntensityMeasure::Pga => json!({ "kind": "pga" }),
+        IntensityMeasure::Sa { structure, period } => {
+            json!({ "kind": "sa", "structure": structure + 1, "period": period, "damping": super::im::DAMPING })
+        }
+        IntensityMeasure::SaAvg { periods } => {
+            json!({ "kind": "sa_avg", "periods": periods, "damping": super::im::DAMPING })
+        }
+    };
+    let u = s.units.factor();
+    let fits: Vec<Value> = run
+        .curves
+        .iter()
+        .map(|c| {
+            let ls = &s.limit_states[c.limit_state];
+            let mut v = json!({
+                "limit_state": ls.name,
+                "kind": ls.kind.key(),
+                "value": ls.value,
+                "structure": ls.structure.map(|i| i + 1),
+                "model": MODELS[c.model],
+                "runs": c.runs,
+                "exceedances": c.exceedances,
+            });
+            match &c.fit {
+                Ok(f) => {
+                    v["theta"] = finite(f.theta);
+                    v["beta"] = finite(f.beta);
+                    v["log_likelihood"] = finite(f.log_likelihood);
+                    v["at_bound"] = json!(f.at_bound);
+                    if let Some(b) = &c.intervals {
+                        v["theta_interval"] = json!([finite(b.theta.lo), finite(b.theta.hi)]);
+                        v["beta_interval"] = json!([finite(b.beta.lo), finite(b.beta.hi)]);
+                        v["confidence"] = json!(b.confidence);
+                        v["resamples"] = json!(b.resamples);
+                        v["failed_resamples"] = json!(b.failed);
+                    }
+                }
+                Err(e) => {
+                    v["theta"] = Value::Null;
+                    v["beta"] = Value::Null;
+                    v["error"] = json!(e.to_string());
+                }
+            }
+            v
+        })
+        .collect();
+    json!({
+        "title": s.title,
+        "scenario": s.scenario_file,
+        "measure": measure,
+        "im_label": s.measure.label(),
+        "im_units": s.units.key(),
+        "stripes": run.stripes(),
+        "records": s.record_names.iter().zip(&run.record_im).map(|(f, x)| json!({ "file": f, "im": x / u })).collect::<Vec<_>>(),
+        "runs": run.outcomes.len(),
+        "checked": s.check,
+        "unconverged_runs": run.unconverged(),
+        "gap_mode": match s.gap_mode { GapMode::Uniform => "uniform", GapMode::Scaled => "scaled" },
+        "method": "multi-stripe; lognormal by maximum likelihood on the stripe counts (Baker 2015), percentile bootstrap over records",
+        "fits": fits,
+        "target_gap": run.target_gap,
+        "notes": s.notes,
+    })
+}
+
+/// `fit.json`'s text (pretty-printed, a final newline).
+pub fn fit_json_text(run: &FragilityRun) -> String {
+    // (a `Value` of finite numbers and strings always serialises)
+    serde_json::to_string_pretty(&fit_json(run)).unwrap_or_default() + "\n"
+}
+
+/// Write every file into `dir` (created if missing), `fit.json` last, after `pictures` (the
+/// figures, drawn by the caller into `dir`: this layer knows no pictures); returns the paths.
+pub fn write(
+    run: &FragilityRun,
+    dir: &Path,
+    pictures: impl FnOnce() -> Vec<PathBuf>,
+) -> Result<Vec<PathBuf>, OutputError> {
+    std::fs::create_dir_all(dir).map_err(|source| OutputError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let texts = [
+        fragility_csv(run),
+        p_pounding_csv(run),
+        runs_csv(run),
+        fit_json_text(run),
+    ];
+    let mut written = Vec::new();
+    let mut pictures = Some(pictures);
+    for (name, t) in FILES.iter().zip(texts) {
+        let p = dir.join(name);
+        if *name == FILES[3]
+            && let Some(draw) = pictures.take()
+        {
+            written.extend(draw());
+        }
+        write_atomic(&p, t.as_bytes())?;
+        written.push(p);
+    }
+    Ok(written)
+}
