@@ -12,7 +12,8 @@
 //!
 //! A path is attributed to the deepest module it names (`crate::model::system::System` → the
 //! module `model::system`); a path through a re-export counts as an import of the re-exporting
-//! module. `src/main.rs` (the CLI) is not part of the library's graph.
+//! module. `src/main.rs` and its modules in `src/main/` (the CLI) are not part of the
+//! library's graph.
 //!
 //! The checker was verified to fail on a cycle planted in the sources (a `use
 //! crate::analysis::simulate::Report;` added to `src/model/system.rs`: rule 1 and rule 3 both
@@ -593,7 +594,8 @@ fn read_sources(src: &Path) -> BTreeMap<ModPath, (String, String)> {
     let mut out = BTreeMap::new();
     for f in files {
         let rel = f.strip_prefix(src).expect("under src/");
-        if rel == Path::new("main.rs") {
+        // the binary: src/main.rs and its modules in src/main/
+        if rel == Path::new("main.rs") || rel.starts_with("main") {
             continue;
         }
         let text = std::fs::read_to_string(&f).expect("a source file is UTF-8");

@@ -7,6 +7,8 @@ The same library as the ``pounding`` command line (written in Rust), with NumPy 
     res = pounding.run(sc)                      # both runs, as `pounding run`
     res.summary["structures"][0]["peak_displacement"]
     res.history["w1"]                           # NumPy float64 arrays, history.csv's columns
+    print(res.summary_text())                   # what `pounding run` prints
+    print(sc.separation_text())                 # what `pounding separation` prints
     table = pounding.sweep("examples/quick-sweep.toml", jobs=2)   # results.csv's columns
 
 Nothing is computed in Python: every function here parses its arguments, calls the compiled
@@ -35,6 +37,7 @@ __all__ = [
     "plan_sweep",
     "fragility",
     "FragilityResult",
+    "laws_text",
     "ScenarioError",
     "SweepError",
     "SolveError",
@@ -130,6 +133,12 @@ class RunResult:
         s = self.suite
         return {} if s is None else s["statistics"]
 
+    def summary_text(self) -> str:
+        """The summary ``pounding run`` prints on screen, the same text (for a suite of records,
+        the suite's report): the peaks with and without pounding, the impacts, the required
+        separation, the energy balance and the self-check."""
+        return self._out.summary_text()
+
     def to_pandas(self) -> dict[str, Any]:
         """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
         import pandas as pd  # optional dependency
@@ -167,6 +176,12 @@ def run(scenario: Scenario, *, check: bool = True, max_output_size: int = 1_000_
     if not isinstance(scenario, Scenario):
         raise TypeError(f"run() takes a pounding.Scenario, not {type(scenario).__name__}")
     return RunResult(_core.run(scenario, check, max_output_size))
+
+
+def laws_text(speed: float = 0.5) -> str:
+    """The table ``pounding laws --speed SPEED`` prints: the restitution each contact law that
+    takes a target e achieves on an isolated two-body impact at ``speed`` m/s (> 0)."""
+    return _core.laws_text(float(speed))
 
 
 class SweepTable(dict):

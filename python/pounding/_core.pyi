@@ -51,6 +51,12 @@ class Scenario:
         """A new scenario with keys set by the sweep's key paths, e.g.
         {"structure.2.period": 0.5, "ground_motion.pga": 0.4, "period_ratio": 0.7}, with the
         sweep's rules (setting `period` removes `bending_stiffness`, …). Raises ScenarioError."""
+    def modes_text(self) -> str:
+        """The table `pounding modes` prints."""
+    def separation_text(self, codes: list[str] | None = None, spectrum: str | None = None) -> str:
+        """The tables `pounding separation` prints (`codes` as --code, `spectrum` as
+        --spectrum); GIL released. Raises SolveError, ScenarioError (an unknown code or one
+        without factors, a bad spectrum)."""
     @property
     def toml(self) -> str:
         """The scenario's TOML text (what was validated)."""
@@ -81,6 +87,8 @@ class RunOutput:
         """impacts.csv's columns (`level` int64, the rest float64)."""
     def floors(self) -> dict[str, npt.NDArray[np.float64]]:
         """floors.csv's columns."""
+    def summary_text(self) -> str:
+        """The summary `pounding run` prints (a suite's report for a suite of records)."""
     def suite_csv(self) -> str | None:
         """suite.csv's text for a suite of records; None for one record."""
     @property
@@ -130,6 +138,10 @@ class Sweep:
         """Raise SweepError when no case is a valid scenario (as `pounding sweep`)."""
     def columns(self, rows: list[str]) -> dict[str, Union[npt.NDArray[Any], list[str]]]:
         """The typed columns of results rows (see pounding.SweepTable)."""
+
+def laws_text(speed: float = 0.5) -> str:
+    """The table `pounding laws --speed SPEED` prints; GIL released. Raises ValueError for a
+    speed that is not a finite number > 0."""
 
 def available_parallelism() -> int:
     """The number of threads the machine offers."""

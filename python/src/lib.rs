@@ -332,6 +332,46 @@ impl PyScenario {
         format!("Scenario({:?}, title={:?})", self.origin, self.inner.title)
     }
 
+    /// The table `pounding modes` prints for this scenario.
+    fn modes_text(&self) -> PyResult<String> {
+        no_panic(|| Ok(pounding::output::text::modes_table(&self.inner)))
+    }
+
+    /// The tables `pounding separation` prints: every rule and code at every contact level
+    /// (`codes`: only these, as `--code`; `spectrum`: a design spectrum for the rules, as
+    /// `--spectrum`), with the GIL released during the run without pounding.
+    #[pyo3(signature = (codes = None, spectrum = None))]
+    fn separation_text(
+        &self,
+        py: Python<'_>,
+        codes: Option<Vec<String>>,
+        spectrum: Option<String>,
+    ) -> PyResult<String> {
+        let sc = self.inner.clone();
+        py.detach(|| {
+            no_panic(|| {
+                let spectrum = spectrum
+                    .as_deref()
+                    .map(pounding::input::scenario::design::spectrum_from_arg)
+                    .transpose()
+                    .map_err(scenario_err)?;
+                let report = pounding::analysis::gap_report::gap_report(
+                    &sc,
+                    spectrum.as_ref(),
+                    codes.as_deref(),
+                )
+                .map_err(|e| match e {
+                    pounding::analysis::gap_report::GapError::UnknownCode(_)
+                    | pounding::analysis::gap_report::GapError::NotInScenario(_) => {
+                        ScenarioError::new_err(e.to_string())
+                    }
+                    _ => SolveError::new_err(e.to_string()),
+                })?;
+                Ok(pounding::output::text::separation_report(&report))
+            })
+        })
+    }
+
     fn __reduce__<'py>(
         slf: &Bound<'py, Self>,
     ) -> PyResult<(Bound<'py, PyAny>, (String, String, PathBuf))> {
@@ -348,6 +388,8 @@ impl PyScenario {
 #[pyclass(frozen, module = "pounding._core", name = "RunOutput")]
 struct PyRunOutput {
     scenario: Arc<Scenario>,
+    /// The scenario's name in reports (its file, `<dict>`, …), as `pounding run` names it.
+    name: String,
     report: Report,
     capture: RunCapture,
     floor_columns: Vec<String>,
@@ -386,6 +428,20 @@ impl PyRunOutput {
             .map(pounding::study::suite::write::section);
         pounding::output::run::summary_json_with(&self.scenario, &self.report, section.as_ref())
             .map_err(OutputError::new_err)
+    }
+
+    /// The summary `pounding run` prints (for a suite of records, the suite's report).
+    fn summary_text(&self) -> PyResult<String> {
+        no_panic(|| {
+            Ok(match self.suite.as_deref() {
+                Some(run) => {
+                    pounding::study::suite::report::text(run, &self.scenario.title, &self.name)
+                }
+                None => {
+                    pounding::output::text::run_summary(&self.scenario, &self.name, &self.report)
+                }
+            })
+        })
     }
 
     /// suite.csv's text for a suite of records (`None` for one record).
@@ -457,6 +513,7 @@ fn run(
     max_output_size: u64,
 ) -> PyResult<PyRunOutput> {
     let sc = scenario.get().inner.clone();
+    let name = scenario.get().origin.clone();
     py.detach(|| {
         no_panic(|| {
             if sc.suite.is_some() {
@@ -469,6 +526,7 @@ fn run(
                 let rep = &run.records[run.representative];
                 return Ok(PyRunOutput {
                     scenario: Arc::new(rep.scenario.clone()),
+                    name,
                     report: rep.report.clone(),
                     capture: rep.capture.clone(),
                     floor_columns: pounding::output::run::floor_columns(&rep.scenario),
@@ -485,6 +543,7 @@ fn run(
             let floor_columns = pounding::output::run::floor_columns(&sc);
             Ok(PyRunOutput {
                 scenario: sc.clone(),
+                name,
                 report,
                 capture,
                 floor_columns,
@@ -733,6 +792,25 @@ fn fragility(
     })
 }
 
+/// The table `pounding laws` prints: the restitution each contact law that takes a target e
+/// achieves on an isolated impact at approach speed `speed` (m/s), GIL released.
+#[pyfunction]
+#[pyo3(signature = (speed = 0.5))]
+fn laws_text(py: Python<'_>, speed: f64) -> PyResult<String> {
+    if !(speed.is_finite() && speed > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "speed must be a finite number > 0 (m/s), got {speed}"
+        )));
+    }
+    py.detach(|| {
+        no_panic(|| {
+            let table = pounding::analysis::restitution::restitution_table(speed)
+                .map_err(|e| SolveError::new_err(e.to_string()))?;
+            Ok(pounding::output::text::laws_table(&table))
+        })
+    })
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -746,6 +824,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(fragility, m)?)?;
     m.add_function(wrap_pyfunction!(available_parallelism, m)?)?;
+    m.add_function(wrap_pyfunction!(laws_text, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

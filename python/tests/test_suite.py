@@ -35,6 +35,8 @@ def test_suite_run_gives_records_and_statistics(examples: Path, tmp_path: Path, 
     assert out.returncode == 0, out.stderr
     for f in ("summary.json", "suite.csv"):
         assert (tmp_path / "py" / f).read_text() == (tmp_path / "cli" / f).read_text(), f
+    # the suite's report, as `pounding run` prints it before the files it wrote
+    assert out.stdout.startswith(r.summary_text() + "\nwrote ")
 
 
 def test_one_record_has_no_suite(examples: Path) -> None:

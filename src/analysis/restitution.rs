@@ -185,3 +185,50 @@ impl TargetLaw {
         }
     }
 }
+
+/// The target restitutions of `pounding laws`' table (columns).
+pub const TABLE_TARGETS: [f64; 8] = [0.3, 0.4, 0.5, 0.6, 0.65, 0.7, 0.8, 0.9];
+/// The Hertz-family stiffness of the table, N/m^1.5: the seed paper's k_h. The laws are
+/// scale-free, so the achieved e does not depend on it.
+pub const TABLE_K_HERTZ: f64 = 2.808e10;
+/// Kelvin's linear stiffness of the table, N/m.
+pub const TABLE_K_LINEAR: f64 = 1.0e9;
+/// The two cantilevers' masses of the table, kg (unequal, so that a law's dependence on the
+/// mass ratio would show).
+pub const TABLE_MASSES: [f64; 2] = [1.0e6, 3.0e6];
+
+/// The achieved restitution of every [`TargetLaw`] at every target of [`TABLE_TARGETS`]
+/// (what `pounding laws` prints).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RestitutionTable {
+    /// Approach speed, m/s.
+    pub speed: f64,
+    /// The target restitutions, the columns.
+    pub targets: Vec<f64>,
+    /// Per law (in the order of [`TargetLaw::ALL`]), the achieved e at each target.
+    pub rows: Vec<(TargetLaw, Vec<f64>)>,
+}
+
+/// Measures [`RestitutionTable`] at approach speed `speed` (m/s, finite and > 0) through
+/// [`isolated_impact`].
+pub fn restitution_table(speed: f64) -> Result<RestitutionTable, SolveError> {
+    let [m1, m2] = TABLE_MASSES;
+    let rows = TargetLaw::ALL
+        .iter()
+        .map(|&law| {
+            let achieved = TABLE_TARGETS
+                .iter()
+                .map(|&e| {
+                    let l = law.law(e, TABLE_K_HERTZ, TABLE_K_LINEAR);
+                    isolated_impact(&l, m1, m2, speed).map(|o| o.restitution)
+                })
+                .collect::<Result<Vec<f64>, SolveError>>()?;
+            Ok((law, achieved))
+        })
+        .collect::<Result<Vec<_>, SolveError>>()?;
+    Ok(RestitutionTable {
+        speed,
+        targets: TABLE_TARGETS.to_vec(),
+        rows,
+    })
+}

@@ -8,3 +8,4 @@ pub mod record_summary;
 pub mod row_spool;
 pub mod run;
 pub mod spectrum_report;
+pub mod text;

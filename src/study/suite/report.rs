@@ -191,3 +191,29 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
     );
     o
 }
+
+/// The line `pounding run` shows on a terminal before it runs the suite of `sc` (`check`: with
+/// the self-check).
+pub fn progress_line(sc: &crate::input::scenario::Scenario, check: bool) -> String {
+    let n = sc.suite.as_ref().map_or(0, |s| s.records.len());
+    format!(
+        "  running {n} records (with and without pounding{}) …",
+        if check { ", self-checked" } else { "" }
+    )
+}
+
+/// The warnings of a suite's run: the scenario's own (`sc`'s) once, then each warning a
+/// record's run adds, named with the first record that gave it.
+pub fn warnings(sc: &crate::input::scenario::Scenario, run: &SuiteRun) -> Vec<String> {
+    let mut seen: std::collections::BTreeSet<&str> =
+        sc.warnings.iter().map(String::as_str).collect();
+    let mut out = sc.warnings.clone();
+    for r in &run.records {
+        for w in &r.report.warnings {
+            if seen.insert(w) {
+                out.push(format!("{w} (record {})", r.file));
+            }
+        }
+    }
+    out
+}

@@ -36,6 +36,7 @@ mod axes;
 mod edit;
 mod hash;
 mod keys;
+pub mod report;
 pub mod results;
 pub mod run;
 mod shard;
