@@ -14,7 +14,7 @@ pub mod separation_report;
 pub use convergence_table::convergence_table;
 pub use laws_table::laws_table;
 pub use modes_table::modes_table;
-pub use run_summary::{run_summary, self_check_line};
+pub use run_summary::{run_summary, self_check_line, time_history_verdict};
 pub use separation_report::separation_report;
 
 /// "1 impact", "15 impacts".

@@ -185,6 +185,9 @@ fn write_summary(o: &mut String, sc: &Scenario, name: &str, r: &Report) -> fmt::
         "  required separation [m]: time history {:.4} | ABS {:.4}  SRSS {:.4}  DDC {:.4}  (DDC as printed in the paper {:.4})",
         s.time_history, s.abs, s.srss, s.ddc, s.ddc_paper
     )?;
+    if let Some(line) = time_history_verdict(r) {
+        writeln!(o, "  {line}")?;
+    }
     writeln!(
         o,
         "  energy balance error: {:.1e} with contact, {:.1e} without",
@@ -268,4 +271,31 @@ pub fn self_check_line(a: &crate::analysis::simulate::accuracy::AccuracyCheck) -
             100.0 * a.threshold
         )
     }
+}
+
+/// Whether the gap given suffices at every contact level by the exact time-history separation
+/// (summary.json `separation.levels` and `verdict`), and the level that governs: where
+/// gap − required is smallest. `None` without per-level checks.
+pub fn time_history_verdict(r: &Report) -> Option<String> {
+    let key = "time_history";
+    let g = r.separation.verdict.rules.iter().find(|g| g.key == key)?;
+    let n = r.separation.levels.len();
+    let short = r
+        .separation
+        .levels
+        .iter()
+        .filter(|l| l.rules.iter().any(|c| c.key == key && !c.sufficient))
+        .count();
+    let what = match (short, n) {
+        (0, 1) => "suffices".to_string(),
+        (0, n) => format!("suffices at all {n}"),
+        (_, 1) => "is TOO SMALL".to_string(),
+        (k, n) => format!("is TOO SMALL at {k} of {n}"),
+    };
+    Some(format!(
+        "time-history separation at every contact level: the gap {what}; governing: h = {} m ({:.1} mm required, gap {:.1} mm)",
+        g.height,
+        g.required * 1e3,
+        g.gap * 1e3
+    ))
 }
