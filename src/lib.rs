@@ -18,6 +18,7 @@
 
 pub mod analysis;
 pub mod codes;
+pub mod diagnostics;
 pub mod figures;
 pub mod input;
 pub mod integrate;

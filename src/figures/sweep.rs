@@ -150,22 +150,39 @@ fn value(table: &Table, r: &TableRow, field: &str) -> f64 {
     }
 }
 
-/// An axis key as a person reads it, with the name the command line uses.
+/// An axis key as a person reads it, with the name the command line uses: the derived ratios'
+/// symbols, else the scenario key's label and unit from its table
+/// ([`crate::input::scenario::keys`]), else the key itself.
 pub fn axis_label(key: &str) -> String {
     let readable = match key {
-        "period_ratio" => "T1/T2",
-        "ground_period_ratio" => "T2/Tg",
-        "ground_motion.pga" | "ground_motion.scale_to_pga" => "PGA [g]",
-        "ground_motion.period" => "Tg [s]",
-        "ground_motion.file" => "record",
-        "contact.gap" => "gap [m]",
-        "solver.dt" => "dt [s]",
-        k if k.starts_with("structure.") && k.ends_with(".period") => {
-            return format!("T{} [s] ({key})", &k[10..k.len() - 7]);
-        }
-        _ => return key.to_string(),
+        "period_ratio" => "T1/T2".to_string(),
+        "ground_period_ratio" => "T2/Tg".to_string(),
+        _ => match scenario_label(key) {
+            Some(l) => l,
+            None => return key.to_string(),
+        },
     };
     format!("{readable} ({key})")
+}
+
+/// A sweep key's label from the key table: `label [unit]`, `{i}` replaced by the structure's
+/// number (`structure.2.period` → `T2 [s]`).
+fn scenario_label(key: &str) -> Option<String> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let index = parts.iter().find(|p| p.chars().all(|c| c.is_ascii_digit()));
+    let generic: Vec<&str> = parts
+        .iter()
+        .map(|p| if Some(p) == index { "N" } else { p })
+        .collect();
+    let generic = generic.join(".");
+    let info = crate::input::scenario::keys::all()
+        .find(|k| k.sweep_key().as_deref() == Some(generic.as_str()))?;
+    let label = info.label?.replace("{i}", index.copied().unwrap_or(""));
+    Some(if info.unit.is_empty() {
+        label
+    } else {
+        format!("{label} [{}]", info.unit)
+    })
 }
 
 /// A short name for titles and legends.

@@ -1,4 +1,5 @@
-//! What a scenario file's errors say and where: [`Location`] (file, line, column),
+//! What a scenario file's errors say and where: [`Location`] (file, line, column: the crate's
+//! `diagnostics` kit, shared with sweeps and record readers),
 //! [`ScenarioError`], the parse context `Ctx` (TOML errors with the key and a suggestion, the
 //! usual-band warnings) and `Check`, the validator of one key against its range.
 
@@ -8,26 +9,11 @@ use std::sync::Arc;
 use toml::Spanned;
 
 use super::MIN_RESTITUTION;
-use super::keys::{SEPARATION_TABLES, SUITE_TABLES, TABLES};
+use super::keys::table_with_keys;
 use super::ranges::{physical_range, unusual};
 
-/// Where in a scenario file something is.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Location {
-    /// File name as given.
-    pub file: Arc<str>,
-    /// 1-based line and column, when known.
-    pub line_col: Option<(u32, u32)>,
-}
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.line_col {
-            Some((l, c)) => write!(f, "{}:{}:{}", self.file, l, c),
-            None => write!(f, "{}", self.file),
-        }
-    }
-}
+pub use crate::diagnostics::Location;
+pub(crate) use crate::diagnostics::{key_hint, unknown_field};
 
 /// Why a scenario was refused.
 #[derive(Debug, thiserror::Error)]
@@ -129,10 +115,7 @@ pub(crate) struct Ctx<'a> {
 
 impl Ctx<'_> {
     pub(crate) fn at(&self, offset: Option<usize>) -> Location {
-        Location {
-            file: self.name.clone(),
-            line_col: offset.map(|o| line_col(self.text, o)),
-        }
+        Location::in_text(self.name.clone(), self.text, offset)
     }
 
     pub(crate) fn toml_error(&self, e: &toml::de::Error) -> ScenarioError {
@@ -216,78 +199,16 @@ impl Ctx<'_> {
     /// serde's list of expected keys (every table's key set is distinct, tested in
     /// `tests/unknown_keys.rs`).
     pub(super) fn section_for(&self, expected: &[String]) -> (String, Vec<String>) {
-        let tables = TABLES.iter().chain(SEPARATION_TABLES);
-        for (name, keys) in tables.chain(SUITE_TABLES) {
-            if keys.len() == expected.len() && expected.iter().all(|k| keys.contains(&k.as_str())) {
-                return (
-                    name.to_string(),
-                    keys.iter().map(|k| k.to_string()).collect(),
-                );
-            }
+        if let Some(t) = table_with_keys(expected) {
+            return (
+                t.title().to_string(),
+                t.names().iter().map(|k| k.to_string()).collect(),
+            );
         }
         // (not reached for the tables of a scenario; a table added without its entry in
         // TABLES still gets its keys listed)
         ("this table".to_string(), expected.to_vec())
     }
-}
-
-/// The unknown key and the keys the table accepts, from the message of serde's
-/// `deny_unknown_fields`, in each of its forms: "unknown field `k`, expected one of `a`, `b`,
-/// `c`", "… expected `a` or `b`", "… expected `a`" and "… there are no fields". `None` for
-/// any other message.
-pub(crate) fn unknown_field(msg: &str) -> Option<(String, Vec<String>)> {
-    let rest = msg.strip_prefix("unknown field `")?;
-    let end = rest.find('`')?;
-    let key = rest[..end].to_string();
-    let list = rest[end + 1..]
-        .split_once("expected one of ")
-        .or_else(|| rest[end + 1..].split_once("expected "))
-        .map_or("", |(_, l)| l);
-    let expected = list
-        .split(", ")
-        .flat_map(|part| part.split(" or "))
-        .map(|k| k.trim().trim_matches('`'))
-        .filter(|k| !k.is_empty())
-        .map(str::to_string)
-        .collect();
-    Some((key, expected))
-}
-
-/// What follows "unknown key `key` in TABLE": the closest valid key when one is close
-/// ("; did you mean `period`?") and every valid key ("(valid keys: a, b)"; "(the table takes
-/// no keys)" when there are none).
-pub(crate) fn key_hint<S: AsRef<str>>(key: &str, valid: &[S]) -> String {
-    let best = valid
-        .iter()
-        .map(|v| (strsim::jaro_winkler(key, v.as_ref()), v.as_ref()))
-        .max_by(|a, b| a.0.total_cmp(&b.0));
-    let mut hint = String::new();
-    if let Some((score, v)) = best
-        && score > 0.75
-    {
-        hint.push_str(&format!("; did you mean `{v}`?"));
-    }
-    if valid.is_empty() {
-        hint.push_str(" (the table takes no keys)");
-    } else {
-        let names: Vec<&str> = valid.iter().map(AsRef::as_ref).collect();
-        hint.push_str(&format!(" (valid keys: {})", names.join(", ")));
-    }
-    hint
-}
-
-pub(super) fn line_col(text: &str, offset: usize) -> (u32, u32) {
-    let mut offset = offset.min(text.len());
-    while !text.is_char_boundary(offset) {
-        offset -= 1;
-    }
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
-    (
-        u32::try_from(line).unwrap_or(u32::MAX),
-        u32::try_from(col).unwrap_or(u32::MAX),
-    )
 }
 
 /// A validator for one key: checks the value against a range and reports with its location.

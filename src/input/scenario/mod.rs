@@ -24,7 +24,7 @@ pub(crate) mod diagnostics;
 mod floors;
 mod ground_keys;
 mod hysteresis;
-mod keys;
+pub mod keys;
 mod plausibility;
 mod ranges;
 mod record_keys;
@@ -362,10 +362,7 @@ impl Scenario {
 /// the table in the error when it cannot be written as TOML.
 pub fn table_to_toml(table: &toml::Table, origin: &str) -> Result<String, ScenarioError> {
     toml::to_string(table).map_err(|e| ScenarioError::Syntax {
-        at: Location {
-            file: Arc::from(origin),
-            line_col: None,
-        },
+        at: Location::file(origin),
         message: format!("cannot be written as TOML: {e}"),
     })
 }

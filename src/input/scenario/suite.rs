@@ -162,10 +162,7 @@ impl Suite {
             m.record.clone()
         } else {
             Arc::new(scaled(&m.record, f).map_err(|e| ScenarioError::Record {
-                at: super::Location {
-                    file: m.file.as_str().into(),
-                    line_col: None,
-                },
+                at: super::Location::file(m.file.as_str()),
                 key: format!("ground_motion.records[{}].factor", i + 1),
                 source: Box::new(e),
             })?)

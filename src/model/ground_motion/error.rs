@@ -1,50 +1,24 @@
-//! What can go wrong when reading a record, and where: [`Location`] (file and line) and
+//! What can go wrong when reading a record, and where ([`Location`], the crate's one kind of
+//! place in a file, here as `record "x.AT2", line 7`) and
 //! [`RecordError`]. Every message starts with the file (and the line, when there is one) and
 //! quotes the offending text plainly, clipped to [`MAX_QUOTED_CHARS`] characters with control
 //! characters replaced (never as a Rust escape such as `"\u{1a}"`).
 
-use std::fmt;
-
 /// Longest piece of user text quoted in an error message, in characters.
 pub const MAX_QUOTED_CHARS: usize = 60;
 
-/// Where a problem is: the file (or, for [`crate::model::ground_motion::Record::from_samples`], the
-/// description) and the 1-based line number when there is one. Displays as
-/// `record "x.AT2", line 7`.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Location {
-    /// The file as given (or the record's description).
-    pub file: String,
-    /// 1-based line number, if the problem is on one line.
-    pub line: Option<usize>,
+pub use crate::diagnostics::Location;
+use crate::diagnostics::Naming;
+
+/// A record file (or, for [`crate::model::ground_motion::Record::from_samples`], its
+/// description) as messages name it: `record "x.AT2"`.
+pub fn in_record(file: &str) -> Location {
+    Location::file(file).named(Naming::Record)
 }
 
-impl Location {
-    /// The whole file.
-    pub fn file(file: &str) -> Location {
-        Location {
-            file: file.to_string(),
-            line: None,
-        }
-    }
-
-    /// One line (1-based) of the file.
-    pub fn line(file: &str, line: usize) -> Location {
-        Location {
-            file: file.to_string(),
-            line: Some(line),
-        }
-    }
-}
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "record \"{}\"", self.file)?;
-        if let Some(line) = self.line {
-            write!(f, ", line {line}")?;
-        }
-        Ok(())
-    }
+/// One 1-based line of a record file: `record "x.AT2", line 7`.
+pub fn record_line(file: &str, line: usize) -> Location {
+    in_record(file).at_line(line)
 }
 
 /// Shortens user text for quoting in an error message: trimmed, at most [`MAX_QUOTED_CHARS`]
@@ -446,7 +420,7 @@ mod tests {
         assert_eq!(c.chars().count(), MAX_QUOTED_CHARS + 1);
         assert!(c.ends_with('…'));
         let e = RecordError::NotANumber {
-            at: Location::line("f", 2),
+            at: record_line("f", 2),
             token: clip("\u{1a}"),
         };
         assert_eq!(

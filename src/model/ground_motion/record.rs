@@ -13,6 +13,7 @@
 
 use std::path::Path;
 
+use crate::model::ground_motion::error::in_record;
 pub use crate::model::ground_motion::error::{Location, RecordError};
 use crate::model::ground_motion::processing::Processing;
 
@@ -220,7 +221,7 @@ pub const MAX_RECORD_BYTES: u64 = 500_000_000;
 /// Opens a record file for reading after checking, without opening it, that it is a regular
 /// file no larger than [`MAX_RECORD_BYTES`] (opening a FIFO blocks until a writer comes).
 pub fn open_record_file(path: &Path) -> Result<std::fs::File, RecordError> {
-    let at = || Location::file(&path.display().to_string());
+    let at = || in_record(&path.display().to_string());
     let meta = std::fs::metadata(path).map_err(|source| RecordError::Io { at: at(), source })?;
     let ft = meta.file_type();
     if !ft.is_file() {
@@ -276,7 +277,7 @@ impl Record {
                 .get(k)
                 .map_or_else(String::new, |a| format!("{a} (sample {k})"));
             return Err(RecordError::NonFinite {
-                at: Location::file(&file),
+                at: in_record(&file),
                 token,
             });
         }
@@ -393,13 +394,13 @@ pub(crate) fn build(
 ) -> Result<Record, RecordError> {
     if !(dt.is_finite() && dt > 0.0) {
         return Err(RecordError::InvalidDt {
-            at: Location::file(file),
+            at: in_record(file),
             dt,
         });
     }
     if accel.len() < 2 {
         return Err(RecordError::TooFewSamples {
-            at: Location::file(file),
+            at: in_record(file),
             found: accel.len(),
         });
     }
@@ -414,7 +415,7 @@ pub(crate) fn build(
     }
     if !velocity.iter().all(|v| v.is_finite()) {
         return Err(RecordError::VelocityOverflow {
-            at: Location::file(file),
+            at: in_record(file),
         });
     }
     Ok(Record {

@@ -151,6 +151,15 @@ pub(super) fn parse_axis(ctx: &Ctx, n: usize, a: &Spanned<RawAxis>) -> Result<Ax
                             format!("`{key}` takes lists of numbers, e.g. values = [[2e5, 2e5], [3e5, 3e5]]"),
                         ));
                     }
+                    // (no key an axis may set is a table or a boolean: tested in
+                    // input::scenario::keys)
+                    (_, Kind::Table | Kind::Bool) => {
+                        return Err(ctx.invalid(
+                            at,
+                            &name("values"),
+                            format!("`{key}` cannot be set by an axis"),
+                        ));
+                    }
                     (RawValue::Text(_) | RawValue::List(_), Kind::Number) => {
                         return Err(ctx.invalid(
                             at,

@@ -53,10 +53,7 @@ pub fn set_keys(
         .map_or_else(|| "scenario".into(), |n| n.to_string_lossy().into_owned());
     let text = sweep_text(&name, axes)?;
     let dir = base_path.parent().unwrap_or(Path::new("."));
-    let at = || Location {
-        file: std::sync::Arc::from(base_path.display().to_string()),
-        line_col: None,
-    };
+    let at = || Location::file(base_path.display().to_string());
     // messages name the key as given, not the generated sweep's `axis[N]`
     let sweep =
         Sweep::from_toml_with_base(&text, &dir.join("replace"), Some((base_text, base_path)))

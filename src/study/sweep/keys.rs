@@ -1,16 +1,10 @@
 //! The key paths an axis may set: derived ratios (`period_ratio`, `ground_period_ratio`) and
 //! any scenario key by path (`structure.1.period`, `contact.level.2.gap`, …), each with the
-//! type of its value (`parse_key`, `valid_keys` for suggestions).
+//! type of its value (`parse_key`, `valid_keys` for suggestions): which keys and their types
+//! come from the scenario's key table (`input::scenario::keys`, `sweep`).
 
-/// The type of value a scenario key takes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
-    Number,
-    Integer,
-    Text,
-    File,
-    List,
-}
+pub(super) use crate::input::scenario::keys::Kind;
+use crate::input::scenario::keys::{KeyInfo, Table};
 
 /// Where in the scenario an axis writes.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -41,88 +35,34 @@ pub(super) enum Target {
     },
 }
 
-pub(super) const STRUCTURE_FIELDS: &[(&str, Kind)] = &[
-    ("length", Kind::Number),
-    ("mass", Kind::Number),
-    ("period", Kind::Number),
-    ("bending_stiffness", Kind::Number),
-    ("tip_stiffness", Kind::Number),
-    ("modes", Kind::Integer),
-    ("damping_ratio", Kind::Number),
-    ("strain_rate_damping", Kind::Number),
-    ("air_damping", Kind::Number),
-    ("name", Kind::Text),
-    // a shear building's uniform shorthand (kind = "shear-building")
-    ("storeys", Kind::Integer),
-    ("storey_height", Kind::Number),
-    ("floor_mass", Kind::Number),
-    ("storey_stiffness", Kind::Number),
-    // a building's lists, one value per floor (or per mode for `periods`)
-    ("floor_heights", Kind::List),
-    ("floor_masses", Kind::List),
-    ("storey_stiffnesses", Kind::List),
-    ("periods", Kind::List),
-];
-/// A yielding building's Bouc–Wen keys (`structure.N.hysteresis.KEY`; one value for every
-/// storey).
-pub(super) const HYSTERESIS_FIELDS: &[(&str, Kind)] = &[
-    ("yield_drifts", Kind::Number),
-    ("yield_forces", Kind::Number),
-    ("post_yield_ratio", Kind::Number),
-    ("exponent", Kind::Number),
-    ("beta", Kind::Number),
-    ("gamma", Kind::Number),
-];
-pub(super) const CONTACT_FIELDS: &[(&str, Kind)] = &[
-    ("stiffness", Kind::Number),
-    ("restitution", Kind::Number),
-    ("gap", Kind::Number),
-    ("height", Kind::Number),
-    ("law", Kind::Text),
-    ("damping_model", Kind::Text),
-];
-pub(super) const LEVEL_FIELDS: &[(&str, Kind)] = &[("height", Kind::Number), ("gap", Kind::Number)];
-pub(super) const GROUND_FIELDS: &[(&str, Kind)] = &[
-    ("pga", Kind::Number),
-    ("period", Kind::Number),
-    ("scale_to_pga", Kind::Number),
-    ("dt", Kind::Number),
-    ("file", Kind::File),
-    ("units", Kind::Text),
-    ("kind", Kind::Text),
-];
-pub(super) const SOLVER_FIELDS: &[(&str, Kind)] = &[
-    ("dt", Kind::Number),
-    ("duration", Kind::Number),
-    ("output_interval", Kind::Number),
-    ("method", Kind::Text),
+/// The derived axes, which are not scenario keys (the module doc says what each sets).
+pub(super) const DERIVED_AXES: &[&str] = &[
+    "period_ratio",
+    "ground_period_ratio",
+    "structure.N.stiffness_scale",
+    "structure.N.mass_scale",
 ];
 
-/// Every key an axis may have (for messages), with `N` for an index.
+/// The keys of `table` an axis may set (the key table's `sweep`).
+fn fields(table: Table) -> impl Iterator<Item = &'static KeyInfo> {
+    table.keys().filter(|k| k.sweep)
+}
+
+/// Every key an axis may have (for messages), with `N` for an index: the derived axes, then
+/// the scenario's keys in the key table's order.
 pub(super) fn valid_keys() -> Vec<String> {
-    let mut v = vec![
-        "period_ratio".to_string(),
-        "ground_period_ratio".to_string(),
-    ];
-    for (f, _) in STRUCTURE_FIELDS {
-        v.push(format!("structure.N.{f}"));
-    }
-    v.push("structure.N.stiffness_scale".into());
-    v.push("structure.N.mass_scale".into());
-    for (f, _) in HYSTERESIS_FIELDS {
-        v.push(format!("structure.N.hysteresis.{f}"));
-    }
-    for (f, _) in CONTACT_FIELDS {
-        v.push(format!("contact.{f}"));
-    }
-    for (f, _) in LEVEL_FIELDS {
-        v.push(format!("contact.level.N.{f}"));
-    }
-    for (f, _) in GROUND_FIELDS {
-        v.push(format!("ground_motion.{f}"));
-    }
-    for (f, _) in SOLVER_FIELDS {
-        v.push(format!("solver.{f}"));
+    let mut v: Vec<String> = DERIVED_AXES[..2].iter().map(|k| k.to_string()).collect();
+    let scenario = |t: Table| fields(t).filter_map(KeyInfo::sweep_key);
+    v.extend(scenario(Table::Structure));
+    v.extend(DERIVED_AXES[2..].iter().map(|k| k.to_string()));
+    for t in [
+        Table::Hysteresis,
+        Table::Contact,
+        Table::Level,
+        Table::Ground,
+        Table::Solver,
+    ] {
+        v.extend(scenario(t));
     }
     v
 }
@@ -131,10 +71,10 @@ pub(super) fn valid_keys() -> Vec<String> {
 pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
     let key = raw.trim().replace('[', ".").replace(']', "");
     let parts: Vec<&str> = key.split('.').collect();
-    let field = |list: &[(&'static str, Kind)], f: &str| {
-        list.iter()
-            .find(|(n, _)| *n == f)
-            .map(|(n, k)| (*n, *k))
+    let field = |table: Table, f: &str| {
+        fields(table)
+            .find(|k| k.name == f)
+            .map(|k| (k.name, k.kind))
             .ok_or(())
     };
     let index = |s: &str, what: &str, max: Option<usize>| -> Result<usize, String> {
@@ -161,7 +101,7 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
         }
         ["structure", n, "hysteresis", f] => {
             let i = index(n, "structure", Some(2))?;
-            field(HYSTERESIS_FIELDS, f).map(|(field, kind)| Target::Key {
+            field(Table::Hysteresis, f).map(|(field, kind)| Target::Key {
                 section: Section::Hysteresis(i),
                 field,
                 kind,
@@ -169,7 +109,7 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
         }
         ["structure", n, f] => {
             let i = index(n, "structure", Some(2))?;
-            field(STRUCTURE_FIELDS, f).map(|(field, kind)| Target::Key {
+            field(Table::Structure, f).map(|(field, kind)| Target::Key {
                 section: Section::Structure(i),
                 field,
                 kind,
@@ -177,23 +117,23 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
         }
         ["contact", "level", n, f] => {
             let i = index(n, "contact level", None)?;
-            field(LEVEL_FIELDS, f).map(|(field, kind)| Target::Key {
+            field(Table::Level, f).map(|(field, kind)| Target::Key {
                 section: Section::Level(i),
                 field,
                 kind,
             })
         }
-        ["contact", f] => field(CONTACT_FIELDS, f).map(|(field, kind)| Target::Key {
+        ["contact", f] => field(Table::Contact, f).map(|(field, kind)| Target::Key {
             section: Section::Contact,
             field,
             kind,
         }),
-        ["ground_motion", f] => field(GROUND_FIELDS, f).map(|(field, kind)| Target::Key {
+        ["ground_motion", f] => field(Table::Ground, f).map(|(field, kind)| Target::Key {
             section: Section::Ground,
             field,
             kind,
         }),
-        ["solver", f] => field(SOLVER_FIELDS, f).map(|(field, kind)| Target::Key {
+        ["solver", f] => field(Table::Solver, f).map(|(field, kind)| Target::Key {
             section: Section::Solver,
             field,
             kind,

@@ -192,10 +192,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn at(&self, offset: Option<usize>) -> Location {
-        Location {
-            file: std::sync::Arc::from(self.file),
-            line_col: offset.map(|o| line_col(self.text, o)),
-        }
+        Location::in_text(self.file, self.text, offset)
     }
     fn invalid(&self, offset: Option<usize>, key: &str, reason: impl Into<String>) -> SweepError {
         SweepError::Invalid {
@@ -204,20 +201,6 @@ impl Ctx<'_> {
             reason: reason.into(),
         }
     }
-}
-
-fn line_col(text: &str, offset: usize) -> (u32, u32) {
-    let mut offset = offset.min(text.len());
-    while !text.is_char_boundary(offset) {
-        offset -= 1;
-    }
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rfind('\n').map_or(offset, |p| offset - p - 1) + 1;
-    (
-        u32::try_from(line).unwrap_or(u32::MAX),
-        u32::try_from(col).unwrap_or(u32::MAX),
-    )
 }
 
 fn number(v: &Value) -> Option<f64> {

@@ -30,9 +30,6 @@ pub use spectrum_keys::{read_table, spectrum_from_arg};
 /// [`crate::study::sweep::results::CODE_FIELDS`].)
 pub const CODE_KEYS: [&str; 6] = ["asce7", "is1893", "nbcc", "gb50011", "ntc", "ec8"];
 
-/// Valid keys of the tables of this module, for the scenario's unknown-key suggestions.
-pub use super::keys::SEPARATION_TABLES as TABLES;
-
 /// How the peak displacement at a contact level computed by `pounding` (from the time history
 /// without pounding — elastic, or inelastic where storeys yield — or the CQC of a design
 /// spectrum) becomes the displacement a code multiplies.

@@ -18,10 +18,7 @@ use crate::model::ground_motion::STANDARD_GRAVITY;
 /// Checked exactly as the scenario keys of the same names.
 pub fn spectrum_from_arg(arg: &str) -> Result<DesignSpectrum, ScenarioError> {
     let bad = |reason: String| ScenarioError::Invalid {
-        at: crate::input::scenario::diagnostics::Location {
-            file: "--spectrum".into(),
-            line_col: None,
-        },
+        at: crate::input::scenario::diagnostics::Location::file("--spectrum"),
         key: "--spectrum".into(),
         value: arg.to_string(),
         reason,

@@ -5,7 +5,7 @@
 //! in g (line 3: `ACCELERATION TIME SERIES IN UNITS OF G`). Files whose 3rd line says VELOCITY
 //! or DISPLACEMENT are refused.
 
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, in_record, record_line};
 use crate::model::ground_motion::formats::text::parse_value;
 use crate::model::ground_motion::formats::{Channel, Parsed};
 use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
@@ -78,13 +78,13 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let header: Vec<&str> = text.lines().take(4).collect();
     let [_, line2, line3, line4] = *header.as_slice() else {
         return Err(RecordError::MissingHeader {
-            at: Location::file(file),
+            at: in_record(file),
             lines: header.len(),
         });
     };
 
     let bad_header = || RecordError::BadHeader {
-        at: Location::line(file, 4),
+        at: record_line(file, 4),
         found: clip(line4),
     };
     let (npts_text, dt_text) = header_fields(line4).ok_or_else(bad_header)?;
@@ -92,14 +92,14 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let dt = dt_text.parse::<f64>().map_err(|_| bad_header())?;
     if !(dt.is_finite() && dt > 0.0) {
         return Err(RecordError::InvalidDt {
-            at: Location::line(file, 4),
+            at: record_line(file, 4),
             dt,
         });
     }
     let line3_upper = line3.to_ascii_uppercase();
     if line3_upper.contains("VELOCITY") || line3_upper.contains("DISPLACEMENT") {
         return Err(RecordError::NotAcceleration {
-            at: Location::line(file, 3),
+            at: record_line(file, 3),
             found: clip(line3),
         });
     }
@@ -126,14 +126,14 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     }
     if let Some(line_no) = first_extra_line {
         return Err(RecordError::TooManyValues {
-            at: Location::line(file, line_no),
+            at: record_line(file, line_no),
             npts,
             found,
         });
     }
     if found < npts {
         return Err(RecordError::TooFewValues {
-            at: Location::line(file, 4),
+            at: record_line(file, 4),
             npts,
             found,
         });

@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use crate::model::ground_motion::error::{Location, RecordError};
+use crate::model::ground_motion::error::{RecordError, in_record, record_line};
 use crate::model::ground_motion::formats::text::{parse_number, parse_value};
 use crate::model::ground_motion::formats::{Channel, Parsed};
 use crate::model::ground_motion::record::{AccelUnits, DT_REL_TOLERANCE, RecordFormat};
@@ -47,14 +47,14 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
             }
             None => {
                 return Err(RecordError::UnrecognisedLayout {
-                    at: Location::line(file, line_no),
+                    at: record_line(file, line_no),
                     found: count,
                 });
             }
         };
         if count != expected {
             return Err(RecordError::FieldCount {
-                at: Location::line(file, line_no),
+                at: record_line(file, line_no),
                 expected,
                 found: count,
             });
@@ -73,14 +73,14 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
                 let step = t - t0;
                 if step <= 0.0 {
                     return Err(RecordError::TimeNotIncreasing {
-                        at: Location::line(file, line_no),
+                        at: record_line(file, line_no),
                         previous: t0,
                         time: t,
                     });
                 }
                 if !step.is_finite() {
                     return Err(RecordError::InvalidDt {
-                        at: Location::line(file, line_no),
+                        at: record_line(file, line_no),
                         dt: step,
                     });
                 }
@@ -90,14 +90,14 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
                 let step = t - t_prev;
                 if step <= 0.0 {
                     return Err(RecordError::TimeNotIncreasing {
-                        at: Location::line(file, line_no),
+                        at: record_line(file, line_no),
                         previous: t_prev,
                         time: t,
                     });
                 }
                 if (step - dt).abs() > DT_REL_TOLERANCE * dt {
                     return Err(RecordError::NonUniformSpacing {
-                        at: Location::line(file, line_no),
+                        at: record_line(file, line_no),
                         dt,
                         spacing: step,
                     });
@@ -112,7 +112,7 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
         Some(2) => {
             if accel.len() < 2 {
                 return Err(RecordError::TooFewSamples {
-                    at: Location::file(file),
+                    at: in_record(file),
                     found: accel.len(),
                 });
             }
@@ -121,7 +121,7 @@ pub fn read(text: &str, file: &str, path: &Path) -> Result<Parsed, RecordError> 
         Some(_) => (RecordFormat::SingleColumn, None),
         None => {
             return Err(RecordError::TooFewSamples {
-                at: Location::file(file),
+                at: in_record(file),
                 found: 0,
             });
         }

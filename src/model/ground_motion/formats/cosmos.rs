@@ -19,7 +19,7 @@
 //!
 //! Each count and format is the header's own; velocity and displacement blocks are skipped.
 
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, record_line};
 use crate::model::ground_motion::formats::text::{
     EditKind, FortranFormat, first_number, number_after, read_fixed,
 };
@@ -44,7 +44,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         }
         if !(upper.contains("(FORMAT V") && upper.contains("TEXT LINES")) {
             return Err(RecordError::BadHeaderLine {
-                at: Location::line(file, i + 1),
+                at: record_line(file, i + 1),
                 format: FORMAT,
                 expected: "the first line of a channel, \"… (Format v01.20 with 13 text lines)\""
                     .into(),
@@ -67,7 +67,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
             .next()
             .unwrap_or((1, "no data".to_string()));
         return Err(RecordError::NotAcceleration {
-            at: Location::line(file, line),
+            at: record_line(file, line),
             found: clip(&what),
         });
     }
@@ -103,7 +103,7 @@ fn section(
 ) -> Result<(usize, FortranFormat), RecordError> {
     let line = lines.get(i).copied().unwrap_or("");
     let bad = || RecordError::BadHeaderLine {
-        at: Location::line(file, i + 1),
+        at: record_line(file, i + 1),
         format: FORMAT,
         expected: expected.into(),
         found: clip(line),
@@ -136,7 +136,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     let text_end = start + n_text;
     if text_end > lines.len() {
         return Err(RecordError::BadHeaderLine {
-            at: Location::line(file, lines.len()),
+            at: record_line(file, lines.len()),
             format: FORMAT,
             expected: format!("{n_text} text header lines"),
             found: "the end of the file".into(),
@@ -164,7 +164,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     )?;
     if int_fmt.kind != EditKind::Integer {
         return Err(RecordError::BadHeaderLine {
-            at: Location::line(file, text_end + 1),
+            at: record_line(file, text_end + 1),
             format: FORMAT,
             expected: "an integer format such as (10I8)".into(),
             found: clip(lines[text_end]),
@@ -182,7 +182,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     let n_comments = leading_count(comment_line)
         .filter(|_| comment_line.to_ascii_uppercase().contains("COMMENT"))
         .ok_or_else(|| RecordError::BadHeaderLine {
-            at: Location::line(file, next + 1),
+            at: record_line(file, next + 1),
             format: FORMAT,
             expected: "\"   2 Comment line(s) follow, each starting with a \"|\":\"".into(),
             found: clip(comment_line),
@@ -191,7 +191,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
     let data_at = next + 1 + n_comments;
     let data_line = lines.get(data_at).copied().unwrap_or("");
     let bad_data_line = || RecordError::BadHeaderLine {
-        at: Location::line(file, data_at + 1),
+        at: record_line(file, data_at + 1),
         format: FORMAT,
         expected: "the data line, e.g. \"   42000 acceleration pts, approx  210 secs, \
                    units=cm/sec2(04),Format=(1E15.6)\""
@@ -258,7 +258,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
             Some(u) if code.is_none() => (u, 1.0),
             _ => {
                 return Err(RecordError::UnsupportedUnits {
-                    at: Location::line(file, data_at + 1),
+                    at: record_line(file, data_at + 1),
                     found: clip(
                         &units_name(data_line)
                             .unwrap_or_else(|| format!("units code {}", code.unwrap_or(-999))),
@@ -272,7 +272,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
         .filter(|v| *v > 0.0)
         .map(|ms| ms / 1000.0)
         .ok_or_else(|| RecordError::BadHeaderLine {
-            at: Location::line(file, text_end + 2),
+            at: record_line(file, text_end + 2),
             format: FORMAT,
             expected: "the time step in ms as real-header value 62".into(),
             found: format!("{}", reals.get(61).copied().unwrap_or(real_null)),
@@ -292,7 +292,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
             && (len - count as f64 * dt).abs() > tol
         {
             return Err(RecordError::TimeStepMismatch {
-                at: Location::line(file, data_at + 1),
+                at: record_line(file, data_at + 1),
                 first: "real-header value 62".into(),
                 dt_first: dt,
                 second: format!("{what} over {count} points"),
@@ -305,7 +305,7 @@ fn read_block(lines: &[&str], start: usize, file: &str) -> Result<Block, RecordE
         if *v == real_null || *v == int_null {
             let line = data_at + 2 + k / data_fmt.per_line;
             return Err(RecordError::MissingValue {
-                at: Location::line(file, line),
+                at: record_line(file, line),
                 token: format!("{v}"),
             });
         }

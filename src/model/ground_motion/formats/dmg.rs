@@ -15,7 +15,7 @@
 //!   `13200 Accelerogram points at 200 pts/sec in units of g . Format: (8f9.6)` and the values;
 //!   in the 1980s layout no such line but (t, a) pairs of the digitised film in 10F7.3, in g/10.
 
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, record_line};
 use crate::model::ground_motion::formats::text::{
     EditKind, FortranFormat, first_number, number_after, read_fixed,
 };
@@ -37,7 +37,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         .map_or(String::new(), |l| l.to_ascii_uppercase());
     if first.contains("RESPONSE AND FOURIER AMPLITUDE SPECTRA") {
         return Err(RecordError::NotAcceleration {
-            at: Location::line(file, 1),
+            at: record_line(file, 1),
             found: clip(lines[0]),
         });
     }
@@ -79,7 +79,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
 
 fn bad_line(lines: &[&str], i: usize, file: &str, expected: &str) -> RecordError {
     RecordError::BadHeaderLine {
-        at: Location::line(file, (i + 1).min(lines.len().max(1))),
+        at: record_line(file, (i + 1).min(lines.len().max(1))),
         format: FORMAT,
         expected: expected.into(),
         found: lines
@@ -186,7 +186,7 @@ fn read_v2(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
         .filter(|d| *d > 0.0)
         .ok_or_else(|| bad_line(lines, next, file, "\"equally spaced at <dt> sec\""))?;
     let units = units_of(data_line).ok_or_else(|| RecordError::UnsupportedUnits {
-        at: Location::line(file, next + 1),
+        at: record_line(file, next + 1),
         found: clip(data_line),
     })?;
     let fmt = format_in(data_line).unwrap_or_else(|| unstated_format(lines.get(next + 1)));
@@ -196,7 +196,7 @@ fn read_v2(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
         && n as usize != count
     {
         return Err(RecordError::TooFewValues {
-            at: Location::line(file, next + 1),
+            at: record_line(file, next + 1),
             npts: n as usize,
             found: count,
         });
@@ -205,7 +205,7 @@ fn read_v2(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
         && (d - dt).abs() > 1e-6 * dt
     {
         return Err(RecordError::TimeStepMismatch {
-            at: Location::line(file, next + 1),
+            at: record_line(file, next + 1),
             first: format!("text line 17 (line {})", s + 17),
             dt_first: d,
             second: "the data line".into(),
@@ -284,7 +284,7 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
             })?;
         if count != stated_count {
             return Err(RecordError::TooFewValues {
-                at: Location::line(file, next + 1),
+                at: record_line(file, next + 1),
                 npts: stated_count,
                 found: count,
             });
@@ -295,7 +295,7 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
             && (r - rate).abs() > 1e-6 * rate
         {
             return Err(RecordError::TimeStepMismatch {
-                at: Location::line(file, next + 1),
+                at: record_line(file, next + 1),
                 first: format!("text line 11 (line {}), {r} samples/s", s + 11),
                 dt_first: 1.0 / r,
                 second: format!("the data line, {rate} pts/s"),
@@ -303,7 +303,7 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
             });
         }
         let units = units_of(data_line).ok_or_else(|| RecordError::UnsupportedUnits {
-            at: Location::line(file, next + 1),
+            at: record_line(file, next + 1),
             found: clip(data_line),
         })?;
         let fmt = format_in(data_line).unwrap_or_else(|| unstated_format(lines.get(next + 1)));
@@ -331,7 +331,7 @@ fn read_v1(lines: &[&str], s: usize, file: &str) -> Result<(Channel, String), Re
     let values: Vec<f64> = pairs.iter().skip(1).step_by(2).map(|a| a * scale).collect();
     if let Some(k) = times.windows(2).position(|w| w[1] < w[0]) {
         return Err(RecordError::TimeNotIncreasing {
-            at: Location::line(file, next + 1 + (2 * (k + 1)) / 10),
+            at: record_line(file, next + 1 + (2 * (k + 1)) / 10),
             previous: times[k],
             time: times[k + 1],
         });

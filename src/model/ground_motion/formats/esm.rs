@@ -5,7 +5,7 @@
 //! …, `USER5:`), then one value per line. Files whose `PROCESSING` is `none` (the database's
 //! unprocessed "U" files) are uncorrected.
 
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, record_line};
 use crate::model::ground_motion::formats::text::{first_number, parse_value};
 use crate::model::ground_motion::formats::{Channel, Parsed};
 use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
@@ -38,7 +38,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
             .map(|(l, _, v)| (*l, *v))
     };
     let missing = |key: &str, what: &str| RecordError::BadHeaderLine {
-        at: Location::line(file, header_end.max(1)),
+        at: record_line(file, header_end.max(1)),
         format: FORMAT,
         expected: format!("a \"{key}:\" line ({what}) in the header"),
         found: clip(
@@ -49,7 +49,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         ),
     };
     let bad = |line: usize, expected: &str, found: &str| RecordError::BadHeaderLine {
-        at: Location::line(file, line),
+        at: record_line(file, line),
         format: FORMAT,
         expected: expected.into(),
         found: clip(found),
@@ -59,7 +59,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         let u = v.to_ascii_uppercase();
         if !u.contains("ACCELERATION") || u.contains("SPECTRUM") {
             return Err(RecordError::NotAcceleration {
-                at: Location::line(file, l),
+                at: record_line(file, l),
                 found: clip(&format!("DATA_TYPE: {v}")),
             });
         }
@@ -76,7 +76,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let ndata_line = l;
     let (l, v) = field("UNITS").ok_or_else(|| missing("UNITS", "e.g. cm/s^2"))?;
     let units = AccelUnits::from_name(v).ok_or_else(|| RecordError::UnsupportedUnits {
-        at: Location::line(file, l),
+        at: record_line(file, l),
         found: clip(v),
     })?;
     // the duration is NDATA·dt, written to 3 decimals: a larger difference is a second time step
@@ -86,7 +86,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         && (d - ndata as f64 * dt).abs() > 1.5e-3 + 1e-6 * d
     {
         return Err(RecordError::TimeStepMismatch {
-            at: Location::line(file, l),
+            at: record_line(file, l),
             first: format!("SAMPLING_INTERVAL_S, line {dt_line}"),
             dt_first: dt,
             second: format!("DURATION_S/NDATA, lines {l} and {ndata_line}"),
@@ -118,14 +118,14 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     }
     if let Some(l) = extra_line {
         return Err(RecordError::TooManyValues {
-            at: Location::line(file, l),
+            at: record_line(file, l),
             npts: ndata,
             found,
         });
     }
     if found < ndata {
         return Err(RecordError::TooFewValues {
-            at: Location::line(file, ndata_line),
+            at: record_line(file, ndata_line),
             npts: ndata,
             found,
         });

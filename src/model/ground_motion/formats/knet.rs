@@ -5,7 +5,7 @@
 //! counts × 3920/6182761 gal with the mean of the whole record removed; the header's maximum
 //! is of that (NIED's description of the format).
 
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, record_line};
 use crate::model::ground_motion::formats::text::{first_number, parse_value};
 use crate::model::ground_motion::formats::{Channel, Parsed};
 use crate::model::ground_motion::record::{AccelUnits, RecordFormat};
@@ -21,7 +21,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         .take(40)
         .position(|l| l.trim_start().starts_with("Memo"))
         .ok_or_else(|| RecordError::BadHeaderLine {
-            at: Location::line(file, 17.min(lines.len().max(1))),
+            at: record_line(file, 17.min(lines.len().max(1))),
             format: FORMAT,
             expected: "the header's last line, \"Memo.\"".into(),
             found: clip(lines.get(16).copied().unwrap_or("")),
@@ -35,14 +35,14 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     };
     let required = |key: &str, what: &str| {
         field(key).ok_or_else(|| RecordError::BadHeaderLine {
-            at: Location::line(file, memo + 1),
+            at: record_line(file, memo + 1),
             format: FORMAT,
             expected: format!("a \"{key}\" line ({what}) before it"),
             found: clip(lines[memo]),
         })
     };
     let bad = |line: usize, expected: &str, found: &str| RecordError::BadHeaderLine {
-        at: Location::line(file, line),
+        at: record_line(file, line),
         format: FORMAT,
         expected: expected.into(),
         found: clip(found),
@@ -80,7 +80,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
         let expected = (d * rate).round();
         let n = counts.len() as f64;
         if (n - expected).abs() > rate {
-            let at = Location::line(file, field("Duration Time(s)").map_or(1, |(l, _)| l));
+            let at = record_line(file, field("Duration Time(s)").map_or(1, |(l, _)| l));
             return Err(if n < expected {
                 RecordError::TooFewValues {
                     at,

@@ -27,7 +27,7 @@ pub(crate) mod text;
 
 use std::path::Path;
 
-use crate::model::ground_motion::error::{Location, RecordError};
+use crate::model::ground_motion::error::{RecordError, in_record, record_line};
 use crate::model::ground_motion::record::{
     AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY,
     StatedPeak, build, max_abs,
@@ -79,7 +79,7 @@ impl Record {
     /// is refused ("not a text record file"); a few bytes that are not UTF-8 (e.g. Latin-1
     /// station names in a header) are replaced, not refused.
     pub fn read(path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
-        let at = || Location::file(&path.display().to_string());
+        let at = || in_record(&path.display().to_string());
         let mut file = open_record_file(path)?;
         // (at most the limit and one byte more: a file that grows while it is read is caught)
         let mut bytes = Vec::new();
@@ -133,7 +133,7 @@ impl Record {
 pub fn check_text(bytes: &[u8], file: &str) -> Result<(), RecordError> {
     let line_of = |at: usize| bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
     let not_text = |at: usize, reason: String| RecordError::NotText {
-        at: Location::line(file, line_of(at)),
+        at: record_line(file, line_of(at)),
         reason,
     };
     if let Some(at) = bytes.iter().position(|&b| b == 0) {
@@ -223,7 +223,7 @@ pub(crate) fn read(text: &str, path: &Path, opts: &RecordOptions) -> Result<Reco
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     // DOS end-of-file marks (Ctrl-Z) after the last line
     let text = text.trim_end_matches('\u{1a}');
-    let at = || Location::file(&file);
+    let at = || in_record(&file);
     if text.trim().is_empty() {
         return Err(RecordError::Empty { at: at() });
     }
@@ -255,7 +255,7 @@ pub(crate) fn read(text: &str, path: &Path, opts: &RecordOptions) -> Result<Reco
 
 /// The component asked for, its units, time step, correction, processing and scale.
 fn finish(parsed: Parsed, file: &str, opts: &RecordOptions) -> Result<Record, RecordError> {
-    let at = || Location::file(file);
+    let at = || in_record(file);
     let Parsed {
         format,
         description,
@@ -417,7 +417,7 @@ fn select(
     want: Option<&Component>,
     file: &str,
 ) -> Result<Channel, RecordError> {
-    let at = || Location::file(file);
+    let at = || in_record(file);
     let n = channels.len();
     let index = match want {
         None if n == 1 => 0,

@@ -2,7 +2,7 @@
 //! `(8F10.5)` and the fixed-width fields they describe (which may touch: `-12.34567-23.45678`).
 
 use crate::model::ground_motion::STANDARD_GRAVITY;
-use crate::model::ground_motion::error::{Location, RecordError, clip};
+use crate::model::ground_motion::error::{RecordError, clip, record_line};
 
 /// Largest magnitude of a value in a file, in the file's units: beyond it the conversion to
 /// m/s² (at most ×9.80665, from g) could overflow.
@@ -19,11 +19,11 @@ pub(crate) fn parse_number(token: &str, file: &str, line: usize) -> Result<f64, 
     match x {
         Some(x) if x.is_finite() => Ok(x),
         Some(_) => Err(RecordError::NonFinite {
-            at: Location::line(file, line),
+            at: record_line(file, line),
             token: clip(token),
         }),
         None => Err(RecordError::NotANumber {
-            at: Location::line(file, line),
+            at: record_line(file, line),
             token: clip(token),
         }),
     }
@@ -34,7 +34,7 @@ pub(crate) fn parse_value(token: &str, file: &str, line: usize) -> Result<f64, R
     let x = parse_number(token, file, line)?;
     if x.abs() > MAX_VALUE {
         return Err(RecordError::OutOfRange {
-            at: Location::line(file, line),
+            at: record_line(file, line),
             token: clip(token),
         });
     }
@@ -187,7 +187,7 @@ fn check_size(x: f64, token: &str, file: &str, line: usize) -> Result<f64, Recor
         Ok(x)
     } else {
         Err(RecordError::OutOfRange {
-            at: Location::line(file, line),
+            at: record_line(file, line),
             token: clip(token),
         })
     }
@@ -217,7 +217,7 @@ pub(crate) fn read_fixed(
         let line_no = i + 1;
         let Some(line) = lines.get(i) else {
             return Err(RecordError::TooFewValues {
-                at: Location::line(file, start.max(1)),
+                at: record_line(file, start.max(1)),
                 npts: count,
                 found: values.len(),
             });
@@ -269,7 +269,7 @@ fn fixed_fields(
         0
     };
     Err(RecordError::ShortLine {
-        at: Location::line(file, line_no),
+        at: record_line(file, line_no),
         expected,
         width: format.width,
         format: format.text.clone(),
@@ -312,7 +312,7 @@ fn bad_field(
         let field: String = chars[a..b].iter().collect();
         if field.trim().is_empty() {
             return RecordError::ShortLine {
-                at: Location::line(file, line_no),
+                at: record_line(file, line_no),
                 expected,
                 width: format.width,
                 format: format.text.clone(),
@@ -325,7 +325,7 @@ fn bad_field(
     }
     // every field parses when cut by characters: a non-ASCII line of numbers
     RecordError::NotANumber {
-        at: Location::line(file, line_no),
+        at: record_line(file, line_no),
         token: clip(line),
     }
 }
