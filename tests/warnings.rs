@@ -284,8 +284,17 @@ fn bundled_examples_give_no_warnings() {
     for p in names {
         let text = std::fs::read_to_string(&p).unwrap();
         // a fragility study file (`[fragility]`) names its base scenario too: it is not a
-        // sweep (no test runs the bundled study yet: it is `pounding fragility`'s example)
+        // sweep; its base scenario with the study's suite must read without warnings
         if text.lines().any(|l| l.trim() == "[fragility]") {
+            let st = pounding::input::fragility::FragilityStudy::from_file(&p)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert!(
+                st.scenario.warnings.is_empty(),
+                "{}: {:?}",
+                p.display(),
+                st.scenario.warnings
+            );
+            scenarios += 1;
             continue;
         }
         if text

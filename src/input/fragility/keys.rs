@@ -78,19 +78,7 @@ pub(super) struct Here<'a> {
 
 impl Here<'_> {
     pub(super) fn at(&self, offset: Option<usize>) -> Location {
-        Location {
-            file: self.file.clone(),
-            line_col: offset.map(|o| {
-                let mut o = o.min(self.text.len());
-                while !self.text.is_char_boundary(o) {
-                    o -= 1;
-                }
-                let before = &self.text[..o];
-                let line = before.matches('\n').count() + 1;
-                let col = before.rfind('\n').map_or(o, |p| o - p - 1) + 1;
-                (line as u32, col as u32)
-            }),
-        }
+        Location::in_text(self.file.clone(), self.text, offset)
     }
 
     pub(super) fn invalid<T: std::fmt::Debug>(
@@ -187,10 +175,7 @@ pub(super) fn suite_in_study(
     scaling.insert("rule".into(), toml::Value::String("none".into()));
     g.insert("scaling".into(), toml::Value::Table(scaling));
     let mut table: toml::Table = toml::from_str(sc_text).map_err(|e| StudyError::Syntax {
-        at: Location {
-            file: Arc::from(sc_path.display().to_string()),
-            line_col: None,
-        },
+        at: Location::file(sc_path.display().to_string()),
         message: e.message().trim().to_string(),
     })?;
     table.insert("ground_motion".into(), toml::Value::Table(g));
