@@ -56,9 +56,27 @@ pub fn run_pictures<'a>(
     report: &'a Report,
 ) -> Box<crate::output::run::DrawPictures<'a>> {
     Box::new(move |dir: &Path| {
-        let mut files = time_history_figure(scenario, report, &dir.join("history"))
-            .map_err(|e| e.to_string())?;
-        files.extend(envelope_figure(report, &dir.join("envelopes")).map_err(|e| e.to_string())?);
+        // the two figures are independent: the envelopes are drawn on a second thread while
+        // the time histories are drawn here (a user's run waits for the longer, not the sum)
+        let envelopes = || envelope_figure(report, &dir.join("envelopes"));
+        let (history, envelopes) = std::thread::scope(|scope| {
+            let other = std::thread::Builder::new()
+                .name("envelopes".into())
+                .spawn_scoped(scope, envelopes);
+            let history = time_history_figure(scenario, report, &dir.join("history"));
+            let envelopes = match other {
+                Ok(handle) => handle.join().unwrap_or_else(|_| {
+                    Err(PlotError::Draw(
+                        "internal error (panic) in the plotting code".into(),
+                    ))
+                }),
+                // no thread to be had: after the time histories, on this one
+                Err(_) => envelopes(),
+            };
+            (history, envelopes)
+        });
+        let mut files = history.map_err(|e| e.to_string())?;
+        files.extend(envelopes.map_err(|e| e.to_string())?);
         match hysteresis_figure(report, &dir.join("hysteresis")).map_err(|e| e.to_string())? {
             Some(f) => files.extend(f),
             // an elastic run: no stale loops beside its summary
