@@ -395,7 +395,15 @@ pub(super) fn check_axes(
         }
     }
     if base_kind == Some("suite")
-        && let Some(j) = find(&|t| matches!(t, Target::Key { section: Section::Ground, .. }))
+        && let Some(j) = find(&|t| {
+            matches!(
+                t,
+                Target::Key {
+                    section: Section::Ground,
+                    ..
+                }
+            )
+        })
     {
         return Err(ctx.invalid(
             Some(spans[j]),

@@ -465,7 +465,8 @@ impl Journal {
                     .unwrap_or("?");
                 // rows of the other kind (a suite of records per case, or one run): never mixed
                 let suite_v = format!("v{}", super::suite_rows::JOURNAL_VERSION_SUITE);
-                if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE) {
+                if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE)
+                {
                     let what = |suite: bool| {
                         if suite {
                             "a suite of records per case"
