@@ -28,7 +28,12 @@ use std::path::{Path, PathBuf};
 use toml::{Table, Value};
 
 use super::edit::absolute;
+use crate::numerics::format::fmt_f64;
 use crate::study::suite::SuiteRun;
+
+/// The `converged` value of a row not self-checked (as a single run's row writes it,
+/// `results::UNCHECKED`: `results` reads these rows, so this file does not import it).
+const UNCHECKED: &str = "unchecked";
 
 /// What one row of a sweep holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,7 +90,7 @@ pub fn parse(name: &str, x: &str) -> Option<f64> {
         "converged" => match x {
             "true" => Some(1.0),
             "false" => Some(0.0),
-            super::results::UNCHECKED => Some(f64::NAN),
+            UNCHECKED => Some(f64::NAN),
             _ => None,
         },
         "check_max_change" if x.is_empty() => Some(f64::NAN),
@@ -100,7 +105,6 @@ pub fn parse(name: &str, x: &str) -> Option<f64> {
 
 /// The fields of a suite's row ([`columns`]), formatted as the results table writes numbers.
 pub fn fields(run: &SuiteRun, check: bool) -> Vec<String> {
-    use super::results::fmt_f64;
     let d = &run.design;
     let governing = &d.levels[d.governing_level - 1];
     let mut out = vec![
@@ -127,7 +131,7 @@ pub fn fields(run: &SuiteRun, check: bool) -> Vec<String> {
     let acc = || run.records.iter().map(|r| &r.report.accuracy);
     if !check || acc().any(|a| !a.checked) {
         out.push(String::new());
-        out.push(super::results::UNCHECKED.to_string());
+        out.push(UNCHECKED.to_string());
     } else {
         let changes: Option<Vec<f64>> = acc().map(|a| a.max_change).collect();
         out.push(
@@ -197,4 +201,31 @@ pub(super) fn suite_files(base: &Table) -> Vec<PathBuf> {
         out.push(PathBuf::from(f));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unchecked_is_the_single_rows_value() {
+        assert_eq!(UNCHECKED, super::super::results::UNCHECKED);
+    }
+
+    /// The columns of two levels, in order, and each column's kind read back.
+    #[test]
+    fn columns_and_their_values() {
+        let c = columns(2);
+        assert_eq!(c.len(), HEAD.len() + 2 * PER_LEVEL.len() + TAIL.len());
+        assert_eq!(c[6], "level1_gap");
+        assert_eq!(c[13], "level2_sufficient");
+        assert_eq!(c.last().map(String::as_str), Some("converged"));
+        assert_eq!(parse("sufficient", "true"), Some(1.0));
+        assert_eq!(parse("level2_sufficient", "false"), Some(0.0));
+        assert!(parse("statistic", "mean").is_some_and(f64::is_nan));
+        assert_eq!(parse("statistic", "median"), None);
+        assert!(parse("check_max_change", "").is_some_and(f64::is_nan));
+        assert_eq!(parse("governing_margin", "-0.5"), Some(-0.5));
+        assert_eq!(parse("records", "x"), None);
+    }
 }
