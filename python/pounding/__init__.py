@@ -190,7 +190,9 @@ class SweepTable(dict):
     ``case`` int64; an axis of numbers float64 (of whole numbers int64, of text or lists: a list
     of str as results.csv writes them); ``status`` and ``converged`` lists of str; every other
     column float64 — the same numbers results.csv holds (an empty field, e.g. of a failed case,
-    is NaN; ``impacts`` is float64 for that reason).
+    is NaN; ``impacts`` is float64 for that reason). A sweep over a suite of records has the
+    suite's columns instead (README, "Sweeps over a suite of records"): ``statistic``,
+    ``sufficient``, ``levelK_sufficient`` and ``converged`` lists of str, the others float64.
     """
 
     def to_pandas(self) -> Any:

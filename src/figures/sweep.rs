@@ -27,6 +27,25 @@ pub const DEFAULT_FIELDS: [&str; 5] = [
     "sep_time_history",
 ];
 
+/// The fields drawn for a sweep over a suite of records when none is asked for: the design
+/// required separation at every level (`levelK_required_separation`, at most
+/// [`MAX_SUITE_LEVELS`] levels: the first ones, the top of the scenario's list), the margin at
+/// the governing level and the verdict.
+pub fn suite_default_fields(table: &Table) -> Vec<&str> {
+    let mut v: Vec<&str> = table
+        .codes
+        .iter()
+        .map(String::as_str)
+        .filter(|c| c.starts_with("level") && c.ends_with("_required_separation"))
+        .take(MAX_SUITE_LEVELS)
+        .collect();
+    v.extend(["governing_margin", "sufficient"]);
+    v
+}
+
+/// Most levels drawn by default for a suite.
+pub const MAX_SUITE_LEVELS: usize = 4;
+
 /// Most lines on one line-plot panel (evenly chosen among the series axis' values).
 const MAX_SERIES: usize = 6;
 
@@ -122,9 +141,57 @@ pub fn field_label(field: &str) -> (String, String, f64) {
             s("drift [m]"),
             1.0,
         ),
-        other => (s(other), s(other), 1.0),
+        other => return suite_field_label(other).unwrap_or((s(other), s(other), 1.0)),
     };
     (title, short, scale)
+}
+
+/// The labels of a suite's columns (`crate::study::sweep::suite_rows`).
+fn suite_field_label(field: &str) -> Option<(String, String, f64)> {
+    let s = |t: &str| t.to_string();
+    if let Some(rest) = field.strip_prefix("level")
+        && let Some((k, what)) = rest.split_once('_')
+    {
+        return Some(match what {
+            "required_separation" => (
+                format!("Level {k}: design value of the required separation (suite)"),
+                s("separation [m]"),
+                1.0,
+            ),
+            "peak_force" => (
+                format!("Level {k}: design value of the peak contact force (suite)"),
+                s("peak force [MN]"),
+                1e-6,
+            ),
+            "gap" => (format!("Level {k}: gap"), s("gap [m]"), 1.0),
+            "sufficient" => (
+                format!("Level {k}: gap suffices by the code's procedure (1 = yes, 0 = no)"),
+                s("suffices"),
+                1.0,
+            ),
+            _ => return None,
+        });
+    }
+    Some(match field {
+        "sufficient" => (
+            s("Gap suffices at every level by the code's procedure (1 = yes, 0 = no)"),
+            s("suffices"),
+            1.0,
+        ),
+        "governing_margin" => (
+            s("Gap − design required separation at the governing level"),
+            s("margin [m]"),
+            1.0,
+        ),
+        "governing_level" => (s("Governing contact level"), s("level"), 1.0),
+        "min_mean_to_target_ratio" => (
+            s("Lowest mean-to-target ratio of the scaled suite"),
+            s("mean / target"),
+            1.0,
+        ),
+        "records" => (s("Number of records"), s("records"), 1.0),
+        _ => return None,
+    })
 }
 
 /// How a field is coloured (and whether its line-plot axis is logarithmic), given its values:
@@ -132,6 +199,9 @@ pub fn field_label(field: &str) -> (String, String, f64) {
 pub fn field_scale(field: &str, values: &[f64]) -> ColorScale {
     if field.starts_with("change_percent_") {
         ColorScale::Ratio { limit: RATIO_LIMIT }
+    } else if field.ends_with("sufficient") || field == "governing_margin" {
+        // a verdict (0/1) and a signed margin: linear, whatever their spread
+        ColorScale::Linear
     } else {
         ColorScale::auto(values)
     }
@@ -327,7 +397,7 @@ pub fn plot_table_of(
     base: Option<&str>,
 ) -> Result<Vec<PathBuf>, SweepError> {
     let fields: Vec<&str> = match &req.field {
-        Some(f) => match Table::field_index(f) {
+        Some(f) => match Table::field_index(f).filter(|_| !table.suite) {
             Some(i) => vec![FIELDS[i]],
             // a column after the standard ones (codes, floors) that this table has
             None => match table.codes.iter().find(|c| *c == f) {
@@ -338,6 +408,7 @@ pub fn plot_table_of(
                         FIELDS
                             .iter()
                             .copied()
+                            .filter(|_| !table.suite)
                             .chain(table.codes.iter().map(String::as_str))
                             .collect::<Vec<_>>()
                             .join(", ")
@@ -345,6 +416,7 @@ pub fn plot_table_of(
                 }
             },
         },
+        None if table.suite => suite_default_fields(table),
         None => DEFAULT_FIELDS.to_vec(),
     };
     let info: Vec<(Vec<String>, bool)> =
@@ -435,7 +507,7 @@ pub fn plot_table_of(
                     z: &z,
                     z_label: &short,
                     scale: field_scale(field, &z),
-                    zero_label: if field == "peak_force" {
+                    zero_label: if field.ends_with("peak_force") {
                         "0: no impact"
                     } else {
                         "0"

@@ -20,7 +20,7 @@ use crate::analysis::record_spectrum::{
     PeriodRange, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember, SuiteScaling,
     Target,
 };
-use crate::analysis::simulate::{Report, RunCapture, simulate_streaming};
+use crate::analysis::simulate::{Report, RunCapture, simulate_headline, simulate_streaming};
 use crate::input::scenario::suite::{Suite, SuiteRule};
 use crate::input::scenario::{Scenario, ScenarioError};
 use crate::integrate::SolveError;
@@ -241,8 +241,31 @@ pub fn scale(scenario: &Scenario, suite: &Suite) -> Result<Option<ScaledSuite>, 
 }
 
 /// Scale the suite of `scenario`, run every record (self-checked with `check`) in parallel,
-/// and form the statistics and the verdict.
+/// and form the statistics and the verdict. Each record's history is kept
+/// ([`RecordRun::capture`]) to write the representative record's files.
 pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
+    run_with(scenario, |sc| {
+        let mut capture = RunCapture::new();
+        simulate_streaming(sc, check, &mut capture).map(|r| (r, capture))
+    })
+}
+
+/// [`run`] without the histories and the floor responses: every record through
+/// [`simulate_headline`] (the driver of a sweep's rows; the same integration, so the same
+/// numbers), [`RecordRun::capture`] empty. What a case of a sweep over a suite runs
+/// ([`crate::study::sweep`]).
+pub fn run_headline(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
+    run_with(scenario, |sc| {
+        simulate_headline(sc, check).map(|r| (r, RunCapture::new()))
+    })
+}
+
+/// The suite scaled by its rule, each record's scenario run by `simulate` (in parallel), the
+/// statistics and the verdict: the one pipeline of [`run`] and [`run_headline`].
+fn run_with<F>(scenario: &Scenario, simulate: F) -> Result<SuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<(Report, RunCapture), SolveError> + Sync,
+{
     let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
     let scaling = scale(scenario, suite)?;
     let factors: Vec<f64> = match &scaling {
@@ -262,14 +285,11 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
         .par_iter()
         .enumerate()
         .map(|(i, sc)| {
-            let mut capture = RunCapture::new();
-            simulate_streaming(sc, check, &mut capture)
-                .map(|r| (r, capture))
-                .map_err(|source| SuiteError::Solve {
-                    index: i + 1,
-                    file: suite.records[i].file.clone(),
-                    source: Box::new(source),
-                })
+            simulate(sc).map_err(|source| SuiteError::Solve {
+                index: i + 1,
+                file: suite.records[i].file.clone(),
+                source: Box::new(source),
+            })
         })
         .collect::<Result<_, _>>()?;
     let records: Vec<RecordRun> = runs

@@ -394,6 +394,30 @@ pub(super) fn check_axes(
             ));
         }
     }
+    if base_kind == Some("suite")
+        && let Some(j) = find(&|t| {
+            matches!(
+                t,
+                Target::Key {
+                    section: Section::Ground,
+                    ..
+                }
+            )
+        })
+    {
+        return Err(ctx.invalid(
+            Some(spans[j]),
+            &format!("axis[{}].key", j + 1),
+            format!(
+                "`{}` is a key of one ground motion, but the base scenario's ground motion is a \
+                 suite of records (kind = \"suite\"): each case runs every record, scaled by the \
+                 suite's rule for that case's structures. A sweep over a suite may vary the \
+                 structures, the contact and the solver; to vary the records, write one suite \
+                 scenario per set and sweep each",
+                axes[j].key
+            ),
+        ));
+    }
     let base_contact = base.get("contact").and_then(Value::as_table);
     let levels = base_contact
         .and_then(|c| c.get("level"))

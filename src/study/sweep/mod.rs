@@ -40,11 +40,13 @@ pub mod report;
 pub mod results;
 pub mod run;
 mod shard;
+pub mod suite_rows;
 
 pub use axes::{Axis, AxisValue};
 pub use edit::{set_keys, sweep_text};
 pub use hash::{Fnv1a, fnv1a};
 pub use shard::Shard;
+pub use suite_rows::RowKind;
 
 use std::path::{Path, PathBuf};
 
@@ -183,6 +185,7 @@ pub struct Sweep {
     text: String,
     base_text: String,
     records: RecordCache,
+    kind: RowKind,
 }
 
 struct Ctx<'a> {
@@ -319,6 +322,8 @@ impl Sweep {
         {
             *f = absolute(&base_dir.join(&*f)).display().to_string();
         }
+        // and a suite's record files and target table, likewise
+        let kind = suite_rows::absolute_suite_files(&mut base, &base_dir);
 
         let list = raw.axis.as_ref().ok_or_else(|| {
             ctx.invalid(
@@ -375,6 +380,7 @@ impl Sweep {
         {
             files.push(PathBuf::from(f));
         }
+        files.extend(suite_rows::suite_files(&base));
         for a in &axes {
             if let Target::Key {
                 kind: Kind::File, ..
@@ -415,7 +421,27 @@ impl Sweep {
             sweep_dir,
             identity,
             records: RecordCache::new(),
+            kind,
         })
+    }
+
+    /// What a row of this sweep holds: one run ([`RowKind::Single`]) or a suite of records
+    /// ([`RowKind::Suite`], when the base scenario's ground motion is `kind = "suite"`).
+    pub fn row_kind(&self) -> RowKind {
+        self.kind
+    }
+
+    /// The columns of a row after `status`: [`results::FIELDS`] and [`Sweep::extra_columns`]
+    /// for single runs, [`suite_rows::columns`] for a suite.
+    pub fn result_columns(&self) -> Vec<String> {
+        match self.kind {
+            RowKind::Single => results::FIELDS
+                .iter()
+                .chain(self.extra_columns().iter())
+                .map(|f| f.to_string())
+                .collect(),
+            RowKind::Suite { levels } => suite_rows::columns(levels),
+        }
     }
 
     /// What the sweep was made of: its text, its path, the base scenario's text and path —
@@ -474,8 +500,13 @@ impl Sweep {
     }
 
     /// Every column after [`results::FIELDS`]: the code columns, then the floor columns, then
-    /// the ductility columns.
+    /// the ductility columns (none for a sweep over a suite, whose rows are
+    /// [`suite_rows::columns`]).
     pub fn extra_columns(&self) -> Vec<&'static str> {
+        if self.kind != RowKind::Single {
+            // a suite's rows have their own columns (`suite_rows::columns`)
+            return Vec::new();
+        }
         let mut v = self.code_columns();
         v.extend(self.floor_columns());
         v.extend(self.ductility_columns());

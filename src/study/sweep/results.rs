@@ -102,10 +102,13 @@ pub const DUCTILITY_FIELDS: [&str; 4] = [
     "peak_ductility_no_contact_2",
 ];
 
-/// The journal version of `sweep`: [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`]
-/// (codes, floors), else [`JOURNAL_VERSION`].
+/// The journal version of `sweep`: [`super::suite_rows::JOURNAL_VERSION_SUITE`] for a suite's
+/// rows, [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`] (codes, floors), else
+/// [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
-    if sweep.extra_columns().is_empty() {
+    if sweep.row_kind() != super::RowKind::Single {
+        super::suite_rows::JOURNAL_VERSION_SUITE
+    } else if sweep.extra_columns().is_empty() {
         JOURNAL_VERSION
     } else {
         JOURNAL_VERSION_CODES
@@ -248,8 +251,7 @@ pub fn header(sweep: &Sweep) -> String {
     let mut cols = vec!["case".to_string()];
     cols.extend(sweep.axes.iter().map(|a| csv_field(&a.key)));
     cols.push("status".into());
-    cols.extend(FIELDS.iter().map(|f| f.to_string()));
-    cols.extend(sweep.extra_columns().iter().map(|f| f.to_string()));
+    cols.extend(sweep.result_columns());
     cols.join(",")
 }
 
@@ -276,7 +278,7 @@ pub fn row(sweep: &Sweep, case: usize, outcome: &Result<Vec<String>, String>) ->
                 .collect();
             line.push(',');
             line.push_str(&csv_field(&format!("failed: {reason}")));
-            line.push_str(&",".repeat(FIELDS.len() + sweep.extra_columns().len()));
+            line.push_str(&",".repeat(sweep.result_columns().len()));
         }
     }
     line
@@ -296,9 +298,9 @@ pub fn columns(
     let names: Vec<String> = std::iter::once("case".to_string())
         .chain(sweep.axes.iter().map(|a| a.key.clone()))
         .chain(std::iter::once("status".to_string()))
-        .chain(FIELDS.iter().map(|f| f.to_string()))
-        .chain(sweep.extra_columns().iter().map(|f| f.to_string()))
+        .chain(sweep.result_columns())
         .collect();
+    let suite = sweep.row_kind() != super::RowKind::Single;
     let mut cols: Vec<Column> = names
         .iter()
         .enumerate()
@@ -310,6 +312,7 @@ pub fn columns(
                 Some(_) => Column::Text(Vec::new()),
                 None if j == 0 => Column::Int(Vec::new()),
                 None if name == "status" || name == "converged" => Column::Text(Vec::new()),
+                None if suite && super::suite_rows::is_text(name) => Column::Text(Vec::new()),
                 None => Column::Float(Vec::new()),
             }
         })
@@ -346,22 +349,26 @@ pub fn columns(
     Ok(names.into_iter().zip(cols).collect())
 }
 
-/// Checks a row read back: right number of fields, case in range, a known status, numbers
-/// where the status is `ok`. Returns the case and whether it failed.
-fn check_row(line: &str, columns: usize, codes: usize, cases: usize) -> Option<(usize, bool)> {
+/// Checks a row read back: right number of fields, case in range, a known status, values
+/// of each result column's kind (`names`, after `status`; `suite`: a suite's row) where the
+/// status is `ok`. Returns the case and whether it failed.
+fn check_row(line: &str, names: &[String], suite: bool, cases: usize) -> Option<(usize, bool)> {
     let f = parse_csv_line(line)?;
-    if f.len() != columns {
+    let columns = f.len();
+    if columns < names.len() + 2 {
         return None;
     }
     let case: usize = f[0].parse().ok()?;
     if case >= cases {
         return None;
     }
-    let status = &f[columns - FIELDS.len() - codes - 1];
-    let nums = &f[columns - FIELDS.len() - codes..];
+    let status = &f[columns - names.len() - 1];
+    let nums = &f[columns - names.len()..];
     if status == "ok" {
-        if nums.iter().enumerate().all(|(k, x)| {
-            if k < NFIELDS {
+        if nums.iter().zip(names).enumerate().all(|(k, (x, name))| {
+            if suite {
+                super::suite_rows::parse(name, x).is_some()
+            } else if k < NFIELDS {
                 parse_field(k, x).is_some()
             } else {
                 x.parse::<f64>().is_ok()
@@ -456,6 +463,29 @@ impl Journal {
                     .split(';')
                     .next()
                     .unwrap_or("?");
+                // rows of the other kind (a suite of records per case, or one run): never mixed
+                let suite_v = format!("v{}", super::suite_rows::JOURNAL_VERSION_SUITE);
+                if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE)
+                {
+                    let what = |suite: bool| {
+                        if suite {
+                            "a suite of records per case"
+                        } else {
+                            "one run per case"
+                        }
+                    };
+                    return Err(SweepError::Journal {
+                        path: path.display().to_string(),
+                        message: format!(
+                            "this journal holds the rows of another sweep ({}; this sweep has {}): \
+                             the two kinds of rows have different columns and are never mixed. Use \
+                             another --out, or delete the directory's journal and results to start \
+                             afresh",
+                            what(other == suite_v),
+                            what(other != suite_v)
+                        ),
+                    });
+                }
                 return Err(SweepError::Journal {
                     path: path.display().to_string(),
                     message: format!(
@@ -491,8 +521,9 @@ impl Journal {
                             .into(),
                 });
             }
-            let codes = sweep.extra_columns().len();
-            let columns = 2 + sweep.axes.len() + FIELDS.len() + codes;
+            let names = sweep.result_columns();
+            let columns = 2 + sweep.axes.len() + names.len();
+            let suite = sweep.row_kind() != super::RowKind::Single;
             let mut good_end = preamble.len();
             let mut pos = preamble.len();
             for line in lines {
@@ -503,7 +534,8 @@ impl Journal {
                     break;
                 };
                 good_end = pos;
-                match check_row(body, columns, codes, sweep.len()) {
+                let whole = parse_csv_line(body).is_some_and(|f| f.len() == columns);
+                match check_row(body, &names, suite, sweep.len()).filter(|_| whole) {
                     Some((case, failed)) if shard.contains(case) => {
                         rows.entry(case).or_insert((body.to_string(), failed));
                     }
@@ -582,8 +614,12 @@ pub struct Table {
     /// Rows by case.
     pub rows: BTreeMap<usize, TableRow>,
     /// The columns after [`FIELDS`] ([`CODE_FIELDS`], then [`FLOOR_FIELDS`], then
-    /// [`DUCTILITY_FIELDS`]: those the table has).
+    /// [`DUCTILITY_FIELDS`]: those the table has); for a sweep over a suite, every column
+    /// after `status` ([`super::suite_rows::columns`]).
     pub codes: Vec<String>,
+    /// The rows are suites of records ([`super::suite_rows`]): [`TableRow::fields`] are NaN
+    /// and the values are in [`TableRow::codes`].
+    pub suite: bool,
 }
 
 /// One row of a [`Table`].
@@ -605,7 +641,7 @@ pub struct TableRow {
 impl TableRow {
     /// The value of column `name` of `table` (a [`FIELDS`] or code column), if it has it.
     pub fn get(&self, table: &Table, name: &str) -> Option<f64> {
-        match Table::field_index(name) {
+        match Table::field_index(name).filter(|_| !table.suite) {
             Some(i) => Some(self.fields[i]),
             None => table
                 .codes
@@ -633,6 +669,9 @@ impl Table {
             .ok_or_else(|| bad(1, "empty file: not a sweep results table".into()))?
             .to_string();
         let all = parse_csv_line(&header).unwrap_or_default();
+        if let Some(t) = Table::read_suite(path, &header, &all, &text)? {
+            return Ok(t);
+        }
         // trailing code columns, then the layout before them
         let ncodes = all
             .iter()
@@ -724,7 +763,87 @@ impl Table {
             axes,
             rows,
             codes,
+            suite: false,
         })
+    }
+
+    /// A table of a sweep over a suite (columns `case`, the axes, `status`,
+    /// [`super::suite_rows::columns`]), or `None` when `all` (the header's columns) is not one.
+    fn read_suite(
+        path: &Path,
+        header: &str,
+        all: &[String],
+        text: &str,
+    ) -> Result<Option<Table>, SweepError> {
+        use super::suite_rows::{HEAD, PER_LEVEL, TAIL, columns, parse};
+        let bad = |line: usize, msg: String| SweepError::Journal {
+            path: format!("{}:{line}", path.display()),
+            message: msg,
+        };
+        let Some(st) = all
+            .iter()
+            .position(|c| c == "status")
+            .filter(|&st| all.get(st + 1).map(String::as_str) == Some(HEAD[0]))
+        else {
+            return Ok(None);
+        };
+        let rest = all.len() - st - 1;
+        let levels = rest.saturating_sub(HEAD.len() + TAIL.len()) / PER_LEVEL.len();
+        let names = columns(levels);
+        if all[0] != "case" || all[st + 1..] != names[..] {
+            return Err(bad(
+                1,
+                format!(
+                    "not a sweep results table of a suite: expected columns case, <axis keys>, \
+                     status, {}",
+                    columns(1).join(", ").replace("level1_", "levelK_")
+                ),
+            ));
+        }
+        let mut rows = BTreeMap::new();
+        for (i, line) in text.lines().enumerate().skip(1) {
+            let lineno = i + 1;
+            if line.trim().is_empty() {
+                continue;
+            }
+            let f = parse_csv_line(line)
+                .filter(|f| f.len() == all.len())
+                .ok_or_else(|| {
+                    bad(
+                        lineno,
+                        format!("expected {} comma-separated fields", all.len()),
+                    )
+                })?;
+            let case: usize = f[0]
+                .parse()
+                .map_err(|_| bad(lineno, format!("case `{}` is not a whole number", f[0])))?;
+            let mut values = vec![f64::NAN; names.len()];
+            for (k, x) in f[st + 1..].iter().enumerate() {
+                if !x.is_empty() {
+                    values[k] = parse(&names[k], x).ok_or_else(|| {
+                        bad(lineno, format!("`{}` = `{x}` is not valid", names[k]))
+                    })?;
+                }
+            }
+            let r = TableRow {
+                line: line.to_string(),
+                values: f[1..st].to_vec(),
+                status: f[st].clone(),
+                fields: [f64::NAN; NFIELDS],
+                codes: values,
+            };
+            if rows.insert(case, r).is_some() {
+                return Err(bad(lineno, format!("case {case} appears twice")));
+            }
+        }
+        Ok(Some(Table {
+            path: path.to_path_buf(),
+            header: header.to_string(),
+            axes: all[1..st].to_vec(),
+            rows,
+            codes: names,
+            suite: true,
+        }))
     }
 
     /// Index of a field in [`FIELDS`].

@@ -243,6 +243,9 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
+        if let super::RowKind::Suite { .. } = sweep.row_kind() {
+            return suite_case(&sc, check, &mut warning);
+        }
         // (the floor responses only when the table has floor columns: they cost more than the
         // integration of a small model)
         let report = if sweep.floor_columns().is_empty() {
@@ -272,6 +275,26 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         failed: outcome.is_err(),
         warning,
     }
+}
+
+/// A case of a sweep over a suite: the whole suite run ([`crate::study::suite::run_headline`]:
+/// scaled by its rule for the case's structures, every record with and without contact) to
+/// the fields of its row ([`super::suite_rows::fields`]); `warning` receives the first
+/// warning of a record's run (not the self-check's), naming the record.
+fn suite_case(
+    sc: &crate::input::scenario::Scenario,
+    check: bool,
+    warning: &mut Option<String>,
+) -> Result<Vec<String>, String> {
+    let run = crate::study::suite::run_headline(sc, check).map_err(|e| e.to_string())?;
+    *warning = run.records.iter().enumerate().find_map(|(i, r)| {
+        r.report
+            .warnings
+            .iter()
+            .find(|w| !crate::analysis::simulate::accuracy::is_check_warning(w))
+            .map(|w| format!("record {} ({}): {w}", i + 1, r.file))
+    });
+    Ok(super::suite_rows::fields(&run, check))
 }
 
 /// Refuse a sweep none of whose `cases` is a valid scenario (a mistake in the base scenario
