@@ -43,17 +43,18 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{
-    GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
-    mode_work, monomial_influence, propagator,
+    GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, mode_work,
+    monomial_influence, propagator,
 };
 use super::progress::Progress;
 use super::{
-    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
-    update_onsets,
+    InitialState, Integrator, Method, Observer, SolveError, SolverSettings, Stats, StepTrace,
+    StepView, Tally, update_onsets,
 };
 use crate::model::ground_motion::GroundMotion;
-use crate::model::system::{LevelState, System};
-use crate::numerics::linalg::dot;
+use crate::model::system::{LevelState, System, episode_v0};
+use crate::numerics::hermite::{hermite_crossing, hermite_max};
+use crate::numerics::linalg::{dot, power};
 
 /// Event tolerance on δ, m.
 const EVENT_TOL: f64 = 1e-12;
@@ -75,7 +76,7 @@ fn vandermonde_inverse() -> [[f64; 4]; 4] {
     let mut a = [[0.0; 8]; 4];
     for i in 0..4 {
         for m in 0..4 {
-            a[i][m] = th[i].powi(m as i32);
+            a[i][m] = power(th[i], m as u32);
         }
         a[i][4 + i] = 1.0;
     }
@@ -427,7 +428,7 @@ fn step(
             // the step starts on a located onset (δ = 0⁻ to 1e-12 m): the force at its start is
             // the law's right limit, c·δ̇ for Kelvin, not the 0 of δ ≤ 0
             let dd = start[k].delta_dot;
-            let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+            let v0 = episode_v0(onset[k], dd);
             lv.force.force(f64::MIN_POSITIVE, dd, v0)
         } else {
             start[k].force
@@ -458,7 +459,7 @@ fn step(
                     }
                 }
                 w.dnode[k * 4 + i] = (d, dd);
-                let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+                let v0 = episode_v0(onset[k], dd);
                 let f = lv.force.force(d, dd, v0);
                 let old = w.fnode[k * 4 + i];
                 change = change.max((f - old).abs());
@@ -563,14 +564,7 @@ pub(super) fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) 
 fn level_states(sys: &System, q: &[f64], v: &[f64], onset: &[f64], states: &mut [LevelState]) {
     for (k, lv) in sys.levels.iter().enumerate() {
         let c = sys.coupling(k);
-        let delta = -dot(c, q) - lv.gap;
-        let dd = -dot(c, v);
-        let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
-        states[k] = LevelState {
-            delta,
-            delta_dot: dd,
-            force: lv.force.force(delta, dd, v0),
-        };
+        states[k] = lv.state(dot(c, q), dot(c, v), onset[k]);
     }
 }
 
@@ -645,297 +639,39 @@ fn doubling_error(
 /// controller from overshooting on either).
 const ORDER: f64 = 5.0;
 
-pub(super) fn run<O: Observer>(
-    sys: &System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &mut O,
-) -> Result<Stats, SolveError> {
-    run_traced(sys, settings, initial, observer, None)
-}
+/// `adaptive`: see the module.
+pub(super) struct Adaptive;
 
-pub(crate) fn run_traced<O: Observer>(
-    sys: &System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &mut O,
-    mut trace: Option<&mut Vec<StepTrace>>,
-) -> Result<Stats, SolveError> {
-    let n = sys.len();
-    let nl = sys.levels.len();
-    let gm = GroundModes::new(sys);
-    let (q0, v0) = initial.resolved(n);
-    let (aq, av) = modal_tolerances(sys, settings.atol);
-    let mut w = Work::new(sys, q0, v0, aq, av);
-    let mut states = vec![LevelState::default(); nl];
-    let mut prev_states = states.clone();
-    let mut onset = vec![0.0; nl];
-    let mut imp = vec![0.0; nl];
-    let mut tally = Tally {
-        impulse: vec![0.0; nl],
-        ..Tally::default()
-    };
-    let mut stats = Stats::default();
-    level_states(sys, &w.q, &w.v, &onset, &mut states);
-    let s0 = states.clone();
-    update_onsets(&mut onset, &s0, &states, 0.0);
-    observer.observe(
-        sys,
-        &StepView {
-            t: 0.0,
-            q: &w.q,
-            v: &w.v,
-            levels: &states,
-            z: &[],
-            tally: &tally,
-        },
-    );
-
-    let duration = settings.duration;
-    let hmax = settings.dt;
-    let rtol = settings.rtol;
-    let htally = HarmonicTally::new(&gm);
-    // tables per quantised size; a size's half is 4 entries further on
-    let mut cache: Vec<Option<Table>> = (0..=MAX_K + 4).map(|_| None).collect();
-    let mut scratch = Table::new();
-    let mut scratch_half = Table::new();
-    let mut k_step: usize = 0;
-    // size of the last accepted step that began at a located onset: the next onset starts
-    // near it instead of at the free flight's size
-    let mut k_onset: usize = 0;
-    let mut err_old: f64 = 1e-4;
-    let mut rejected_last = false;
-    let mut progress = Progress::new(Method::Adaptive);
-    let mut t = 0.0;
-    while t < duration {
-        let (piece, piece_end) = gm.piece_at(t);
-        let limit = piece_end.min(duration) - t;
-        let starts_contact = states.iter().any(at_located_onset);
-        if starts_contact && !rejected_last {
-            k_step = k_step.max(k_onset.saturating_sub(2));
-        }
-        let hq = hmax * (-(k_step as f64) / QUANT).exp2();
-        let (h, quantised) = if hq >= limit * (1.0 - 1e-9) {
-            (limit, false)
-        } else {
-            (hq, true)
+impl Integrator for Adaptive {
+    fn run<'a, O: Observer>(
+        sys: &'a System,
+        settings: &SolverSettings,
+        initial: &InitialState,
+        observer: &'a mut O,
+        mut trace: Option<&'a mut Vec<StepTrace>>,
+    ) -> Result<Stats, SolveError> {
+        let n = sys.len();
+        let nl = sys.levels.len();
+        let gm = GroundModes::new(sys);
+        let (q0, v0) = initial.resolved(n);
+        let (aq, av) = modal_tolerances(sys, settings.atol);
+        let mut w = Work::new(sys, q0, v0, aq, av);
+        let mut states = vec![LevelState::default(); nl];
+        let mut prev_states = states.clone();
+        let mut onset = vec![0.0; nl];
+        let mut imp = vec![0.0; nl];
+        let mut tally = Tally {
+            impulse: vec![0.0; nl],
+            ..Tally::default()
         };
-        if quantised {
-            for k in [k_step, k_step + 4] {
-                if cache[k].is_none() {
-                    let mut tb = Table::new();
-                    tb.fill(sys, hmax * (-(k as f64) / QUANT).exp2());
-                    cache[k] = Some(tb);
-                }
-            }
-        } else if scratch.h != h {
-            scratch.fill(sys, h);
-        }
-        let tab: &Table = match &cache[k_step] {
-            Some(tb) if quantised => tb,
-            _ => &scratch,
-        };
-        // (h, end rotation, half angle) of the planned step, for its tallies
-        let full = (tab.h, tab.rot[3], tab.half);
-        let mut tr = step(sys, &gm, tab, &mut w, &onset, &states, t, &piece, &mut imp);
-        stats.evaluations += 1;
-        let mut h_taken = h;
-        let mut located = false;
-        // a sign change of δ inside the step: end the step at the event instead
-        if tr.err.is_finite()
-            && !tr.free
-            && let Some((k, s_guess)) = first_crossing(&states, &w, nl)
-        {
-            let (tr2, s) = locate_event(
-                sys,
-                &gm,
-                &mut scratch,
-                &mut w,
-                &onset,
-                &states,
-                t,
-                h,
-                &piece,
-                k,
-                s_guess,
-                &mut imp,
-                &mut stats,
-            );
-            tr = tr2;
-            h_taken = s;
-            located = true;
-            stats.events += 1;
-        }
-        // the error of a step that carried contact forces, by step doubling
-        let mut err = tr.err;
-        if err.is_finite() && !tr.free && w.fnode.iter().any(|&f| f != 0.0) {
-            let half: &Table = match &cache[k_step + 4] {
-                Some(tb) if quantised && !located => tb,
-                _ => {
-                    if scratch_half.h != 0.5 * h_taken {
-                        scratch_half.fill(sys, 0.5 * h_taken);
-                    }
-                    &scratch_half
-                }
-            };
-            err = doubling_error(
-                sys, &gm, half, &mut w, &onset, &states, t, &piece, rtol, &mut stats,
-            );
-        }
-        if err.is_nan() || err > 1.0 {
-            stats.rejected += 1;
-            progress.rejected(sys, &states, t, h_taken)?;
-            let fac = if err.is_finite() {
-                (0.9 * err.powf(-1.0 / ORDER)).clamp(0.2, 0.9)
-            } else {
-                0.3
-            };
-            let k_new = quantise_down(h_taken * fac, hmax);
-            k_step = if located {
-                k_new
-            } else {
-                k_new.max(k_step + 1)
-            };
-            rejected_last = true;
-            if k_step >= MAX_K {
-                return Err(if err.is_finite() {
-                    SolveError::ToleranceUnreachable {
-                        t,
-                        h: h_taken,
-                        rtol,
-                    }
-                } else {
-                    SolveError::Diverged {
-                        t,
-                        contact_omega_dt: stats.max_contact_omega_dt,
-                    }
-                });
-            }
-            continue;
-        }
-        if let Some(tr_log) = trace.as_deref_mut()
-            && !tr.free
-            && err > 0.0
-        {
-            tr_log.push(StepTrace {
-                t,
-                h: h_taken,
-                q0: w.q.clone(),
-                v0: w.v.clone(),
-                onset: onset.clone(),
-                q1: w.qn.clone(),
-                v1: w.vn.clone(),
-                err,
-                kink: false,
-                z0: Vec::new(),
-                z1: Vec::new(),
-                companion: Vec::new(),
-            });
-        }
-        if starts_contact && !tr.free {
-            k_onset = quantise_down(h_taken, hmax);
-        }
-        // accept
-        let t_end = if h_taken == limit {
-            t + limit
-        } else {
-            t + h_taken
-        };
-        progress.accepting(sys, &states, t, t_end, h_taken)?;
-        if tr.free {
-            let tm = match piece {
-                Piece::Harmonic => gm.harmonic_omega().map(|big| {
-                    if h_taken == full.0 {
-                        // the step as planned: its end by rotation (no further libm calls)
-                        let (a, (sh, ch)) = (gm.trig(t), full.1);
-                        let b = (a.s * ch + a.c * sh, a.c * ch - a.s * sh);
-                        TrigMoments::from_ends(big, h_taken, (a.s, a.c), b, full.2)
-                    } else {
-                        TrigMoments::new(big, t, h_taken)
-                    }
-                }),
-                _ => None,
-            };
-            let (mut input, mut damping) = (0.0, 0.0);
-            if let (Some(ht), Some(tm)) = (&htally, &tm) {
-                // harmonic motion: exact tallies from linear forms
-                let (mut s0, mut s1) = (StateSums::default(), StateSums::default());
-                for j in 0..n {
-                    ht.add(&mut s0, j, gm.w2[j], w.q[j], w.v[j]);
-                    ht.add(&mut s1, j, gm.w2[j], w.qn[j], w.vn[j]);
-                }
-                input = ht.input(tm, &s0, &s1);
-                damping = input - (s1.energy - s0.energy);
-            } else {
-                for j in 0..n {
-                    let ground = match piece {
-                        Piece::Harmonic => None,
-                        _ => Some(&w.cpoly[j]),
-                    };
-                    let m = mode_work(
-                        &gm,
-                        j,
-                        h_taken,
-                        (w.q[j], w.v[j]),
-                        (w.qn[j], w.vn[j]),
-                        ground,
-                        tm.as_ref(),
-                        0.0,
-                        0.0,
-                    );
-                    input += m.input;
-                    damping += m.damping;
-                }
-            }
-            tally.input += input;
-            tally.damping += damping;
-        } else {
-            tally.input += tr.input;
-            tally.damping += tr.damping;
-            tally.contact += tr.contact;
-            for k in 0..nl {
-                tally.impulse[k] += imp[k];
-            }
-        }
-        std::mem::swap(&mut w.q, &mut w.qn);
-        std::mem::swap(&mut w.v, &mut w.vn);
-        t = t_end;
-        prev_states.copy_from_slice(&states);
+        let mut stats = Stats::default();
         level_states(sys, &w.q, &w.v, &onset, &mut states);
-        update_onsets(&mut onset, &prev_states, &states, h_taken);
-        for k in 0..nl {
-            // a located onset: the approach speed is the speed at the event itself
-            if onset[k] == 0.0 && at_located_onset(&states[k]) {
-                onset[k] = states[k].delta_dot;
-            }
-        }
-        // stereomechanical impacts: velocity jumps at the step end (the onset is located, so
-        // this is the instant of contact)
-        if sys.apply_impulses(
-            &mut w.v,
-            &mut states,
-            &mut tally.impulse,
-            &mut tally.contact,
-        ) {
-            level_states(sys, &w.q, &w.v, &onset, &mut states);
-        }
-        for (lv, st) in sys.levels.iter().zip(&states) {
-            if st.delta > 0.0 {
-                let wc = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
-                stats.max_contact_omega_dt = stats.max_contact_omega_dt.max(wc * h_taken);
-            }
-        }
-        stats.steps += 1;
-        if !(w.q.iter().sum::<f64>().is_finite() && w.v.iter().sum::<f64>().is_finite()) {
-            return Err(SolveError::Diverged {
-                t,
-                contact_omega_dt: stats.max_contact_omega_dt,
-            });
-        }
+        let s0 = states.clone();
+        update_onsets(&mut onset, &s0, &states, 0.0);
         observer.observe(
             sys,
             &StepView {
-                t,
+                t: 0.0,
                 q: &w.q,
                 v: &w.v,
                 levels: &states,
@@ -943,19 +679,274 @@ pub(crate) fn run_traced<O: Observer>(
                 tally: &tally,
             },
         );
-        // next step size (PI controller, Hairer & Wanner II.4)
-        if h_taken == h && quantised {
-            let e = err.max(1e-10);
-            let mut fac = (0.9 * e.powf(-0.7 / ORDER) * err_old.powf(0.4 / ORDER)).clamp(0.2, 5.0);
-            if rejected_last {
-                fac = fac.min(1.0);
+
+        let duration = settings.duration;
+        let hmax = settings.max_step();
+        let rtol = settings.rtol;
+        let htally = HarmonicTally::new(&gm);
+        // tables per quantised size; a size's half is 4 entries further on
+        let mut cache: Vec<Option<Table>> = (0..=MAX_K + 4).map(|_| None).collect();
+        let mut scratch = Table::new();
+        let mut scratch_half = Table::new();
+        let mut k_step: usize = 0;
+        // size of the last accepted step that began at a located onset: the next onset starts
+        // near it instead of at the free flight's size
+        let mut k_onset: usize = 0;
+        let mut err_old: f64 = 1e-4;
+        let mut rejected_last = false;
+        let mut progress = Progress::new(Method::Adaptive);
+        let mut t = 0.0;
+        while t < duration {
+            let (piece, piece_end) = gm.piece_at(t);
+            let limit = piece_end.min(duration) - t;
+            let starts_contact = states.iter().any(at_located_onset);
+            if starts_contact && !rejected_last {
+                k_step = k_step.max(k_onset.saturating_sub(2));
             }
-            err_old = e.max(1e-4);
-            k_step = quantise_down(hq * fac, hmax);
+            let hq = hmax * (-(k_step as f64) / QUANT).exp2();
+            let (h, quantised) = if hq >= limit * (1.0 - 1e-9) {
+                (limit, false)
+            } else {
+                (hq, true)
+            };
+            if quantised {
+                for k in [k_step, k_step + 4] {
+                    if cache[k].is_none() {
+                        let mut tb = Table::new();
+                        tb.fill(sys, hmax * (-(k as f64) / QUANT).exp2());
+                        cache[k] = Some(tb);
+                    }
+                }
+            } else if scratch.h != h {
+                scratch.fill(sys, h);
+            }
+            let tab: &Table = match &cache[k_step] {
+                Some(tb) if quantised => tb,
+                _ => &scratch,
+            };
+            // (h, end rotation, half angle) of the planned step, for its tallies
+            let full = (tab.h, tab.rot[3], tab.half);
+            let mut tr = step(sys, &gm, tab, &mut w, &onset, &states, t, &piece, &mut imp);
+            stats.evaluations += 1;
+            let mut h_taken = h;
+            let mut located = false;
+            // a sign change of δ inside the step: end the step at the event instead
+            if tr.err.is_finite()
+                && !tr.free
+                && let Some((k, s_guess)) = first_crossing(&states, &w, nl)
+            {
+                let (tr2, s) = locate_event(
+                    sys,
+                    &gm,
+                    &mut scratch,
+                    &mut w,
+                    &onset,
+                    &states,
+                    t,
+                    h,
+                    &piece,
+                    k,
+                    s_guess,
+                    &mut imp,
+                    &mut stats,
+                );
+                tr = tr2;
+                h_taken = s;
+                located = true;
+                stats.events += 1;
+            }
+            // the error of a step that carried contact forces, by step doubling
+            let mut err = tr.err;
+            if err.is_finite() && !tr.free && w.fnode.iter().any(|&f| f != 0.0) {
+                let half: &Table = match &cache[k_step + 4] {
+                    Some(tb) if quantised && !located => tb,
+                    _ => {
+                        if scratch_half.h != 0.5 * h_taken {
+                            scratch_half.fill(sys, 0.5 * h_taken);
+                        }
+                        &scratch_half
+                    }
+                };
+                err = doubling_error(
+                    sys, &gm, half, &mut w, &onset, &states, t, &piece, rtol, &mut stats,
+                );
+            }
+            if err.is_nan() || err > 1.0 {
+                stats.rejected += 1;
+                progress.rejected(sys, &states, t, h_taken)?;
+                let fac = if err.is_finite() {
+                    (0.9 * err.powf(-1.0 / ORDER)).clamp(0.2, 0.9)
+                } else {
+                    0.3
+                };
+                let k_new = quantise_down(h_taken * fac, hmax);
+                k_step = if located {
+                    k_new
+                } else {
+                    k_new.max(k_step + 1)
+                };
+                rejected_last = true;
+                if k_step >= MAX_K {
+                    return Err(if err.is_finite() {
+                        SolveError::ToleranceUnreachable {
+                            t,
+                            h: h_taken,
+                            rtol,
+                        }
+                    } else {
+                        SolveError::Diverged {
+                            t,
+                            contact_omega_dt: stats.max_contact_omega_dt,
+                        }
+                    });
+                }
+                continue;
+            }
+            if let Some(tr_log) = trace.as_deref_mut()
+                && !tr.free
+                && err > 0.0
+            {
+                tr_log.push(StepTrace {
+                    t,
+                    h: h_taken,
+                    q0: w.q.clone(),
+                    v0: w.v.clone(),
+                    onset: onset.clone(),
+                    q1: w.qn.clone(),
+                    v1: w.vn.clone(),
+                    err,
+                    kink: false,
+                    z0: Vec::new(),
+                    z1: Vec::new(),
+                    companion: Vec::new(),
+                });
+            }
+            if starts_contact && !tr.free {
+                k_onset = quantise_down(h_taken, hmax);
+            }
+            // accept
+            let t_end = if h_taken == limit {
+                t + limit
+            } else {
+                t + h_taken
+            };
+            progress.accepting(sys, &states, t, t_end, h_taken)?;
+            if tr.free {
+                let tm = match piece {
+                    Piece::Harmonic => gm.harmonic_omega().map(|big| {
+                        if h_taken == full.0 {
+                            // the step as planned: its end by rotation (no further libm calls)
+                            let (a, (sh, ch)) = (gm.trig(t), full.1);
+                            let b = (a.s * ch + a.c * sh, a.c * ch - a.s * sh);
+                            TrigMoments::from_ends(big, h_taken, (a.s, a.c), b, full.2)
+                        } else {
+                            TrigMoments::new(big, t, h_taken)
+                        }
+                    }),
+                    _ => None,
+                };
+                let (mut input, mut damping) = (0.0, 0.0);
+                if let (Some(ht), Some(tm)) = (&htally, &tm) {
+                    // harmonic motion: exact tallies from linear forms
+                    let (mut s0, mut s1) = (StateSums::default(), StateSums::default());
+                    for j in 0..n {
+                        ht.add(&mut s0, j, gm.w2[j], w.q[j], w.v[j]);
+                        ht.add(&mut s1, j, gm.w2[j], w.qn[j], w.vn[j]);
+                    }
+                    input = ht.input(tm, &s0, &s1);
+                    damping = input - (s1.energy - s0.energy);
+                } else {
+                    for j in 0..n {
+                        let ground = match piece {
+                            Piece::Harmonic => None,
+                            _ => Some(&w.cpoly[j]),
+                        };
+                        let m = mode_work(
+                            &gm,
+                            j,
+                            h_taken,
+                            (w.q[j], w.v[j]),
+                            (w.qn[j], w.vn[j]),
+                            ground,
+                            tm.as_ref(),
+                            0.0,
+                            0.0,
+                        );
+                        input += m.input;
+                        damping += m.damping;
+                    }
+                }
+                tally.input += input;
+                tally.damping += damping;
+            } else {
+                tally.input += tr.input;
+                tally.damping += tr.damping;
+                tally.contact += tr.contact;
+                for k in 0..nl {
+                    tally.impulse[k] += imp[k];
+                }
+            }
+            std::mem::swap(&mut w.q, &mut w.qn);
+            std::mem::swap(&mut w.v, &mut w.vn);
+            t = t_end;
+            prev_states.copy_from_slice(&states);
+            level_states(sys, &w.q, &w.v, &onset, &mut states);
+            update_onsets(&mut onset, &prev_states, &states, h_taken);
+            for k in 0..nl {
+                // a located onset: the approach speed is the speed at the event itself
+                if onset[k] == 0.0 && at_located_onset(&states[k]) {
+                    onset[k] = states[k].delta_dot;
+                }
+            }
+            // stereomechanical impacts: velocity jumps at the step end (the onset is located, so
+            // this is the instant of contact)
+            if sys.apply_impulses(
+                &mut w.v,
+                &mut states,
+                &mut tally.impulse,
+                &mut tally.contact,
+            ) {
+                level_states(sys, &w.q, &w.v, &onset, &mut states);
+            }
+            for (lv, st) in sys.levels.iter().zip(&states) {
+                if st.delta > 0.0 {
+                    let wc = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
+                    stats.max_contact_omega_dt = stats.max_contact_omega_dt.max(wc * h_taken);
+                }
+            }
+            stats.steps += 1;
+            if !(w.q.iter().sum::<f64>().is_finite() && w.v.iter().sum::<f64>().is_finite()) {
+                return Err(SolveError::Diverged {
+                    t,
+                    contact_omega_dt: stats.max_contact_omega_dt,
+                });
+            }
+            observer.observe(
+                sys,
+                &StepView {
+                    t,
+                    q: &w.q,
+                    v: &w.v,
+                    levels: &states,
+                    z: &[],
+                    tally: &tally,
+                },
+            );
+            // next step size (PI controller, Hairer & Wanner II.4)
+            if h_taken == h && quantised {
+                let e = err.max(1e-10);
+                let mut fac =
+                    (0.9 * e.powf(-0.7 / ORDER) * err_old.powf(0.4 / ORDER)).clamp(0.2, 5.0);
+                if rejected_last {
+                    fac = fac.min(1.0);
+                }
+                err_old = e.max(1e-4);
+                k_step = quantise_down(hq * fac, hmax);
+            }
+            rejected_last = false;
         }
-        rejected_last = false;
+        Ok(stats)
     }
-    Ok(stats)
 }
 
 /// Smallest k with hmax·2^(−k/4) ≤ h.
@@ -987,17 +978,9 @@ fn first_crossing(start: &[LevelState], w: &Work, nl: usize) -> Option<(usize, f
             let crossing = (prev.0 < 0.0 && cur.0 > 0.0) || (prev.0 > 0.0 && cur.0 <= 0.0);
             if crossing {
                 let span = th[i] - th[i - 1];
-                let (mut lo, mut hi) = (0.0, 1.0);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    let y = hermite(prev.0, prev.1 * span, cur.0, cur.1 * span, 1.0, mid);
-                    if (y > 0.0) == (prev.0 > 0.0) {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                let theta = th[i - 1] + span * 0.5 * (lo + hi);
+                // (slopes per unit of θ over the node span, on [0, 1])
+                let x = hermite_crossing(prev.0, prev.1 * span, cur.0, cur.1 * span, 1.0, 60);
+                let theta = th[i - 1] + span * x;
                 if best.is_none_or(|b| theta < b.1) {
                     best = Some((k, theta));
                 }
@@ -1028,7 +1011,7 @@ fn locate_event(
     stats: &mut Stats,
 ) -> (Trial, f64) {
     let lv = &sys.levels[k];
-    let d_at = |w: &Work| -dot(sys.coupling(k), &w.qn) - lv.gap;
+    let d_at = |w: &Work| lv.delta(dot(sys.coupling(k), &w.qn));
     let (mut a, mut fa) = (0.0, start[k].delta);
     let (mut b, mut fb) = (h, w.dnode[k * 4 + 3].0);
     let mut s = (theta * h).clamp(1e-9 * h, h);
@@ -1134,7 +1117,7 @@ mod tests {
         settings.rtol = rtol;
         settings.atol = rtol * crate::integrate::ATOL_PER_RTOL;
         let mut trace = Vec::new();
-        run_traced(
+        Adaptive::run(
             sys,
             &settings,
             &InitialState::default(),

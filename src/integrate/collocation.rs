@@ -28,7 +28,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::linear::{Prop, propagator};
-use crate::model::system::{LevelState, System};
+use crate::model::system::{LevelState, System, episode_v0};
+use crate::numerics::linalg::power;
 
 /// The two interior nodes of the 4-node companion, ½ ∓ 1/(2√5).
 const A1: f64 = 0.276_393_202_250_021;
@@ -67,7 +68,7 @@ fn lagrange<const S: usize>(theta: &[f64; S]) -> [[f64; S]; S] {
     let mut a = [[0.0; 14]; 7];
     for i in 0..S {
         for m in 0..S {
-            a[i][m] = theta[i].powi(m as i32);
+            a[i][m] = power(theta[i], m as u32);
         }
         a[i][S + i] = 1.0;
     }
@@ -129,7 +130,7 @@ pub(super) fn bases() -> &'static Bases {
     B.get_or_init(|| {
         let l8 = lagrange(&THETA8);
         let at6 = [A1, A2]
-            .map(|x| std::array::from_fn(|p| (0..5).map(|m| l8[m][p] * x.powi(m as i32)).sum()));
+            .map(|x| std::array::from_fn(|p| (0..5).map(|m| l8[m][p] * power(x, m as u32)).sum()));
         let den8 = std::array::from_fn(|p| {
             1.0 / (0..5)
                 .filter(|&q| q != p)
@@ -140,7 +141,7 @@ pub(super) fn bases() -> &'static Bases {
             let x = THETA8[i + 1];
             std::array::from_fn(|p| {
                 (0..5)
-                    .map(|m| l8[m][p] * x.powi(m as i32 + 1) / (m + 1) as f64)
+                    .map(|m| l8[m][p] * power(x, m as u32 + 1) / (m + 1) as f64)
                     .sum()
             })
         });
@@ -514,7 +515,7 @@ pub(super) fn solve<const S: usize>(
                     }
                 }
                 nodal[k * m + p] = (d, dd);
-                let v0 = if onset[k] > 0.0 { onset[k] } else { dd };
+                let v0 = episode_v0(onset[k], dd);
                 let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
                 let r = k * m + p;
                 let f = fk[p + 1];
@@ -590,7 +591,7 @@ fn solve_one<const S: usize>(
                 dd -= row[q].1 * force[q];
             }
             nodal[p] = (d, dd);
-            let v0 = if onset[0] > 0.0 { onset[0] } else { dd };
+            let v0 = episode_v0(onset[0], dd);
             let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
             let f = force[p + 1];
             rhs[p] = phi - f;

@@ -33,10 +33,11 @@
 use super::linear::GroundModes;
 use super::progress::Progress;
 use super::{
-    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
-    update_onsets,
+    InitialState, Integrator, Method, Observer, SolveError, SolverSettings, Stats, StepTrace,
+    StepView, Tally, update_onsets,
 };
 use crate::model::system::{LevelState, Powers, System};
+use crate::numerics::hermite::hermite_crossing;
 
 /// Dormand–Prince nodes.
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
@@ -143,262 +144,258 @@ pub(super) fn deriv(
     p
 }
 
-pub(super) fn run<O: Observer>(
-    sys: &System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &mut O,
-) -> Result<Stats, SolveError> {
-    run_traced(sys, settings, initial, observer, None)
-}
+/// `adaptive` where storeys yield (Dormand–Prince 5(4)): see the module.
+pub(super) struct Hysteretic;
 
-pub(crate) fn run_traced<O: Observer>(
-    sys: &System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &mut O,
-    mut trace: Option<&mut Vec<StepTrace>>,
-) -> Result<Stats, SolveError> {
-    let n = sys.len();
-    let ns = sys.hysteresis.len();
-    let nl = sys.levels.len();
-    let m = 2 * n + ns;
-    let (q0, v0) = initial.resolved(n);
-    let (aq, av) = super::adaptive::modal_tolerances(sys, settings.atol);
-    let az = sys
-        .hysteresis
-        .storeys()
-        .iter()
-        .map(|s| settings.atol / s.dy)
-        .collect();
-    let mut y = vec![0.0; m];
-    y[..n].copy_from_slice(&q0);
-    y[n..2 * n].copy_from_slice(&v0);
-    let mut w = Work {
-        n,
-        ns,
-        y,
-        y1: vec![0.0; m],
-        ys: vec![0.0; m],
-        k: std::array::from_fn(|_| vec![0.0; m]),
-        pw: std::array::from_fn(|_| vec![0.0; ns]),
-        force: std::array::from_fn(|_| vec![0.0; nl]),
-        powers: [Powers::default(); 7],
-        aq,
-        av,
-        az,
-        states: vec![LevelState::default(); nl],
-        stage_states: vec![LevelState::default(); nl],
-    };
-    let mut prev_states = vec![LevelState::default(); nl];
-    let mut onset = vec![0.0; nl];
-    let mut tally = Tally {
-        impulse: vec![0.0; nl],
-        storey_work: vec![0.0; ns],
-        ..Tally::default()
-    };
-    let mut stats = Stats::default();
-    let gm = GroundModes::new(sys);
-    let dims = (n, ns);
+impl Integrator for Hysteretic {
+    fn run<'a, O: Observer>(
+        sys: &'a System,
+        settings: &SolverSettings,
+        initial: &InitialState,
+        observer: &'a mut O,
+        mut trace: Option<&'a mut Vec<StepTrace>>,
+    ) -> Result<Stats, SolveError> {
+        let n = sys.len();
+        let ns = sys.hysteresis.len();
+        let nl = sys.levels.len();
+        let m = 2 * n + ns;
+        let (q0, v0) = initial.resolved(n);
+        let (aq, av) = super::adaptive::modal_tolerances(sys, settings.atol);
+        let az = sys
+            .hysteresis
+            .storeys()
+            .iter()
+            .map(|s| settings.atol / s.dy)
+            .collect();
+        let mut y = vec![0.0; m];
+        y[..n].copy_from_slice(&q0);
+        y[n..2 * n].copy_from_slice(&v0);
+        let mut w = Work {
+            n,
+            ns,
+            y,
+            y1: vec![0.0; m],
+            ys: vec![0.0; m],
+            k: std::array::from_fn(|_| vec![0.0; m]),
+            pw: std::array::from_fn(|_| vec![0.0; ns]),
+            force: std::array::from_fn(|_| vec![0.0; nl]),
+            powers: [Powers::default(); 7],
+            aq,
+            av,
+            az,
+            states: vec![LevelState::default(); nl],
+            stage_states: vec![LevelState::default(); nl],
+        };
+        let mut prev_states = vec![LevelState::default(); nl];
+        let mut onset = vec![0.0; nl];
+        let mut tally = Tally {
+            impulse: vec![0.0; nl],
+            storey_work: vec![0.0; ns],
+            ..Tally::default()
+        };
+        let mut stats = Stats::default();
+        let gm = GroundModes::new(sys);
+        let dims = (n, ns);
 
-    w.powers[0] = deriv(
-        sys,
-        0.0,
-        dims,
-        &w.y,
-        &onset,
-        &mut w.k[0],
-        &mut w.pw[0],
-        &mut w.states,
-    );
-    stats.evaluations += 1;
-    for k in 0..nl {
-        w.force[0][k] = w.states[k].force;
-    }
-    prev_states.copy_from_slice(&w.states);
-    update_onsets(&mut onset, &prev_states, &w.states, 0.0);
-    observe(sys, observer, 0.0, &w, &tally);
-
-    let hmax = settings.dt;
-    let rtol = settings.rtol;
-    let duration = settings.duration;
-    let mut h = hmax / 64.0;
-    let mut t = 0.0;
-    let mut rejected_last = false;
-    // event location: a step cut short to end on an event, the step size before it, and the
-    // event located last (not located again at the start of the next step)
-    let mut forced = false;
-    let mut h_before: f64 = h;
-    let mut located: Option<usize> = None;
-    let mut skip: Option<usize> = None;
-    let mut progress = Progress::new(Method::Adaptive);
-    while t < duration {
-        let (_, piece_end) = gm.piece_at(t);
-        let limit = piece_end.min(duration) - t;
-        let to_limit = h >= limit * (1.0 - 1e-9);
-        let hs = if to_limit { limit } else { h };
-        // stages 2..7
-        for i in 1..7 {
-            for j in 0..m {
-                let mut acc = 0.0;
-                for (l, a) in A[i][..i].iter().enumerate() {
-                    acc += a * w.k[l][j];
-                }
-                w.ys[j] = w.y[j] + hs * acc;
-            }
-            let (ki, pwi) = (&mut w.k[i], &mut w.pw[i]);
-            w.powers[i] = deriv(
-                sys,
-                t + C[i] * hs,
-                dims,
-                &w.ys,
-                &onset,
-                ki,
-                pwi,
-                &mut w.stage_states,
-            );
-            for k in 0..nl {
-                w.force[i][k] = w.stage_states[k].force;
-            }
+        w.powers[0] = deriv(
+            sys,
+            0.0,
+            dims,
+            &w.y,
+            &onset,
+            &mut w.k[0],
+            &mut w.pw[0],
+            &mut w.states,
+        );
+        stats.evaluations += 1;
+        for k in 0..nl {
+            w.force[0][k] = w.states[k].force;
         }
-        stats.evaluations += 6;
-        // the stage-7 state is the fifth-order solution (FSAL)
-        w.y1.copy_from_slice(&w.ys);
-        let err = error_norm(&w, hs, rtol);
-        if err <= 1.0
-            && !forced
-            && let Some((ev, th)) = first_event(sys, &w, hs, skip)
-        {
-            // end the step on the kink instead (see the module's comment)
-            h_before = hs;
-            h = th * hs;
-            forced = true;
-            located = Some(ev);
-            stats.events += 1;
-            continue;
-        }
-        if err.is_nan() || err > 1.0 {
-            forced = false;
-            located = None;
-            stats.rejected += 1;
-            progress.rejected(sys, &w.states, t, hs)?;
-            let fac = if err.is_finite() {
-                (0.9 * err.powf(-0.2)).clamp(0.2, 0.9)
-            } else {
-                0.25
-            };
-            h = hs * fac;
-            rejected_last = true;
-            if h < MIN_STEP * hmax {
-                return Err(if err.is_finite() {
-                    SolveError::ToleranceUnreachable { t, h: hs, rtol }
-                } else {
-                    SolveError::Diverged {
-                        t,
-                        contact_omega_dt: stats.max_contact_omega_dt,
+        prev_states.copy_from_slice(&w.states);
+        update_onsets(&mut onset, &prev_states, &w.states, 0.0);
+        observe(sys, observer, 0.0, &w, &tally);
+
+        let hmax = settings.max_step();
+        let rtol = settings.rtol;
+        let duration = settings.duration;
+        let mut h = hmax / 64.0;
+        let mut t = 0.0;
+        let mut rejected_last = false;
+        // event location: a step cut short to end on an event, the step size before it, and the
+        // event located last (not located again at the start of the next step)
+        let mut forced = false;
+        let mut h_before: f64 = h;
+        let mut located: Option<usize> = None;
+        let mut skip: Option<usize> = None;
+        let mut progress = Progress::new(Method::Adaptive);
+        while t < duration {
+            let (_, piece_end) = gm.piece_at(t);
+            let limit = piece_end.min(duration) - t;
+            let to_limit = h >= limit * (1.0 - 1e-9);
+            let hs = if to_limit { limit } else { h };
+            // stages 2..7
+            for i in 1..7 {
+                for j in 0..m {
+                    let mut acc = 0.0;
+                    for (l, a) in A[i][..i].iter().enumerate() {
+                        acc += a * w.k[l][j];
                     }
-                });
+                    w.ys[j] = w.y[j] + hs * acc;
+                }
+                let (ki, pwi) = (&mut w.k[i], &mut w.pw[i]);
+                w.powers[i] = deriv(
+                    sys,
+                    t + C[i] * hs,
+                    dims,
+                    &w.ys,
+                    &onset,
+                    ki,
+                    pwi,
+                    &mut w.stage_states,
+                );
+                for k in 0..nl {
+                    w.force[i][k] = w.stage_states[k].force;
+                }
             }
-            continue;
-        }
-        if let Some(log) = trace.as_deref_mut() {
-            log.push(StepTrace {
-                t,
-                h: hs,
-                q0: w.y[..n].to_vec(),
-                v0: w.y[n..2 * n].to_vec(),
-                onset: onset.clone(),
-                q1: w.y1[..n].to_vec(),
-                v1: w.y1[n..2 * n].to_vec(),
-                err,
-                kink: false,
-                z0: w.y[2 * n..].to_vec(),
-                z1: w.y1[2 * n..].to_vec(),
-                companion: Vec::new(),
-            });
-        }
-        let mut t_end = if to_limit { t + limit } else { t + hs };
-        if to_limit && piece_end >= duration {
-            t_end = duration;
-        }
-        progress.accepting(sys, &w.states, t, t_end, hs)?;
-        // accept: tallies with the fifth-order weights
-        for i in 0..7 {
-            let b = hs * B[i];
-            if b == 0.0 {
+            stats.evaluations += 6;
+            // the stage-7 state is the fifth-order solution (FSAL)
+            w.y1.copy_from_slice(&w.ys);
+            let err = error_norm(&w, hs, rtol);
+            if err <= 1.0
+                && !forced
+                && let Some((ev, th)) = first_event(sys, &w, hs, skip)
+            {
+                // end the step on the kink instead (see the module's comment)
+                h_before = hs;
+                h = th * hs;
+                forced = true;
+                located = Some(ev);
+                stats.events += 1;
                 continue;
             }
-            let p = &w.powers[i];
-            tally.input += b * p.input;
-            tally.damping += b * p.damping;
-            tally.contact += b * p.contact;
-            tally.hysteretic += b * p.hysteretic;
-            for s in 0..ns {
-                tally.storey_work[s] += b * w.pw[i][s];
+            if err.is_nan() || err > 1.0 {
+                forced = false;
+                located = None;
+                stats.rejected += 1;
+                progress.rejected(sys, &w.states, t, hs)?;
+                let fac = if err.is_finite() {
+                    (0.9 * err.powf(-0.2)).clamp(0.2, 0.9)
+                } else {
+                    0.25
+                };
+                h = hs * fac;
+                rejected_last = true;
+                if h < MIN_STEP * hmax {
+                    return Err(if err.is_finite() {
+                        SolveError::ToleranceUnreachable { t, h: hs, rtol }
+                    } else {
+                        SolveError::Diverged {
+                            t,
+                            contact_omega_dt: stats.max_contact_omega_dt,
+                        }
+                    });
+                }
+                continue;
             }
-            for k in 0..nl {
-                tally.impulse[k] += b * w.force[i][k];
-            }
-        }
-        std::mem::swap(&mut w.y, &mut w.y1);
-        t = t_end;
-        // the last stage is the derivative at the new state (FSAL)
-        w.k.swap(0, 6);
-        w.pw.swap(0, 6);
-        w.force.swap(0, 6);
-        w.powers[0] = w.powers[6];
-        prev_states.copy_from_slice(&w.states);
-        w.states.copy_from_slice(&w.stage_states);
-        if sys.has_impulsive() {
-            let (_, rest) = w.y.split_at_mut(n);
-            let v = &mut rest[..n];
-            if sys.apply_impulses(v, &mut w.states, &mut tally.impulse, &mut tally.contact) {
-                w.powers[0] = deriv(
-                    sys,
+            if let Some(log) = trace.as_deref_mut() {
+                log.push(StepTrace {
                     t,
-                    dims,
-                    &w.y,
-                    &onset,
-                    &mut w.k[0],
-                    &mut w.pw[0],
-                    &mut w.states,
-                );
-                stats.evaluations += 1;
+                    h: hs,
+                    q0: w.y[..n].to_vec(),
+                    v0: w.y[n..2 * n].to_vec(),
+                    onset: onset.clone(),
+                    q1: w.y1[..n].to_vec(),
+                    v1: w.y1[n..2 * n].to_vec(),
+                    err,
+                    kink: false,
+                    z0: w.y[2 * n..].to_vec(),
+                    z1: w.y1[2 * n..].to_vec(),
+                    companion: Vec::new(),
+                });
+            }
+            let mut t_end = if to_limit { t + limit } else { t + hs };
+            if to_limit && piece_end >= duration {
+                t_end = duration;
+            }
+            progress.accepting(sys, &w.states, t, t_end, hs)?;
+            // accept: tallies with the fifth-order weights
+            for i in 0..7 {
+                let b = hs * B[i];
+                if b == 0.0 {
+                    continue;
+                }
+                let p = &w.powers[i];
+                tally.input += b * p.input;
+                tally.damping += b * p.damping;
+                tally.contact += b * p.contact;
+                tally.hysteretic += b * p.hysteretic;
+                for s in 0..ns {
+                    tally.storey_work[s] += b * w.pw[i][s];
+                }
                 for k in 0..nl {
-                    w.force[0][k] = w.states[k].force;
+                    tally.impulse[k] += b * w.force[i][k];
                 }
             }
-        }
-        update_onsets(&mut onset, &prev_states, &w.states, hs);
-        for (lv, st) in sys.levels.iter().zip(&w.states) {
-            if st.delta > 0.0 {
-                let omega_c = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
-                stats.max_contact_omega_dt = stats.max_contact_omega_dt.max(omega_c * hs);
+            std::mem::swap(&mut w.y, &mut w.y1);
+            t = t_end;
+            // the last stage is the derivative at the new state (FSAL)
+            w.k.swap(0, 6);
+            w.pw.swap(0, 6);
+            w.force.swap(0, 6);
+            w.powers[0] = w.powers[6];
+            prev_states.copy_from_slice(&w.states);
+            w.states.copy_from_slice(&w.stage_states);
+            if sys.has_impulsive() {
+                let (_, rest) = w.y.split_at_mut(n);
+                let v = &mut rest[..n];
+                if sys.apply_impulses(v, &mut w.states, &mut tally.impulse, &mut tally.contact) {
+                    w.powers[0] = deriv(
+                        sys,
+                        t,
+                        dims,
+                        &w.y,
+                        &onset,
+                        &mut w.k[0],
+                        &mut w.pw[0],
+                        &mut w.states,
+                    );
+                    stats.evaluations += 1;
+                    for k in 0..nl {
+                        w.force[0][k] = w.states[k].force;
+                    }
+                }
             }
+            update_onsets(&mut onset, &prev_states, &w.states, hs);
+            for (lv, st) in sys.levels.iter().zip(&w.states) {
+                if st.delta > 0.0 {
+                    let omega_c = (lv.force.tangent_stiffness(st.delta) / lv.effective_mass).sqrt();
+                    stats.max_contact_omega_dt = stats.max_contact_omega_dt.max(omega_c * hs);
+                }
+            }
+            stats.steps += 1;
+            observe(sys, observer, t, &w, &tally);
+            // next step: elementary controller (no growth right after a rejection)
+            let grow = if err > 0.0 {
+                (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+            } else {
+                5.0
+            };
+            let grow = if rejected_last { grow.min(1.0) } else { grow };
+            rejected_last = false;
+            h = (hs * grow).min(hmax);
+            if forced {
+                // after an event the solution is less smooth at the start of the next step (a
+                // contact's (t − t₀)^{3/2}, a storey's unloading): the estimate, an asymptotic one,
+                // understates the error of a long step there, so resume from the step that ended on
+                // the event, not from the one before it
+                h = h.min(h_before);
+            }
+            skip = if forced { located } else { None };
+            forced = false;
+            located = None;
         }
-        stats.steps += 1;
-        observe(sys, observer, t, &w, &tally);
-        // next step: elementary controller (no growth right after a rejection)
-        let grow = if err > 0.0 {
-            (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
-        } else {
-            5.0
-        };
-        let grow = if rejected_last { grow.min(1.0) } else { grow };
-        rejected_last = false;
-        h = (hs * grow).min(hmax);
-        if forced {
-            // after an event the solution is less smooth at the start of the next step (a
-            // contact's (t − t₀)^{3/2}, a storey's unloading): the estimate, an asymptotic one,
-            // understates the error of a long step there, so resume from the step that ended on
-            // the event, not from the one before it
-            h = h.min(h_before);
-        }
-        skip = if forced { located } else { None };
-        forced = false;
-        located = None;
+        Ok(stats)
     }
-    Ok(stats)
 }
 
 /// The first kink of the right-hand side inside the step just tried (start `w.y`, `w.k[0]`,
@@ -419,17 +416,7 @@ fn first_event(sys: &System, w: &Work, hs: f64, skip: Option<usize>) -> Option<(
         if Some(ev) == skip || g0 == 0.0 || (g0 > 0.0) == (g1 > 0.0) || g1 == 0.0 {
             return;
         }
-        let (mut lo, mut hi) = (0.0, 1.0);
-        for _ in 0..50 {
-            let mid = 0.5 * (lo + hi);
-            let g = super::linear::hermite(g0, d0, g1, d1, hs, mid);
-            if (g > 0.0) == (g0 > 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let th = 0.5 * (lo + hi);
+        let th = hermite_crossing(g0, d0, g1, d1, hs, 50);
         if th > 1e-6 && th < 1.0 - 1e-6 && best.is_none_or(|(_, b)| th < b) {
             best = Some((ev, th));
         }
@@ -583,7 +570,7 @@ pub(crate) mod tests {
         for rtol in [1e-6, 1e-7, 1e-8, 1e-9] {
             let settings = SolverSettings::new(Method::Adaptive, 1e-2, 2.0).with_rtol(rtol);
             let mut trace = Vec::new();
-            let stats = run_traced(
+            let stats = Hysteretic::run(
                 &sys,
                 &settings,
                 &InitialState::default(),

@@ -20,6 +20,7 @@ mod collocation;
 mod exact_modal;
 mod hysteretic;
 pub mod linear;
+mod plan;
 mod poly_tally;
 mod progress;
 mod rk4;
@@ -28,7 +29,14 @@ pub use exact_modal::SUBSTEP_ALPHA;
 pub use progress::StepFailure;
 pub use rk4::{rk4_max_stable_dt, rk4_stability_limit};
 
+pub(crate) use plan::step_plan;
+
+use adaptive::Adaptive;
+use exact_modal::ExactModal;
+use hysteretic::Hysteretic;
+
 use crate::model::system::{LevelState, System};
+use crate::numerics::hermite::{Basis, hermite_crossing};
 
 /// Integration method (`[solver] method`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,6 +106,17 @@ impl Method {
         matches!(self, Method::Adaptive | Method::ExactModal)
     }
 
+    /// What `[solver] dt` is to this method, in words (as summary.json's `solver.dt_meaning`
+    /// writes it): see [`SolverSettings::fixed_step`], [`SolverSettings::base_step`],
+    /// [`SolverSettings::max_step`].
+    pub fn dt_meaning(self) -> &'static str {
+        match self {
+            Method::Rk4 => "fixed step",
+            Method::ExactModal => "base step (contact sub-steps below it)",
+            Method::Adaptive => "largest step",
+        }
+    }
+
     /// The method called `name` in scenario files.
     pub fn from_name(name: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name)
@@ -134,8 +153,11 @@ pub const DEFAULT_ATOL: f64 = DEFAULT_RTOL * ATOL_PER_RTOL;
 pub struct SolverSettings {
     /// Method.
     pub method: Method,
-    /// Time step, s: the fixed step of `rk4`; the base step of `exact-modal`; the largest step
-    /// (and so the largest spacing of observations) of `adaptive`.
+    /// `[solver] dt`, s: one number that each method reads in its own way, through the named
+    /// accessors — [`SolverSettings::fixed_step`] (`rk4`: every step),
+    /// [`SolverSettings::base_step`] (`exact-modal`: the grid of free flight and of
+    /// observations, contact steps below it) and [`SolverSettings::max_step`] (`adaptive`: the
+    /// largest step); [`Method::dt_meaning`] says which in words.
     pub dt: f64,
     /// Simulated duration, s.
     pub duration: f64,
@@ -158,6 +180,30 @@ impl SolverSettings {
             atol: DEFAULT_ATOL,
         }
         .with_rtol(method.default_rtol())
+    }
+
+    /// `rk4`'s step, s (`dt`): every step of the run has this length but the last, which ends
+    /// on the duration ([`StepPlan`]); checked against RK4's stability limit before the run
+    /// ([`SolverSettings::check_stability`]) and in every contact.
+    pub fn fixed_step(&self) -> f64 {
+        self.dt
+    }
+
+    /// `exact-modal`'s base step, s (`dt`): each span of the ground load (the whole run, or one
+    /// interval between a record's samples) is cut into equal steps no longer than this
+    /// ([`StepPlan`]); free flight takes them whole (exact for any length), and they are the
+    /// grid of observations. Contact steps are dyadic fractions `dt·2^(−k/4)` of it (elastic
+    /// structures) or `dt/2^m` sub-steps (yielding storeys), chosen by the error estimate.
+    pub fn base_step(&self) -> f64 {
+        self.dt
+    }
+
+    /// `adaptive`'s largest step, s (`dt`): the error control chooses steps `dt·2^(−k/4)` below
+    /// it (elastic structures; no step crosses a record sample or the duration), or starts at
+    /// `dt/64` and grows to at most `dt` (Dormand–Prince with yielding storeys); so `dt` is
+    /// also the largest spacing of observations.
+    pub fn max_step(&self) -> f64 {
+        self.dt
     }
 
     /// The same settings at relative tolerance `rtol`, with the absolute tolerance that goes
@@ -440,13 +486,13 @@ impl SolverSettings {
         match self.method {
             Method::Rk4 => {
                 let (max_dt, j) = rk4_max_stable_dt(system);
-                if self.dt > max_dt {
+                if self.fixed_step() > max_dt {
                     let n1 = system.n1();
                     let (structure, mode) = if j < n1 { (1, j + 1) } else { (2, j - n1 + 1) };
                     let omega = system.omega()[j];
                     return Err(SolveError::UnstableStep {
                         method: self.method.name(),
-                        dt: self.dt,
+                        dt: self.fixed_step(),
                         max_dt,
                         structure,
                         mode,
@@ -471,19 +517,45 @@ pub fn integrate<O: Observer>(
 ) -> Result<Stats, SolveError> {
     settings.check_stability(system)?;
     let yielding = !system.hysteresis.is_empty();
+    // (one match per run: the method's loop is monomorphised, nothing is dispatched per step)
     match settings.method {
-        Method::Rk4 => rk4::run(system, settings, initial, observer),
-        Method::Adaptive if yielding => hysteretic::run(system, settings, initial, observer),
-        Method::Adaptive => adaptive::run(system, settings, initial, observer),
-        Method::ExactModal => exact_modal::run(system, settings, initial, observer),
+        Method::Rk4 => Rk4::run(system, settings, initial, observer, None),
+        Method::Adaptive if yielding => Hysteretic::run(system, settings, initial, observer, None),
+        Method::Adaptive => Adaptive::run(system, settings, initial, observer, None),
+        Method::ExactModal => ExactModal::run(system, settings, initial, observer, None),
     }
 }
 
-/// Number of steps of size ≤ dt covering `duration`, and the size of the last one.
-pub(crate) fn step_plan(dt: f64, duration: f64) -> (usize, f64) {
-    let steps = ((duration / dt) - 1e-9).ceil().max(1.0) as usize;
-    let last = duration - (steps - 1) as f64 * dt;
-    (steps, last)
+/// One integration method's run. Each method is a unit type (`Rk4`, `Adaptive`, `Hysteretic`
+/// for `adaptive` where storeys yield, `ExactModal`) and [`integrate`] picks one by a match
+/// outside the time loop: static dispatch, the loop generic over the [`Observer`].
+pub(crate) trait Integrator {
+    /// Integrate `sys` from `initial` over `settings.duration`, reporting t = 0 and every step
+    /// to `observer`. With `trace`, every step that carried contact forces (or, with yielding
+    /// storeys, every estimated sub-step) is recorded as its error estimate saw it
+    /// ([`StepTrace`]: for the tests of the estimates; `rk4` has no estimate and records none).
+    fn run<'a, O: Observer>(
+        sys: &'a System,
+        settings: &SolverSettings,
+        initial: &InitialState,
+        observer: &'a mut O,
+        trace: Option<&'a mut Vec<StepTrace>>,
+    ) -> Result<Stats, SolveError>;
+}
+
+/// `rk4`: see [`rk4`] (fixed steps of [`SolverSettings::fixed_step`]).
+struct Rk4;
+
+impl Integrator for Rk4 {
+    fn run<'a, O: Observer>(
+        sys: &'a System,
+        settings: &SolverSettings,
+        initial: &InitialState,
+        observer: &'a mut O,
+        _trace: Option<&'a mut Vec<StepTrace>>,
+    ) -> Result<Stats, SolveError> {
+        rk4::run(sys, settings, initial, observer)
+    }
 }
 
 /// Penetration rate at the instant δ crosses 0 upwards between two observations a time `h`
@@ -496,29 +568,10 @@ pub(crate) fn onset_speed(prev: (f64, f64), now: (f64, f64), h: f64) -> f64 {
     if prev.0 >= 0.0 || !crossing {
         return if prev.0 >= 0.0 { prev.1 } else { now.1 };
     }
+    // the interpolant on θ ∈ [0, 1] (slopes per unit of θ: m = h·δ̇), its root by bisection
     let (y0, m0, y1, m1) = (prev.0, prev.1 * h, now.0, now.1 * h);
-    let value = |th: f64| {
-        let (t2, t3) = (th * th, th * th * th);
-        (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-            + (t3 - 2.0 * t2 + th) * m0
-            + (3.0 * t2 - 2.0 * t3) * y1
-            + (t3 - t2) * m1
-    };
-    // bisection keeps the bracket y(lo) ≤ 0 < y(hi)
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if value(mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    let th = 0.5 * (lo + hi);
-    let slope = (6.0 * th * th - 6.0 * th) * y0
-        + (3.0 * th * th - 4.0 * th + 1.0) * m0
-        + (6.0 * th - 6.0 * th * th) * y1
-        + (3.0 * th * th - 2.0 * th) * m1;
+    let th = hermite_crossing(y0, m0, y1, m1, 1.0, 60);
+    let slope = Basis::slope_at(th).combine(y0, m0, y1, m1, 1.0);
     slope / h
 }
 

@@ -43,6 +43,49 @@ pub struct Level {
     pub force: ContactForce,
 }
 
+/// The approach speed v₀ (m/s) a rate-dependent law is evaluated with: the episode's `onset`
+/// speed while one is in force (> 0), else the current penetration rate `delta_dot`.
+#[inline(always)]
+pub fn episode_v0(onset: f64, delta_dot: f64) -> f64 {
+    if onset > 0.0 { onset } else { delta_dot }
+}
+
+impl Level {
+    /// Penetration `δ = −c·η − d` (m) from the level's projection `cq = c·η` (module docs;
+    /// docs/model.md §2.4): the one place the sign convention and the gap enter.
+    #[inline(always)]
+    pub fn delta(&self, cq: f64) -> f64 {
+        -cq - self.gap
+    }
+
+    /// Penetration and its rate `(δ, δ̇) = (−c·η − d, −c·η̇)` (m, m/s) from the projections
+    /// `cq = c·η`, `cv = c·η̇`.
+    #[inline(always)]
+    pub fn penetration(&self, cq: f64, cv: f64) -> (f64, f64) {
+        (self.delta(cq), -cv)
+    }
+
+    /// The law's force (N) at (δ, δ̇) in a contact episode whose approach speed is `onset`
+    /// (m/s; 0 when no episode is in force, and the damped Hertz law then takes δ̇ as v₀).
+    #[inline(always)]
+    pub fn episode_force(&self, delta: f64, delta_dot: f64, onset: f64) -> f64 {
+        self.force
+            .force(delta, delta_dot, episode_v0(onset, delta_dot))
+    }
+
+    /// The level's state (δ, δ̇ and the law's force) from the projections `cq = c·η`,
+    /// `cv = c·η̇` in an episode of approach speed `onset` ([`Level::episode_force`]).
+    #[inline(always)]
+    pub fn state(&self, cq: f64, cv: f64, onset: f64) -> LevelState {
+        let (delta, delta_dot) = self.penetration(cq, cv);
+        LevelState {
+            delta,
+            delta_dot,
+            force: self.episode_force(delta, delta_dot, onset),
+        }
+    }
+}
+
 /// Contact state of one level at one instant.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct LevelState {
@@ -243,8 +286,7 @@ impl System {
     pub fn kinematics(&self, q: &[f64], v: &[f64], states: &mut [LevelState]) {
         for (k, (lv, st)) in self.levels.iter().zip(states.iter_mut()).enumerate() {
             let c = self.coupling(k);
-            st.delta = -dot(c, q) - lv.gap;
-            st.delta_dot = -dot(c, v);
+            (st.delta, st.delta_dot) = lv.penetration(dot(c, q), dot(c, v));
         }
     }
 
@@ -290,14 +332,8 @@ impl System {
         }
         for (k, (lv, st)) in self.levels.iter().zip(states.iter_mut()).enumerate() {
             let c = &self.coupling[k * n..(k + 1) * n];
-            let delta = -dot(c, q) - lv.gap;
-            let delta_dot = -dot(c, v);
-            let v0 = if onset_speed[k] > 0.0 {
-                onset_speed[k]
-            } else {
-                delta_dot
-            };
-            let force = lv.force.force(delta, delta_dot, v0);
+            let (delta, delta_dot) = lv.penetration(dot(c, q), dot(c, v));
+            let force = lv.episode_force(delta, delta_dot, onset_speed[k]);
             if force != 0.0 {
                 for j in 0..n {
                     a[j] += c[j] * force;

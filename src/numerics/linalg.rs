@@ -1,5 +1,14 @@
 //! Small dense linear algebra on slices, for the hot loops (no allocation).
 
+/// `xⁿ`, correctly rounded (libm's `pow`), for tables built once from constants (collocation
+/// nodes): `f64::powi` there is either folded by the compiler with a correctly rounded `pow`
+/// or, where inlining leaves it to run time, computed by repeated squaring (one rounding per
+/// multiplication), so the tables' last bits, and every result through them, would depend on
+/// unrelated code changes. Not for hot loops.
+pub(crate) fn power(x: f64, n: u32) -> f64 {
+    x.powf(f64::from(n))
+}
+
 /// Dot product.
 #[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {

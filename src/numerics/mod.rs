@@ -1,5 +1,7 @@
 //! Numerical helpers that know nothing of pounding: [`linalg`] (dot products for the hot
-//! loops) and [`format`](mod@format) (numbers as text).
+//! loops), [`hermite`] (the cubic Hermite interpolant: basis, roots, maxima) and
+//! [`format`](mod@format) (numbers as text).
 
 pub mod format;
+pub mod hermite;
 pub mod linalg;

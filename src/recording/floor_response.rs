@@ -30,9 +30,9 @@
 use serde::Serialize;
 
 use crate::integrate::StepView;
-use crate::integrate::linear::hermite_abs_max;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::System;
+use crate::numerics::hermite::hermite_abs_max;
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
 const HERMITE_REACH: f64 = 4.0 / 27.0;

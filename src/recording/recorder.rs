@@ -7,10 +7,10 @@
 //! [`History`] (for figures and the library) keeps at most [`MAX_KEPT_SAMPLES`] rows — every
 //! sample of an ordinary run, a min/max envelope of a long one ([`History::stride`]).
 
-use crate::integrate::linear::{hermite_abs_max, hermite_max};
 use crate::integrate::{Observer, StepView, onset_speed};
 use crate::model::contact::ContactForce;
 use crate::model::system::System;
+use crate::numerics::hermite::{Basis, hermite, hermite_abs_max, hermite_max, hermite_slope};
 use crate::recording::floor_response::FloorRecorder;
 use crate::recording::history::{Envelope, History, HistorySink, MAX_KEPT_SAMPLES, sample_count};
 use crate::recording::run_record::{EnergyBalance, Impact, LevelRecord, RunRecord};
@@ -316,14 +316,8 @@ impl<'s> Recorder<'s> {
                 Some(p) if s.t > p.t => {
                     let h = s.t - p.t;
                     let th = ((tau - p.t) / h).clamp(0.0, 1.0);
-                    let (t2, t3) = (th * th, th * th * th);
-                    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
-                    let h10 = t3 - 2.0 * t2 + th;
-                    let h01 = -2.0 * t3 + 3.0 * t2;
-                    let h11 = t3 - t2;
-                    let w = |i: usize| {
-                        h00 * p.w[i] + h10 * h * p.wdot[i] + h01 * now.w[i] + h11 * h * now.wdot[i]
-                    };
+                    let b = Basis::at(th);
+                    let w = |i: usize| b.combine(p.w[i], p.wdot[i], now.w[i], now.wdot[i], h);
                     for (k, st) in s.levels.iter().enumerate() {
                         self.row_forces[k] =
                             self.prev_force[k] + th * (st.force - self.prev_force[k]);
@@ -610,17 +604,8 @@ impl Observer for Recorder<'_> {
 /// 40 iterations (θ to 1e-8). Endpoints are included.
 fn rate_law_peak(law: &ContactForce, a: (f64, f64), b: (f64, f64), h: f64, v0: f64) -> f64 {
     let f = |th: f64| {
-        let (t2, t3) = (th * th, th * th * th);
-        let d = (2.0 * t3 - 3.0 * t2 + 1.0) * a.0
-            + (t3 - 2.0 * t2 + th) * h * a.1
-            + (3.0 * t2 - 2.0 * t3) * b.0
-            + (t3 - t2) * h * b.1;
-        // dδ/dτ = (dδ/dθ)/h
-        let dd = ((6.0 * t2 - 6.0 * th) * a.0
-            + (3.0 * t2 - 4.0 * th + 1.0) * h * a.1
-            + (6.0 * th - 6.0 * t2) * b.0
-            + (3.0 * t2 - 2.0 * th) * h * b.1)
-            / h;
+        let d = hermite(a.0, a.1, b.0, b.1, h, th);
+        let dd = hermite_slope(a.0, a.1, b.0, b.1, h, th);
         law.force(d, dd, v0)
     };
     const INV_PHI: f64 = 0.618_033_988_749_894_8;

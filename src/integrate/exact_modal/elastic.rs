@@ -37,9 +37,10 @@ use super::super::collocation::{
     self, NODES, NODES6, NODES8, Newton, NoConvergence, THETA8, Table, WEIGHTS8,
 };
 use super::super::linear::{
-    GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, hermite, hermite_max,
-    mode_work, poly_coefficients, poly_ground_work, propagator,
+    GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, mode_work,
+    poly_coefficients, poly_ground_work, propagator,
 };
+use super::super::plan::{DyadicWalk, EqualSteps};
 use super::super::poly_tally::{PolySums, PolyTally};
 use super::super::progress::Progress;
 use super::super::{
@@ -47,7 +48,8 @@ use super::super::{
     update_onsets,
 };
 use super::{SubstepTolerance, hermite_gap_factor};
-use crate::model::system::{LevelState, System};
+use crate::model::system::{LevelState, System, episode_v0};
+use crate::numerics::hermite::{hermite_crossing, hermite_max};
 use crate::numerics::linalg::dot;
 
 /// Onsets are located to |δ| ≤ this, m.
@@ -313,7 +315,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             obs: observer,
             trace,
             tol: SubstepTolerance::new(sys, settings),
-            dt: settings.dt,
+            dt: settings.base_step(),
             duration: settings.duration,
             n,
             nl,
@@ -466,18 +468,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
 
     #[inline]
     fn set_state(&mut self, k: usize, cq: f64, cv: f64) {
-        let lv = &self.sys.levels[k];
-        let (delta, delta_dot) = (-cq - lv.gap, -cv);
-        let v0 = if self.onset[k] > 0.0 {
-            self.onset[k]
-        } else {
-            delta_dot
-        };
-        self.states[k] = LevelState {
-            delta,
-            delta_dot,
-            force: lv.force.force(delta, delta_dot, v0),
-        };
+        self.states[k] = self.sys.levels[k].state(cq, cv, self.onset[k]);
     }
 
     /// A level at a located onset (δ within [`EVENT_TOL`] below 0, approaching).
@@ -721,7 +712,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// (δ, δ̇) of level k at the state (qb, vb) (from the free flight's projections).
     fn level_at_end(&self, k: usize) -> (f64, f64) {
         let (cq, cv) = self.fproj[k];
-        (-cq - self.sys.levels[k].gap, -cv)
+        self.sys.levels[k].penetration(cq, cv)
     }
 
     /// The largest penetration any level can reach over a free step of length h from the
@@ -858,9 +849,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     #[inline(never)]
     fn free_segment(&mut self) -> Result<(), SolveError> {
         let (piece, start, seg_end) = self.piece();
-        let len = seg_end - start;
-        let steps = ((len / self.dt) - 1e-9).ceil().max(1.0);
-        let hh = len / steps;
+        let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
         let i = ((self.t - start) / hh + 1e-9).floor() + 1.0;
         let mut target = if i >= steps { seg_end } else { start + i * hh };
         if target - self.t <= 1e-12 * hh && target < seg_end {
@@ -974,12 +963,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.at[k] = Self::free_start(&self.states[k]);
         }
         let mut tr_a = self.trig_now;
-        const FULL: u64 = 1 << MAX_SCAN;
-        let mut pos: u64 = 0;
-        let mut level: u32 = 0;
-        while pos < FULL {
-            let len = h / (1u64 << level) as f64;
-            let a = h * (pos as f64 / FULL as f64);
+        let mut walk = DyadicWalk::new(0, MAX_SCAN);
+        while !walk.done() {
+            let len = walk.length(h);
+            let a = walk.offset(h);
             let fd = self.free_index(len, keep);
             let tr1 = self.free_prop(fd, piece, tr_a, self.t + a, len, true, true);
             // a level penetrating at the sub-step's end: the onset is inside
@@ -988,7 +975,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 let (d1, dd1) = self.level_at_end(k);
                 let (d0, dd0) = self.at[k];
                 if d0 <= 0.0 && d1 > 0.0 {
-                    let th = hermite_root(d0, dd0, d1, dd1, len);
+                    let th = hermite_crossing(d0, dd0, d1, dd1, len, 60);
                     if first.is_none_or(|f| th < f.1) {
                         first = Some((k, th));
                     }
@@ -999,8 +986,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 return Some(self.solve_onset(piece, tr_a, a, len, k, th, start));
             }
             if self.free_bound(len, true) > 0.0 {
-                if level < MAX_SCAN - 1 {
-                    level += 1;
+                if walk.level < MAX_SCAN - 1 {
+                    walk.refine(1);
                     continue;
                 }
                 // the finest sub-step still may touch: check the interpolant's maximum exactly
@@ -1013,15 +1000,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             std::mem::swap(&mut self.vs, &mut self.vb);
             for k in 0..nl {
                 let c = self.sys.coupling(k);
-                self.at[k] = (
-                    -dot(c, &self.qs) - self.sys.levels[k].gap,
-                    -dot(c, &self.vs),
-                );
+                self.at[k] = self.sys.levels[k].penetration(dot(c, &self.qs), dot(c, &self.vs));
             }
             tr_a = tr1;
-            pos += FULL >> level;
-            while level > 0 && pos.is_multiple_of(FULL >> (level - 1)) {
-                level -= 1;
+            walk.advance();
+            while walk.can_coarsen(0) {
+                walk.coarsen();
             }
         }
         None
@@ -1095,7 +1079,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             let (d, dd) = self.probe(piece, tr_a, a, th * len, k);
             if d > 0.0 {
-                let r = hermite_root(d0, dd0, d, dd, th * len);
+                let r = hermite_crossing(d0, dd0, d, dd, th * len, 60);
                 return Some(self.solve_onset(piece, tr_a, a, th * len, k, r, (d0, dd0)));
             }
             // (the end state of the probe is not the sub-step's: restore it)
@@ -1395,9 +1379,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 if crossing {
                     let span = (th - prev.2) * h;
                     let x = if inside {
-                        hermite_root(-prev.0, -prev.1, -d, -dd, span)
+                        hermite_crossing(-prev.0, -prev.1, -d, -dd, span, 60)
                     } else {
-                        hermite_root(prev.0, prev.1, d, dd, span)
+                        hermite_crossing(prev.0, prev.1, d, dd, span, 60)
                     };
                     let theta = prev.2 + (th - prev.2) * x;
                     if best.is_none_or(|b| theta < b) {
@@ -1435,13 +1419,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 continue;
             }
             let law = &self.sys.levels[k].force;
-            let v0 = |dd: f64| {
-                if self.onset[k] > 0.0 {
-                    self.onset[k]
-                } else {
-                    dd
-                }
-            };
+            let v0 = |dd: f64| episode_v0(self.onset[k], dd);
             let Some(g0) = law.kink(st.delta.max(0.0), st.delta_dot, v0(st.delta_dot)) else {
                 continue;
             };
@@ -1481,15 +1459,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let law = self.sys.levels[lev].force;
         let g_end = |r: &Self| {
             let (d, dd) = r.nodal8[lev * 4 + 3];
-            let v0 = if r.onset[lev] > 0.0 { r.onset[lev] } else { dd };
+            let v0 = episode_v0(r.onset[lev], dd);
             law.kink(d, dd, v0).unwrap_or(0.0)
         };
         let st = self.states[lev];
-        let v0 = if self.onset[lev] > 0.0 {
-            self.onset[lev]
-        } else {
-            st.delta_dot
-        };
+        let v0 = episode_v0(self.onset[lev], st.delta_dot);
         let (mut a, mut fa) = (
             0.0,
             law.kink(st.delta.max(0.0), st.delta_dot, v0).unwrap_or(0.0),
@@ -1569,10 +1543,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
         let dyadic = matches!(piece, Piece::Poly { .. });
-        let hh = {
-            let len = span_end - pstart;
-            len / ((len / self.dt) - 1e-9).ceil().max(1.0)
-        };
+        let hh = EqualSteps::new(pstart, span_end, self.dt).h;
         // (a record's sample intervals are equal to rounding: their tables are the same)
         if dyadic && (hh - self.dyadic_hh).abs() > 1e-12 * hh || self.dyadic_hh.is_nan() {
             self.dyadic_hh = hh;
@@ -1743,11 +1714,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 let imp: f64 = (0..5).map(|p| w[p] * self.f8[k * 5 + p]).sum();
                 self.dense_tally.impulse[k] = self.tally.impulse[k] + h * imp;
                 let (delta, delta_dot) = self.nodal8[k * 4 + i];
-                let v0 = if self.onset[k] > 0.0 {
-                    self.onset[k]
-                } else {
-                    delta_dot
-                };
+                let v0 = episode_v0(self.onset[k], delta_dot);
                 self.dense_states[k] = LevelState {
                     delta,
                     delta_dot,
@@ -1947,13 +1914,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             modal -= h * pw;
             let lv = &self.sys.levels[kk];
-            let v0 = |dd: f64| {
-                if self.onset[kk] > 0.0 {
-                    self.onset[kk]
-                } else {
-                    dd
-                }
-            };
+            let v0 = |dd: f64| episode_v0(self.onset[kk], dd);
             let power = |(d, dd): (f64, f64)| lv.force.force(d, dd, v0(dd)) * dd;
             // (the start: the law's right limit at a located onset, as the step used)
             let w7 = &bases.seven;
@@ -2111,21 +2072,6 @@ fn quartic_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64, m: f64) -> f64 {
         best = best.max(g(0.5 * (lo + hi)));
     }
     best
-}
-
-/// Root θ ∈ [0, 1] of the cubic Hermite through (y0, d0) at 0 and (y1, d1) at h with
-/// y0 ≤ 0 < y1 (bisection on the bracket).
-fn hermite_root(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if hermite(y0, d0, y1, d1, h, mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 #[cfg(test)]

@@ -64,14 +64,15 @@
 
 use super::linear::{
     ContactForms, GroundModes, HarmonicTally, Influence, LevelStep, Piece, StateSums, Trig,
-    TrigMoments, hermite_max, influence, mode_work, monomial_influence, poly_coefficients,
-    poly_mode_work,
+    TrigMoments, influence, mode_work, monomial_influence, poly_coefficients, poly_mode_work,
 };
+use super::plan::EqualSteps;
 use super::{
-    InitialState, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
-    update_onsets,
+    InitialState, Integrator, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView,
+    Tally, update_onsets,
 };
-use crate::model::system::{LevelState, System};
+use crate::model::system::{LevelState, System, episode_v0};
+use crate::numerics::hermite::hermite_max;
 use crate::numerics::linalg::dot;
 
 mod elastic;
@@ -83,11 +84,11 @@ pub const SUBSTEP_ALPHA: f64 = 0.08;
 /// `(α/α_onset)²`: sub-steps in which a level may come into contact keep `ω_c·h ≤ α/4`.
 const ONSET_WEIGHT: f64 = 16.0;
 /// Every base step in (or near) contact is cut into at least 2^2 sub-steps.
-const MIN_LEVEL: i32 = 2;
+const MIN_LEVEL: u32 = 2;
 /// At most 2^48 sub-steps per base step (the walk is logarithmic in the depth: a force that
 /// jumps at an onset, as Kelvin's c·δ̇ does, is resolved in a few dozen sub-steps however
 /// tight the tolerance; below dt/2^48 the estimate would measure round-off).
-const MAX_LEVEL: i32 = 48;
+const MAX_LEVEL: u32 = 48;
 const CACHE: usize = 16;
 /// sin Ωt, cos Ωt are evaluated directly every this many base steps and advanced by rotations
 /// in between (the rotations' rounding errors, about one ulp each, cannot accumulate).
@@ -350,15 +351,6 @@ struct Run<'a, O: Observer> {
     hy: Yield,
 }
 
-pub(super) fn run<O: Observer>(
-    sys: &System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &mut O,
-) -> Result<Stats, SolveError> {
-    run_traced(sys, settings, initial, observer, None)
-}
-
 impl<'a, O: Observer> Run<'a, O> {
     /// The integrator at time `t0` in the modal state (q0, v0); `onset`: the approach speeds
     /// of the contact episodes in force (`None`: none, as at rest).
@@ -379,7 +371,7 @@ impl<'a, O: Observer> Run<'a, O> {
             sys,
             tol: SubstepTolerance::new(sys, settings),
             last_force: vec![0.0; nl],
-            last_h: settings.dt,
+            last_h: settings.base_step(),
             kink: false,
             trace,
             gm: GroundModes::new(sys),
@@ -479,43 +471,38 @@ impl<'a, O: Observer> Run<'a, O> {
     }
 }
 
-pub(crate) fn run_traced<'a, O: Observer>(
-    sys: &'a System,
-    settings: &SolverSettings,
-    initial: &InitialState,
-    observer: &'a mut O,
-    trace: Option<&'a mut Vec<StepTrace>>,
-) -> Result<Stats, SolveError> {
-    if sys.hysteresis.is_empty() {
-        return elastic::run(sys, settings, initial, observer, trace);
-    }
-    let (q0, v0) = initial.resolved(sys.len());
-    let mut r = Run::new(sys, settings, observer, trace, 0.0, q0, v0, None);
-    r.observe(0.0);
+/// `exact-modal`: see the module.
+pub(super) struct ExactModal;
 
-    let duration = settings.duration;
-    let dt = settings.dt;
-    let mut t = 0.0;
-    while t < duration {
-        let (piece, piece_end) = r.gm.piece_at(t);
-        let seg_end = piece_end.min(duration);
-        let len = seg_end - t;
-        let steps = ((len / dt) - 1e-9).ceil().max(1.0);
-        let hh = len / steps;
-        let steps = steps as usize;
-        for i in 0..steps {
-            let ts = t + i as f64 * hh;
-            let te = if i + 1 == steps {
-                seg_end
-            } else {
-                t + (i + 1) as f64 * hh
-            };
-            r.base_step(ts, te - ts, &piece)?;
+impl Integrator for ExactModal {
+    fn run<'a, O: Observer>(
+        sys: &'a System,
+        settings: &SolverSettings,
+        initial: &InitialState,
+        observer: &'a mut O,
+        trace: Option<&'a mut Vec<StepTrace>>,
+    ) -> Result<Stats, SolveError> {
+        if sys.hysteresis.is_empty() {
+            return elastic::run(sys, settings, initial, observer, trace);
         }
-        t = seg_end;
+        let (q0, v0) = initial.resolved(sys.len());
+        let mut r = Run::new(sys, settings, observer, trace, 0.0, q0, v0, None);
+        r.observe(0.0);
+
+        let duration = settings.duration;
+        let mut t = 0.0;
+        while t < duration {
+            let (piece, piece_end) = r.gm.piece_at(t);
+            let plan = EqualSteps::new(t, piece_end.min(duration), settings.base_step());
+            for i in 0..plan.steps as usize {
+                let (ts, te) = plan.bounds(i);
+                r.base_step(ts, te - ts, &piece)?;
+            }
+            t = plan.end;
+        }
+        r.stats.max_contact_omega_dt = r.max_contact_w2h2.sqrt();
+        Ok(r.stats)
     }
-    r.stats.max_contact_omega_dt = r.max_contact_w2h2.sqrt();
-    Ok(r.stats)
 }
 
 impl<O: Observer> Run<'_, O> {
@@ -555,18 +542,7 @@ impl<O: Observer> Run<'_, O> {
     /// Level k's δ, δ̇ and force from its projections `c_k·η`, `c_k·η̇`.
     #[inline]
     fn set_state(&mut self, k: usize, cq: f64, cv: f64) {
-        let lv = &self.sys.levels[k];
-        let (delta, delta_dot) = (-cq - lv.gap, -cv);
-        let v0 = if self.onset[k] > 0.0 {
-            self.onset[k]
-        } else {
-            delta_dot
-        };
-        self.states[k] = LevelState {
-            delta,
-            delta_dot,
-            force: lv.force.force(delta, delta_dot, v0),
-        };
+        self.states[k] = self.sys.levels[k].state(cq, cv, self.onset[k]);
     }
 
     /// Ground-only free flight from the current state over [t0, t0 + h] into (qb, vb).
@@ -682,8 +658,7 @@ impl<O: Observer> Run<'_, O> {
         for (k, lv) in sys.levels.iter().enumerate() {
             let st = self.states[k];
             let c = sys.coupling(k);
-            let d1 = -dot(c, &self.qb) - lv.gap;
-            let dd1 = -dot(c, &self.vb);
+            let (d1, dd1) = lv.penetration(dot(c, &self.qb), dot(c, &self.vb));
             self.free_end[k] = (d1, dd1);
             // while in force the sub-step is short against the impact and the larger end
             // value bounds k_t well enough (k_t ∝ √δ for Hertz); otherwise the cubic decides
@@ -711,7 +686,7 @@ impl<O: Observer> Run<'_, O> {
 
     /// The cache entry of the sub-step `h = hh/2^level`, remembered per level for the current
     /// base step length (no search through the cache on every sub-step).
-    fn level_index(&mut self, hh: f64, level: i32, h: f64) -> usize {
+    fn level_index(&mut self, hh: f64, level: u32, h: f64) -> usize {
         if self.level_hh != hh {
             self.level_hh = hh;
             self.level_idx = [usize::MAX; MAX_LEVEL as usize + 1];
@@ -750,11 +725,7 @@ impl<O: Observer> Run<'_, O> {
                     d -= f0 * data.m0[k * nl + l].0;
                     dd -= f0 * data.m0[k * nl + l].1;
                 }
-                let v0 = if self.onset[k] > 0.0 {
-                    self.onset[k]
-                } else {
-                    dd
-                };
+                let v0 = episode_v0(self.onset[k], dd);
                 self.fpred[k] = lv.force.force(d, dd, v0);
             }
         } else {
@@ -1023,11 +994,7 @@ impl<O: Observer> Run<'_, O> {
                 let dm = 0.5 * (a.delta + b.delta) + h * (a.delta_dot - b.delta_dot) / 8.0;
                 let ddm = 1.5 * (b.delta - a.delta) * inv_h - 0.25 * (a.delta_dot + b.delta_dot);
                 let lv = &sys.levels[k];
-                let v0 = if self.onset[k] > 0.0 {
-                    self.onset[k]
-                } else {
-                    ddm
-                };
+                let v0 = episode_v0(self.onset[k], ddm);
                 let fm = lv.force.force(dm, ddm, v0);
                 self.tally.contact +=
                     h / 6.0 * (a.force * a.delta_dot + 4.0 * fm * ddm + b.force * b.delta_dot);
@@ -1113,7 +1080,7 @@ mod tests {
             let settings = SolverSettings::new(Method::ExactModal, 1e-2, 2.0).with_rtol(rtol);
             let tol = SubstepTolerance::new(&sys, &settings);
             let mut trace = Vec::new();
-            run_traced(
+            ExactModal::run(
                 &sys,
                 &settings,
                 &InitialState::default(),

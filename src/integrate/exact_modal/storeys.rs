@@ -4,6 +4,7 @@
 //! the kinks of ż. The elastic path of [`Run`] lives in the parent module.
 
 use super::*;
+use crate::integrate::plan::DyadicWalk;
 
 /// One yielding storey's drift d (m), drift rate ḋ (m/s), pseudo-force P = (1 − α)k(d_y z − d)
 /// (N) and ż (1/s) at a state.
@@ -67,7 +68,7 @@ pub(super) struct Yield {
     pub(super) lpred: Vec<f64>,
     pub(super) lcorr: Vec<f64>,
     /// Level of the last accepted sub-step (where the next base step starts its walk).
-    pub(super) level: i32,
+    pub(super) level: u32,
 }
 
 impl<O: Observer> Run<'_, O> {
@@ -93,14 +94,12 @@ impl<O: Observer> Run<'_, O> {
         } else {
             0
         };
-        const FULL: u64 = 1 << MAX_LEVEL;
         let limit = 0.5 * SUBSTEP_ALPHA * SUBSTEP_ALPHA;
-        let mut pos: u64 = 0;
-        let mut level = self.hy.level.max(floor);
-        while pos < FULL {
-            let h = hh / (1u64 << level) as f64;
-            let ts = t0 + hh * (pos as f64 / FULL as f64);
-            let idx = self.level_index(hh, level, h);
+        let mut walk = DyadicWalk::new(self.hy.level.max(floor), MAX_LEVEL);
+        while !walk.done() {
+            let h = walk.length(hh);
+            let ts = t0 + walk.offset(hh);
+            let idx = self.level_index(hh, walk.level, h);
             self.free_flight(ts, h, piece, idx);
             self.hold_storeys(idx);
             let (bound, worst) = if nl > 0 {
@@ -108,8 +107,8 @@ impl<O: Observer> Run<'_, O> {
             } else {
                 (f64::NEG_INFINITY, 0.0)
             };
-            if worst > limit && level < MAX_LEVEL {
-                level += 1;
+            if worst > limit && !walk.finest() {
+                walk.refine(1);
                 continue;
             }
             let contact = bound >= 0.0;
@@ -118,13 +117,13 @@ impl<O: Observer> Run<'_, O> {
             let err = self.estimate_yielding(h, idx);
             // (a NaN estimate is refined as well)
             if err.is_nan() || err > 1.0 {
-                if level < MAX_LEVEL {
+                if !walk.finest() {
                     let more = if err.is_finite() {
-                        (err.log2() / 3.0).ceil().clamp(1.0, 8.0) as i32
+                        (err.log2() / 3.0).ceil().clamp(1.0, 8.0) as u32
                     } else {
                         1
                     };
-                    level = (level + more).min(MAX_LEVEL);
+                    walk.refine(more);
                     self.stats.rejected += 1;
                     continue;
                 }
@@ -135,16 +134,12 @@ impl<O: Observer> Run<'_, O> {
                 });
             }
             self.finish_traced(ts, h, piece, idx, err, true)?;
-            pos += FULL >> level;
-            if level > floor
-                && 4.0 * worst <= 0.5 * limit
-                && 8.0 * err <= 0.5
-                && pos.is_multiple_of(FULL >> (level - 1))
-            {
-                level -= 1;
+            walk.advance();
+            if 4.0 * worst <= 0.5 * limit && 8.0 * err <= 0.5 && walk.can_coarsen(floor) {
+                walk.coarsen();
             }
         }
-        self.hy.level = level;
+        self.hy.level = walk.level;
         Ok(())
     }
 
@@ -295,12 +290,8 @@ impl<O: Observer> Run<'_, O> {
         for (k, lv) in sys.levels.iter().enumerate() {
             let (fd, fdd) = self.free_end[k];
             let (y, yd) = project(k, (-fd - lv.gap, -fdd), &hy.l0, &hy.lpred);
-            let (d, dd) = (-y - lv.gap, -yd);
-            let v0 = if self.onset[k] > 0.0 {
-                self.onset[k]
-            } else {
-                dd
-            };
+            let (d, dd) = lv.penetration(y, yd);
+            let v0 = episode_v0(self.onset[k], dd);
             hy.lcorr[k] = lv.force.force(d, dd, v0);
         }
         let storeys = sys.hysteresis.storeys();
