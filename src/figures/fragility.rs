@@ -241,10 +241,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
 /// given in g) and the axis label: (scale, label).
 fn demand_axis(ls: &LimitState) -> (f64, String) {
     match ls.kind {
-        LimitKind::Pounding => (
-            1.0,
-            "required separation / gap (largest over the levels; pounding beyond 1)".into(),
-        ),
+        LimitKind::Pounding => (1.0, "required separation / gap, largest over levels".into()),
         LimitKind::ContactForce => (1e-6, "peak contact force [MN]".into()),
         LimitKind::Ductility => (1.0, "peak storey ductility".into()),
         LimitKind::DriftRatio => (100.0, "peak storey drift ratio [%]".into()),
@@ -346,22 +343,8 @@ pub fn ida_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotEr
                 }
             }
         }
-        let fits: Vec<String> =
-            run.curves
-                .iter()
-                .filter(|c| c.limit_state == l)
-                .filter_map(|c| {
-                    c.fit.as_ref().ok().map(|f| {
-                        format!("{}: θ = {:.3}, β = {:.2}", MODELS[c.model], f.theta, f.beta)
-                    })
-                })
-                .collect();
         panels_data.push(Panel {
-            title: if fits.is_empty() {
-                ls.name.clone()
-            } else {
-                format!("{} ({})", ls.name, fits.join("; "))
-            },
+            title: ls.name.clone(),
             lines,
             thr: (vec![thr_x, thr_x], vec![0.0, y_max]),
             caps,
@@ -410,7 +393,7 @@ pub fn ida_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotEr
                 style: LineStyle::Dashed,
             });
             CurvePanel {
-                title: format!("{} — x: {}", p.title, p.x_label),
+                title: format!("{}: {}", p.title, p.x_label),
                 curves,
                 markers: p
                     .caps
@@ -430,16 +413,13 @@ pub fn ida_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotEr
     let rows = n.div_ceil(cols);
     let y_label = format!("{} [{}]", s.measure.short(), s.units.key());
     let subtitle = format!(
-        "{}; IDA (hunt and fill) of {} records: each record's runs by intensity; solid: with \
-         contact, dashed: without; black: the threshold; points: each record's capacity (filled: \
-         with, open: without)",
-        s.measure.label(),
-        nr
+        "{nr} records, their runs by intensity; solid: with contact, dashed: without; black: \
+         the limit; points: capacities (filled: with, open: without)"
     );
     let fig = CurveFigure {
         title: &s.title,
         subtitle: &subtitle,
-        x_label: "demand (see each panel)",
+        x_label: "demand (in each panel's title)",
         y_label: &y_label,
         y_range: (0.0, y_max.max(1e-12)),
         panels,

@@ -144,6 +144,36 @@ pub fn report(run: &FragilityRun) -> String {
              stripes there)"
         );
     }
+    if let Some(i) = &s.ida {
+        let caps: Vec<&super::ida::Capacity> = run
+            .curves
+            .iter()
+            .filter_map(|c| c.capacities.as_ref())
+            .flatten()
+            .collect();
+        let wide = caps
+            .iter()
+            .filter(|k| k.hi.is_some_and(|h| h - k.lo > i.tolerance * (1.0 + 1e-9)))
+            .count();
+        let f = s.units.factor();
+        let _ = writeln!(
+            o,
+            "  capacity: the midpoint of the bracket of the IM at which the limit state is first \
+             exceeded; {} of {} bracketed within {} {u}{}",
+            caps.len() - wide,
+            caps.len(),
+            fmt(i.tolerance / f),
+            if wide > 0 {
+                format!(
+                    " ({wide} wider: the {} runs a record were spent; capacities.csv gives each \
+                     bracket; raise ida.max_runs)",
+                    i.max_runs
+                )
+            } else {
+                String::new()
+            }
+        );
+    }
     let _ = writeln!(
         o,
         "  model: with = the run with contact, without = the run without; for `pounding`, \
