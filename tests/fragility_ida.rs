@@ -305,3 +305,178 @@ fn shards_joined_equal_one_run_for_stripes_and_ida() {
         assert!(e.contains("part(s) 2 of 3 are missing"), "{e}");
     }
 }
+
+const BIN: &str = env!("CARGO_BIN_EXE_pounding");
+
+fn pounding_cli(args: &[&str]) -> String {
+    let o = std::process::Command::new(BIN).args(args).output().unwrap();
+    assert!(
+        o.status.success(),
+        "pounding {args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A study of the bundled frames (8 s of motion) under three bundled records, as an IDA.
+fn frames_study(dir: &Path) -> std::path::PathBuf {
+    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let base = std::fs::read_to_string(ex.join("fragility-frames.toml"))
+        .unwrap()
+        .replace("duration = 30.0", "duration = 8.0")
+        .replace(
+            "file = \"records/",
+            &format!("file = \"{}/records/", ex.display()),
+        );
+    std::fs::write(dir.join("base.toml"), base).unwrap();
+    let rec = ex.join("records");
+    let study = format!(
+        "scenario = \"base.toml\"\n[ground_motion]\nrecords = [\n\
+         {{ file = \"{r}/RSN753_LOMAP_CLS000.AT2\" }},\n\
+         {{ file = \"{r}/RSN786_LOMAP_PAE055.AT2\" }},\n\
+         {{ file = \"{r}/INGLEWOO.V2\", component = 1 }},\n]\n\
+         [intensity]\nmeasure = \"pga\"\n[[limit_state]]\nkind = \"pounding\"\n\
+         [[limit_state]]\nkind = \"ductility\"\nvalue = 2.0\nstructure = 2\n\
+         [fragility]\nida = {{ start = 0.05, step = 0.1, tolerance = 0.01, max_runs = 14 }}\n\
+         target = {{ im = 0.25, probability = 0.4 }}\nbootstrap = 30\n",
+        r = rec.display()
+    );
+    let p = dir.join("study.toml");
+    std::fs::write(&p, study).unwrap();
+    p
+}
+
+#[test]
+fn a_killed_study_resumes_to_the_tables_of_an_uninterrupted_run() {
+    use std::time::{Duration, Instant};
+    let d = tempfile::tempdir().unwrap();
+    let study = frames_study(d.path());
+    let st = study.to_str().unwrap();
+    let (full, cut) = (d.path().join("full"), d.path().join("cut"));
+    pounding_cli(&[
+        "fragility",
+        st,
+        "--out",
+        full.to_str().unwrap(),
+        "--no-plot",
+        "-q",
+    ]);
+    // start, wait until some runs are journaled, kill -9 (one thread: runs finish one by one)
+    let mut child = std::process::Command::new(BIN)
+        .args([
+            "fragility",
+            st,
+            "--out",
+            cut.to_str().unwrap(),
+            "--no-plot",
+            "-j",
+            "1",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let journal = cut.join("journal.csv");
+    let t0 = Instant::now();
+    loop {
+        let rows = std::fs::read_to_string(&journal)
+            .map(|t| t.lines().count().saturating_sub(2))
+            .unwrap_or(0);
+        if rows >= 4 || t0.elapsed() > Duration::from_secs(60) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    assert!(
+        !cut.join("fit.json").exists(),
+        "killed too late to test resuming"
+    );
+    // a torn last line, as a kill in the middle of a write leaves
+    let mut j = std::fs::read_to_string(&journal).unwrap();
+    let before = j.lines().count() - 2;
+    j.push_str("3,0,3,0.25,1.2");
+    std::fs::write(&journal, j).unwrap();
+    let out = pounding_cli(&["fragility", st, "--out", cut.to_str().unwrap(), "--no-plot"]);
+    assert!(
+        out.contains(&format!("{before} runs found")) && out.contains("1 torn or damaged"),
+        "expected {before} resumed: {out}"
+    );
+    for f in [
+        "fragility.csv",
+        "p_pounding.csv",
+        "ida.csv",
+        "capacities.csv",
+        "fit.json",
+    ] {
+        assert_eq!(
+            std::fs::read_to_string(cut.join(f)).unwrap(),
+            std::fs::read_to_string(full.join(f)).unwrap(),
+            "{f}: resumed differs from an uninterrupted run"
+        );
+    }
+    // every run journaled once
+    let j = std::fs::read_to_string(&journal).unwrap();
+    let mut keys: Vec<usize> = j
+        .lines()
+        .skip(2)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    let n = keys.len();
+    keys.sort();
+    keys.dedup();
+    assert_eq!(keys.len(), n);
+    // a rerun computes nothing
+    let out = pounding_cli(&["fragility", st, "--out", cut.to_str().unwrap(), "--no-plot"]);
+    assert!(
+        out.contains(&format!("{n} runs found, 0 computed")),
+        "{out}"
+    );
+    // the CLI's parts joined by --merge: the same tables
+    let parts = d.path().join("parts");
+    for k in 1..=2 {
+        pounding_cli(&[
+            "fragility",
+            st,
+            "--out",
+            parts.to_str().unwrap(),
+            "--shard",
+            &format!("{k}/2"),
+        ]);
+    }
+    let merged = d.path().join("merged");
+    pounding_cli(&[
+        "fragility",
+        st,
+        "--merge",
+        parts.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+        "--no-plot",
+    ]);
+    for f in ["fragility.csv", "ida.csv", "capacities.csv", "fit.json"] {
+        assert_eq!(
+            std::fs::read_to_string(merged.join(f)).unwrap(),
+            std::fs::read_to_string(full.join(f)).unwrap(),
+            "{f}: merged differs"
+        );
+    }
+    // another study into the same directory is refused
+    std::fs::write(
+        &study,
+        std::fs::read_to_string(&study)
+            .unwrap()
+            .replace("tolerance = 0.01", "tolerance = 0.02"),
+    )
+    .unwrap();
+    let o = std::process::Command::new(BIN)
+        .args(["fragility", st, "--out", cut.to_str().unwrap(), "--no-plot"])
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && e.contains("different fragility"),
+        "{e}"
+    );
+}

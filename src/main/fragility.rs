@@ -39,14 +39,27 @@ pub fn fragility(a: args::FragilityArgs, quiet: bool) -> anyhow::Result<()> {
         let record_im = fragility::record_ims(&study).map_err(err)?;
         let outcomes =
             fragility::run_tasks(&study, &record_im, &tasks, a.jobs, &store).map_err(err)?;
+        if !quiet && store.resumed() > 0 {
+            println!(
+                "resumed from {}: {} runs found, {} computed now{}",
+                out.join(pounding::study::sweep::results::file_names(shard).1)
+                    .display(),
+                store.resumed(),
+                store.computed(),
+                match store.dropped {
+                    0 => String::new(),
+                    n => format!(" ({n} torn or damaged lines dropped)"),
+                }
+            );
+        }
         if !shard.is_all() {
             if !quiet {
                 println!(
-                    "part {shard} of {}: {} tasks, {} runs ({} from the journal); journal {}",
+                    "part {shard} of {}: {} tasks, {} runs ({} computed now); journal {}",
                     path.display(),
                     tasks.len(),
                     outcomes.len(),
-                    store.resumed(),
+                    store.computed(),
                     out.join(format!("journal-shard-{}-of-{}.csv", shard.k, shard.n))
                         .display()
                 );

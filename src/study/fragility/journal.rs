@@ -168,12 +168,18 @@ pub struct JournalStore {
     /// Rows dropped on reading (torn or damaged): their runs are redone.
     pub dropped: usize,
     compute: bool,
+    added: std::sync::atomic::AtomicUsize,
 }
 
 impl JournalStore {
     /// Runs read back from the journal.
     pub fn resumed(&self) -> usize {
         self.runs.len()
+    }
+
+    /// Runs computed (and journaled) since it was opened.
+    pub fn computed(&self) -> usize {
+        self.added.load(std::sync::atomic::Ordering::Relaxed)
     }
 }
 
@@ -188,6 +194,8 @@ impl RunStore for JournalStore {
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
         j.append(key, row(key, run), false)?;
+        self.added
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         Ok(())
     }
 
@@ -247,6 +255,7 @@ fn open_file(
         journal: Mutex::new(journal),
         runs,
         compute,
+        added: std::sync::atomic::AtomicUsize::new(0),
     })
 }
 
