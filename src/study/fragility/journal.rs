@@ -356,6 +356,47 @@ impl RunStore for Parts {
     }
 }
 
+/// The runs of task `task` ([`super::tasks`]) as journal rows ([`row`]): what one Dask task
+/// computes (`pounding.distributed.fragility`).
+pub fn task_rows(
+    study: &FragilityStudy,
+    record_im: &[f64],
+    task: usize,
+) -> Result<Vec<String>, FragilityError> {
+    let runs = super::run_task(study, record_im, task, &super::NoStore)?;
+    Ok(runs
+        .iter()
+        .map(|o| row(super::run_key(study, o.record, o.stripe), o))
+        .collect())
+}
+
+/// The study's results from journal rows ([`row`]) holding every run, in any order (the rows
+/// of all tasks, e.g. gathered from Dask); a damaged row or a missing run is refused.
+pub fn assemble_rows(
+    study: &FragilityStudy,
+    rows: &[String],
+) -> Result<super::FragilityRun, FragilityError> {
+    let levels = study.scenario.contact.levels.len();
+    let mut runs = BTreeMap::new();
+    for (i, r) in rows.iter().enumerate() {
+        let (k, o) = parse_row(r, levels).ok_or_else(|| {
+            SweepError::Merge(format!("row {} is not a run of this study: {r}", i + 1))
+        })?;
+        runs.insert(k, o);
+    }
+    replay(study, runs)
+}
+
+fn replay(
+    study: &FragilityStudy,
+    runs: BTreeMap<usize, RunOutcome>,
+) -> Result<super::FragilityRun, FragilityError> {
+    let record_im = super::record_ims(study)?;
+    let all: Vec<usize> = (0..super::tasks(study)).collect();
+    let outcomes = super::run_tasks(study, &record_im, &all, Some(1), &Parts(runs))?;
+    Ok(super::assemble(study.clone(), record_im, outcomes))
+}
+
 /// Join the parts of a sharded study: the journals in `inputs` (files or directories), each
 /// checked to be a part of `study` (its identity), every part present once; the study is
 /// replayed from their runs (a run in no part is refused: [`FragilityError::Missing`]).
@@ -369,8 +410,5 @@ pub fn merge(
         let store = open_file(study, p, *s, false)?;
         runs.extend(store.runs);
     }
-    let record_im = super::record_ims(study)?;
-    let all: Vec<usize> = (0..super::tasks(study)).collect();
-    let outcomes = super::run_tasks(study, &record_im, &all, Some(1), &Parts(runs))?;
-    Ok(super::assemble(study.clone(), record_im, outcomes))
+    replay(study, runs)
 }
