@@ -15,14 +15,14 @@ const BIN: &str = env!("CARGO_BIN_EXE_pounding");
 fn table(path: &Path) -> Vec<BTreeMap<String, String>> {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
-    let head: Vec<String> = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(String::from)
-        .collect();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     lines
-        .map(|l| head.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .map(|l| {
+            head.iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
         .collect()
 }
 
@@ -49,7 +49,11 @@ fn the_bundled_example_runs_and_its_outputs_agree() {
     assert!(!frag.is_empty());
     for r in &frag {
         assert_eq!(f(r, "runs"), 7.0, "{r:?}");
-        assert_eq!(f(r, "fraction"), f(r, "exceedances") / f(r, "runs"), "{r:?}");
+        assert_eq!(
+            f(r, "fraction"),
+            f(r, "exceedances") / f(r, "runs"),
+            "{r:?}"
+        );
     }
     // P(pounding | IM, gap): non-increasing in the gap at every IM
     let p = table(&d.path().join("p_pounding.csv"));
@@ -62,7 +66,10 @@ fn the_bundled_example_runs_and_its_outputs_agree() {
     }
     assert_eq!(by_im.len(), 6);
     for (im, v) in &by_im {
-        assert!(v.windows(2).all(|w| w[0].0 < w[1].0 && w[1].1 <= w[0].1), "{im}");
+        assert!(
+            v.windows(2).all(|w| w[0].0 < w[1].0 && w[1].1 <= w[0].1),
+            "{im}"
+        );
         // at the scenario's gaps (50 mm at every level) the fraction of runs that pound, with
         // and without contact
         let at50 = v.iter().find(|(g, _)| (g - 0.05).abs() < 1e-12).unwrap().1;
@@ -108,7 +115,10 @@ fn the_bundled_example_runs_and_its_outputs_agree() {
         .map(|x| f(x, "critical_gap"))
         .fold(0.0, f64::max);
     // (printed to 0.1 mm)
-    assert!((mm - 1e3 * largest).abs() <= 0.05 + 1e-9, "{mm} vs {largest}");
+    assert!(
+        (mm - 1e3 * largest).abs() <= 0.05 + 1e-9,
+        "{mm} vs {largest}"
+    );
     let at = &by_im["0.3"];
     for (g, pp) in at {
         if *g >= largest {
@@ -118,8 +128,7 @@ fn the_bundled_example_runs_and_its_outputs_agree() {
         }
     }
     let fit: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.path().join("fit.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(d.path().join("fit.json")).unwrap()).unwrap();
     assert_eq!(fit["target_gap"]["empirical"].as_f64().unwrap(), largest);
     // the fragility of pounding and of B's ductility, with and without pounding, is fitted
     for (ls, model) in [

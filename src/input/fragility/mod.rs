@@ -278,6 +278,8 @@ pub struct FragilityStudy {
     pub units: ImUnits,
     /// The stripes, m/s², increasing (empty in an IDA).
     pub stripes: Vec<f64>,
+    /// The stripes as written, in the study's IM units (the tables' `im`).
+    pub stripes_given: Vec<f64>,
     /// Incremental dynamic analysis instead of stripes.
     pub ida: Option<IdaSettings>,
     /// The limit states, in file order.
@@ -525,6 +527,10 @@ impl FragilityStudy {
             record_names,
             measure,
             units,
+            stripes_given: f
+                .stripes
+                .as_ref()
+                .map_or_else(Vec::new, |s| s.get_ref().clone()),
             stripes,
             ida,
             limit_states,

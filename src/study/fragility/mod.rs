@@ -275,8 +275,7 @@ pub struct FragilityRun {
 impl FragilityRun {
     /// The stripes in the study's units (empty in an IDA).
     pub fn stripes(&self) -> Vec<f64> {
-        let u = self.study.units.factor();
-        self.study.stripes.iter().map(|s| s / u).collect()
+        self.study.stripes_given.clone()
     }
 
     /// Runs that did not pass the self-check.
@@ -488,8 +487,7 @@ pub fn assemble(
     if study.ida.is_some() {
         return assemble_ida(study, record_im, outcomes);
     }
-    let u = study.units.factor();
-    let stripes: Vec<f64> = study.stripes.iter().map(|s| s / u).collect();
+    let stripes: Vec<f64> = study.stripes_given.clone();
     let ns = stripes.len();
     let nr = record_im.len();
     let gaps = scenario_gaps(&study);
@@ -542,7 +540,7 @@ pub fn assemble(
     let pounding = PoundingTable::new(&stripes, &study.gaps, &critical);
     let target_gap = study
         .target
-        .map(|t| pounding::gap_for_target(&critical[t.stripe], t.probability, t.im / u));
+        .map(|t| pounding::gap_for_target(&critical[t.stripe], t.probability, stripes[t.stripe]));
     FragilityRun {
         study,
         record_im,

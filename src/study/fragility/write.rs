@@ -131,7 +131,14 @@ pub fn runs_csv(run: &FragilityRun) -> String {
             text(&run.study.record_names[o.record]),
             o.stripe + 1
         ));
-        num(&mut out, o.im / u);
+        num(
+            &mut out,
+            if ida {
+                o.im / u
+            } else {
+                run.study.stripes_given[o.stripe]
+            },
+        );
         out.push(',');
         num(&mut out, o.factor);
         out.push(',');
