@@ -290,7 +290,7 @@ fn shards_joined_equal_one_run_for_stripes_and_ida() {
             let tasks = fragility::journal::part(&s, shard);
             fragility::run_tasks(&s, &ims, &tasks, Some(1), &store).unwrap();
         }
-        let joined = fragility::journal::merge(&s, &[out.clone()]).unwrap();
+        let joined = fragility::journal::merge(&s, std::slice::from_ref(&out)).unwrap();
         same(&whole.outcomes, &joined.outcomes);
         assert_eq!(
             fragility::write::fit_json_text(&whole),

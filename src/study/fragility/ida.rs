@@ -171,7 +171,7 @@ pub fn lognormal_of(c: &[f64]) -> Result<LognormalFit, FitError> {
     let mu = l.iter().sum::<f64>() / n as f64;
     let var = l.iter().map(|x| (x - mu).powi(2)).sum::<f64>() / (n - 1) as f64;
     let beta = var.sqrt();
-    if !(beta > 0.0) {
+    if beta.is_nan() || beta <= 0.0 {
         // every record at the same capacity: a step, as complete separation of stripes
         return Ok(LognormalFit {
             theta: mu.exp(),
