@@ -174,7 +174,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     let gaps_mm: Vec<f64> = t.gaps.iter().map(|g| 1e3 * g).collect();
     let labels: Vec<String> =
         t.im.iter()
-            .map(|x| format!("{} = {x} {}", s.measure.short(), s.units.key()))
+            .map(|x| format!("{} = {} {}", s.measure.short(), tidy(*x), s.units.key()))
             .collect();
     let mut lines: Vec<XyLine> =
         t.p.iter()
@@ -199,7 +199,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
             "P = {:.0} % at {} = {} {}: gap {:.0} mm",
             100.0 * g.probability,
             s.measure.short(),
-            g.im,
+            tidy(g.im),
             s.units.key(),
             1e3 * g.empirical
         );
@@ -235,6 +235,13 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
         height: 700,
     };
     write_xy(&fig, &dir.join("p-pounding"))
+}
+
+/// An intensity for a legend: at most six decimals, no trailing zeros (0.06, not
+/// 0.060000000000000005 from the hunt's sums).
+fn tidy(x: f64) -> String {
+    let t = format!("{x:.6}");
+    t.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The demand of a limit state as drawn (its unit: N as MN, m/s² as g when the threshold was

@@ -300,9 +300,9 @@ pub struct FragilityStudy {
     pub check: bool,
     /// What the study notes (a suite's own scaling not used …).
     pub notes: Vec<String>,
-    /// A hash of what the runs depend on (the study's and the base scenario's text, every
-    /// record's samples and step): a journal of other inputs is not resumed.
-    pub identity: u64,
+    /// The study's text and the base scenario's, as read (with the records' samples, what a
+    /// journal's identity covers: `study::fragility::journal::identity`).
+    pub texts: [String; 2],
 }
 
 impl FragilityStudy {
@@ -500,23 +500,8 @@ impl FragilityStudy {
                 x
             }
         };
-        let mut hash = crate::study::sweep::Fnv1a::new();
-        hash.part(b"pounding-fragility-1");
-        hash.part(text.as_bytes());
-        hash.part(sc_text.as_bytes());
-        if let Some(suite) = &scenario.suite {
-            for r in &suite.records {
-                let mut b = Vec::with_capacity(8 * (r.record.accel.len() + 1));
-                b.extend_from_slice(&r.record.dt.to_le_bytes());
-                for a in r.record.accel.iter() {
-                    b.extend_from_slice(&a.to_le_bytes());
-                }
-                hash.part(&b);
-            }
-        }
-        let identity = hash.finish();
         Ok(FragilityStudy {
-            identity,
+            texts: [text.to_string(), sc_text.clone()],
             title: raw
                 .title
                 .clone()

@@ -3,7 +3,7 @@
 //! `DIR/journal.csv` (`journal-shard-K-of-N.csv` for part K of N) as soon as it is known, one
 //! write per row; a rerun of the same study into the same directory reads it back, drops a
 //! torn last line, and runs only what is missing. The first line identifies the study
-//! ([`FragilityStudy::identity`]: its text, its base scenario's, the records' samples), the
+//! ([`identity`]: its text, its base scenario's, the records' samples), the
 //! part and the number of run keys; a journal of another study is refused.
 //!
 //! A row is one run, exactly ([`row`] / [`parse_row`]: numbers in the shortest form that reads
@@ -20,6 +20,27 @@ use super::{FragilityError, RunOutcome, RunStore};
 use crate::input::fragility::FragilityStudy;
 use crate::study::sweep::results::{Journal, JournalKind, csv_field, file_names, parse_csv_line};
 use crate::study::sweep::{Shard, SweepError};
+
+/// A hash of what the runs of `study` depend on: its text, its base scenario's, every
+/// record's samples and step (a journal of other inputs is not resumed).
+pub fn identity(study: &FragilityStudy) -> u64 {
+    let mut hash = crate::study::sweep::Fnv1a::new();
+    hash.part(b"pounding-fragility-1");
+    for t in &study.texts {
+        hash.part(t.as_bytes());
+    }
+    if let Some(suite) = &study.scenario.suite {
+        for r in &suite.records {
+            let mut b = Vec::with_capacity(8 * (r.record.accel.len() + 1));
+            b.extend_from_slice(&r.record.dt.to_le_bytes());
+            for a in r.record.accel.iter() {
+                b.extend_from_slice(&a.to_le_bytes());
+            }
+            hash.part(&b);
+        }
+    }
+    hash.finish()
+}
 
 /// The journal format's version.
 pub const VERSION: u32 = 1;
@@ -236,7 +257,7 @@ fn open_file(
         version: VERSION,
         ident: format!(
             "{MAGIC}{VERSION}; identity={:016x}; shard={shard}; keys={total}",
-            study.identity
+            identity(study)
         ),
         header: header(levels),
         command: "pounding fragility",
