@@ -285,14 +285,20 @@ class FragilityResult:
         self.fragility: dict[str, Any] = _columns(parts["fragility_csv"])
         self.p_pounding: dict[str, Any] = _columns(parts["p_pounding_csv"])
         self.runs: dict[str, Any] = _columns(parts["runs_csv"])
+        # an IDA: ``runs`` is ida.csv (``run`` for ``stripe``, rows by record and IM) and
+        # ``capacities`` capacities.csv (``record``, ``file``, ``limit_state``, ``model``,
+        # ``im_lo``, ``im_hi``, ``capacity``); no rows for stripes
+        self.capacities: dict[str, Any] = _columns(parts.get("capacities_csv", ""))
 
     def to_pandas(self, table: str = "fragility") -> Any:
-        """One table (``fragility``, ``p_pounding`` or ``runs``) as a pandas DataFrame (needs
-        pandas)."""
+        """One table (``fragility``, ``p_pounding``, ``runs`` or ``capacities``) as a pandas
+        DataFrame (needs pandas)."""
         import pandas as pd  # optional dependency
 
-        if table not in ("fragility", "p_pounding", "runs"):
-            raise ValueError(f"table must be 'fragility', 'p_pounding' or 'runs', not {table!r}")
+        if table not in ("fragility", "p_pounding", "runs", "capacities"):
+            raise ValueError(
+                f"table must be 'fragility', 'p_pounding', 'runs' or 'capacities', not {table!r}"
+            )
         return pd.DataFrame(getattr(self, table))
 
     def __repr__(self) -> str:
@@ -315,3 +321,11 @@ def fragility(
         os.fspath(path), None if jobs is None else int(jobs), None if out is None else os.fspath(out), plots
     )
     return FragilityResult(dict(parts))
+
+
+def plan_fragility(path: PathLike) -> _core.FragilityPlan:
+    """The checked study of a fragility study file, split into tasks (a run of a record at a
+    stripe, or a record's whole IDA), each computed to rows anywhere and the rows joined into
+    the tables (what :mod:`pounding.distributed` sends to workers; it pickles as the study
+    file's absolute path)."""
+    return _core.FragilityPlan.from_file(os.fspath(path))

@@ -150,4 +150,21 @@ def fragility(
     path: _Path, jobs: int | None = None, out: _Path | None = None, plots: bool = True
 ) -> list[tuple[str, str]]:
     """Run a fragility study file (`pounding fragility`): (name, text) pairs fragility_csv,
-    p_pounding_csv, runs_csv, fit_json, report; with `out`, the files written there too."""
+    p_pounding_csv, runs_csv (ida.csv in an IDA), capacities_csv, fit_json, report; with `out`,
+    the files written there too."""
+
+class FragilityPlan:
+    """A checked fragility study split into tasks (immutable; pickles as its study file's
+    absolute path)."""
+
+    @staticmethod
+    def from_file(path: _Path) -> FragilityPlan:
+        """Read and check a study file. Raises ScenarioError."""
+    def __len__(self) -> int:
+        """The number of tasks (runs of records × stripes, or records of an IDA)."""
+    def run_task(self, task: int) -> list[str]:
+        """Compute one task, GIL released: its runs as rows. Raises SolveError."""
+    def assemble(
+        self, rows: list[str], out: _Path | None = None, plots: bool = True
+    ) -> list[tuple[str, str]]:
+        """The tables (as `fragility`) from the rows of every task; with `out` the files."""

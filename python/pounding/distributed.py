@@ -19,13 +19,17 @@ on a Slurm cluster (``dask_jobqueue.SLURMCluster``)::
 
 Record files are read by the workers from their absolute paths: on a cluster they must be
 on a shared file system (as for the CLI's Slurm-array route, ``pounding sweep --shard``).
+
+Fragility studies likewise (:func:`fragility`): one Dask task per run of a record at a
+stripe, or per record of an incremental dynamic analysis (its runs depend on each other);
+the workers read the study file and its records from their absolute paths.
 """
 
 from __future__ import annotations
 
 from typing import Any, Mapping, Union
 
-from . import PathLike, Scenario, SweepTable, _core, plan_sweep
+from . import FragilityResult, PathLike, Scenario, SweepTable, _core, plan_fragility, plan_sweep
 
 
 def run_case(plan: _core.Sweep, case: int, check: bool = True) -> str:
@@ -69,3 +73,31 @@ def sweep(
         futures = client.map(run_cases, [shared] * len(chunks), chunks, check=check, pure=False)
         rows = [row for part in client.gather(futures) for row in part]
     return SweepTable(plan.columns(rows))
+
+
+def run_fragility_task(plan: _core.FragilityPlan, task: int) -> list[str]:
+    """Compute task ``task`` of a fragility study's ``plan``: its runs as rows."""
+    return plan.run_task(task)
+
+
+def fragility(
+    client: Any,
+    path: PathLike,
+    *,
+    out: PathLike | None = None,
+    plots: bool = True,
+) -> FragilityResult:
+    """Run a fragility study file on the workers of a ``dask.distributed.Client`` and return
+    what :func:`pounding.fragility` returns for it (the same tables and fits, to the bit).
+
+    Each task is a run of a record at a stripe, or a record's whole IDA (hunt and fill: its
+    runs depend on each other). With ``out``, the files (and the figures unless ``plots`` is
+    false) are written there by the client, fit.json last."""
+    import os
+
+    plan = plan_fragility(path)
+    [shared] = client.scatter([plan], broadcast=True)
+    futures = client.map(run_fragility_task, [shared] * len(plan), range(len(plan)), pure=False)
+    rows = [row for part in client.gather(futures) for row in part]
+    parts = plan.assemble(rows, None if out is None else os.fspath(out), plots)
+    return FragilityResult(dict(parts))

@@ -742,10 +742,51 @@ fn available_parallelism() -> usize {
 // ---------------------------------------------------------------------------------------------
 // Fragility studies (issue 28)
 
+/// A fragility study's tables as CSV text (`fragility_csv`, `p_pounding_csv`, `runs_csv` —
+/// `ida.csv` in an IDA — and `capacities_csv`), `fit_json` and `report`; with `out`, the files
+/// (and with `plots` the figures) are written there too, `fit.json` last.
+fn fragility_parts(
+    run: &pounding::study::fragility::FragilityRun,
+    out: Option<&Path>,
+    plots: bool,
+) -> PyResult<Vec<(String, String)>> {
+    use pounding::study::fragility as fr;
+    if let Some(dir) = out {
+        let mut failed = None;
+        fr::write::write(run, dir, || {
+            if !plots {
+                return Vec::new();
+            }
+            pounding::figures::fragility::pictures(run, dir).unwrap_or_else(|e| {
+                failed = Some(e.to_string());
+                Vec::new()
+            })
+        })
+        .map_err(|e| OutputError::new_err(e.to_string()))?;
+        if let Some(e) = failed {
+            return Err(OutputError::new_err(format!("the figures: {e}")));
+        }
+    }
+    Ok(vec![
+        ("fragility_csv".into(), fr::write::fragility_csv(run)),
+        ("p_pounding_csv".into(), fr::write::p_pounding_csv(run)),
+        ("runs_csv".into(), fr::write::runs_csv(run)),
+        ("capacities_csv".into(), fr::write::capacities_csv(run)),
+        ("fit_json".into(), fr::write::fit_json_text(run)),
+        ("report".into(), fr::report::report(run)),
+    ])
+}
+
+fn fragility_err(e: pounding::study::fragility::FragilityError) -> PyErr {
+    use pounding::study::fragility::FragilityError as E;
+    match e {
+        E::Solve { .. } => SolveError::new_err(e.to_string()),
+        _ => ScenarioError::new_err(e.to_string()),
+    }
+}
+
 /// Run a fragility study file, as `pounding fragility` does, with the GIL released: a dict
-/// of its tables as CSV text (`fragility_csv`, `p_pounding_csv`, `runs_csv`), `fit_json` and
-/// `report` (the printed text). With `out`, the files (and with `plots` the figures) are
-/// written there too, `fit.json` last.
+/// of its tables ([`fragility_parts`]).
 #[pyfunction]
 #[pyo3(signature = (path, jobs = None, out = None, plots = true))]
 fn fragility(
@@ -760,36 +801,97 @@ fn fragility(
         no_panic(|| {
             let study = pounding::input::fragility::FragilityStudy::from_file(&path)
                 .map_err(|e| ScenarioError::new_err(e.to_string()))?;
-            let run = fr::run(&study, jobs).map_err(|e| match e {
-                fr::FragilityError::Solve { .. } => SolveError::new_err(e.to_string()),
-                _ => ScenarioError::new_err(e.to_string()),
-            })?;
-            if let Some(dir) = &out {
-                let mut failed = None;
-                fr::write::write(&run, dir, || {
-                    if !plots {
-                        return Vec::new();
-                    }
-                    pounding::figures::fragility::pictures(&run, dir).unwrap_or_else(|e| {
-                        failed = Some(e.to_string());
-                        Vec::new()
-                    })
-                })
-                .map_err(|e| OutputError::new_err(e.to_string()))?;
-                if let Some(e) = failed {
-                    return Err(OutputError::new_err(format!("the figures: {e}")));
-                }
-            }
-            let fit = fr::write::fit_json_text(&run);
-            Ok(vec![
-                ("fragility_csv".into(), fr::write::fragility_csv(&run)),
-                ("p_pounding_csv".into(), fr::write::p_pounding_csv(&run)),
-                ("runs_csv".into(), fr::write::runs_csv(&run)),
-                ("fit_json".into(), fit),
-                ("report".into(), fr::report::report(&run)),
-            ])
+            let run = fr::run(&study, jobs).map_err(fragility_err)?;
+            fragility_parts(&run, out.as_deref(), plots)
         })
     })
+}
+
+/// A checked fragility study split into tasks (a run at a stripe, or a record's whole IDA),
+/// each computed to journal rows anywhere (a Dask worker), the rows joined into the study's
+/// tables. Pickles as its study file's absolute path (workers read the study and its records
+/// from there).
+#[pyclass(frozen, module = "pounding._core", name = "FragilityPlan")]
+struct PyFragilityPlan {
+    path: PathBuf,
+    study: pounding::input::fragility::FragilityStudy,
+    record_im: Vec<f64>,
+}
+
+#[pymethods]
+impl PyFragilityPlan {
+    /// Read and check a study file.
+    #[staticmethod]
+    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<PyFragilityPlan> {
+        py.detach(|| {
+            no_panic(|| {
+                let path = std::path::absolute(&path).unwrap_or(path);
+                let study = pounding::input::fragility::FragilityStudy::from_file(&path)
+                    .map_err(|e| ScenarioError::new_err(e.to_string()))?;
+                let record_im =
+                    pounding::study::fragility::record_ims(&study).map_err(fragility_err)?;
+                Ok(PyFragilityPlan {
+                    path,
+                    study,
+                    record_im,
+                })
+            })
+        })
+    }
+
+    /// The number of tasks.
+    fn __len__(&self) -> usize {
+        pounding::study::fragility::tasks(&self.study)
+    }
+
+    /// Compute task `task` (GIL released): its runs as journal rows.
+    fn run_task(&self, py: Python<'_>, task: usize) -> PyResult<Vec<String>> {
+        let n = self.__len__();
+        if task >= n {
+            return Err(pyo3::exceptions::PyIndexError::new_err(format!(
+                "task {task}: the study has {n} tasks, numbered 0 to {}",
+                n.saturating_sub(1)
+            )));
+        }
+        py.detach(|| {
+            no_panic(|| {
+                pounding::study::fragility::journal::task_rows(&self.study, &self.record_im, task)
+                    .map_err(fragility_err)
+            })
+        })
+    }
+
+    /// The study's tables from the rows of every task (as `pounding.fragility` returns them);
+    /// with `out` the files are written too.
+    #[pyo3(signature = (rows, out = None, plots = true))]
+    fn assemble(
+        &self,
+        py: Python<'_>,
+        rows: Vec<String>,
+        out: Option<PathBuf>,
+        plots: bool,
+    ) -> PyResult<Vec<(String, String)>> {
+        py.detach(|| {
+            no_panic(|| {
+                let run = pounding::study::fragility::journal::assemble_rows(&self.study, &rows)
+                    .map_err(fragility_err)?;
+                fragility_parts(&run, out.as_deref(), plots)
+            })
+        })
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (PathBuf,))> {
+        let ctor = slf.get_type().getattr("from_file")?;
+        Ok((ctor, (slf.get().path.clone(),)))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "FragilityPlan({:?}, {} tasks)",
+            self.path.display().to_string(),
+            self.__len__()
+        )
+    }
 }
 
 /// The table `pounding laws` prints: the restitution each contact law that takes a target e
@@ -821,6 +923,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScenario>()?;
     m.add_class::<PyRunOutput>()?;
     m.add_class::<PySweep>()?;
+    m.add_class::<PyFragilityPlan>()?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(fragility, m)?)?;
     m.add_function(wrap_pyfunction!(available_parallelism, m)?)?;

@@ -5,9 +5,19 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::input::fragility::{G, LimitKind, LimitState};
 use crate::plot::curves::{BandCurve, CurveFigure, CurvePanel, Markers, write_curves};
 use crate::plot::{AxisScale, LineColor, LineStyle, PlotError, XyFigure, XyLine, write_xy};
 use crate::study::fragility::{FragilityRun, MODELS};
+
+/// The palette's black, for the threshold lines.
+const PALETTE_BLACK: usize = 6;
+
+/// A record's palette colour (black left for the threshold).
+fn record_color(r: usize) -> usize {
+    let c = r % 7;
+    if c >= PALETTE_BLACK { c + 1 } else { c }
+}
 
 /// Palette index of the model (with contact: vermillion; without: blue).
 fn color(model: usize) -> usize {
@@ -27,6 +37,7 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
         lo: Vec<f64>,
         hi: Vec<f64>,
         frac: Vec<f64>,
+        x: Vec<f64>,
         label: String,
     }
     let data: Vec<Data> = run
@@ -67,6 +78,7 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
                 lo,
                 hi,
                 frac,
+                x: c.im.clone(),
                 label,
             }
         })
@@ -114,7 +126,7 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
                 .iter()
                 .filter(|d| d.ls == l)
                 .map(|d| Markers {
-                    x: &stripes,
+                    x: &d.x,
                     y: &d.frac,
                     color: color(d.model),
                     filled: d.model == 0,
@@ -125,13 +137,22 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
     let cols = if n_ls <= 1 { 1 } else { 2 };
     let rows = n_ls.div_ceil(cols);
     let x_label = format!("{} [{}]", s.measure.label(), s.units.key());
-    let subtitle = format!(
-        "{} records × {} stripes; points: observed fractions; lines: lognormal fit by maximum \
-         likelihood; bands: {:.0} % bootstrap over records",
-        s.record_names.len(),
-        stripes.len(),
-        100.0 * s.confidence
-    );
+    let subtitle = if s.ida.is_some() {
+        format!(
+            "IDA of {} records; points: the fraction of records whose capacity is at most IM; \
+             lines: lognormal of the capacities; bands: {:.0} % bootstrap over records",
+            s.record_names.len(),
+            100.0 * s.confidence
+        )
+    } else {
+        format!(
+            "{} records × {} stripes; points: observed fractions; lines: lognormal fit by \
+             maximum likelihood; bands: {:.0} % bootstrap over records",
+            s.record_names.len(),
+            stripes.len(),
+            100.0 * s.confidence
+        )
+    };
     let fig = CurveFigure {
         title: &s.title,
         subtitle: &subtitle,
@@ -153,7 +174,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     let gaps_mm: Vec<f64> = t.gaps.iter().map(|g| 1e3 * g).collect();
     let labels: Vec<String> =
         t.im.iter()
-            .map(|x| format!("{} = {x} {}", s.measure.short(), s.units.key()))
+            .map(|x| format!("{} = {} {}", s.measure.short(), tidy(*x), s.units.key()))
             .collect();
     let mut lines: Vec<XyLine> =
         t.p.iter()
@@ -178,7 +199,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
             "P = {:.0} % at {} = {} {}: gap {:.0} mm",
             100.0 * g.probability,
             s.measure.short(),
-            g.im,
+            tidy(g.im),
             s.units.key(),
             1e3 * g.empirical
         );
@@ -216,9 +237,212 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     write_xy(&fig, &dir.join("p-pounding"))
 }
 
-/// Both figures in `dir`.
+/// An intensity for a legend: at most six decimals, no trailing zeros (0.06, not
+/// 0.060000000000000005 from the hunt's sums).
+fn tidy(x: f64) -> String {
+    let t = format!("{x:.6}");
+    t.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// The demand of a limit state as drawn (its unit: N as MN, m/s² as g when the threshold was
+/// given in g) and the axis label: (scale, label).
+fn demand_axis(ls: &LimitState) -> (f64, String) {
+    match ls.kind {
+        LimitKind::Pounding => (1.0, "required separation / gap, largest over levels".into()),
+        LimitKind::ContactForce => (1e-6, "peak contact force [MN]".into()),
+        LimitKind::Ductility => (1.0, "peak storey ductility".into()),
+        LimitKind::DriftRatio => (100.0, "peak storey drift ratio [%]".into()),
+        LimitKind::FloorAcceleration => {
+            if ls.name.contains("g(") || ls.name.ends_with('g') {
+                (1.0 / G, "peak floor acceleration [g]".into())
+            } else {
+                (1.0, "peak floor acceleration [m/s²]".into())
+            }
+        }
+    }
+}
+
+/// A record's short name: its number and the last part of its file's stem.
+fn short_name(i: usize, file: &str) -> String {
+    let stem = Path::new(file)
+        .file_stem()
+        .map_or(file.to_string(), |s| s.to_string_lossy().into_owned());
+    let last = stem.rsplit('_').next().unwrap_or(&stem).to_string();
+    format!("{} {last}", i + 1)
+}
+
+/// `ida.png/.svg` in `dir` (an IDA): per limit state, each record's IDA curve — the intensity
+/// against the demand, run by run (solid: with contact; dashed: without) — the threshold (grey)
+/// and each record's capacity marked on it (filled: with; open: without).
+pub fn ida_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    let s = &run.study;
+    let u = s.units.factor();
+    let gaps: Vec<f64> = s.scenario.contact.levels.iter().map(|l| l.gap).collect();
+    let nr = s.record_names.len();
+    let names: Vec<String> = s
+        .record_names
+        .iter()
+        .enumerate()
+        .map(|(i, f)| short_name(i, f))
+        .collect();
+    // per record its runs by IM
+    let by_record: Vec<Vec<&crate::study::fragility::RunOutcome>> = (0..nr)
+        .map(|r| {
+            let mut v: Vec<_> = run.record_runs(r).collect();
+            v.sort_by(|a, b| a.im.total_cmp(&b.im));
+            v
+        })
+        .collect();
+    let y_max = run.outcomes.iter().map(|o| o.im / u).fold(0.0, f64::max) * 1.05;
+    struct Line {
+        x: Vec<f64>,
+        y: Vec<f64>,
+        record: usize,
+        model: usize,
+    }
+    struct Panel {
+        title: String,
+        lines: Vec<Line>,
+        thr: (Vec<f64>, Vec<f64>),
+        caps: Vec<(usize, usize, Vec<f64>, Vec<f64>)>,
+        x_label: String,
+    }
+    let mut panels_data = Vec::new();
+    for (l, ls) in s.limit_states.iter().enumerate() {
+        let (scale, x_label) = demand_axis(ls);
+        let mut lines = Vec::new();
+        for (r, runs) in by_record.iter().enumerate() {
+            for m in 0..2 {
+                let pts: Vec<(f64, f64)> = runs
+                    .iter()
+                    .filter_map(|o| o.demand(ls, m, &gaps).map(|d| (d * scale, o.im / u)))
+                    .collect();
+                if pts.is_empty() {
+                    continue;
+                }
+                let mut x = vec![0.0];
+                let mut y = vec![0.0];
+                x.extend(pts.iter().map(|p| p.0));
+                y.extend(pts.iter().map(|p| p.1));
+                lines.push(Line {
+                    x,
+                    y,
+                    record: r,
+                    model: m,
+                });
+            }
+        }
+        if lines.is_empty() {
+            continue;
+        }
+        let thr_x = if ls.kind == LimitKind::Pounding {
+            1.0
+        } else {
+            ls.value * scale
+        };
+        let mut caps = Vec::new();
+        for c in run.curves.iter().filter(|c| c.limit_state == l) {
+            if let Some(k) = &c.capacities {
+                for (r, cap) in k.iter().enumerate() {
+                    if let Some(v) = cap.value() {
+                        caps.push((r, c.model, vec![thr_x], vec![v / u]));
+                    }
+                }
+            }
+        }
+        panels_data.push(Panel {
+            title: ls.name.clone(),
+            lines,
+            thr: (vec![thr_x, thr_x], vec![0.0, y_max]),
+            caps,
+            x_label,
+        });
+    }
+    if panels_data.is_empty() {
+        return Err(PlotError::NoData(
+            "no limit state has a demand to draw".into(),
+        ));
+    }
+    let panels: Vec<CurvePanel> = panels_data
+        .iter()
+        .map(|p| {
+            let mut labelled = vec![false; nr];
+            let mut curves: Vec<BandCurve> = p
+                .lines
+                .iter()
+                .map(|ln| {
+                    let label = if labelled[ln.record] {
+                        ""
+                    } else {
+                        labelled[ln.record] = true;
+                        names[ln.record].as_str()
+                    };
+                    BandCurve {
+                        label,
+                        x: &ln.x,
+                        y: &ln.y,
+                        band: (&[], &[]),
+                        color: record_color(ln.record),
+                        style: if ln.model == 0 {
+                            LineStyle::Solid
+                        } else {
+                            LineStyle::Dashed
+                        },
+                    }
+                })
+                .collect();
+            curves.push(BandCurve {
+                label: "",
+                x: &p.thr.0,
+                y: &p.thr.1,
+                band: (&[], &[]),
+                color: PALETTE_BLACK,
+                style: LineStyle::Dashed,
+            });
+            CurvePanel {
+                title: format!("{}: {}", p.title, p.x_label),
+                curves,
+                markers: p
+                    .caps
+                    .iter()
+                    .map(|(r, m, x, y)| Markers {
+                        x,
+                        y,
+                        color: record_color(*r),
+                        filled: *m == 0,
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    let n = panels.len();
+    let cols = if n <= 1 { 1 } else { 2 };
+    let rows = n.div_ceil(cols);
+    let y_label = format!("{} [{}]", s.measure.short(), s.units.key());
+    let subtitle = format!(
+        "{nr} records, their runs by intensity; solid: with contact, dashed: without; black: \
+         the limit; points: capacities (filled: with, open: without)"
+    );
+    let fig = CurveFigure {
+        title: &s.title,
+        subtitle: &subtitle,
+        x_label: "demand (in each panel's title)",
+        y_label: &y_label,
+        y_range: (0.0, y_max.max(1e-12)),
+        panels,
+        columns: cols,
+        width: if cols == 1 { 1100 } else { 1700 },
+        height: 190 + 460 * rows as u32,
+    };
+    write_curves(&fig, &dir.join("ida"))
+}
+
+/// The figures of a study in `dir`: `fragility`, `p-pounding`, and for an IDA `ida`.
 pub fn pictures(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let mut v = fragility_figure(run, dir)?;
     v.extend(pounding_figure(run, dir)?);
+    if run.study.ida.is_some() {
+        v.extend(ida_figure(run, dir)?);
+    }
     Ok(v)
 }

@@ -182,8 +182,14 @@ pub enum Command {
     /// (maximum likelihood, bootstrap intervals over records); P(pounding | IM, gap) for every
     /// gap from the runs without contact and the gap for a target probability.
     ///
-    /// Writes into DIR: fragility.csv, p_pounding.csv, runs.csv, the figures fragility.png/.svg
-    /// and p-pounding.png/.svg, and fit.json last. See the README, "Fragility".
+    /// With `ida = { … }` instead of stripes: an incremental dynamic analysis (each record
+    /// scaled up until every limit state is exceeded, its capacity bracketed by hunt and fill)
+    /// and the lognormal of the records' capacities.
+    ///
+    /// Writes into DIR: fragility.csv, p_pounding.csv, runs.csv (IDA: ida.csv and
+    /// capacities.csv), the figures fragility.png/.svg, p-pounding.png/.svg (IDA: ida.png/.svg),
+    /// and fit.json last. Every run is journaled in DIR/journal.csv as it finishes: a study
+    /// stopped midway resumes where it stopped when run again. See the README, "Fragility".
     Fragility(FragilityArgs),
 }
 
@@ -201,6 +207,15 @@ pub struct FragilityArgs {
     /// Do not draw the figures.
     #[arg(long)]
     pub no_plot: bool,
+    /// Run only part K of N of the study (task i — a run of records × stripes, or a record's
+    /// whole IDA — is in part i mod N + 1); the part journals its runs in
+    /// DIR/journal-shard-K-of-N.csv; join the parts with --merge.
+    #[arg(long, value_name = "K/N", conflicts_with = "merge")]
+    pub shard: Option<pounding::study::sweep::Shard>,
+    /// Join the parts of a sharded study (their journal-shard-K-of-N.csv files, or the
+    /// directories holding them) and write the study's files into --out.
+    #[arg(long, value_name = "PART", num_args = 1..)]
+    pub merge: Vec<PathBuf>,
 }
 
 /// Targets of `pounding export`.

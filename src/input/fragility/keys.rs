@@ -8,8 +8,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{
-    G, GapMode, ImUnits, IntensityMeasure, LimitKind, LimitState, PoundingTarget, StudyError,
-    top_gap,
+    G, GapMode, IdaSettings, ImUnits, IntensityMeasure, LimitKind, LimitState, PoundingTarget,
+    StudyError, top_gap,
 };
 use crate::input::scenario::{Location, Scenario};
 
@@ -68,6 +68,18 @@ pub(super) struct RawFragility {
     pub(super) seed: Option<Spanned<i64>>,
     pub(super) confidence: Option<Spanned<f64>>,
     pub(super) check: Option<bool>,
+    pub(super) ida: Option<Spanned<RawIda>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawIda {
+    start: Option<Spanned<f64>>,
+    step: Option<Spanned<f64>>,
+    growth: Option<Spanned<f64>>,
+    tolerance: Option<Spanned<f64>>,
+    max_runs: Option<Spanned<i64>>,
+    fill: Option<bool>,
 }
 
 /// Where a byte offset of the text lies: file:line:col.
@@ -521,10 +533,11 @@ pub(super) fn gap_axis(
     Ok(v)
 }
 
+/// `target`; `stripes` `None` in an IDA (any positive intensity: the hunt goes past it).
 pub(super) fn target(
     here: &Here,
     t: &Spanned<RawTarget>,
-    stripes: &[f64],
+    stripes: Option<&[f64]>,
     units: ImUnits,
 ) -> Result<PoundingTarget, StudyError> {
     let near = Some(t.span().start);
@@ -536,6 +549,18 @@ pub(super) fn target(
             near,
         )
     })?;
+    let Some(stripes) = stripes else {
+        let x = *im.get_ref();
+        if !(x.is_finite() && x > 0.0) {
+            return Err(here.invalid(im, "fragility.target.im", "must be a positive intensity"));
+        }
+        let probability = target_probability(here, r, near)?;
+        return Ok(PoundingTarget {
+            im: x * units.factor(),
+            stripe: 0,
+            probability,
+        });
+    };
     let stripe = stripes
         .iter()
         .position(|s| (s - im.get_ref()).abs() <= 1e-9 * s.abs())
@@ -550,6 +575,14 @@ pub(super) fn target(
                 ),
             )
         })?;
+    Ok(PoundingTarget {
+        im: stripes[stripe] * units.factor(),
+        stripe,
+        probability: target_probability(here, r, near)?,
+    })
+}
+
+fn target_probability(here: &Here, r: &RawTarget, near: Option<usize>) -> Result<f64, StudyError> {
     let p = r.probability.as_ref().ok_or_else(|| {
         here.missing(
             "fragility.target.probability",
@@ -561,9 +594,61 @@ pub(super) fn target(
     if !(x.is_finite() && x > 0.0 && x < 1.0) {
         return Err(here.invalid(p, "fragility.target.probability", "must be in (0, 1)"));
     }
-    Ok(PoundingTarget {
-        im: stripes[stripe] * units.factor(),
-        stripe,
-        probability: x,
+    Ok(x)
+}
+
+/// `ida = { start, step, growth, tolerance, max_runs, fill }`: the hunt-and-fill settings in
+/// the study's IM units (defaults: physical values in g, converted), checked.
+pub(super) fn ida_settings(
+    here: &Here,
+    raw: &Spanned<RawIda>,
+    units: ImUnits,
+) -> Result<IdaSettings, StudyError> {
+    let r = raw.get_ref();
+    let u = units.factor();
+    // (the defaults are physical: 0.05 g is 0.49 m/s² when units = "m/s2")
+    let num = |v: &Option<Spanned<f64>>,
+               key: &str,
+               default_g: f64,
+               zero_ok: bool|
+     -> Result<f64, StudyError> {
+        match v {
+            None => Ok(default_g * G),
+            Some(x) => {
+                let y = *x.get_ref();
+                if y.is_finite() && (y > 0.0 || (zero_ok && y == 0.0)) && y * u <= 1e4 {
+                    Ok(y * u)
+                } else {
+                    Err(here.invalid(
+                        x,
+                        &format!("fragility.ida.{key}"),
+                        if zero_ok {
+                            "must be ≥ 0 (in intensity.units), at most 10⁴ m/s²"
+                        } else {
+                            "must be > 0 (in intensity.units), at most 10⁴ m/s²"
+                        },
+                    ))
+                }
+            }
+        }
+    };
+    let start = num(&r.start, "start", 0.05, false)?;
+    let step = num(&r.step, "step", 0.1, false)?;
+    let growth = num(&r.growth, "growth", 0.05, true)?;
+    let tolerance = num(&r.tolerance, "tolerance", 0.01, false)?;
+    let max_runs = match &r.max_runs {
+        None => 20,
+        Some(n) => usize::try_from(*n.get_ref())
+            .ok()
+            .filter(|n| (2..=1000).contains(n))
+            .ok_or_else(|| here.invalid(n, "fragility.ida.max_runs", "must be in 2..=1000"))?,
+    };
+    Ok(IdaSettings {
+        start,
+        step,
+        growth,
+        tolerance,
+        max_runs,
+        fill: r.fill.unwrap_or(false),
     })
 }

@@ -20,7 +20,9 @@
 //! structure = 2                              # optional: 1 or 2 (default: either structure)
 //!
 //! [fragility]
-//! stripes = [0.1, 0.2, 0.4, 0.6, 0.8]        # IM levels, in `intensity.units`
+//! stripes = [0.1, 0.2, 0.4, 0.6, 0.8]        # IM levels, in `intensity.units`; or
+//! # ida = { start = 0.05, step = 0.1, growth = 0.05, tolerance = 0.01, max_runs = 20 }
+//! #                                          # incremental dynamic analysis (hunt and fill)
 //! gaps = { to = 0.4, count = 41 }            # or a list, m: the gap axis of p_pounding.csv
 //! gap_mode = "uniform"                       # or "scaled" (the scenario's gaps in proportion)
 //! target = { im = 0.6, probability = 0.1 }   # the gap for P(pounding) ≤ p at im (a stripe)
@@ -39,7 +41,9 @@ use std::sync::Arc;
 
 mod keys;
 
-use keys::{Here, RawStudy, gap_axis, intensity_measure, limit_state, suite_in_study, target};
+use keys::{
+    Here, RawStudy, gap_axis, ida_settings, intensity_measure, limit_state, suite_in_study, target,
+};
 
 use crate::input::scenario::{Location, Scenario, ScenarioError};
 
@@ -236,6 +240,25 @@ pub struct PoundingTarget {
     pub probability: f64,
 }
 
+/// Incremental dynamic analysis: each record scaled up run by run until every limit state is
+/// exceeded, then each limit state's capacity bracketed by bisection (hunt and fill,
+/// Vamvatsikos & Cornell 2002; docs/fragility.md). Intensities in m/s².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IdaSettings {
+    /// The first intensity, m/s² (default 0.05 g).
+    pub start: f64,
+    /// The first step of the hunt, m/s² (default 0.1 g).
+    pub step: f64,
+    /// What each further step adds, m/s² (default 0.05 g): steps `step`, `step + growth`, …
+    pub growth: f64,
+    /// The width to which every capacity is bracketed, m/s² (default 0.01 g).
+    pub tolerance: f64,
+    /// Most runs per record (hunt, bracketing and fill; default 20).
+    pub max_runs: usize,
+    /// Spend the runs left after bracketing on the widest gaps between runs (default false).
+    pub fill: bool,
+}
+
 /// A checked study.
 #[derive(Debug, Clone)]
 pub struct FragilityStudy {
@@ -253,8 +276,12 @@ pub struct FragilityStudy {
     pub measure: IntensityMeasure,
     /// Its units.
     pub units: ImUnits,
-    /// The stripes, m/s², increasing.
+    /// The stripes, m/s², increasing (empty in an IDA).
     pub stripes: Vec<f64>,
+    /// The stripes as written, in the study's IM units (the tables' `im`).
+    pub stripes_given: Vec<f64>,
+    /// Incremental dynamic analysis instead of stripes.
+    pub ida: Option<IdaSettings>,
     /// The limit states, in file order.
     pub limit_states: Vec<LimitState>,
     /// The gap axis of `p_pounding.csv`, m, increasing.
@@ -273,6 +300,9 @@ pub struct FragilityStudy {
     pub check: bool,
     /// What the study notes (a suite's own scaling not used …).
     pub notes: Vec<String>,
+    /// The study's text and the base scenario's, as read (with the records' samples, what a
+    /// journal's identity covers: `study::fragility::journal::identity`).
+    pub texts: [String; 2],
 }
 
 impl FragilityStudy {
@@ -380,26 +410,40 @@ impl FragilityStudy {
             .ok_or_else(|| here.missing("fragility", "[fragility] stripes = [IM levels]", None))?;
         let f = fr.get_ref();
         let near = Some(fr.span().start);
-        let st = f.stripes.as_ref().ok_or_else(|| {
-            here.missing(
-                "fragility.stripes",
-                "the intensity levels, increasing, in intensity.units",
-                near,
-            )
-        })?;
-        let s = st.get_ref();
-        if s.is_empty()
-            || s.len() > 200
-            || s.iter().any(|x| !(x.is_finite() && *x > 0.0))
-            || s.windows(2).any(|w| w[1] <= w[0])
-        {
-            return Err(here.invalid(
-                st,
-                "fragility.stripes",
-                "must be 1 to 200 positive, strictly increasing intensity levels",
-            ));
-        }
-        let stripes: Vec<f64> = s.iter().map(|x| x * units.factor()).collect();
+        let (stripes, ida) = match (&f.stripes, &f.ida) {
+            (Some(_), Some(i)) => {
+                return Err(here.invalid(
+                    i,
+                    "fragility.ida",
+                    "give either `stripes` (multi-stripe analysis) or `ida` (incremental \
+                     dynamic analysis), not both",
+                ));
+            }
+            (None, None) => {
+                return Err(here.missing(
+                    "fragility.stripes",
+                    "the intensity levels, increasing, in intensity.units (or `ida = { … }` \
+                     for an incremental dynamic analysis)",
+                    near,
+                ));
+            }
+            (None, Some(i)) => (Vec::new(), Some(ida_settings(&here, i, units)?)),
+            (Some(st), None) => {
+                let s = st.get_ref();
+                if s.is_empty()
+                    || s.len() > 200
+                    || s.iter().any(|x| !(x.is_finite() && *x > 0.0))
+                    || s.windows(2).any(|w| w[1] <= w[0])
+                {
+                    return Err(here.invalid(
+                        st,
+                        "fragility.stripes",
+                        "must be 1 to 200 positive, strictly increasing intensity levels",
+                    ));
+                }
+                (s.iter().map(|x| x * units.factor()).collect(), None)
+            }
+        };
         let gap_mode = match f.gap_mode.as_ref() {
             None => GapMode::Uniform,
             Some(m) => match m.get_ref().as_str() {
@@ -425,7 +469,12 @@ impl FragilityStudy {
         let gaps = gap_axis(&here, f.gaps.as_ref(), &scenario, gap_mode)?;
         let target = match &f.target {
             None => None,
-            Some(t) => Some(target(&here, t, s, units)?),
+            Some(t) => Some(target(
+                &here,
+                t,
+                f.stripes.as_ref().map(|s| s.get_ref().as_slice()),
+                units,
+            )?),
         };
         let bootstrap = match &f.bootstrap {
             None => 200,
@@ -452,6 +501,7 @@ impl FragilityStudy {
             }
         };
         Ok(FragilityStudy {
+            texts: [text.to_string(), sc_text.clone()],
             title: raw
                 .title
                 .clone()
@@ -462,7 +512,12 @@ impl FragilityStudy {
             record_names,
             measure,
             units,
+            stripes_given: f
+                .stripes
+                .as_ref()
+                .map_or_else(Vec::new, |s| s.get_ref().clone()),
             stripes,
+            ida,
             limit_states,
             gaps,
             gap_mode,
@@ -475,9 +530,14 @@ impl FragilityStudy {
         })
     }
 
-    /// The number of runs (records × stripes), each with and without contact.
+    /// The number of runs (records × stripes; in an IDA at most records × `max_runs`), each
+    /// with and without contact.
     pub fn runs(&self) -> usize {
-        self.record_names.len() * self.stripes.len()
+        self.record_names.len()
+            * match &self.ida {
+                Some(i) => i.max_runs,
+                None => self.stripes.len(),
+            }
     }
 }
 

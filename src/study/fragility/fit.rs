@@ -116,6 +116,9 @@ pub enum FitError {
     /// The optimiser failed.
     #[error("the optimiser failed")]
     Optimiser,
+    /// IDA: a record did not reach the limit state within its runs (no capacity).
+    #[error("a record did not reach it within ida.max_runs (raise max_runs or the step)")]
+    Censored,
 }
 
 struct Probit<'a> {
@@ -267,7 +270,7 @@ pub struct BootstrapIntervals {
 }
 
 /// Sample quantile, Hyndman & Fan definition 7, of sorted `v`.
-fn quantile(v: &[f64], p: f64) -> f64 {
+pub(crate) fn quantile(v: &[f64], p: f64) -> f64 {
     let h = (v.len() - 1) as f64 * p;
     let (i, f) = (h.floor() as usize, h - h.floor());
     if i + 1 < v.len() {

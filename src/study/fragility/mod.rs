@@ -10,11 +10,18 @@
 //! contact, P(pounding | IM, gap) for every gap at once ([`pounding`]). Files: [`write`];
 //! text: [`report`]; pictures: `crate::figures::fragility`.
 //!
-//! Not done: incremental dynamic analysis (hunt-and-fill), and resuming or sharding a study as
-//! sweeps do (a study runs at once; README, "Fragility").
+//! Or an incremental dynamic analysis ([`ida`]): each record scaled up until every limit state
+//! is exceeded, each record's capacity bracketed (hunt and fill), the lognormal of the
+//! capacities.
+//!
+//! Every run can be journaled as it finishes and found again ([`RunStore`], [`journal`]): a
+//! study stopped midway resumes without rerunning finished runs, and its parts (`--shard`)
+//! run on different machines and are joined by [`journal::merge`].
 
 pub mod fit;
+pub mod ida;
 pub mod im;
+pub mod journal;
 pub mod pounding;
 pub mod report;
 pub mod write;
@@ -63,6 +70,22 @@ pub enum FragilityError {
     /// The thread pool could not be built.
     #[error("cannot start {0} worker threads")]
     Threads(usize),
+    /// Joining parts: a run is in none of them.
+    #[error(
+        "merge: run {run} of record {record} (IM = {im}) is in none of the parts: run every part \
+         (--shard K/N) to its end first"
+    )]
+    Missing {
+        /// 1-based record.
+        record: usize,
+        /// 1-based run of the record (its stripe).
+        run: usize,
+        /// Its intensity, study units.
+        im: f64,
+    },
+    /// The journal could not be opened, read or written, or the parts do not join.
+    #[error(transparent)]
+    Journal(#[from] crate::study::sweep::SweepError),
 }
 
 /// With contact (index 0) or without (1).
@@ -74,8 +97,10 @@ pub const MODELS: [&str; 2] = ["with", "without"];
 pub struct RunOutcome {
     /// 0-based record.
     pub record: usize,
-    /// 0-based stripe.
+    /// 0-based stripe (IDA: the record's k-th run, in the order run).
     pub stripe: usize,
+    /// The intensity of the scaled record, m/s².
+    pub im: f64,
     /// The factor on the record.
     pub factor: f64,
     /// The time-history required separation at each contact level (run without contact), m.
@@ -98,12 +123,13 @@ pub struct RunOutcome {
 
 impl RunOutcome {
     /// The numbers of `report`.
-    pub fn of(report: &Report, record: usize, stripe: usize, factor: f64) -> RunOutcome {
+    pub fn of(report: &Report, record: usize, stripe: usize, im: f64, factor: f64) -> RunOutcome {
         let s = &report.structures;
         let per = |f: &dyn Fn(usize, usize) -> f64| [0, 1].map(|i| [0, 1].map(|m| f(i, m)));
         RunOutcome {
             record,
             stripe,
+            im,
             factor,
             required: report.levels.iter().map(|l| l.required_gap).collect(),
             impacts: report.contact.impacts,
@@ -129,6 +155,43 @@ impl RunOutcome {
             }),
             converged: report.accuracy.converged,
             warnings: report.warnings.clone(),
+        }
+    }
+
+    /// The demand `ls` compares with its threshold, in model `m` (SI; for `pounding` the
+    /// largest ratio of required separation to gap over the levels, pounding beyond 1, from
+    /// the run without contact only); `None` where it does not apply.
+    pub fn demand(&self, ls: &LimitState, m: usize, gaps: &[f64]) -> Option<f64> {
+        let pick = |v: [[f64; 2]; 2]| match ls.structure {
+            Some(s) => v[s][m],
+            None => v[0][m].max(v[1][m]),
+        };
+        match ls.kind {
+            LimitKind::Pounding => (m == 1).then(|| {
+                self.required
+                    .iter()
+                    .zip(gaps)
+                    .map(|(r, g)| {
+                        if *g > 0.0 {
+                            r / g
+                        } else if *r > 0.0 {
+                            f64::INFINITY
+                        } else {
+                            0.0
+                        }
+                    })
+                    .fold(0.0, f64::max)
+            }),
+            LimitKind::ContactForce => (m == 0).then_some(self.peak_force),
+            LimitKind::Ductility => {
+                let v: Vec<f64> = match ls.structure {
+                    Some(s) => self.ductility[s][m].into_iter().collect(),
+                    None => (0..2).filter_map(|s| self.ductility[s][m]).collect(),
+                };
+                (!v.is_empty()).then(|| v.iter().copied().fold(0.0, f64::max))
+            }
+            LimitKind::DriftRatio => Some(pick(self.drift_ratio)),
+            LimitKind::FloorAcceleration => Some(pick(self.floor_acceleration)),
         }
     }
 
@@ -173,14 +236,19 @@ pub struct Curve {
     pub limit_state: usize,
     /// 0 with contact, 1 without.
     pub model: usize,
-    /// Runs per stripe (where the limit state applies).
+    /// The intensities of the counts, study units: the stripes; in an IDA the records'
+    /// capacities, increasing (the empirical fragility).
+    pub im: Vec<f64>,
+    /// Runs per stripe (where the limit state applies); IDA: the records.
     pub runs: Vec<usize>,
-    /// Exceedances per stripe.
+    /// Exceedances per stripe; IDA: the records whose capacity is at most `im`.
     pub exceedances: Vec<usize>,
     /// The lognormal fit (θ in the study's IM units).
     pub fit: Result<LognormalFit, FitError>,
     /// Bootstrap intervals (with its band at [`FragilityRun::band_im`]).
     pub intervals: Option<BootstrapIntervals>,
+    /// IDA: each record's capacity (m/s²).
+    pub capacities: Option<Vec<ida::Capacity>>,
 }
 
 /// A study's results.
@@ -190,11 +258,13 @@ pub struct FragilityRun {
     pub study: FragilityStudy,
     /// Each record's IM (unscaled), m/s².
     pub record_im: Vec<f64>,
-    /// Every run, record-major (`record * stripes + stripe`).
+    /// Every run, record-major (stripes: `record * stripes + stripe`; IDA: each record's runs
+    /// in the order run).
     pub outcomes: Vec<RunOutcome>,
     /// One per limit state and model where it applies.
     pub curves: Vec<Curve>,
-    /// P(pounding | IM, gap) from the runs without contact.
+    /// P(pounding) from the runs without contact (IDA: at the hunt's intensities that every
+    /// record ran).
     pub pounding: PoundingTable,
     /// The gap for the target probability, when asked.
     pub target_gap: Option<GapForTarget>,
@@ -203,10 +273,9 @@ pub struct FragilityRun {
 }
 
 impl FragilityRun {
-    /// The stripes in the study's units.
+    /// The stripes in the study's units (empty in an IDA).
     pub fn stripes(&self) -> Vec<f64> {
-        let u = self.study.units.factor();
-        self.study.stripes.iter().map(|s| s / u).collect()
+        self.study.stripes_given.clone()
     }
 
     /// Runs that did not pass the self-check.
@@ -216,24 +285,76 @@ impl FragilityRun {
             .filter(|o| o.converged == Some(false))
             .count()
     }
-}
 
-/// Run a study: every record at every stripe, in parallel on `jobs` threads (default: every
-/// CPU), then the counts, fits and P(pounding).
-pub fn run(study: &FragilityStudy, jobs: Option<usize>) -> Result<FragilityRun, FragilityError> {
-    match jobs {
-        None => run_all(study),
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|_| FragilityError::Threads(n))?
-            .install(|| run_all(study)),
+    /// The runs of record `r` (IDA: in the order run).
+    pub fn record_runs(&self, r: usize) -> impl Iterator<Item = &RunOutcome> {
+        self.outcomes.iter().filter(move |o| o.record == r)
     }
 }
 
-fn run_all(study: &FragilityStudy) -> Result<FragilityRun, FragilityError> {
-    let sc = &study.scenario;
-    let suite = sc
+/// Where finished runs are kept and found again: a journal (resume, shards) or nothing.
+pub trait RunStore: Sync {
+    /// The run stored under `key`, if any.
+    fn get(&self, key: usize) -> Option<RunOutcome>;
+    /// Keep a finished run under `key`.
+    fn put(&self, key: usize, run: &RunOutcome) -> Result<(), FragilityError>;
+    /// Whether a run not found may be computed (not when joining parts).
+    fn may_compute(&self) -> bool {
+        true
+    }
+}
+
+/// Keeps nothing: every run is computed.
+pub struct NoStore;
+
+impl RunStore for NoStore {
+    fn get(&self, _: usize) -> Option<RunOutcome> {
+        None
+    }
+    fn put(&self, _: usize, _: &RunOutcome) -> Result<(), FragilityError> {
+        Ok(())
+    }
+}
+
+/// The number of tasks of a study, the unit of parallel work, of `--shard` and of a Dask
+/// task: a run (record × stripe, task `record * stripes + stripe`), or in an IDA a record's
+/// whole trace (task = record).
+pub fn tasks(study: &FragilityStudy) -> usize {
+    match &study.ida {
+        Some(_) => study.record_names.len(),
+        None => study.record_names.len() * study.stripes.len(),
+    }
+}
+
+/// The record of task `task`.
+pub fn task_record(study: &FragilityStudy, task: usize) -> usize {
+    match &study.ida {
+        Some(_) => task,
+        None => task / study.stripes.len().max(1),
+    }
+}
+
+/// The key of a run in a [`RunStore`]: its task (stripes), or `record * max_runs + k` for the
+/// k-th run of a record's IDA.
+pub fn run_key(study: &FragilityStudy, record: usize, k: usize) -> usize {
+    match &study.ida {
+        Some(i) => record * i.max_runs + k,
+        None => record * study.stripes.len() + k,
+    }
+}
+
+/// The task of the run stored under `key`.
+pub fn key_task(study: &FragilityStudy, key: usize) -> usize {
+    match &study.ida {
+        Some(i) => key / i.max_runs,
+        None => key,
+    }
+}
+
+/// Each record's IM (unscaled), m/s²; refuses a record whose IM is not positive.
+pub fn record_ims(study: &FragilityStudy) -> Result<Vec<f64>, FragilityError> {
+    let suite = study
+        .scenario
         .suite
         .as_ref()
         .expect("a checked study has a suite (input::fragility)");
@@ -252,50 +373,125 @@ fn run_all(study: &FragilityStudy) -> Result<FragilityRun, FragilityError> {
             });
         }
     }
-    let ns = study.stripes.len();
-    let jobs: Vec<(usize, usize)> = (0..record_im.len())
-        .flat_map(|r| (0..ns).map(move |j| (r, j)))
-        .collect();
-    let outcomes: Vec<RunOutcome> = jobs
-        .par_iter()
-        .map(|&(r, j)| {
-            let f = study.stripes[j] / record_im[r];
-            let member = suite.member_scenario(sc, r, f)?;
-            let report =
-                simulate_checked(&member, study.check).map_err(|e| FragilityError::Solve {
-                    index: r + 1,
-                    file: study.record_names[r].clone(),
-                    stripe: j + 1,
-                    source: Box::new(e),
-                })?;
-            Ok(RunOutcome::of(&report, r, j, f))
-        })
-        .collect::<Result<_, FragilityError>>()?;
+    Ok(record_im)
+}
+
+/// Record `r` scaled to intensity `x` (m/s²) and run with and without contact: its outcome as
+/// run `k` of the record.
+fn run_one(
+    study: &FragilityStudy,
+    record_im: &[f64],
+    r: usize,
+    k: usize,
+    x: f64,
+    store: &dyn RunStore,
+) -> Result<RunOutcome, FragilityError> {
+    let key = run_key(study, r, k);
+    if let Some(o) = store.get(key)
+        && o.record == r
+        && o.stripe == k
+        && o.im.to_bits() == x.to_bits()
+    {
+        return Ok(o);
+    }
+    if !store.may_compute() {
+        return Err(FragilityError::Missing {
+            record: r + 1,
+            run: k + 1,
+            im: x / study.units.factor(),
+        });
+    }
+    let sc = &study.scenario;
+    let suite = sc.suite.as_ref().expect("a checked study has a suite");
+    let f = x / record_im[r];
+    let member = suite.member_scenario(sc, r, f)?;
+    let report = simulate_checked(&member, study.check).map_err(|e| FragilityError::Solve {
+        index: r + 1,
+        file: study.record_names[r].clone(),
+        stripe: k + 1,
+        source: Box::new(e),
+    })?;
+    let o = RunOutcome::of(&report, r, k, x, f);
+    store.put(key, &o)?;
+    Ok(o)
+}
+
+/// The runs of task `task` ([`tasks`]): one run at a stripe, or a record's IDA trace; runs
+/// found in `store` are not run again, new ones are put there.
+pub fn run_task(
+    study: &FragilityStudy,
+    record_im: &[f64],
+    task: usize,
+    store: &dyn RunStore,
+) -> Result<Vec<RunOutcome>, FragilityError> {
+    match &study.ida {
+        Some(settings) => ida::trace(study, settings, |k, x| {
+            run_one(study, record_im, task, k, x, store)
+        }),
+        None => {
+            let ns = study.stripes.len();
+            let (r, j) = (task / ns, task % ns);
+            Ok(vec![run_one(
+                study,
+                record_im,
+                r,
+                j,
+                study.stripes[j],
+                store,
+            )?])
+        }
+    }
+}
+
+/// Run a study: every task, in parallel on `jobs` threads (default: every CPU), then the
+/// counts, fits and P(pounding).
+pub fn run(study: &FragilityStudy, jobs: Option<usize>) -> Result<FragilityRun, FragilityError> {
+    let record_im = record_ims(study)?;
+    let all: Vec<usize> = (0..tasks(study)).collect();
+    let outcomes = run_tasks(study, &record_im, &all, jobs, &NoStore)?;
     Ok(assemble(study.clone(), record_im, outcomes))
 }
 
-/// The counts, fits and P(pounding) of a study's runs (`outcomes` record-major).
+/// The runs of `tasks` in parallel on `jobs` threads (default: every CPU), in task order.
+pub fn run_tasks(
+    study: &FragilityStudy,
+    record_im: &[f64],
+    tasks: &[usize],
+    jobs: Option<usize>,
+    store: &dyn RunStore,
+) -> Result<Vec<RunOutcome>, FragilityError> {
+    let go = || -> Result<Vec<RunOutcome>, FragilityError> {
+        let parts: Vec<Vec<RunOutcome>> = tasks
+            .par_iter()
+            .map(|&t| run_task(study, record_im, t, store))
+            .collect::<Result<_, _>>()?;
+        Ok(parts.into_iter().flatten().collect())
+    };
+    match jobs {
+        None => go(),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|_| FragilityError::Threads(n))?
+            .install(go),
+    }
+}
+
+/// The counts, fits and P(pounding) of a study's runs (`outcomes` record-major: stripes in
+/// stripe order; IDA each record's runs in the order run).
 pub fn assemble(
     study: FragilityStudy,
     record_im: Vec<f64>,
     outcomes: Vec<RunOutcome>,
 ) -> FragilityRun {
-    let u = study.units.factor();
-    let stripes: Vec<f64> = study.stripes.iter().map(|s| s / u).collect();
+    if study.ida.is_some() {
+        return assemble_ida(study, record_im, outcomes);
+    }
+    let stripes: Vec<f64> = study.stripes_given.clone();
     let ns = stripes.len();
     let nr = record_im.len();
-    let gaps: Vec<f64> = study
-        .scenario
-        .contact
-        .levels
-        .iter()
-        .map(|l| l.gap)
-        .collect();
-    let (lo, hi) = (stripes[0], stripes[ns - 1]);
-    let (lo, hi) = (lo * 0.5, hi * 1.5);
-    let band_im: Vec<f64> = (0..=120)
-        .map(|k| lo * (hi / lo).powf(k as f64 / 120.0))
-        .collect();
+    let gaps = scenario_gaps(&study);
+    let band_im = band(stripes[0], stripes[ns - 1]);
     let mut curves = Vec::new();
     for (l, ls) in study.limit_states.iter().enumerate() {
         for m in 0..2 {
@@ -325,32 +521,160 @@ pub fn assemble(
             curves.push(Curve {
                 limit_state: l,
                 model: m,
+                im: stripes.clone(),
                 runs,
                 exceedances,
                 fit,
                 intervals: intervals.flatten(),
+                capacities: None,
             });
         }
     }
-    let top = crate::input::fragility::top_gap(&study.scenario);
     let critical: Vec<Vec<f64>> = (0..ns)
         .map(|j| {
             (0..nr)
-                .map(|r| {
-                    pounding::critical_gap(
-                        &outcomes[r * ns + j].required,
-                        &gaps,
-                        top,
-                        study.gap_mode,
-                    )
-                })
+                .map(|r| critical_of(&study, &outcomes[r * ns + j], &gaps))
                 .collect()
         })
         .collect();
     let pounding = PoundingTable::new(&stripes, &study.gaps, &critical);
     let target_gap = study
         .target
-        .map(|t| pounding::gap_for_target(&critical[t.stripe], t.probability, t.im / u));
+        .map(|t| pounding::gap_for_target(&critical[t.stripe], t.probability, stripes[t.stripe]));
+    FragilityRun {
+        study,
+        record_im,
+        outcomes,
+        curves,
+        pounding,
+        target_gap,
+        band_im,
+    }
+}
+
+fn scenario_gaps(study: &FragilityStudy) -> Vec<f64> {
+    study
+        .scenario
+        .contact
+        .levels
+        .iter()
+        .map(|l| l.gap)
+        .collect()
+}
+
+/// A run's critical gap (m) in the study's gap mode.
+pub fn critical_of(study: &FragilityStudy, o: &RunOutcome, gaps: &[f64]) -> f64 {
+    let top = crate::input::fragility::top_gap(&study.scenario);
+    pounding::critical_gap(&o.required, gaps, top, study.gap_mode)
+}
+
+/// 121 log-spaced intensities from half of `lo` to 1.5 × `hi`.
+fn band(lo: f64, hi: f64) -> Vec<f64> {
+    let (lo, hi) = (lo * 0.5, hi * 1.5);
+    (0..=120)
+        .map(|k| lo * (hi / lo).powf(k as f64 / 120.0))
+        .collect()
+}
+
+/// The hunt's intensities (m/s²) that every record ran: the common first runs of the traces
+/// (each trace starts with its hunt, in increasing order; bracketing runs fall below its end).
+pub fn common_hunt(outcomes: &[RunOutcome], records: usize) -> Vec<f64> {
+    let mut common: Option<Vec<f64>> = None;
+    for r in 0..records {
+        let mut hunt: Vec<f64> = Vec::new();
+        for o in outcomes.iter().filter(|o| o.record == r) {
+            if hunt.last().is_some_and(|&x| o.im <= x) {
+                break;
+            }
+            hunt.push(o.im);
+        }
+        common = Some(match common {
+            None => hunt,
+            Some(c) => c.into_iter().zip(hunt).map(|(a, _)| a).collect(),
+        });
+    }
+    common.unwrap_or_default()
+}
+
+fn assemble_ida(
+    study: FragilityStudy,
+    record_im: Vec<f64>,
+    outcomes: Vec<RunOutcome>,
+) -> FragilityRun {
+    let u = study.units.factor();
+    let nr = record_im.len();
+    let gaps = scenario_gaps(&study);
+    let ims: Vec<f64> = outcomes.iter().map(|o| o.im / u).collect();
+    let lo = ims.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = ims.iter().copied().fold(0.0, f64::max);
+    let band_im = if lo.is_finite() && hi > 0.0 {
+        band(lo, hi)
+    } else {
+        Vec::new()
+    };
+    let by_record: Vec<Vec<RunOutcome>> = (0..nr)
+        .map(|r| outcomes.iter().filter(|o| o.record == r).cloned().collect())
+        .collect();
+    let mut curves = Vec::new();
+    if let Some(first) = outcomes.first() {
+        for (l, m) in ida::pairs(&study, first, &gaps) {
+            let caps: Vec<ida::Capacity> = by_record
+                .iter()
+                .map(|runs| ida::bracket(&study, runs, &gaps, l, m))
+                .collect();
+            let mut reached: Vec<f64> = caps
+                .iter()
+                .filter_map(|c| c.value())
+                .map(|v| v / u)
+                .collect();
+            reached.sort_by(f64::total_cmp);
+            let exceedances = (1..=reached.len()).collect();
+            let cf = ida::fit_capacities(
+                caps,
+                u,
+                study.bootstrap,
+                study.seed,
+                study.confidence,
+                &band_im,
+            );
+            curves.push(Curve {
+                limit_state: l,
+                model: m,
+                runs: vec![nr; reached.len()],
+                im: reached,
+                exceedances,
+                fit: cf.fit,
+                intervals: cf.intervals,
+                capacities: Some(cf.capacities),
+            });
+        }
+    }
+    // P(pounding) at the hunt's intensities every record ran (the same for all records)
+    let levels = common_hunt(&outcomes, nr);
+    let critical: Vec<Vec<f64>> = (0..levels.len())
+        .map(|j| {
+            by_record
+                .iter()
+                .map(|runs| critical_of(&study, &runs[j], &gaps))
+                .collect()
+        })
+        .collect();
+    let levels_u: Vec<f64> = levels.iter().map(|x| x / u).collect();
+    let pounding = PoundingTable::new(&levels_u, &study.gaps, &critical);
+    // the target: each record's critical gap at the target intensity, linear between its runs
+    let target_gap = study.target.and_then(|t| {
+        let at: Option<Vec<f64>> = by_record
+            .iter()
+            .map(|runs| {
+                let pts: Vec<(f64, f64)> = runs
+                    .iter()
+                    .map(|o| (o.im, critical_of(&study, o, &gaps)))
+                    .collect();
+                ida::critical_gap_at(&pts, t.im)
+            })
+            .collect();
+        at.map(|c| pounding::gap_for_target(&c, t.probability, t.im / u))
+    });
     FragilityRun {
         study,
         record_im,

@@ -12,25 +12,58 @@ pub fn report(run: &FragilityRun) -> String {
     let mut o = String::new();
     let stripes = run.stripes();
     let _ = writeln!(o, "{}", s.title);
-    let _ = writeln!(
-        o,
-        "  {} records × {} stripes = {} runs (each with and without contact{}), scenario {}",
-        s.record_names.len(),
-        stripes.len(),
-        run.outcomes.len(),
-        if s.check { ", self-checked" } else { "" },
-        s.scenario_file
-    );
-    let _ = writeln!(
-        o,
-        "  intensity measure {} [{u}]; stripes {}",
-        s.measure.label(),
-        stripes
-            .iter()
-            .map(|x| format!("{x}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    match &s.ida {
+        None => {
+            let _ = writeln!(
+                o,
+                "  {} records × {} stripes = {} runs (each with and without contact{}), scenario {}",
+                s.record_names.len(),
+                stripes.len(),
+                run.outcomes.len(),
+                if s.check { ", self-checked" } else { "" },
+                s.scenario_file
+            );
+            let _ = writeln!(
+                o,
+                "  intensity measure {} [{u}]; stripes {}",
+                s.measure.label(),
+                stripes
+                    .iter()
+                    .map(|x| format!("{x}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+        Some(i) => {
+            let per: Vec<usize> = (0..s.record_names.len())
+                .map(|r| run.record_runs(r).count())
+                .collect();
+            let f = s.units.factor();
+            let _ = writeln!(
+                o,
+                "  IDA (hunt and fill) of {} records: {} runs ({}–{} a record, at most {}; each \
+                 with and without contact{}), scenario {}",
+                s.record_names.len(),
+                run.outcomes.len(),
+                per.iter().min().copied().unwrap_or(0),
+                per.iter().max().copied().unwrap_or(0),
+                i.max_runs,
+                if s.check { ", self-checked" } else { "" },
+                s.scenario_file
+            );
+            let _ = writeln!(
+                o,
+                "  intensity measure {} [{u}]; start {}, step {} growing by {}, capacities \
+                 bracketed to {}{}",
+                s.measure.label(),
+                fmt(i.start / f),
+                fmt(i.step / f),
+                fmt(i.growth / f),
+                fmt(i.tolerance / f),
+                if i.fill { "; gaps filled" } else { "" }
+            );
+        }
+    }
     let f: Vec<f64> = run.outcomes.iter().map(|r| r.factor).collect();
     let (lo, hi) = f
         .iter()
@@ -45,7 +78,11 @@ pub fn report(run: &FragilityRun) -> String {
         "  {:<34} {:<8} {:>26}   {:>10} {:>22} {:>7} {:>16}",
         "limit state",
         "model",
-        "exceedances per stripe",
+        if s.ida.is_some() {
+            "records"
+        } else {
+            "exceedances per stripe"
+        },
         format!("θ [{u}]"),
         format!("{:.0} % interval", 100.0 * s.confidence),
         "β",
@@ -53,12 +90,21 @@ pub fn report(run: &FragilityRun) -> String {
     );
     for c in &run.curves {
         let ls = &s.limit_states[c.limit_state];
-        let counts: Vec<String> = c.exceedances.iter().map(|z| z.to_string()).collect();
-        let counts = format!(
-            "{}/{}",
-            counts.join(" "),
-            c.runs.first().copied().unwrap_or(0)
-        );
+        let counts = match &c.capacities {
+            None => {
+                let counts: Vec<String> = c.exceedances.iter().map(|z| z.to_string()).collect();
+                format!(
+                    "{}/{}",
+                    counts.join(" "),
+                    c.runs.first().copied().unwrap_or(0)
+                )
+            }
+            Some(caps) => format!(
+                "capacity in {} of {}",
+                caps.iter().filter(|k| k.hi.is_some()).count(),
+                caps.len()
+            ),
+        };
         let (theta, ti, beta, bi) = match &c.fit {
             Ok(fit) => {
                 let (ti, bi) = c.intervals.as_ref().map_or(("–".into(), "–".into()), |b| {
@@ -98,6 +144,36 @@ pub fn report(run: &FragilityRun) -> String {
              stripes there)"
         );
     }
+    if let Some(i) = &s.ida {
+        let caps: Vec<&super::ida::Capacity> = run
+            .curves
+            .iter()
+            .filter_map(|c| c.capacities.as_ref())
+            .flatten()
+            .collect();
+        let wide = caps
+            .iter()
+            .filter(|k| k.hi.is_some_and(|h| h - k.lo > i.tolerance * (1.0 + 1e-9)))
+            .count();
+        let f = s.units.factor();
+        let _ = writeln!(
+            o,
+            "  capacity: the midpoint of the bracket of the IM at which the limit state is first \
+             exceeded; {} of {} bracketed within {} {u}{}",
+            caps.len() - wide,
+            caps.len(),
+            fmt(i.tolerance / f),
+            if wide > 0 {
+                format!(
+                    " ({wide} wider: the {} runs a record were spent; capacities.csv gives each \
+                     bracket; raise ida.max_runs)",
+                    i.max_runs
+                )
+            } else {
+                String::new()
+            }
+        );
+    }
     let _ = writeln!(
         o,
         "  model: with = the run with contact, without = the run without; for `pounding`, \
@@ -114,7 +190,12 @@ pub fn report(run: &FragilityRun) -> String {
     let _ = writeln!(o);
     let _ = writeln!(
         o,
-        "  P(pounding | IM, gap) from the runs without contact ({} gap at every level{}):",
+        "  P(pounding | IM, gap) from the runs without contact{} ({} gap at every level{}):",
+        if s.ida.is_some() {
+            " at the hunt's intensities that every record ran"
+        } else {
+            ""
+        },
         match s.gap_mode {
             crate::input::fragility::GapMode::Uniform => "the same",
             crate::input::fragility::GapMode::Scaled => "the scenario's gaps scaled; the",
@@ -130,7 +211,11 @@ pub fn report(run: &FragilityRun) -> String {
     }
     let _ = writeln!(o, "{head}");
     for (j, x) in t.im.iter().enumerate() {
-        let mut line = format!("  {x:>12}");
+        let mut line = if s.ida.is_some() {
+            format!("  {x:>12.4}")
+        } else {
+            format!("  {x:>12}")
+        };
         for &k in &picks {
             let _ = write!(line, " {:>12.2}", t.p[j][k]);
         }
@@ -156,6 +241,15 @@ pub fn report(run: &FragilityRun) -> String {
             }
         );
     }
+    if let (Some(t), None) = (&s.target, &run.target_gap) {
+        let _ = writeln!(
+            o,
+            "  gap for P(pounding) ≤ {:.0} % at IM = {} {u}: not known — a record's runs did not \
+             reach that intensity within ida.max_runs",
+            100.0 * t.probability,
+            fmt(t.im / s.units.factor())
+        );
+    }
     let bad = run.unconverged();
     if bad > 0 {
         let _ = writeln!(
@@ -167,6 +261,10 @@ pub fn report(run: &FragilityRun) -> String {
     o
 }
 
+fn fmt(x: f64) -> String {
+    crate::numerics::format::fmt_f64(x)
+}
+
 /// The runs' warnings, each once, with the first record and stripe that gave it.
 pub fn warnings(run: &FragilityRun) -> Vec<String> {
     let mut seen = std::collections::BTreeSet::new();
@@ -176,7 +274,6 @@ pub fn warnings(run: &FragilityRun) -> Vec<String> {
             out.push(w.clone());
         }
     }
-    let stripes = run.stripes();
     let mut more = 0;
     for o in &run.outcomes {
         for w in &o.warnings {
@@ -189,7 +286,7 @@ pub fn warnings(run: &FragilityRun) -> Vec<String> {
                 out.push(format!(
                     "{w} (record {}, IM = {} {}; and maybe others)",
                     run.study.record_names[o.record],
-                    stripes[o.stripe],
+                    fmt(o.im / run.study.units.factor()),
                     run.study.units.key()
                 ));
             }

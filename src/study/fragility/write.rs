@@ -9,6 +9,13 @@
 //!   `levelk_required_separation` (m), `impacts`, `peak_force` (N), per structure i
 //!   `ductility_i`, `ductility_no_contact_i`, `drift_ratio_i`, `drift_ratio_no_contact_i`,
 //!   `floor_acceleration_i`, `floor_acceleration_no_contact_i` (m/s²), `converged`;
+//! - IDA: `ida.csv` (the IDA curves: `runs.csv`'s columns with `run`, the record's k-th run,
+//!   for `stripe`, rows by record and increasing `im`) instead of `runs.csv`, and
+//!   `capacities.csv`: `record`, `file`, `limit_state`, `model`, `im_lo`, `im_hi` (the bracket
+//!   of the IM at which the limit state is first exceeded; `im_hi` empty: not reached),
+//!   `capacity` (their midpoint); `fragility.csv` then holds the empirical fragility, one row
+//!   per record reaching the limit state at its capacity (`exceedances` = records with a
+//!   capacity at most `im`, `runs` = records);
 //! - `fit.json`: the study (measure, units, stripes, records), per limit state and model the
 //!   fit (`theta` in IM units, `beta`, `theta_interval`, `beta_interval`, …), the gap for the
 //!   target probability.
@@ -23,6 +30,15 @@ use crate::output::atomic::{OutputError, write_atomic};
 
 /// The files, in the order written.
 pub const FILES: [&str; 4] = ["fragility.csv", "p_pounding.csv", "runs.csv", "fit.json"];
+
+/// The files of an IDA, in the order written.
+pub const IDA_FILES: [&str; 5] = [
+    "fragility.csv",
+    "p_pounding.csv",
+    "ida.csv",
+    "capacities.csv",
+    "fit.json",
+];
 
 fn num(out: &mut String, x: f64) {
     if x.is_finite() {
@@ -43,10 +59,9 @@ fn text(s: &str) -> String {
 /// `fragility.csv`.
 pub fn fragility_csv(run: &FragilityRun) -> String {
     let mut out = String::from("limit_state,model,im,runs,exceedances,fraction\n");
-    let stripes = run.stripes();
     for c in &run.curves {
         let name = &run.study.limit_states[c.limit_state].name;
-        for (j, x) in stripes.iter().enumerate() {
+        for (j, x) in c.im.iter().enumerate() {
             out.push_str(&format!("{},{},", text(name), MODELS[c.model]));
             num(&mut out, *x);
             out.push_str(&format!(",{},{},", c.runs[j], c.exceedances[j]));
@@ -76,10 +91,15 @@ pub fn p_pounding_csv(run: &FragilityRun) -> String {
     out
 }
 
-/// `runs.csv`.
+/// `runs.csv` (stripes) or `ida.csv` (IDA: `run` for `stripe`, rows by record and IM).
 pub fn runs_csv(run: &FragilityRun) -> String {
     let levels = run.study.scenario.contact.levels.len();
-    let mut out = String::from("record,file,stripe,im,factor,record_im,critical_gap");
+    let ida = run.study.ida.is_some();
+    let mut out = String::from(if ida {
+        "record,file,run,im,factor,record_im,critical_gap"
+    } else {
+        "record,file,stripe,im,factor,record_im,critical_gap"
+    });
     for k in 1..=levels {
         out.push_str(&format!(",level{k}_required_separation"));
     }
@@ -91,7 +111,10 @@ pub fn runs_csv(run: &FragilityRun) -> String {
     }
     out.push_str(",converged\n");
     let u = run.study.units.factor();
-    let stripes = run.stripes();
+    let mut order: Vec<&super::RunOutcome> = run.outcomes.iter().collect();
+    if ida {
+        order.sort_by(|a, b| a.record.cmp(&b.record).then(a.im.total_cmp(&b.im)));
+    }
     let gaps: Vec<f64> = run
         .study
         .scenario
@@ -101,14 +124,21 @@ pub fn runs_csv(run: &FragilityRun) -> String {
         .map(|l| l.gap)
         .collect();
     let top = crate::input::fragility::top_gap(&run.study.scenario);
-    for o in &run.outcomes {
+    for o in order {
         out.push_str(&format!(
             "{},{},{},",
             o.record + 1,
             text(&run.study.record_names[o.record]),
             o.stripe + 1
         ));
-        num(&mut out, stripes[o.stripe]);
+        num(
+            &mut out,
+            if ida {
+                o.im / u
+            } else {
+                run.study.stripes_given[o.stripe]
+            },
+        );
         out.push(',');
         num(&mut out, o.factor);
         out.push(',');
@@ -151,6 +181,36 @@ pub fn runs_csv(run: &FragilityRun) -> String {
     out
 }
 
+/// `capacities.csv` (IDA; empty otherwise).
+pub fn capacities_csv(run: &FragilityRun) -> String {
+    let mut out = String::from("record,file,limit_state,model,im_lo,im_hi,capacity\n");
+    let u = run.study.units.factor();
+    for c in &run.curves {
+        let Some(caps) = &c.capacities else { continue };
+        let name = &run.study.limit_states[c.limit_state].name;
+        for (r, cap) in caps.iter().enumerate() {
+            out.push_str(&format!(
+                "{},{},{},{},",
+                r + 1,
+                text(&run.study.record_names[r]),
+                text(name),
+                MODELS[c.model]
+            ));
+            num(&mut out, cap.lo / u);
+            out.push(',');
+            if let Some(h) = cap.hi {
+                num(&mut out, h / u);
+            }
+            out.push(',');
+            if let Some(v) = cap.value() {
+                num(&mut out, v / u);
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
 fn finite(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
 }
@@ -182,6 +242,18 @@ pub fn fit_json(run: &FragilityRun) -> Value {
                 "runs": c.runs,
                 "exceedances": c.exceedances,
             });
+            if let Some(caps) = &c.capacities {
+                v["capacities"] = caps
+                    .iter()
+                    .map(|k| {
+                        json!({
+                            "im_lo": finite(k.lo / u),
+                            "im_hi": k.hi.map(|h| finite(h / u)),
+                            "capacity": k.value().map(|h| finite(h / u)),
+                        })
+                    })
+                    .collect();
+            }
             match &c.fit {
                 Ok(f) => {
                     v["theta"] = finite(f.theta);
@@ -212,12 +284,20 @@ pub fn fit_json(run: &FragilityRun) -> Value {
         "im_label": s.measure.label(),
         "im_units": s.units.key(),
         "stripes": run.stripes(),
+        "ida": s.ida.map(|i| json!({
+            "start": i.start / u, "step": i.step / u, "growth": i.growth / u,
+            "tolerance": i.tolerance / u, "max_runs": i.max_runs, "fill": i.fill,
+        })),
         "records": s.record_names.iter().zip(&run.record_im).map(|(f, x)| json!({ "file": f, "im": x / u })).collect::<Vec<_>>(),
         "runs": run.outcomes.len(),
         "checked": s.check,
         "unconverged_runs": run.unconverged(),
         "gap_mode": match s.gap_mode { GapMode::Uniform => "uniform", GapMode::Scaled => "scaled" },
-        "method": "multi-stripe; lognormal by maximum likelihood on the stripe counts (Baker 2015), percentile bootstrap over records",
+        "method": if s.ida.is_some() {
+            "IDA (hunt and fill, Vamvatsikos & Cornell 2002); lognormal of the records' capacities: geometric mean and standard deviation of ln (n - 1) (Baker 2015, eqs. 3-4), percentile bootstrap over records"
+        } else {
+            "multi-stripe; lognormal by maximum likelihood on the stripe counts (Baker 2015), percentile bootstrap over records"
+        },
         "fits": fits,
         "target_gap": run.target_gap,
         "notes": s.notes,
@@ -241,17 +321,33 @@ pub fn write(
         path: dir.to_path_buf(),
         source,
     })?;
-    let texts = [
-        fragility_csv(run),
-        p_pounding_csv(run),
-        runs_csv(run),
-        fit_json_text(run),
-    ];
+    let (names, texts): (&[&str], Vec<String>) = if run.study.ida.is_some() {
+        (
+            &IDA_FILES,
+            vec![
+                fragility_csv(run),
+                p_pounding_csv(run),
+                runs_csv(run),
+                capacities_csv(run),
+                fit_json_text(run),
+            ],
+        )
+    } else {
+        (
+            &FILES,
+            vec![
+                fragility_csv(run),
+                p_pounding_csv(run),
+                runs_csv(run),
+                fit_json_text(run),
+            ],
+        )
+    };
     let mut written = Vec::new();
     let mut pictures = Some(pictures);
-    for (name, t) in FILES.iter().zip(texts) {
+    for (name, t) in names.iter().zip(texts) {
         let p = dir.join(name);
-        if *name == FILES[3]
+        if *name == "fit.json"
             && let Some(draw) = pictures.take()
         {
             written.extend(draw());

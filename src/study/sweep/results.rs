@@ -397,6 +397,15 @@ pub fn file_names(shard: Shard) -> (String, String) {
     }
 }
 
+/// The first line of the file at `path`, if it can be read (a journal's version line).
+fn journal_first_line(path: &Path) -> Option<String> {
+    use std::io::BufRead;
+    let file = File::open(path).ok()?;
+    let mut line = String::new();
+    std::io::BufReader::new(file).read_line(&mut line).ok()?;
+    Some(line.trim_end().to_string())
+}
+
 /// The journal of finished rows, open for appending and locked against a second writer.
 #[derive(Debug)]
 pub struct Journal {
@@ -409,10 +418,92 @@ pub struct Journal {
     pub dropped: usize,
 }
 
+/// What a journal holds, for [`Journal::open_kind`]: a sweep's ([`Journal::open`]) or another
+/// study's rows (a fragility study's runs), with the same resume machinery.
+pub struct JournalKind<'a> {
+    /// The first line's start up to the version, e.g. `# pounding sweep journal v`.
+    pub magic: &'a str,
+    /// This version.
+    pub version: u32,
+    /// The whole first line (magic, version, `;`, the identity …).
+    pub ident: String,
+    /// The header line.
+    pub header: String,
+    /// `pounding sweep`: the command, in messages.
+    pub command: &'a str,
+    /// What changes the identity, in messages: `the sweep file, its base scenario or --shard`.
+    pub inputs: &'a str,
+    /// Why another version cannot be resumed, in messages.
+    pub version_note: &'a str,
+    /// A row read back: its key and whether it failed, `None` if damaged or not of this part.
+    pub check_row: &'a dyn Fn(&str) -> Option<(usize, bool)>,
+}
+
 impl Journal {
     /// Open (or create) the journal of `sweep`'s part `shard` at `path`. Refuses a journal of
     /// another sweep and a journal another process is writing.
     pub fn open(path: &Path, sweep: &Sweep, shard: Shard) -> Result<Journal, SweepError> {
+        let this_version = journal_version(sweep);
+        let names = sweep.result_columns();
+        let columns = 2 + sweep.axes.len() + names.len();
+        let suite = sweep.row_kind() != super::RowKind::Single;
+        let check = |body: &str| {
+            let whole = parse_csv_line(body).is_some_and(|f| f.len() == columns);
+            check_row(body, &names, suite, sweep.len())
+                .filter(|(case, _)| whole && shard.contains(*case))
+        };
+        // rows of the other kind (a suite of records per case, or one run): never mixed, and
+        // said so rather than as "another version"
+        if let Some(other) = journal_first_line(path).and_then(|first| {
+            first
+                .strip_prefix("# pounding sweep journal ")
+                .and_then(|r| r.split(';').next())
+                .map(str::to_string)
+        }) {
+            let suite_v = format!("v{}", super::suite_rows::JOURNAL_VERSION_SUITE);
+            if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE) {
+                let what = |suite: bool| {
+                    if suite {
+                        "a suite of records per case"
+                    } else {
+                        "one run per case"
+                    }
+                };
+                return Err(SweepError::Journal {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "this journal holds the rows of another sweep ({}; this sweep has {}): \
+                         the two kinds of rows have different columns and are never mixed. Use \
+                         another --out, or delete the directory's journal and results to start \
+                         afresh",
+                        what(other == suite_v),
+                        what(other != suite_v)
+                    ),
+                });
+            }
+        }
+        let kind = JournalKind {
+            magic: "# pounding sweep journal v",
+            version: this_version,
+            ident: format!(
+                "# pounding sweep journal v{this_version}; identity={:016x}; shard={shard}; cases={}",
+                sweep.identity(),
+                sweep.len()
+            ),
+            header: header(sweep),
+            command: "pounding sweep",
+            inputs: "the sweep file, its base scenario or --shard",
+            version_note: "its rows lack or differ in the self-check columns check_max_change \
+                           and converged, or in the code columns sep_asce7 …",
+            check_row: &check,
+        };
+        Journal::open_kind(path, &kind)
+    }
+
+    /// Open (or create) a journal of `kind` at `path`: refuses a journal of other inputs
+    /// (another first line) or of another version, and one another process is writing; drops
+    /// a torn last line and damaged rows (their keys are recomputed).
+    pub fn open_kind(path: &Path, kind: &JournalKind) -> Result<Journal, SweepError> {
         let io = |e: std::io::Error| SweepError::Write {
             path: path.display().to_string(),
             source: e,
@@ -428,19 +519,18 @@ impl Journal {
             Err(std::fs::TryLockError::WouldBlock) => {
                 return Err(SweepError::Journal {
                     path: path.display().to_string(),
-                    message: "another `pounding sweep` is writing this journal right now; wait for it or use another --out".into(),
+                    message: format!(
+                        "another `{}` is writing this journal right now; wait for it or use another --out",
+                        kind.command
+                    ),
                 });
             }
             Err(std::fs::TryLockError::Error(e)) => return Err(io(e)),
         }
-        let this_version = journal_version(sweep);
-        let version = format!("# pounding sweep journal v{this_version};");
-        let ident = format!(
-            "{version} identity={:016x}; shard={shard}; cases={}",
-            sweep.identity(),
-            sweep.len()
-        );
-        let head = header(sweep);
+        let this_version = kind.version;
+        let version = format!("{}{this_version};", kind.magic);
+        let ident = kind.ident.clone();
+        let head = kind.header.clone();
         let preamble = format!("{ident}\n{head}\n");
         let mut text = String::new();
         file.read_to_string(&mut text)
@@ -457,9 +547,9 @@ impl Journal {
         } else {
             let mut lines = text.split_inclusive('\n');
             let first = lines.next().unwrap_or("").trim_end();
-            if first.starts_with("# pounding sweep journal v") && !first.starts_with(&version) {
+            if first.starts_with(kind.magic) && !first.starts_with(&version) {
                 let other = first
-                    .trim_start_matches("# pounding sweep journal ")
+                    .trim_start_matches(kind.magic.trim_end_matches('v'))
                     .split(';')
                     .next()
                     .unwrap_or("?");
@@ -490,10 +580,10 @@ impl Journal {
                     path: path.display().to_string(),
                     message: format!(
                         "this journal was written by another version of pounding (journal {other}, \
-                         this one v{this_version}: its rows lack or differ in the self-check \
-                         columns check_max_change and converged, or in the code columns sep_asce7 …). \
-                         Finish that sweep with the version that started it, or use another --out, \
-                         or delete the directory's journal and results to start afresh"
+                         this one v{this_version}: {}). \
+                         Finish it with the version that started it, or use another --out, \
+                         or delete the directory's journal and results to start afresh",
+                        kind.version_note
                     ),
                 });
             }
@@ -506,10 +596,16 @@ impl Journal {
                 return Err(SweepError::Journal {
                     path: path.display().to_string(),
                     message: format!(
-                        "this directory holds results of a different sweep (identity {other}, this one {:016x}; \
-                         the sweep file, its base scenario or --shard changed). Use another --out, or delete \
+                        "this directory holds results of a different {} (identity {other}, this one {}; \
+                         {} changed). Use another --out, or delete \
                          the directory's journal and results to start afresh",
-                        sweep.identity()
+                        kind.command.trim_start_matches("pounding "),
+                        ident
+                            .split("identity=")
+                            .nth(1)
+                            .and_then(|s| s.get(..16))
+                            .unwrap_or("?"),
+                        kind.inputs
                     ),
                 });
             }
@@ -521,9 +617,6 @@ impl Journal {
                             .into(),
                 });
             }
-            let names = sweep.result_columns();
-            let columns = 2 + sweep.axes.len() + names.len();
-            let suite = sweep.row_kind() != super::RowKind::Single;
             let mut good_end = preamble.len();
             let mut pos = preamble.len();
             for line in lines {
@@ -534,9 +627,8 @@ impl Journal {
                     break;
                 };
                 good_end = pos;
-                let whole = parse_csv_line(body).is_some_and(|f| f.len() == columns);
-                match check_row(body, &names, suite, sweep.len()).filter(|_| whole) {
-                    Some((case, failed)) if shard.contains(case) => {
+                match (kind.check_row)(body) {
+                    Some((case, failed)) => {
                         rows.entry(case).or_insert((body.to_string(), failed));
                     }
                     _ => dropped += 1,
