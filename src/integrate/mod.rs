@@ -441,8 +441,8 @@ impl SolverSettings {
             Method::Rk4 => {
                 let (max_dt, j) = rk4_max_stable_dt(system);
                 if self.dt > max_dt {
-                    let n1 = system.n1();
-                    let (structure, mode) = if j < n1 { (1, j + 1) } else { (2, j - n1 + 1) };
+                    let (i, m) = system.structure_of_mode(j);
+                    let (structure, mode) = (i + 1, m + 1);
                     let omega = system.omega()[j];
                     return Err(SolveError::UnstableStep {
                         method: self.method.name(),

@@ -571,7 +571,7 @@ fn change_percent(with: f64, without: f64) -> f64 {
 
 /// The separation rules (docs/model.md §3) from the run without contact.
 fn separations(system: &System, without: &RunRecord) -> Separations {
-    let [m1, m2] = &system.structures;
+    let (m1, m2) = (&system.structures[0], &system.structures[1]);
     let peaks = PeakPair {
         w1: without.peak[0],
         w2: without.peak[1],
@@ -623,7 +623,7 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
         &heights,
         scenario.output_interval,
     )?;
-    let [m1, m2] = &system.structures;
+    let (m1, m2) = (&system.structures[0], &system.structures[1]);
     let mut separation = separations(&system, &without);
     // as in `simulate`; a code that refuses its input is reported by `gap_report`, which
     // evaluates the codes again
