@@ -424,6 +424,14 @@ pub enum SolveError {
          for this command"
     )]
     Suite(usize),
+    /// The scenario is a row of more than two buildings (issue 29), which `pounding run` (the
+    /// library's `analysis::simulate::simulate_row`) runs; this door takes a pair only.
+    #[error(
+        "the scenario is a row of {0} structures, which `pounding run` runs (summary.json, \
+         impacts.csv and its report); this command takes a pair of structures only, so far: \
+         take the row apart into pairs, or run it with `pounding run`"
+    )]
+    Row(usize),
 }
 
 /// " at contact level k (height h m)" of [`SolveError::StepFailed`]'s message.
