@@ -314,7 +314,11 @@ impl Scenario {
             warnings: Default::default(),
         };
         let raw: RawScenario = toml::from_str(text)
-            .map_err(|e| sweep_file(text, file).unwrap_or_else(|| ctx.toml_error(&e)))?;
+            .map_err(|e| {
+                sweep_file(text, file)
+                    .or_else(|| row_keys::both_contact_forms(&ctx))
+                    .unwrap_or_else(|| ctx.toml_error(&e))
+            })?;
         let missing = missing_keys(&raw, &ctx);
         if missing.len() > 1 {
             return Err(ScenarioError::MissingMany {

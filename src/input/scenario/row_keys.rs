@@ -14,7 +14,7 @@ use crate::model::structure::Structure;
 
 use super::RawContact;
 use super::contact_keys::contact_table;
-use super::diagnostics::{Check, ScenarioError};
+use super::diagnostics::{Check, Ctx, ScenarioError};
 use super::{ContactSpec, MAX_ROW};
 
 /// `contact` as the file gives it: one `[contact]` table or an array of `[[contact]]` tables.
@@ -289,4 +289,34 @@ fn invalid_list(
         value: format!("[{}]", names.join(", ")),
         reason: reason.to_string(),
     }
+}
+
+/// A file with both a `[contact]` and `[[contact]]` tables (which TOML itself refuses, as a
+/// duplicate key): the error naming both, at the second.
+pub(super) fn both_contact_forms(ctx: &Ctx) -> Option<ScenarioError> {
+    let mut offset = 0;
+    let (mut one, mut many) = (None, None);
+    for line in ctx.text.split_inclusive('\n') {
+        let t = line.trim_start();
+        let header = |h: &str| {
+            t.strip_prefix(h)
+                .is_some_and(|rest| rest.trim_start().is_empty() || rest.trim_start().starts_with('#'))
+        };
+        let at = offset + (line.len() - t.len());
+        if header("[contact]") && one.is_none() {
+            one = Some(at);
+        } else if header("[[contact]]") && many.is_none() {
+            many = Some(at);
+        }
+        offset += line.len();
+    }
+    let (one, many) = (one?, many?);
+    Some(ScenarioError::Invalid {
+        at: ctx.at(Some(one.max(many))),
+        key: "contact".into(),
+        value: "[contact] and [[contact]]".into(),
+        reason: "give either one [contact] table (a pair) or one [[contact]] table per adjacent \
+                 pair (a row, each with `between`), not both"
+            .into(),
+    })
 }
