@@ -123,7 +123,7 @@ impl System {
         System::row(
             structures.into(),
             &[PairContact {
-                law: law.clone(),
+                law: *law,
                 levels: levels.to_vec(),
             }],
             ground,

@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::analysis::simulate::RowReport;
 use crate::input::scenario::Scenario;
 use crate::output::atomic::{OutputError, write_atomic};
-use crate::output::csv::{push_field, push_number};
+use crate::output::csv::push_field;
 
 /// The files of a pair's run that a row's run does not write (removed when stale).
 const NOT_WRITTEN: [&str; 2] = ["history.csv", crate::output::floors_csv::FILE_NAME];
@@ -49,12 +49,13 @@ pub fn row_impacts_csv(report: &RowReport) -> String {
     let mut row = Vec::with_capacity(200);
     for i in &report.impact_log {
         row.clear();
-        push_number(&mut row, (i.pair + 1) as f64);
+        row.extend_from_slice((i.pair + 1).to_string().as_bytes());
         for name in &report.pairs[i.pair].between {
             row.push(b',');
             row.extend_from_slice(csv_text(name).as_bytes());
         }
-        push_field(&mut row, (i.level + 1) as f64);
+        row.push(b',');
+        row.extend_from_slice((i.level + 1).to_string().as_bytes());
         for v in [
             i.height,
             i.start,

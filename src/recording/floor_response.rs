@@ -352,7 +352,12 @@ impl FloorRecorder {
     /// levels' heights (the levels of `system`, or for a run without contact those of the run
     /// with).
     pub fn new(system: &System, contact_heights: &[f64], interval: f64) -> FloorRecorder {
-        FloorRecorder::for_row(system, contact_heights, &vec![0; contact_heights.len()], interval)
+        FloorRecorder::for_row(
+            system,
+            contact_heights,
+            &vec![0; contact_heights.len()],
+            interval,
+        )
     }
 
     /// Stations for every structure of a row `system`: contact level k is at

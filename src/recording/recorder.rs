@@ -102,13 +102,7 @@ impl<'s> Recorder<'s> {
     /// A recorder tracking displacements at `heights` (m; the main one is the highest) for
     /// a pair `system`, sampling the history every `interval` s over `duration` s.
     pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder<'s> {
-        Recorder::for_row(
-            system,
-            heights,
-            &vec![0; heights.len()],
-            interval,
-            duration,
-        )
+        Recorder::for_row(system, heights, &vec![0; heights.len()], interval, duration)
     }
 
     /// [`Recorder::new`] for a row `system`: tracked height k (a contact level's) is between

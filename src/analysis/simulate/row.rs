@@ -201,7 +201,10 @@ pub fn simulate_row_with(
             .collect();
         // the pair as a scenario of its own, with the row's run without contact at its levels
         let pair_scenario = scenario.pair(p);
-        let models = [system.structures[p].clone(), system.structures[p + 1].clone()];
+        let models = [
+            system.structures[p].clone(),
+            system.structures[p + 1].clone(),
+        ];
         let record = pair_record(&without, range.clone());
         let mut separation = separations(&models, &record);
         if let Err(e) = complete_run_separation(&pair_scenario, &models, &record, &mut separation) {

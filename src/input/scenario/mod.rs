@@ -313,12 +313,11 @@ impl Scenario {
             name: Arc::from(file),
             warnings: Default::default(),
         };
-        let raw: RawScenario = toml::from_str(text)
-            .map_err(|e| {
-                sweep_file(text, file)
-                    .or_else(|| row_keys::both_contact_forms(&ctx))
-                    .unwrap_or_else(|| ctx.toml_error(&e))
-            })?;
+        let raw: RawScenario = toml::from_str(text).map_err(|e| {
+            sweep_file(text, file)
+                .or_else(|| row_keys::both_contact_forms(&ctx))
+                .unwrap_or_else(|| ctx.toml_error(&e))
+        })?;
         let missing = missing_keys(&raw, &ctx);
         if missing.len() > 1 {
             return Err(ScenarioError::MissingMany {
@@ -352,7 +351,7 @@ impl Scenario {
         let pairs: Vec<crate::model::system::PairContact> = self
             .contacts()
             .map(|c| crate::model::system::PairContact {
-                law: c.law.clone(),
+                law: c.law,
                 levels: c.levels.clone(),
             })
             .collect();
@@ -377,7 +376,11 @@ impl Scenario {
     pub fn pair(&self, p: usize) -> Scenario {
         let mut sc = self.clone();
         sc.structures = vec![self.structures[p].clone(), self.structures[p + 1].clone()];
-        sc.contact = self.contacts().nth(p).cloned().unwrap_or_else(|| self.contact.clone());
+        sc.contact = self
+            .contacts()
+            .nth(p)
+            .cloned()
+            .unwrap_or_else(|| self.contact.clone());
         sc.row_contacts = Vec::new();
         sc
     }

@@ -21,7 +21,7 @@ use super::{ContactSpec, MAX_ROW};
 #[derive(Debug)]
 pub(super) enum RawContacts {
     /// `[contact]` (a pair).
-    One(RawContact),
+    One(Box<RawContact>),
     /// `[[contact]]` (a row, or a pair written as a row).
     Many(Vec<Spanned<RawContact>>),
 }
@@ -34,15 +34,23 @@ impl<'de> Deserialize<'de> for RawContacts {
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
                 f.write_str("a [contact] table or [[contact]] tables")
             }
-            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<RawContacts, A::Error> {
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<RawContacts, A::Error> {
                 // (the values are read by the TOML deserializer itself: spans and unknown-key
                 // errors stay those of a plain table)
                 RawContact::deserialize(serde::de::value::MapAccessDeserializer::new(map))
-                    .map(RawContacts::One)
+                    .map(|r| RawContacts::One(Box::new(r)))
             }
-            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, seq: A) -> Result<RawContacts, A::Error> {
-                Vec::<Spanned<RawContact>>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))
-                    .map(RawContacts::Many)
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<RawContacts, A::Error> {
+                Vec::<Spanned<RawContact>>::deserialize(
+                    serde::de::value::SeqAccessDeserializer::new(seq),
+                )
+                .map(RawContacts::Many)
             }
         }
         d.deserialize_any(V)
@@ -299,8 +307,9 @@ pub(super) fn both_contact_forms(ctx: &Ctx) -> Option<ScenarioError> {
     for line in ctx.text.split_inclusive('\n') {
         let t = line.trim_start();
         let header = |h: &str| {
-            t.strip_prefix(h)
-                .is_some_and(|rest| rest.trim_start().is_empty() || rest.trim_start().starts_with('#'))
+            t.strip_prefix(h).is_some_and(|rest| {
+                rest.trim_start().is_empty() || rest.trim_start().starts_with('#')
+            })
         };
         let at = offset + (line.len() - t.len());
         if header("[contact]") && one.is_none() {

@@ -8,12 +8,12 @@ use crate::model::ground_motion::GroundMotion;
 use crate::model::structure::{Damping, Stiffness, Structure};
 
 use super::RawScenario;
-use super::row_keys::row_contacts;
 use super::diagnostics::{Check, Ctx, Location, ScenarioError, quoted};
 use super::floors;
 use super::ground_keys::ground;
 use super::plausibility::plausibility;
 use super::ranges::{USUAL_DAMPING_RATIO, USUAL_STRUCTURE_PERIOD};
+use super::row_keys::row_contacts;
 use super::solver_keys::solver;
 use super::structure_keys::structure;
 use super::suite;
@@ -157,7 +157,7 @@ fn contact_tables(
     c: &toml::Spanned<super::row_keys::RawContacts>,
 ) -> Vec<(String, &super::RawContact, usize)> {
     match c.get_ref() {
-        super::row_keys::RawContacts::One(r) => vec![("contact".into(), r, c.span().start)],
+        super::row_keys::RawContacts::One(r) => vec![("contact".into(), &**r, c.span().start)],
         super::row_keys::RawContacts::Many(list) => (list.iter().enumerate())
             .map(|(i, t)| (format!("contact[{}]", i + 1), t.get_ref(), t.span().start))
             .collect(),
@@ -184,7 +184,9 @@ pub(super) fn floors_at_contact(
             .find(|(_, t, _)| {
                 t.between.as_ref().is_some_and(|b| {
                     let names = [p, p + 1].map(|i| structures[i].name());
-                    b.get_ref().iter().all(|n| names.contains(&n.get_ref().as_str()))
+                    b.get_ref()
+                        .iter()
+                        .all(|n| names.contains(&n.get_ref().as_str()))
                 })
             })
             .or_else(|| tables.get(p))
@@ -256,16 +258,16 @@ pub(super) fn validate(
             .iter()
             .enumerate()
             .map(|(i, s)| match floors::kind(&c, i, s)? {
-                    floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
-                    kind => floors::floor_structure(
-                        &c,
-                        i,
-                        s,
-                        kind,
-                        start,
-                        base_dir,
-                        &mut defaults,
-                        &mut structure_warnings,
+                floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
+                kind => floors::floor_structure(
+                    &c,
+                    i,
+                    s,
+                    kind,
+                    start,
+                    base_dir,
+                    &mut defaults,
+                    &mut structure_warnings,
                 ),
             })
             .collect::<Result<Vec<Structure>, ScenarioError>>()?

@@ -36,11 +36,12 @@ fn write_row(o: &mut String, sc: &Scenario, name: &str, r: &RowReport) -> fmt::R
         )?;
     }
     writeln!(o)?;
-    let w = 2 + (r.structures.iter())
-        .map(|s| s.name.chars().count())
-        .max()
-        .unwrap_or(0)
-        .max(10);
+    let w = 2
+        + (r.structures.iter())
+            .map(|s| s.name.chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(10);
     write!(o, "  {:<34}", "")?;
     for s in &r.structures {
         write!(o, "{:>w$}", s.name)?;
