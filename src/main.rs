@@ -155,6 +155,9 @@ fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> {
         return run_suite(&sc, &name, &a.out, a.no_plot, a.no_check, quiet);
     }
     simulate::require_time_history(&sc)?;
+    if sc.is_row() {
+        return run_row(&sc, &name, &a.out, quiet);
+    }
     pounding::output::budget::check_run(&sc, a.max_output_size)?;
     let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
@@ -201,8 +204,31 @@ fn run_suite(
     Ok(())
 }
 
-/// Commands of one ground motion refuse a suite of records (which `pounding run` runs).
+/// `pounding run` on a row of buildings (issue 29): the row with and without contact, then
+/// impacts.csv and summary.json (no history, floors or pictures yet: said on stderr).
+fn run_row(sc: &Scenario, name: &str, out: &Path, quiet: bool) -> anyhow::Result<()> {
+    let report = simulate::simulate_row(sc)?;
+    let written = pounding::output::row::write_row(out, sc, &report)?;
+    if !quiet {
+        print!("{}", text::row_summary(sc, name, &report));
+        println!("\nwrote {}", list_paths(&written));
+        eprintln!(
+            "note: a row of buildings writes summary.json and impacts.csv; history.csv, \
+             floors.csv, the pictures and the self-check are for pairs only, so far"
+        );
+    }
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// Commands of one ground motion refuse a suite of records (which `pounding run` runs), and
+/// the commands of a pair refuse a row of buildings.
 fn refuse_suite(sc: &Scenario) -> anyhow::Result<()> {
+    if sc.is_row() {
+        return Err(pounding::integrate::SolveError::Row(sc.structures.len()).into());
+    }
     match &sc.suite {
         Some(s) => Err(pounding::integrate::SolveError::Suite(s.records.len()).into()),
         None => Ok(()),
@@ -240,6 +266,9 @@ fn convergence(a: args::ConvergenceArgs, quiet: bool) -> anyhow::Result<()> {
 
 fn separation(a: args::SeparationArgs) -> anyhow::Result<()> {
     let (sc, _) = load(a.scenario)?;
+    if sc.is_row() {
+        return Err(pounding::integrate::SolveError::Row(sc.structures.len()).into());
+    }
     let spectrum = a.spectrum.as_deref().map(spectrum_from_arg).transpose()?;
     let codes = (!a.code.is_empty()).then_some(a.code.as_slice());
     let report = pounding::analysis::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;

@@ -175,6 +175,7 @@ fn every_scenario_table_names_itself_and_its_keys() {
             "gapp",
             "[contact]",
             &[
+                "between",
                 "law",
                 "stiffness",
                 "restitution",

@@ -80,7 +80,7 @@ pub fn main_gap(scenario: &Scenario) -> f64 {
 /// [`crate::model::building::same_height`] (1e-9 of the height), the rule by which a scenario's
 /// contact height is accepted as a floor at all: the numbers are the scenario's own, so only
 /// round-off can separate them.
-pub fn floors_coincide(structures: &[Structure; 2], h: f64) -> bool {
+pub fn floors_coincide(structures: &[Structure], h: f64) -> bool {
     structures.iter().all(|s| {
         s.floor_heights()
             .is_some_and(|f| f.iter().any(|&x| crate::model::building::same_height(x, h)))
@@ -421,7 +421,7 @@ pub fn verdict(levels: &[LevelCheck]) -> Verdict {
 /// levels are the scenario's contact levels in order; `models` the modal models the run used.
 pub fn complete_run_separation(
     scenario: &Scenario,
-    models: &[ModalModel; 2],
+    models: &[ModalModel],
     without: &RunRecord,
     separation: &mut Separations,
 ) -> Result<(), CodeError> {

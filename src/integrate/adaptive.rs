@@ -546,12 +546,11 @@ fn step(
 pub(super) fn modal_tolerances(sys: &System, atol: f64) -> (Vec<f64>, Vec<f64>) {
     let n = sys.len();
     let (mut aq, mut av) = (vec![0.0; n], vec![0.0; n]);
-    let n1 = sys.n1();
     for (i, s) in sys.structures.iter().enumerate() {
         // (atol at the top over |φ(top)|: `√M/2` for a cantilever, whose |φ_n(L)| = 2/√M)
         let scale = atol / s.top_shape_scale();
         let w1 = s.omega.first().copied().unwrap_or(1.0);
-        let range = if i == 0 { 0..n1 } else { n1..n };
+        let range = sys.modes_of(i);
         for j in range {
             aq[j] = scale;
             av[j] = scale * w1;

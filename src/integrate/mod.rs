@@ -470,6 +470,14 @@ pub enum SolveError {
          for this command"
     )]
     Suite(usize),
+    /// The scenario is a row of more than two buildings (issue 29), which `pounding run` (the
+    /// library's `analysis::simulate::simulate_row`) runs; this door takes a pair only.
+    #[error(
+        "the scenario is a row of {0} structures, which `pounding run` runs (summary.json, \
+         impacts.csv and its report); this command takes a pair of structures only, so far: \
+         take the row apart into pairs, or run it with `pounding run`"
+    )]
+    Row(usize),
 }
 
 /// " at contact level k (height h m)" of [`SolveError::StepFailed`]'s message.
@@ -487,8 +495,8 @@ impl SolverSettings {
             Method::Rk4 => {
                 let (max_dt, j) = rk4_max_stable_dt(system);
                 if self.fixed_step() > max_dt {
-                    let n1 = system.n1();
-                    let (structure, mode) = if j < n1 { (1, j + 1) } else { (2, j - n1 + 1) };
+                    let (i, m) = system.structure_of_mode(j);
+                    let (structure, mode) = (i + 1, m + 1);
                     let omega = system.omega()[j];
                     return Err(SolveError::UnstableStep {
                         method: self.method.name(),

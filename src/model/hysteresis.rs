@@ -50,24 +50,26 @@ impl Hysteresis {
         Hysteresis::default()
     }
 
-    /// The yielding storeys of both structures, for their modal models `models` (the modes
-    /// kept: the drift rows are those of the kept modes, so a truncated model sees only the
-    /// drift its modes carry).
-    pub fn new(structures: &[Structure; 2], models: &[ModalModel; 2]) -> Hysteresis {
-        let n1 = models[0].len();
-        let n = n1 + models[1].len();
+    /// The yielding storeys of every structure (a pair or a row, in row order), for their
+    /// modal models `models` (the modes kept: the drift rows are those of the kept modes, so a
+    /// truncated model sees only the drift its modes carry).
+    pub fn new(structures: &[Structure], models: &[ModalModel]) -> Hysteresis {
+        let n: usize = models.iter().map(ModalModel::len).sum();
         let mut h = Hysteresis {
             n,
             ..Hysteresis::default()
         };
+        let mut offset = 0;
         for (i, (s, m)) in structures.iter().zip(models).enumerate() {
+            // (structure i's coordinates start after those of every structure before it)
+            let start = offset;
+            offset += m.len();
             let (Some(bw), Some(ks)) = (s.hysteresis(), s.storey_stiffnesses()) else {
                 continue;
             };
             let Shapes::Floors { values, .. } = &m.shapes else {
                 continue;
             };
-            let offset = if i == 0 { 0 } else { n1 };
             for (j, &k) in ks.iter().enumerate() {
                 h.storeys.push(Storey {
                     structure: i,
@@ -82,7 +84,7 @@ impl Hysteresis {
                 let mut row = vec![0.0; n];
                 for (mode, v) in values.iter().enumerate() {
                     let below = if j == 0 { 0.0 } else { v[j - 1] };
-                    row[offset + mode] = v[j] - below;
+                    row[start + mode] = v[j] - below;
                 }
                 h.rows.extend(row);
             }

@@ -1,15 +1,20 @@
-//! The two structures, their contact levels and the ground motion assembled into one system of
-//! modal equations, stored as flat arrays for the integrators' hot loops (docs/model.md §2.4).
+//! The structures of a pair or a row, their contact levels and the ground motion assembled into
+//! one system of modal equations, stored as flat arrays for the integrators' hot loops
+//! (docs/model.md §2.4, §2.4a).
 //!
-//! The modal coordinates of both structures are concatenated: indices `0..n₁` are structure 1,
-//! `n₁..n₁+n₂` structure 2. For contact level k the *coupling* row is `c_kj = s_i φ_ij(h_k)` with
-//! s₁ = −1, s₂ = +1, so that
+//! The modal coordinates of the N ≥ 1 structures are concatenated in row order: structure i
+//! owns indices `offset_i..offset_{i+1}` ([`System::modes_of`]). Every contact level belongs to
+//! one adjacent pair (left structure i, right i + 1, [`Level::pair`]); its *coupling* row is
+//! `c_kj = s φ_j(h_k)` over the modes of its two structures (s = −1 for the left one's modes,
+//! +1 for the right one's, 0 for every other structure's), so that
 //!
-//! - penetration `δ_k = w₁(h_k) − w₂(h_k) − d_k = −Σ_j c_kj η_j − d_k`,
+//! - penetration `δ_k = w_left(h_k) − w_right(h_k) − d_k = −Σ_j c_kj η_j − d_k`,
 //! - generalised contact load on mode j: `c_kj F_k` (action and reaction, docs/model.md §2.4),
 //!
 //! which makes the contact force exactly `−∂U/∂η` of the contact potential U(δ): the discrete
-//! system conserves energy with an elastic law.
+//! system conserves energy with an elastic law. A middle structure of a row receives the forces
+//! of both neighbours through the rows of both its pairs; the integrators do not know how many
+//! structures there are. For a pair (N = 2) every row spans all modes, as it always did.
 
 use crate::model::contact::{ContactForce, ContactLaw};
 use crate::model::ground_motion::GroundMotion;
@@ -29,15 +34,27 @@ pub struct ContactLevel {
     pub gap: f64,
 }
 
+/// The contact of one adjacent pair of a row: the law and its levels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairContact {
+    /// The force law of every level of the pair.
+    pub law: ContactLaw,
+    /// The pair's levels (heights within the lower of its two structures).
+    pub levels: Vec<ContactLevel>,
+}
+
 /// An assembled contact level.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Level {
+    /// The adjacent pair it belongs to: its left structure's index (0-based; the right one is
+    /// `pair + 1`). Always 0 for a two-structure system.
+    pub pair: usize,
     /// Height, m.
     pub height: f64,
     /// Gap, m.
     pub gap: f64,
-    /// Effective mass at the contact point, kg: `1/m* = Σ_n φ₁ₙ(h)² + Σ_n φ₂ₙ(h)²`, i.e. the
-    /// two structures' point masses `1/Σφ²` in series.
+    /// Effective mass at the contact point, kg: `1/m* = Σ_n φ_Ln(h)² + Σ_n φ_Rn(h)²` over the
+    /// pair's left and right structures, i.e. their point masses `1/Σφ²` in series.
     pub effective_mass: f64,
     /// The force law resolved for that mass.
     pub force: ContactForce,
@@ -114,13 +131,14 @@ pub struct Powers {
 /// The assembled system.
 #[derive(Debug, Clone)]
 pub struct System {
-    /// The two structures in modal form.
-    pub structures: [ModalModel; 2],
-    /// Contact levels (empty: no contact).
+    /// The structures in modal form, in row order (two for a pair).
+    pub structures: Vec<ModalModel>,
+    /// Contact levels (empty: no contact), pair by pair in row order.
     pub levels: Vec<Level>,
     /// The ground motion.
     pub ground: GroundMotion,
-    n1: usize,
+    /// `offsets[i]..offsets[i + 1]` are structure i's modal coordinates (N + 1 entries).
+    offsets: Vec<usize>,
     omega: Vec<f64>,
     omega_sq: Vec<f64>,
     damp: Vec<f64>,
@@ -137,15 +155,41 @@ pub struct System {
 }
 
 impl System {
-    /// Assemble. `levels` may be empty (the no-contact run).
+    /// Assemble a pair: structure 1 (left) and 2 (right), one law at every level. `levels`
+    /// may be empty (the no-contact run).
     pub fn new(
         structures: [ModalModel; 2],
         law: &ContactLaw,
         levels: &[ContactLevel],
         ground: GroundMotion,
     ) -> System {
-        let n1 = structures[0].omega.len();
-        let n = n1 + structures[1].omega.len();
+        System::row(
+            structures.into(),
+            &[PairContact {
+                law: *law,
+                levels: levels.to_vec(),
+            }],
+            ground,
+        )
+    }
+
+    /// Assemble a row of N ≥ 1 structures (row order, left to right) with the contact of
+    /// each adjacent pair: `pairs[p]` is between structures p and p + 1 (at most N − 1 of
+    /// them; a pair without levels never touches). A pair is the row of two.
+    pub fn row(structures: Vec<ModalModel>, pairs: &[PairContact], ground: GroundMotion) -> System {
+        assert!(
+            pairs.len() < structures.len().max(1),
+            "a row of {} structures has {} adjacent pairs, not {}",
+            structures.len(),
+            structures.len().saturating_sub(1),
+            pairs.len()
+        );
+        let mut offsets = Vec::with_capacity(structures.len() + 1);
+        offsets.push(0);
+        for s in &structures {
+            offsets.push(offsets.last().copied().unwrap_or(0) + s.omega.len());
+        }
+        let n = offsets.last().copied().unwrap_or(0);
         let mut omega = Vec::with_capacity(n);
         let mut damp = Vec::with_capacity(n);
         let mut load_a = Vec::with_capacity(n);
@@ -160,24 +204,31 @@ impl System {
             }
         }
         let omega_sq = omega.iter().map(|w| w * w).collect();
-        let mut coupling = Vec::with_capacity(levels.len() * n);
-        let mut assembled = Vec::with_capacity(levels.len());
-        for lv in levels {
-            let mut sum_sq = 0.0;
-            for (sign, s) in [(-1.0, &structures[0]), (1.0, &structures[1])] {
-                for j in 0..s.omega.len() {
-                    let phi = s.shape(j, lv.height);
-                    coupling.push(sign * phi);
-                    sum_sq += phi * phi;
+        let count: usize = pairs.iter().map(|p| p.levels.len()).sum();
+        let mut coupling = Vec::with_capacity(count * n);
+        let mut assembled = Vec::with_capacity(count);
+        for (p, pc) in pairs.iter().enumerate() {
+            for lv in &pc.levels {
+                // the row is zero outside the pair's two structures
+                coupling.extend(std::iter::repeat_n(0.0, offsets[p]));
+                let mut sum_sq = 0.0;
+                for (sign, s) in [(-1.0, &structures[p]), (1.0, &structures[p + 1])] {
+                    for j in 0..s.omega.len() {
+                        let phi = s.shape(j, lv.height);
+                        coupling.push(sign * phi);
+                        sum_sq += phi * phi;
+                    }
                 }
+                coupling.extend(std::iter::repeat_n(0.0, n - offsets[p + 2]));
+                let m_star = 1.0 / sum_sq;
+                assembled.push(Level {
+                    pair: p,
+                    height: lv.height,
+                    gap: lv.gap,
+                    effective_mass: m_star,
+                    force: pc.law.resolve(m_star),
+                });
             }
-            let m_star = 1.0 / sum_sq;
-            assembled.push(Level {
-                height: lv.height,
-                gap: lv.gap,
-                effective_mass: m_star,
-                force: law.resolve(m_star),
-            });
         }
         let impulsive = assembled.iter().any(|l| l.force.impulsive().is_some());
         System {
@@ -185,7 +236,7 @@ impl System {
             impulsive,
             levels: assembled,
             ground,
-            n1,
+            offsets,
             omega,
             omega_sq,
             damp,
@@ -213,7 +264,20 @@ impl System {
 
     /// Number of modes of structure 1.
     pub fn n1(&self) -> usize {
-        self.n1
+        self.offsets.get(1).copied().unwrap_or(0)
+    }
+
+    /// The modal coordinates of structure `i` (0-based, row order): a range of indices into
+    /// the concatenated state.
+    #[inline]
+    pub fn modes_of(&self, i: usize) -> std::ops::Range<usize> {
+        self.offsets[i]..self.offsets[i + 1]
+    }
+
+    /// The structure (0-based) and its mode (0-based) of modal coordinate `j`.
+    pub fn structure_of_mode(&self, j: usize) -> (usize, usize) {
+        let i = self.offsets[1..].partition_point(|&end| end <= j);
+        (i, j - self.offsets[i.min(self.offsets.len() - 1)])
     }
 
     /// Total number of modal coordinates.
@@ -253,13 +317,15 @@ impl System {
         &self.coupling[k * n..(k + 1) * n]
     }
 
-    /// Displacements (w₁, w₂) at the height of level k for modal coordinates `q`, m.
+    /// Displacements (w_left, w_right) of level k's pair at its height for modal coordinates
+    /// `q`, m.
     #[inline]
     pub fn displacements_at_level(&self, k: usize, q: &[f64]) -> (f64, f64) {
         let c = self.coupling(k);
-        let n1 = self.n1;
-        let w1 = -dot(&c[..n1], &q[..n1]);
-        let w2 = dot(&c[n1..], &q[n1..]);
+        let p = self.levels[k].pair;
+        let (l, r) = (self.modes_of(p), self.modes_of(p + 1));
+        let w1 = -dot(&c[l.clone()], &q[l]);
+        let w2 = dot(&c[r.clone()], &q[r]);
         (w1, w2)
     }
 

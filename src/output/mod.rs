@@ -5,6 +5,7 @@ pub mod budget;
 pub mod csv;
 pub mod floors_csv;
 pub mod record_summary;
+pub mod row;
 pub mod row_spool;
 pub mod run;
 pub mod spectrum_report;

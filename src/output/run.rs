@@ -23,7 +23,7 @@ use crate::output::row_spool::RowSpool;
 
 /// Solver facts recorded in the summary.
 #[derive(Debug, Serialize)]
-struct SolverInfo {
+pub(crate) struct SolverInfo {
     method: &'static str,
     dt: f64,
     duration: f64,
@@ -71,17 +71,39 @@ pub fn summary_json_with(
     report: &Report,
     suite: Option<&serde_json::Value>,
 ) -> Result<String, String> {
-    let adaptive = scenario.solver.method == Method::Adaptive;
     let s = Summary {
         report,
         contact_law: scenario.contact.law.name(),
-        solver: SolverInfo {
+        solver: SolverInfo::new(
+            scenario,
+            &report.stats,
+            (&report.energy, &report.energy_no_contact),
+        ),
+        defaults_applied: &scenario.defaults_applied,
+        suite,
+    };
+    serde_json::to_string_pretty(&s).map_err(|e| e.to_string())
+}
+
+impl SolverInfo {
+    /// The solver's facts of a run of `scenario` with its counters and energy balances
+    /// (with, without contact).
+    pub(crate) fn new(
+        scenario: &Scenario,
+        stats: &crate::integrate::Stats,
+        (energy, energy_no_contact): (
+            &crate::recording::run_record::EnergyBalance,
+            &crate::recording::run_record::EnergyBalance,
+        ),
+    ) -> SolverInfo {
+        let adaptive = scenario.solver.method == Method::Adaptive;
+        SolverInfo {
             method: scenario.solver.method.name(),
             dt: scenario.solver.dt,
             duration: scenario.solver.duration,
             output_interval: scenario.output_interval,
-            steps: report.stats.steps,
-            max_contact_omega_dt: report.stats.max_contact_omega_dt,
+            steps: stats.steps,
+            max_contact_omega_dt: stats.max_contact_omega_dt,
             rtol: adaptive.then_some(scenario.solver.rtol),
             atol: adaptive.then_some(scenario.solver.atol),
             dt_meaning: match scenario.solver.method {
@@ -89,15 +111,12 @@ pub fn summary_json_with(
                 Method::ExactModal => "base step (contact sub-steps below it)",
                 Method::Adaptive => "largest step",
             },
-            rejected_steps: report.stats.rejected,
-            events: report.stats.events,
-            energy_relative_error: report.energy.relative_error,
-            energy_relative_error_no_contact: report.energy_no_contact.relative_error,
-        },
-        defaults_applied: &scenario.defaults_applied,
-        suite,
-    };
-    serde_json::to_string_pretty(&s).map_err(|e| e.to_string())
+            rejected_steps: stats.rejected,
+            events: stats.events,
+            energy_relative_error: energy.relative_error,
+            energy_relative_error_no_contact: energy_no_contact.relative_error,
+        }
+    }
 }
 
 /// The header line of `history.csv` for `levels` contact levels (without the newline).

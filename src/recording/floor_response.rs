@@ -165,9 +165,11 @@ struct Stations {
     /// floors: the level acts at that very floor).
     above: Vec<bool>,
     levels: usize,
-    /// Offset of this structure's modes in the system, and the sign of the contact force on it.
+    /// Offset of this structure's modes in the system.
     offset: usize,
-    sign: f64,
+    /// The sign of each contact level's force on this structure: −1 where it is the left one
+    /// of the level's pair, +1 the right one, 0 a level of another pair (a row).
+    signs: Vec<f64>,
     /// (u, u̇) at every station at the previous observation, and at the one before (for
     /// the samples between them).
     prev: Vec<(f64, f64)>,
@@ -185,7 +187,7 @@ struct Stations {
 }
 
 impl Stations {
-    fn new(m: &ModalModel, contact_heights: &[f64], offset: usize, sign: f64) -> Stations {
+    fn new(m: &ModalModel, contact_heights: &[f64], signs: &[f64], offset: usize) -> Stations {
         let nm = m.len();
         let (heights, equilibrium) = match &m.shapes {
             Shapes::Floors {
@@ -197,8 +199,9 @@ impl Stations {
                 h.extend(
                     contact_heights
                         .iter()
-                        .copied()
-                        .filter(|&x| x > 0.0 && x <= l),
+                        .zip(signs)
+                        .filter(|&(&x, &s)| s != 0.0 && x > 0.0 && x <= l)
+                        .map(|(&x, _)| x),
                 );
                 h.sort_by(f64::total_cmp);
                 h.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * l);
@@ -277,8 +280,11 @@ impl Stations {
         let above = heights
             .iter()
             .flat_map(|&x| {
-                contact_heights.iter().map(move |&hk| {
-                    if lumped {
+                contact_heights.iter().zip(signs).map(move |(&hk, &sign)| {
+                    if sign == 0.0 {
+                        // a level of a pair this structure is not in
+                        false
+                    } else if lumped {
                         crate::model::building::same_height(hk, x)
                     } else {
                         hk >= x || crate::model::building::same_height(hk, x)
@@ -303,7 +309,7 @@ impl Stations {
             above,
             levels: contact_heights.len(),
             offset,
-            sign,
+            signs: signs.to_vec(),
             prev: vec![(0.0, 0.0); ns],
             before: vec![(0.0, 0.0); ns],
             prev_force: vec![(0.0, 0.0); ns],
@@ -329,7 +335,8 @@ impl Stations {
 /// Tracks [`FloorPeaks`] of both structures through a run (an addition to the recorder).
 #[derive(Debug, Clone)]
 pub struct FloorRecorder {
-    stations: [Stations; 2],
+    /// One per structure, in row order.
+    stations: Vec<Stations>,
     /// Sampling of the floor history (s) and the next sample's index.
     interval: f64,
     next_sample: usize,
@@ -341,15 +348,39 @@ pub struct FloorRecorder {
 }
 
 impl FloorRecorder {
-    /// Stations for both structures of `system`; `contact_heights` are the contact levels'
-    /// heights (the levels of `system`, or for a run without contact those of the run with).
+    /// Stations for both structures of a pair `system`; `contact_heights` are the contact
+    /// levels' heights (the levels of `system`, or for a run without contact those of the run
+    /// with).
     pub fn new(system: &System, contact_heights: &[f64], interval: f64) -> FloorRecorder {
-        let [s1, s2] = &system.structures;
-        let n1 = system.n1();
-        let mut stations = [
-            Stations::new(s1, contact_heights, 0, -1.0),
-            Stations::new(s2, contact_heights, n1, 1.0),
-        ];
+        FloorRecorder::for_row(
+            system,
+            contact_heights,
+            &vec![0; contact_heights.len()],
+            interval,
+        )
+    }
+
+    /// Stations for every structure of a row `system`: contact level k is at
+    /// `contact_heights[k]` between structures `pairs[k]` and `pairs[k] + 1`.
+    pub fn for_row(
+        system: &System,
+        contact_heights: &[f64],
+        pairs: &[usize],
+        interval: f64,
+    ) -> FloorRecorder {
+        let mut stations: Vec<Stations> = (system.structures.iter().enumerate())
+            .map(|(i, m)| {
+                let signs: Vec<f64> = pairs
+                    .iter()
+                    .map(|&p| match i {
+                        _ if i == p => -1.0,
+                        _ if i == p + 1 => 1.0,
+                        _ => 0.0,
+                    })
+                    .collect();
+                Stations::new(m, contact_heights, &signs, system.modes_of(i).start)
+            })
+            .collect();
         for (k, st) in system.hysteresis.storeys().iter().enumerate() {
             if let Some(y) = stations[st.structure].yields.get_mut(st.storey) {
                 *y = Some(k);
@@ -366,10 +397,10 @@ impl FloorRecorder {
         }
     }
 
-    /// The heights of the stations of structure 1 and 2 (m, lowest first), in the order of
+    /// The heights of the stations of every structure (m, lowest first), in the order of
     /// [`FloorRecorder::columns`].
-    pub fn station_heights(&self) -> [&[f64]; 2] {
-        [&self.stations[0].heights, &self.stations[1].heights]
+    pub fn station_heights(&self) -> Vec<&[f64]> {
+        self.stations.iter().map(|s| s.heights.as_slice()).collect()
     }
 
     /// The names of a floor history row's values: for structure i and every station (height
@@ -537,7 +568,7 @@ impl FloorRecorder {
                         // contact forces acting at this floor
                         for k in 0..nl {
                             if st.above[f * st.levels + k] {
-                                v_above += st.sign * s.levels[k].force;
+                                v_above += st.signs[k] * s.levels[k].force;
                             }
                         }
                         raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
@@ -560,7 +591,7 @@ impl FloorRecorder {
                         let mut v_sec = -m * inertia[f];
                         for k in 0..nl {
                             if st.above[f * st.levels + k] {
-                                v_sec += st.sign * s.levels[k].force;
+                                v_sec += st.signs[k] * s.levels[k].force;
                             }
                         }
                         raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
@@ -634,10 +665,9 @@ impl FloorRecorder {
         }
     }
 
-    /// The peaks of structure 1 and 2, lowest station first.
-    pub fn finish(self) -> [Vec<FloorPeaks>; 2] {
-        let [a, b] = self.stations;
-        [a.finish(), b.finish()]
+    /// The peaks of every structure (row order), lowest station first.
+    pub fn finish(self) -> Vec<Vec<FloorPeaks>> {
+        self.stations.into_iter().map(Stations::finish).collect()
     }
 }
 
@@ -670,7 +700,7 @@ mod tests {
     fn a_shear_buildings_modes_are_its_storey_springs() {
         for modes in [4, 2] {
             let m = shear_building(modes);
-            let st = Stations::new(&m, &[], 0, 1.0);
+            let st = Stations::new(&m, &[], &[], 0);
             let StoreyForce::Springs(k) = &st.force else {
                 panic!("{modes} modes: not recognised as springs");
             };
@@ -682,7 +712,7 @@ mod tests {
         if let Shapes::Floors { values, .. } = &mut m.shapes {
             values[1][2] *= 1.01;
         }
-        let st = Stations::new(&m, &[], 0, 1.0);
+        let st = Stations::new(&m, &[], &[], 0);
         assert!(matches!(st.force, StoreyForce::Rows(_)));
     }
 }

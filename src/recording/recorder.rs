@@ -31,9 +31,15 @@ pub struct Recorder<'s> {
     /// Index of the main (highest) tracked height. Heights tracked: the contact levels' (for the
     /// no-contact run the same heights are passed in, so that both runs report the same places).
     main: usize,
-    /// φ of structure 1 and 2 at each tracked height: rows of n₁ and n₂.
+    /// φ of the left and the right structure of each tracked height's pair at that height:
+    /// rows of n_left and n_right.
     phi1: Vec<Vec<f64>>,
     phi2: Vec<Vec<f64>>,
+    /// Per tracked height, where its pair's modes are in the state: the left structure's
+    /// `[0]..[1]`, the right one's `[1]..[2]` (a pair: `[0, n₁, n]`).
+    spans: Vec<[usize; 3]>,
+    /// Number of structures (the length of `RunRecord::floors`).
+    structures: usize,
     levels: Vec<LevelRecord>,
     open: Vec<Option<Open>>,
     impacts: Vec<Impact>,
@@ -94,15 +100,39 @@ impl std::fmt::Debug for Recorder<'_> {
 
 impl<'s> Recorder<'s> {
     /// A recorder tracking displacements at `heights` (m; the main one is the highest) for
-    /// `system`, sampling the history every `interval` s over `duration` s.
+    /// a pair `system`, sampling the history every `interval` s over `duration` s.
     pub fn new(system: &System, heights: &[f64], interval: f64, duration: f64) -> Recorder<'s> {
+        Recorder::for_row(system, heights, &vec![0; heights.len()], interval, duration)
+    }
+
+    /// [`Recorder::new`] for a row `system`: tracked height k (a contact level's) is between
+    /// structures `pairs[k]` and `pairs[k] + 1` ([`crate::model::system::Level::pair`]); its
+    /// `peak_w1`, `peak_w2` are those of the pair's left and right structure.
+    pub fn for_row(
+        system: &System,
+        heights: &[f64],
+        pairs: &[usize],
+        interval: f64,
+        duration: f64,
+    ) -> Recorder<'s> {
         let main = heights
             .iter()
             .enumerate()
             .fold(0, |best, (i, &h)| if h > heights[best] { i } else { best });
-        let [s1, s2] = &system.structures;
-        let phi1 = heights.iter().map(|&h| s1.shapes_at(h)).collect();
-        let phi2 = heights.iter().map(|&h| s2.shapes_at(h)).collect();
+        let st = &system.structures;
+        let phi1 = (heights.iter().zip(pairs))
+            .map(|(&h, &p)| st[p].shapes_at(h))
+            .collect();
+        let phi2 = (heights.iter().zip(pairs))
+            .map(|(&h, &p)| st[p + 1].shapes_at(h))
+            .collect();
+        let spans = pairs
+            .iter()
+            .map(|&p| {
+                let (l, r) = (system.modes_of(p), system.modes_of(p + 1));
+                [l.start, r.start, r.end]
+            })
+            .collect();
         let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
         let stride = if samples <= MAX_KEPT_SAMPLES {
             1
@@ -120,6 +150,8 @@ impl<'s> Recorder<'s> {
             main,
             phi1,
             phi2,
+            spans,
+            structures: st.len(),
             levels: heights
                 .iter()
                 .map(|&h| LevelRecord {
@@ -161,7 +193,7 @@ impl<'s> Recorder<'s> {
             steps: 0,
             last_energy: [0.0; 6],
             end: duration,
-            floors: Some(FloorRecorder::new(system, heights, interval)),
+            floors: Some(FloorRecorder::for_row(system, heights, pairs, interval)),
             floor_keep: None,
             floor_row: Vec::new(),
             storeys: StoreyTracker::new(system, interval, duration),
@@ -251,7 +283,7 @@ impl<'s> Recorder<'s> {
             steps: self.steps,
             floors: self
                 .floors
-                .map_or([Vec::new(), Vec::new()], FloorRecorder::finish),
+                .map_or_else(|| vec![Vec::new(); self.structures], FloorRecorder::finish),
             storeys,
         }
     }
@@ -422,7 +454,7 @@ impl Observer for Recorder<'_> {
         if let Some(st) = &mut self.storeys {
             st.observe(system, s);
         }
-        let (n1, q) = (system.n1(), s.q);
+        let q = s.q;
         // displacements and velocities at every tracked height
         let mut main_sample = Sample {
             t: s.t,
@@ -434,12 +466,13 @@ impl Observer for Recorder<'_> {
         // where the steps happen to fall).
         let h = s.t - self.last_t;
         let refine = self.prev.is_some() && h > 0.0;
-        let (q1, q2) = q.split_at(n1);
-        let (v1, v2) = s.v.split_at(n1);
         let tracks = self.phi1.iter().zip(&self.phi2).zip(&mut self.prev_w);
-        for (k, (((phi1, phi2), prev_w), l)) in tracks.zip(&mut self.levels).enumerate() {
-            let (w1, w1d) = project(phi1, q1, v1);
-            let (w2, w2d) = project(phi2, q2, v2);
+        let tracks = tracks.zip(&self.spans);
+        for (k, ((((phi1, phi2), prev_w), &[a, b, c]), l)) in
+            tracks.zip(&mut self.levels).enumerate()
+        {
+            let (w1, w1d) = project(phi1, &q[a..b], &s.v[a..b]);
+            let (w2, w2d) = project(phi2, &q[b..c], &s.v[b..c]);
             raise(&mut l.peak_w1, w1.abs());
             raise(&mut l.peak_w2, w2.abs());
             raise(&mut l.max_closing, w1 - w2);
@@ -745,7 +778,7 @@ mod tests {
         }
         let base = system(ContactLaw::Hertz { stiffness: 2.8e10 });
         let sys = System::new(
-            base.structures.clone(),
+            [base.structures[0].clone(), base.structures[1].clone()],
             &ContactLaw::Hertz { stiffness: 2.8e10 },
             &[ContactLevel {
                 height: 10.0,

@@ -32,9 +32,9 @@ pub struct Impact {
 pub struct LevelRecord {
     /// Height, m.
     pub height: f64,
-    /// Peak |w₁(h)|, m.
+    /// Peak |w₁(h)|, m (of a row: the left structure of the level's pair).
     pub peak_w1: f64,
-    /// Peak |w₂(h)|, m.
+    /// Peak |w₂(h)|, m (of a row: the right structure of the level's pair).
     pub peak_w2: f64,
     /// `max_t [w₁(h) − w₂(h)]`, m: without contact, the gap needed to avoid touching here.
     pub max_closing: f64,
@@ -83,7 +83,7 @@ pub struct EnergyBalance {
 pub struct RunRecord {
     /// Per-level results (empty without contact... except displacements: see `main_level`).
     pub levels: Vec<LevelRecord>,
-    /// Peak |w₁|, |w₂| at the main contact height, m.
+    /// Peak |w₁|, |w₂| at the main contact height (of a row: of the highest level's pair), m.
     pub peak: [f64; 2],
     /// `max_t [w₁ − w₂]` at the main contact height, m.
     pub max_closing: f64,
@@ -95,8 +95,9 @@ pub struct RunRecord {
     pub energy: EnergyBalance,
     /// Steps observed.
     pub steps: usize,
-    /// Peaks over the height of structure 1 and 2 (floors, or a cantilever's stations).
-    pub floors: [Vec<FloorPeaks>; 2],
+    /// Peaks over the height of every structure, in row order (floors, or a cantilever's
+    /// stations; empty lists when not tracked).
+    pub floors: Vec<Vec<FloorPeaks>>,
     /// Every yielding storey (issue 16; empty when both structures are elastic).
     pub storeys: Vec<StoreyRecord>,
 }

@@ -3,6 +3,9 @@
 //! `simulate_checked(&Scenario, true)` (see [`accuracy`]).
 
 pub mod accuracy;
+mod row;
+
+pub use row::{PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_with};
 
 use serde::Serialize;
 
@@ -11,11 +14,13 @@ use crate::analysis::level_checks::Separations;
 use crate::analysis::separation::PeakPair;
 use crate::input::scenario::Scenario;
 use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
-use crate::model::system::System;
+use crate::model::modal::ModalModel;
+use crate::model::structure::Structure;
+use crate::model::system::{Level, System};
 use crate::recording::floor_response::FloorPeaks;
 use crate::recording::history::HistorySink;
 use crate::recording::recorder::Recorder;
-use crate::recording::run_record::{EnergyBalance, Impact, RunRecord};
+use crate::recording::run_record::{EnergyBalance, Impact, LevelRecord, RunRecord};
 use crate::recording::storey_record::StoreyRecord;
 
 /// Energy-balance error above which a run is flagged (relative to the largest energy present).
@@ -540,18 +545,19 @@ pub fn run_system(
     Ok((rec.finish(), stats))
 }
 
-/// [`run_system`], streaming every history sample to `sink` as `phase`.
+/// [`run_system`], streaming every history sample to `sink` as `phase`; `heights` and the
+/// pair of each (its left structure's index: all 0 for a pair) are the tracked levels.
 fn run_phase(
     system: &System,
     settings: &SolverSettings,
-    heights: &[f64],
+    (heights, pairs): (&[f64], &[usize]),
     interval: f64,
     sink: &mut dyn RunSink,
     phase: Phase,
     floors: Option<crate::recording::stations::FloorStations>,
 ) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
-    let mut rec = Recorder::new(system, heights, interval, settings.duration);
+    let mut rec = Recorder::for_row(system, heights, pairs, interval, settings.duration);
     rec = match floors {
         Some(stations) => rec.with_floor_stations(system, heights, stations),
         None => rec.without_floors(),
@@ -569,9 +575,10 @@ fn change_percent(with: f64, without: f64) -> f64 {
     }
 }
 
-/// The separation rules (docs/model.md §3) from the run without contact.
-fn separations(system: &System, without: &RunRecord) -> Separations {
-    let [m1, m2] = &system.structures;
+/// The separation rules (docs/model.md §3) from the run without contact of a pair of
+/// structures whose modal models are `models` (the first two).
+fn separations(models: &[ModalModel], without: &RunRecord) -> Separations {
+    let (m1, m2) = (&models[0], &models[1]);
     let peaks = PeakPair {
         w1: without.peak[0],
         w2: without.peak[1],
@@ -580,6 +587,14 @@ fn separations(system: &System, without: &RunRecord) -> Separations {
         period_ratio: m2.omega[0] / m1.omega[0],
     };
     Separations::new(&peaks, without.max_closing)
+}
+
+/// What only a pair supports refuses a row (issue 29: `simulate_row` runs it).
+fn refuse_row(scenario: &Scenario) -> Result<(), SolveError> {
+    if scenario.is_row() {
+        return Err(SolveError::Row(scenario.structures.len()));
+    }
+    Ok(())
 }
 
 /// A design spectrum has no time history: refuse it before integrating nothing.
@@ -612,6 +627,7 @@ pub struct SeparationReport {
 
 /// Run a scenario without contact and evaluate the separation rules (`pounding separation`).
 pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
+    refuse_row(scenario)?;
     no_spectrum(scenario)?;
     let system = scenario.system();
     let free = system.without_contact();
@@ -623,8 +639,8 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
         &heights,
         scenario.output_interval,
     )?;
-    let [m1, m2] = &system.structures;
-    let mut separation = separations(&system, &without);
+    let (m1, m2) = (&system.structures[0], &system.structures[1]);
+    let mut separation = separations(&system.structures, &without);
     // as in `simulate`; a code that refuses its input is reported by `gap_report`, which
     // evaluates the codes again
     let _ = crate::analysis::level_checks::complete_run_separation(
@@ -677,10 +693,12 @@ fn simulate_phases(
     floors: bool,
     reuse: Option<&RunRecord>,
 ) -> Result<Report, SolveError> {
+    refuse_row(scenario)?;
     no_spectrum(scenario)?;
     let system = scenario.system();
     let free = system.without_contact();
     let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    let pairs = vec![0; heights.len()];
     let (p1, p2) = if check {
         (Phase::CheckWithContact, Phase::CheckWithoutContact)
     } else {
@@ -692,7 +710,7 @@ fn simulate_phases(
     let (with, stats) = run_phase(
         &system,
         &scenario.solver,
-        &heights,
+        (&heights, &pairs),
         interval,
         sink,
         p1,
@@ -704,7 +722,7 @@ fn simulate_phases(
             run_phase(
                 &free,
                 &scenario.solver,
-                &heights,
+                (&heights, &pairs),
                 interval,
                 sink,
                 p2,
@@ -715,88 +733,24 @@ fn simulate_phases(
     };
 
     let structures = [0, 1].map(|i| {
-        let s = &scenario.structures[i];
-        let m = &system.structures[i];
-        let mut floors: Vec<FloorReport> = with.floors[i]
-            .iter()
-            .zip(&without.floors[i])
-            .map(|(a, b)| FloorReport::pair(a, b))
-            .collect();
-        for f in &mut floors {
-            f.peak_acceleration_impact =
-                impact_at(&with.impacts, &heights, f.peak_acceleration_time);
-        }
-        let mine = |r: &RunRecord| -> Vec<StoreyRecord> {
-            r.storeys
-                .iter()
-                .filter(|x| x.structure == i)
-                .cloned()
-                .collect()
-        };
-        let (ya, yb) = (mine(&with), mine(&without));
-        for (a, b) in ya.iter().zip(&yb) {
-            if let Some(f) = floors.get_mut(a.storey) {
-                f.yielding(a, b);
-            }
-        }
-        let yielding = !ya.is_empty();
-        let over = |v: &[StoreyRecord], f: fn(&StoreyRecord) -> f64, sum: bool| {
-            yielding.then(|| {
-                if sum {
-                    v.iter().map(f).sum()
-                } else {
-                    v.iter().map(f).fold(0.0, f64::max)
-                }
-            })
-        };
-        StructureReport {
-            peak_ductility: over(&ya, StoreyRecord::peak_ductility, false),
-            peak_ductility_no_contact: over(&yb, StoreyRecord::peak_ductility, false),
-            max_residual_drift: over(&ya, |r| r.residual_drift.abs(), false),
-            max_residual_drift_no_contact: over(&yb, |r| r.residual_drift.abs(), false),
-            hysteretic_energy: over(&ya, |r| r.hysteretic_energy, true),
-            hysteretic_energy_no_contact: over(&yb, |r| r.hysteretic_energy, true),
-            min_yield_drift: yielding.then(|| {
-                ya.iter()
-                    .map(|r| r.yield_drift)
-                    .fold(f64::INFINITY, f64::min)
-            }),
-            name: s.name().to_string(),
-            periods: m.periods(),
-            damping_ratios: m.zeta.clone(),
-            peak_displacement: with.peak[i],
-            peak_displacement_no_contact: without.peak[i],
-            change_percent: change_percent(with.peak[i], without.peak[i]),
-            floors,
-        }
+        structure_report(
+            &scenario.structures[i],
+            i,
+            &system.structures[i],
+            (&with, &without),
+            &with.impacts,
+            &heights,
+            [with.peak[i], without.peak[i]],
+        )
     });
     let levels: Vec<LevelReport> = system
         .levels
         .iter()
         .enumerate()
-        .map(|(k, lv)| {
-            let (a, b) = (&with.levels[k], &without.levels[k]);
-            LevelReport {
-                height: lv.height,
-                gap: lv.gap,
-                effective_mass: lv.effective_mass,
-                peak_force: a.peak_force,
-                max_penetration: a.max_penetration,
-                impacts: a.impacts,
-                contact_time: a.contact_time,
-                peak_displacement: [a.peak_w1, a.peak_w2],
-                peak_displacement_no_contact: [b.peak_w1, b.peak_w2],
-                required_gap: b.max_closing.max(0.0),
-            }
-        })
+        .map(|(k, lv)| level_report(lv, &with.levels[k], &without.levels[k]))
         .collect();
-    let contact = ContactReport {
-        peak_force: levels.iter().map(|l| l.peak_force).fold(0.0, f64::max),
-        max_penetration: levels.iter().map(|l| l.max_penetration).fold(0.0, f64::max),
-        impacts: levels.iter().map(|l| l.impacts).sum(),
-        contact_time: levels.iter().map(|l| l.contact_time).sum(),
-    };
-    let mut separation = separations(&system, &without);
+    let contact = contact_report(&levels);
+    let mut separation = separations(&system.structures, &without);
 
     let mut warnings = scenario.warnings.clone();
     // the building codes of `[separation]` and every rule at every level, from the peaks
@@ -813,19 +767,138 @@ fn simulate_phases(
     }
     let h = scenario.main_height();
     for s in &structures {
-        let peak = s.peak_displacement.max(s.peak_displacement_no_contact);
-        if peak > PLAUSIBLE_DRIFT * h {
-            warnings.push(format!(
-                "{}: peak displacement {peak:.3} m at h = {h} m is a drift of {:.1} %, beyond {} %: \
-                 a building would long have yielded (elastic drifts are ≈ 0.5–2 %), so a linear \
-                 elastic model means little here; check the PGA and the stiffness",
-                s.name,
-                100.0 * peak / h,
-                100.0 * PLAUSIBLE_DRIFT
-            ));
+        drift_warning(s, h, &mut warnings);
+    }
+    level_warnings(&levels, &mut warnings);
+    run_warnings(scenario, &stats, &with, &without, &mut warnings);
+    Ok(Report {
+        title: scenario.title.clone(),
+        structures,
+        contact,
+        levels,
+        separation,
+        accuracy: AccuracyCheck::unchecked(),
+        energy: with.energy,
+        energy_no_contact: without.energy,
+        impact_log: with.impacts.clone(),
+        stats,
+        warnings,
+        with_contact: with,
+        without_contact: without,
+    })
+}
+
+/// Structure `i`'s report (`structure`, its modal model `model`) from the runs (with,
+/// without) contact; `impacts` those that load it (for the floor accelerations' pulses),
+/// `heights` every tracked level's height, `peak` its headline peak |w| with and without
+/// contact, m.
+fn structure_report(
+    structure: &Structure,
+    i: usize,
+    model: &ModalModel,
+    (with, without): (&RunRecord, &RunRecord),
+    impacts: &[Impact],
+    heights: &[f64],
+    peak: [f64; 2],
+) -> StructureReport {
+    let (s, m) = (structure, model);
+    let mut floors: Vec<FloorReport> = with.floors[i]
+        .iter()
+        .zip(&without.floors[i])
+        .map(|(a, b)| FloorReport::pair(a, b))
+        .collect();
+    for f in &mut floors {
+        f.peak_acceleration_impact = impact_at(impacts, heights, f.peak_acceleration_time);
+    }
+    let mine = |r: &RunRecord| -> Vec<StoreyRecord> {
+        r.storeys
+            .iter()
+            .filter(|x| x.structure == i)
+            .cloned()
+            .collect()
+    };
+    let (ya, yb) = (mine(with), mine(without));
+    for (a, b) in ya.iter().zip(&yb) {
+        if let Some(f) = floors.get_mut(a.storey) {
+            f.yielding(a, b);
         }
     }
-    for l in &levels {
+    let yielding = !ya.is_empty();
+    let over = |v: &[StoreyRecord], f: fn(&StoreyRecord) -> f64, sum: bool| {
+        yielding.then(|| {
+            if sum {
+                v.iter().map(f).sum()
+            } else {
+                v.iter().map(f).fold(0.0, f64::max)
+            }
+        })
+    };
+    StructureReport {
+        peak_ductility: over(&ya, StoreyRecord::peak_ductility, false),
+        peak_ductility_no_contact: over(&yb, StoreyRecord::peak_ductility, false),
+        max_residual_drift: over(&ya, |r| r.residual_drift.abs(), false),
+        max_residual_drift_no_contact: over(&yb, |r| r.residual_drift.abs(), false),
+        hysteretic_energy: over(&ya, |r| r.hysteretic_energy, true),
+        hysteretic_energy_no_contact: over(&yb, |r| r.hysteretic_energy, true),
+        min_yield_drift: yielding.then(|| {
+            ya.iter()
+                .map(|r| r.yield_drift)
+                .fold(f64::INFINITY, f64::min)
+        }),
+        name: s.name().to_string(),
+        periods: m.periods(),
+        damping_ratios: m.zeta.clone(),
+        peak_displacement: peak[0],
+        peak_displacement_no_contact: peak[1],
+        change_percent: change_percent(peak[0], peak[1]),
+        floors,
+    }
+}
+
+/// A contact level's report from its records with (`a`) and without (`b`) contact.
+fn level_report(lv: &Level, a: &LevelRecord, b: &LevelRecord) -> LevelReport {
+    LevelReport {
+        height: lv.height,
+        gap: lv.gap,
+        effective_mass: lv.effective_mass,
+        peak_force: a.peak_force,
+        max_penetration: a.max_penetration,
+        impacts: a.impacts,
+        contact_time: a.contact_time,
+        peak_displacement: [a.peak_w1, a.peak_w2],
+        peak_displacement_no_contact: [b.peak_w1, b.peak_w2],
+        required_gap: b.max_closing.max(0.0),
+    }
+}
+
+/// Totals and maxima over `levels`.
+fn contact_report(levels: &[LevelReport]) -> ContactReport {
+    ContactReport {
+        peak_force: levels.iter().map(|l| l.peak_force).fold(0.0, f64::max),
+        max_penetration: levels.iter().map(|l| l.max_penetration).fold(0.0, f64::max),
+        impacts: levels.iter().map(|l| l.impacts).sum(),
+        contact_time: levels.iter().map(|l| l.contact_time).sum(),
+    }
+}
+
+/// A structure whose headline peak (at height `h`, m) is a drift beyond [`PLAUSIBLE_DRIFT`].
+fn drift_warning(s: &StructureReport, h: f64, warnings: &mut Vec<String>) {
+    let peak = s.peak_displacement.max(s.peak_displacement_no_contact);
+    if peak > PLAUSIBLE_DRIFT * h {
+        warnings.push(format!(
+            "{}: peak displacement {peak:.3} m at h = {h} m is a drift of {:.1} %, beyond {} %: \
+             a building would long have yielded (elastic drifts are ≈ 0.5–2 %), so a linear \
+             elastic model means little here; check the PGA and the stiffness",
+            s.name,
+            100.0 * peak / h,
+            100.0 * PLAUSIBLE_DRIFT
+        ));
+    }
+}
+
+/// Levels whose penetration is implausible.
+fn level_warnings(levels: &[LevelReport], warnings: &mut Vec<String>) {
+    for l in levels {
         let p = l.max_penetration;
         if p > PLAUSIBLE_PENETRATION || (l.gap > 0.0 && p > l.gap) {
             let what = if l.gap > 0.0 && p > l.gap {
@@ -842,6 +915,16 @@ fn simulate_phases(
             ));
         }
     }
+}
+
+/// The step's and the energy balance's warnings of a run.
+fn run_warnings(
+    scenario: &Scenario,
+    stats: &Stats,
+    with: &RunRecord,
+    without: &RunRecord,
+    warnings: &mut Vec<String>,
+) {
     if scenario.solver.method == crate::integrate::Method::Rk4 && stats.max_contact_omega_dt > 0.5 {
         warnings.push(format!(
             "the contact is stiff for this step: ω_c·dt reached {:.2} (accurate below ≈0.5, unstable above ≈2.8); \
@@ -857,21 +940,6 @@ fn simulate_phases(
             ));
         }
     }
-    Ok(Report {
-        title: scenario.title.clone(),
-        structures,
-        contact,
-        levels,
-        separation,
-        accuracy: AccuracyCheck::unchecked(),
-        energy: with.energy,
-        energy_no_contact: without.energy,
-        impact_log: with.impacts.clone(),
-        stats,
-        warnings,
-        with_contact: with,
-        without_contact: without,
-    })
 }
 
 /// [`simulate`], and with `check` its self-check: the same scenario run again with the

@@ -10,24 +10,22 @@ use super::RawContact;
 use super::diagnostics::{Check, ScenarioError, quoted};
 use super::{CONTACT_LAWS, ContactSpec, MIN_CONTACT_HEIGHT_FRACTION};
 
-pub(super) fn contact(
+/// One contact table (`[contact]`, or one `[[contact]]` of a row) at byte `start` of the
+/// file, its keys named as `{key}.law`, `{key}.level[j].gap`, …; `min_length` is the lower of
+/// its two structures' heights, m.
+pub(super) fn contact_table(
     c: &Check,
-    raw: Option<&Spanned<RawContact>>,
+    r: &RawContact,
+    start: usize,
+    key: &str,
     min_length: f64,
     defaults: &mut Vec<String>,
 ) -> Result<ContactSpec, ScenarioError> {
-    let raw = raw.ok_or_else(|| {
-        c.missing(
-            "contact",
-            "a [contact] table with at least `stiffness` and `gap`",
-            None,
-        )
-    })?;
-    let near = Some(raw.span().start);
-    let r = raw.get_ref();
+    let k_ = |name: &str| format!("{key}.{name}");
+    let near = Some(start);
     let law_name = r.law.as_ref().map_or("hertz", |l| l.get_ref().as_str());
     if r.law.is_none() {
-        defaults.push("contact.law = \"hertz\"".into());
+        defaults.push(format!("{} = \"hertz\"", k_("law")));
     }
     let stiffness_unit = match law_name {
         "linear" | "kelvin" => "N/m",
@@ -38,7 +36,7 @@ pub(super) fn contact(
         (Some(k), true) => {
             return Err(c.invalid(
                 k,
-                "contact.stiffness",
+                &k_("stiffness"),
                 "law `stereomechanical` is instantaneous and has no stiffness",
             ));
         }
@@ -46,11 +44,11 @@ pub(super) fn contact(
         (k, false) => c.positive(
             c.required(
                 k,
-                "contact.stiffness",
+                &k_("stiffness"),
                 &format!("contact stiffness in {stiffness_unit}"),
                 near,
             )?,
-            "contact.stiffness",
+            &k_("stiffness"),
             stiffness_unit,
         )?,
     };
@@ -66,15 +64,15 @@ pub(super) fn contact(
             } else {
                 return Err(c.invalid(
                     e,
-                    "contact.restitution",
+                    &k_("restitution"),
                     "coefficient of restitution must be in [0, 1]",
                 ));
             }
         }
-        (Some(e), true) => c.restitution(e, "contact.restitution")?,
+        (Some(e), true) => c.restitution(e, &k_("restitution"))?,
         (None, true) => {
             return Err(c.missing(
-                "contact.restitution",
+                &k_("restitution"),
                 &format!("law `{law_name}` needs a coefficient of restitution"),
                 near,
             ));
@@ -82,7 +80,7 @@ pub(super) fn contact(
         (Some(e), false) => {
             return Err(c.invalid(
                 e,
-                "contact.restitution",
+                &k_("restitution"),
                 &format!(
                     "law `{law_name}` has no restitution parameter (it is used by kelvin, hertzdamp, jankowski, stereomechanical)"
                 ),
@@ -91,12 +89,12 @@ pub(super) fn contact(
         (None, false) => 1.0,
     };
     if r.restitution.is_some() {
-        c.usual(restitution, "contact.restitution", "");
+        c.usual(restitution, &k_("restitution"), "");
     }
     if let (Some(m), false) = (&r.damping_model, law_name == "hertzdamp") {
         return Err(c.invalid(
             m,
-            "contact.damping_model",
+            &k_("damping_model"),
             "only law `hertzdamp` takes a damping model",
         ));
     }
@@ -121,7 +119,7 @@ pub(super) fn contact(
                     let m = r.damping_model.as_ref().unwrap_or_else(|| unreachable!());
                     return Err(c.invalid(
                         m,
-                        "contact.damping_model",
+                        &k_("damping_model"),
                         "must be one of \"lankarani-nikravesh\", \"hunt-crossley\", \"ye-li-zhu\"",
                     ));
                 }
@@ -136,7 +134,7 @@ pub(super) fn contact(
             let l = r.law.as_ref().unwrap_or_else(|| unreachable!());
             return Err(c.invalid(
                 l,
-                "contact.law",
+                &k_("law"),
                 &format!("must be one of {}", quoted(CONTACT_LAWS)),
             ));
         }
@@ -159,21 +157,21 @@ pub(super) fn contact(
     let levels = match &r.level {
         None => {
             let gap = c.non_negative(
-                c.required(&r.gap, "contact.gap", "at-rest gap in m (≥ 0)", near)?,
-                "contact.gap",
+                c.required(&r.gap, &k_("gap"), "at-rest gap in m (≥ 0)", near)?,
+                &k_("gap"),
                 "m",
             )?;
             let height = match &r.height {
-                Some(h) => check_height(h, "contact.height")?,
+                Some(h) => check_height(h, &k_("height"))?,
                 None => {
-                    defaults.push(format!("contact.height = {min_length} (min(L1, L2))"));
+                    defaults.push(format!("{} = {min_length} (min(L1, L2))", k_("height")));
                     min_length
                 }
             };
             vec![ContactLevel { height, gap }]
         }
         Some(levels) => {
-            for (k, v) in [("contact.gap", &r.gap), ("contact.height", &r.height)] {
+            for (k, v) in [(&k_("gap"), &r.gap), (&k_("height"), &r.height)] {
                 if let Some(v) = v {
                     return Err(c.invalid(
                         v,
@@ -183,11 +181,11 @@ pub(super) fn contact(
                 }
             }
             if levels.is_empty() {
-                return Err(c.missing("contact.level", "at least one [[contact.level]]", near));
+                return Err(c.missing(&k_("level"), "at least one [[contact.level]]", near));
             }
             let mut out = Vec::with_capacity(levels.len());
             for (i, lv) in levels.iter().enumerate() {
-                let key = |k: &str| format!("contact.level[{}].{k}", i + 1);
+                let key = |k: &str| format!("{key}.level[{}].{k}", i + 1);
                 let lnear = Some(lv.span().start);
                 let l = lv.get_ref();
                 let height = check_height(

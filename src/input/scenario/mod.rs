@@ -28,6 +28,7 @@ pub mod keys;
 mod plausibility;
 mod ranges;
 mod record_keys;
+mod row_keys;
 mod solver_keys;
 mod structure_keys;
 pub mod suite;
@@ -38,6 +39,9 @@ pub use ranges::{
     PLAUSIBLE_MIN_PGA, USUAL_DAMPING_RATIO, USUAL_RECORD_DT, USUAL_STRUCTURE_PERIOD,
     physical_range, usual_range,
 };
+
+/// Most structures of a row (`[[structure]]` tables).
+pub const MAX_ROW: usize = 100;
 
 /// Most modes a structure may keep.
 pub const MAX_MODES: i64 = 500;
@@ -91,7 +95,7 @@ pub const CONTACT_LAWS: &[&str] = &[
 struct RawScenario {
     title: Option<String>,
     structure: Option<Spanned<Vec<RawStructure>>>,
-    contact: Option<Spanned<RawContact>>,
+    contact: Option<Spanned<row_keys::RawContacts>>,
     ground_motion: Option<Spanned<RawGround>>,
     solver: Option<Spanned<RawSolver>>,
     separation: Option<Spanned<crate::input::scenario::design::RawSeparation>>,
@@ -168,6 +172,8 @@ enum RawZeta {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawContact {
+    /// A row's `[[contact]]`: the pair's two structures by name.
+    between: Option<Spanned<Vec<Spanned<String>>>>,
     law: Option<Spanned<String>>,
     stiffness: Option<Spanned<f64>>,
     restitution: Option<Spanned<f64>>,
@@ -239,10 +245,15 @@ pub struct ContactSpec {
 pub struct Scenario {
     /// Title.
     pub title: String,
-    /// Structure 1 (left) and 2 (right).
-    pub structures: [Structure; 2],
-    /// Contact.
+    /// The structures in row order, left to right: structure 1 and 2 of a pair, N ≥ 2 of a
+    /// row of buildings (issue 29).
+    pub structures: Vec<Structure>,
+    /// The contact of the first adjacent pair (structures 1 and 2): a pair's only contact.
     pub contact: ContactSpec,
+    /// A row (more than two structures): the contacts of the following adjacent pairs,
+    /// structures 2–3, 3–4, … in row order; empty for a pair. [`Scenario::contacts`] gives
+    /// every pair's.
+    pub row_contacts: Vec<ContactSpec>,
     /// Ground motion.
     pub ground_motion: GroundMotion,
     /// Solver.
@@ -302,8 +313,11 @@ impl Scenario {
             name: Arc::from(file),
             warnings: Default::default(),
         };
-        let raw: RawScenario = toml::from_str(text)
-            .map_err(|e| sweep_file(text, file).unwrap_or_else(|| ctx.toml_error(&e)))?;
+        let raw: RawScenario = toml::from_str(text).map_err(|e| {
+            sweep_file(text, file)
+                .or_else(|| row_keys::both_contact_forms(&ctx))
+                .unwrap_or_else(|| ctx.toml_error(&e))
+        })?;
         let missing = missing_keys(&raw, &ctx);
         if missing.len() > 1 {
             return Err(ScenarioError::MissingMany {
@@ -330,17 +344,45 @@ impl Scenario {
         Scenario::from_toml(&text, origin, base_dir)
     }
 
-    /// The assembled system with contact.
+    /// The assembled system with contact (of a row: every structure, every pair's levels).
     pub fn system(&self) -> System {
-        let models = [self.structures[0].modal(), self.structures[1].modal()];
+        let models: Vec<_> = self.structures.iter().map(Structure::modal).collect();
         let hysteresis = crate::model::hysteresis::Hysteresis::new(&self.structures, &models);
-        System::new(
-            models,
-            &self.contact.law,
-            &self.contact.levels,
-            self.ground_motion.clone(),
-        )
-        .with_hysteresis(hysteresis)
+        let pairs: Vec<crate::model::system::PairContact> = self
+            .contacts()
+            .map(|c| crate::model::system::PairContact {
+                law: c.law,
+                levels: c.levels.clone(),
+            })
+            .collect();
+        System::row(models, &pairs, self.ground_motion.clone()).with_hysteresis(hysteresis)
+    }
+
+    /// Every adjacent pair's contact, in row order (one for a pair).
+    pub fn contacts(&self) -> impl Iterator<Item = &ContactSpec> {
+        std::iter::once(&self.contact).chain(&self.row_contacts)
+    }
+
+    /// Whether this is a row of more than two structures (issue 29): what only a pair
+    /// supports (`pounding separation`, sweeps, suites, OpenSees, …) refuses it.
+    pub fn is_row(&self) -> bool {
+        self.structures.len() > 2
+    }
+
+    /// The pair of structures `p` and `p + 1` (0-based) of a row as a scenario of its own:
+    /// those two structures, their contact, the same ground motion, solver and design inputs
+    /// (for a pair, `pair(0)` is the scenario itself). What the row's per-pair separation
+    /// checks read, and the row taken apart into pairs.
+    pub fn pair(&self, p: usize) -> Scenario {
+        let mut sc = self.clone();
+        sc.structures = vec![self.structures[p].clone(), self.structures[p + 1].clone()];
+        sc.contact = self
+            .contacts()
+            .nth(p)
+            .cloned()
+            .unwrap_or_else(|| self.contact.clone());
+        sc.row_contacts = Vec::new();
+        sc
     }
 
     /// Whether either structure has yielding storeys (issue 16).
@@ -348,7 +390,8 @@ impl Scenario {
         self.structures.iter().any(|s| s.hysteresis().is_some())
     }
 
-    /// Height whose displacements are reported as "the" contact height: the highest level, m.
+    /// Height whose displacements are reported as "the" contact height: the highest level of
+    /// the first pair, m.
     pub fn main_height(&self) -> f64 {
         self.contact
             .levels

@@ -8,12 +8,12 @@ use crate::model::ground_motion::GroundMotion;
 use crate::model::structure::{Damping, Stiffness, Structure};
 
 use super::RawScenario;
-use super::contact_keys::contact;
 use super::diagnostics::{Check, Ctx, Location, ScenarioError, quoted};
 use super::floors;
 use super::ground_keys::ground;
 use super::plausibility::plausibility;
 use super::ranges::{USUAL_DAMPING_RATIO, USUAL_STRUCTURE_PERIOD};
+use super::row_keys::row_contacts;
 use super::solver_keys::solver;
 use super::structure_keys::structure;
 use super::suite;
@@ -34,7 +34,7 @@ pub(super) fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, Strin
         ),
         Some(list) => {
             let near = Some(list.span().start);
-            for (i, s) in list.get_ref().iter().enumerate().take(2) {
+            for (i, s) in list.get_ref().iter().enumerate().take(super::MAX_ROW) {
                 let key = |k: &str| format!("structure[{}].{k}", i + 1);
                 if s.kind.as_ref().is_some_and(|k| k.get_ref() != "cantilever") {
                     // a building with floors: its keys are checked by `floors`
@@ -64,45 +64,46 @@ pub(super) fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, Strin
             "a [contact] table with at least `stiffness` and `gap`",
         ),
         Some(c) => {
-            let near = Some(c.span().start);
-            let r = c.get_ref();
-            let law = r.law.as_ref().map_or("hertz", |l| l.get_ref().as_str());
-            if r.stiffness.is_none() && law != "stereomechanical" {
-                miss(near, "contact.stiffness".into(), "contact stiffness");
-            }
-            if r.restitution.is_none()
-                && matches!(
-                    law,
-                    "kelvin" | "hertzdamp" | "jankowski" | "stereomechanical"
-                )
-            {
-                miss(
-                    near,
-                    "contact.restitution".into(),
-                    "a coefficient of restitution for this law",
-                );
-            }
-            match &r.level {
-                None if r.gap.is_none() => {
-                    miss(near, "contact.gap".into(), "at-rest gap in m (≥ 0)")
+            for (key, r, at) in contact_tables(c) {
+                let near = Some(at);
+                let law = r.law.as_ref().map_or("hertz", |l| l.get_ref().as_str());
+                if r.stiffness.is_none() && law != "stereomechanical" {
+                    miss(near, format!("{key}.stiffness"), "contact stiffness");
                 }
-                None => {}
-                Some(levels) => {
-                    for (i, l) in levels.iter().enumerate() {
-                        let near = Some(l.span().start);
-                        if l.get_ref().height.is_none() {
-                            miss(
-                                near,
-                                format!("contact.level[{}].height", i + 1),
-                                "contact height in m",
-                            );
-                        }
-                        if l.get_ref().gap.is_none() {
-                            miss(
-                                near,
-                                format!("contact.level[{}].gap", i + 1),
-                                "at-rest gap in m (≥ 0)",
-                            );
+                if r.restitution.is_none()
+                    && matches!(
+                        law,
+                        "kelvin" | "hertzdamp" | "jankowski" | "stereomechanical"
+                    )
+                {
+                    miss(
+                        near,
+                        format!("{key}.restitution"),
+                        "a coefficient of restitution for this law",
+                    );
+                }
+                match &r.level {
+                    None if r.gap.is_none() => {
+                        miss(near, format!("{key}.gap"), "at-rest gap in m (≥ 0)")
+                    }
+                    None => {}
+                    Some(levels) => {
+                        for (i, l) in levels.iter().enumerate() {
+                            let near = Some(l.span().start);
+                            if l.get_ref().height.is_none() {
+                                miss(
+                                    near,
+                                    format!("{key}.level[{}].height", i + 1),
+                                    "contact height in m",
+                                );
+                            }
+                            if l.get_ref().gap.is_none() {
+                                miss(
+                                    near,
+                                    format!("{key}.level[{}].gap", i + 1),
+                                    "at-rest gap in m (≥ 0)",
+                                );
+                            }
                         }
                     }
                 }
@@ -150,58 +151,86 @@ pub(super) fn missing_keys(raw: &RawScenario, ctx: &Ctx) -> Vec<(Location, Strin
     out
 }
 
+/// Every contact table of the file with the name its keys take (`contact`, `contact[2]`) and
+/// where it starts.
+fn contact_tables(
+    c: &toml::Spanned<super::row_keys::RawContacts>,
+) -> Vec<(String, &super::RawContact, usize)> {
+    match c.get_ref() {
+        super::row_keys::RawContacts::One(r) => vec![("contact".into(), &**r, c.span().start)],
+        super::row_keys::RawContacts::Many(list) => (list.iter().enumerate())
+            .map(|(i, t)| (format!("contact[{}]", i + 1), t.get_ref(), t.span().start))
+            .collect(),
+    }
+}
+
 /// A building with floors touches only at its floors: every contact height must be one of
-/// them (a cantilever may touch at any height up to its top).
+/// them (a cantilever may touch at any height up to its top). `contacts[p]` is the pair of
+/// structures p and p + 1.
 pub(super) fn floors_at_contact(
     c: &Check,
     raw: &RawScenario,
-    structures: &[Structure; 2],
-    contact: &ContactSpec,
+    structures: &[Structure],
+    contacts: &[ContactSpec],
 ) -> Result<(), ScenarioError> {
     let Some(rc) = raw.contact.as_ref() else {
         return Ok(());
     };
-    let levels = rc.get_ref().level.as_ref();
-    for (k, lv) in contact.levels.iter().enumerate() {
-        for (i, s) in structures.iter().enumerate() {
-            let Some(heights) = s.floor_heights() else {
-                continue;
-            };
-            if heights
-                .iter()
-                .any(|&h| crate::model::building::same_height(h, lv.height))
-            {
-                continue;
+    let tables = contact_tables(rc);
+    for (p, contact) in contacts.iter().enumerate() {
+        // the table of this pair: the one whose `between` names it, else the p-th
+        let (name, table, start) = tables
+            .iter()
+            .find(|(_, t, _)| {
+                t.between.as_ref().is_some_and(|b| {
+                    let names = [p, p + 1].map(|i| structures[i].name());
+                    b.get_ref()
+                        .iter()
+                        .all(|n| names.contains(&n.get_ref().as_str()))
+                })
+            })
+            .or_else(|| tables.get(p))
+            .map(|(n, t, s)| (n.as_str(), *t, *s))
+            .unwrap_or(("contact", tables[0].1, tables[0].2));
+        let levels = table.level.as_ref();
+        for (k, lv) in contact.levels.iter().enumerate() {
+            for (i, s) in structures.iter().enumerate().skip(p).take(2) {
+                let Some(heights) = s.floor_heights() else {
+                    continue;
+                };
+                if heights
+                    .iter()
+                    .any(|&h| crate::model::building::same_height(h, lv.height))
+                {
+                    continue;
+                }
+                let (key, at) = match levels.and_then(|l| l.get(k)) {
+                    Some(l) => (
+                        format!("{name}.level[{}].height", k + 1),
+                        l.get_ref()
+                            .height
+                            .as_ref()
+                            .map_or(l.span().start, |h| h.span().start),
+                    ),
+                    None => (
+                        format!("{name}.height"),
+                        table.height.as_ref().map_or(start, |h| h.span().start),
+                    ),
+                };
+                let floors: Vec<String> = heights.iter().map(|h| format!("{h}")).collect();
+                return Err(ScenarioError::Invalid {
+                    at: c.ctx.at(Some(at)),
+                    key,
+                    value: format!("{} m", lv.height),
+                    reason: format!(
+                        "structure {} (\"{}\") has floors at {} m: a building with floors touches \
+                         its neighbour only at a floor, so a contact height must be one of them",
+                        i + 1,
+                        s.name(),
+                        floors.join(", ")
+                    ),
+                });
             }
-            let (key, at) = match levels.and_then(|l| l.get(k)) {
-                Some(l) => (
-                    format!("contact.level[{}].height", k + 1),
-                    l.get_ref()
-                        .height
-                        .as_ref()
-                        .map_or(l.span().start, |h| h.span().start),
-                ),
-                None => (
-                    "contact.height".to_string(),
-                    rc.get_ref()
-                        .height
-                        .as_ref()
-                        .map_or(rc.span().start, |h| h.span().start),
-                ),
-            };
-            let floors: Vec<String> = heights.iter().map(|h| format!("{h}")).collect();
-            return Err(ScenarioError::Invalid {
-                at: c.ctx.at(Some(at)),
-                key,
-                value: format!("{} m", lv.height),
-                reason: format!(
-                    "structure {} (\"{}\") has floors at {} m: a building with floors touches its \
-                     neighbour only at a floor, so a contact height must be one of them",
-                    i + 1,
-                    s.name(),
-                    floors.join(", ")
-                ),
-            });
         }
     }
     Ok(())
@@ -223,38 +252,27 @@ pub(super) fn validate(
             "two [[structure]] tables (structure 1 on the left, 2 on the right)",
             None,
         )?;
-        if list.get_ref().len() != 2 {
-            return Err(ScenarioError::Invalid {
-                at: ctx.at(Some(list.span().start)),
-                key: "structure".into(),
-                value: format!("{} table(s)", list.get_ref().len()),
-                reason: "exactly two [[structure]] tables are needed".into(),
-            });
-        }
+        super::row_keys::check_count(&c, list.get_ref().len(), list.span().start)?;
         let start = list.span().start;
-        let mut it =
-            list.get_ref()
-                .iter()
-                .enumerate()
-                .map(|(i, s)| match floors::kind(&c, i, s)? {
-                    floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
-                    kind => floors::floor_structure(
-                        &c,
-                        i,
-                        s,
-                        kind,
-                        start,
-                        base_dir,
-                        &mut defaults,
-                        &mut structure_warnings,
-                    ),
-                });
-        let a = it.next().unwrap_or_else(|| unreachable!())?;
-        let b = it.next().unwrap_or_else(|| unreachable!())?;
-        [a, b]
+        list.get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, s)| match floors::kind(&c, i, s)? {
+                floors::Kind::Cantilever => structure(&c, i, s, start, &mut defaults),
+                kind => floors::floor_structure(
+                    &c,
+                    i,
+                    s,
+                    kind,
+                    start,
+                    base_dir,
+                    &mut defaults,
+                    &mut structure_warnings,
+                ),
+            })
+            .collect::<Result<Vec<Structure>, ScenarioError>>()?
     };
-    let min_length = structures[0].length().min(structures[1].length());
-    let contact = contact(&c, raw.contact.as_ref(), min_length, &mut defaults)?;
+    let mut contacts = row_contacts(&c, raw.contact.as_ref(), &structures, &mut defaults)?;
     let suite = suite::suite(&c, &raw, base_dir, records)?;
     let ground_motion = match suite {
         Some(_) => GroundMotion::None,
@@ -264,7 +282,7 @@ pub(super) fn validate(
     let yielding = structures.iter().any(|s| s.hysteresis().is_some());
     let (solver, output_interval) = solver(&c, raw.solver.as_ref(), from, yielding, &mut defaults)?;
     suite::note_defaults(suite.as_ref(), &mut defaults);
-    floors_at_contact(&c, &raw, &structures, &contact)?;
+    floors_at_contact(&c, &raw, &structures, &contacts)?;
     // each key within its range can still combine into a structure no run can mean (a huge
     // mass on a thread-like EI): its first period must be within [1e-3, 1e4] s
     for (i, st) in structures.iter().enumerate() {
@@ -281,7 +299,9 @@ pub(super) fn validate(
         }
     }
     let mut warnings = structure_warnings;
-    warnings.extend(plausibility(&contact, &ground_motion));
+    for contact in &contacts {
+        warnings.extend(plausibility(contact, &ground_motion));
+    }
     warnings.extend(derived_warnings(&structures));
     let design = crate::input::scenario::design::validate(
         &c,
@@ -315,7 +335,8 @@ pub(super) fn validate(
         floor_stations,
         title: raw.title.unwrap_or_else(|| ctx.file.to_string()),
         structures,
-        contact,
+        contact: contacts.remove(0),
+        row_contacts: contacts,
         ground_motion,
         solver,
         output_interval,
@@ -356,7 +377,7 @@ pub(super) fn validate(
 /// Warnings about what several keys give together: the first-mode period of a structure given
 /// by its stiffness (not by `period`), the first-mode damping ratio of physical damping
 /// (`strain_rate_damping`, `air_damping`), each outside its usual band ([`usual_range`]).
-pub(super) fn derived_warnings(structures: &[Structure; 2]) -> Vec<String> {
+pub(super) fn derived_warnings(structures: &[Structure]) -> Vec<String> {
     let mut out = Vec::new();
     for (i, st) in structures.iter().enumerate() {
         let (by_period, physical) = match st {

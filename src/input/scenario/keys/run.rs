@@ -24,14 +24,16 @@ pub(super) const TOP: &[KeyInfo] = &[
         "structure",
         Kind::Table,
         "",
-        "[[structure]], exactly two: structure 1 (left), structure 2 (right)",
+        "[[structure]]: two, structure 1 (left) and 2 (right); or a row of up to 100 in order \
+         along the row (issue 29), each with its own `name`",
     ),
     KeyInfo::new(
         Top,
         "contact",
         Kind::Table,
         "",
-        "[contact]: the contact law and where the structures meet",
+        "[contact]: the contact law and where the structures meet; a row: one [[contact]] per \
+         adjacent pair, each with `between`",
     ),
     KeyInfo::new(
         Top,
@@ -73,6 +75,15 @@ pub(super) const TOP: &[KeyInfo] = &[
 
 /// `[contact]` and `[[contact.level]]`.
 pub(super) const CONTACT: &[KeyInfo] = &[
+    KeyInfo::new(
+        Contact,
+        "between",
+        Kind::Text,
+        "",
+        "a row's [[contact]]: the two adjacent structures it is between, by `name`, as a list \
+         (`between = [\"A\", \"B\"]`, either order); every adjacent pair needs its own table \
+         (neighbours that cannot touch: a gap larger than any motion)",
+    ),
     KeyInfo::new(
         Contact,
         "law",
