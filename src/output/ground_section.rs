@@ -3,9 +3,9 @@
 //! and the target of `scale_to_pga` or `scale_to_sa`).
 //!
 //! Keys (SI): `kind` (`"harmonic"`, `"record"`, `"none"`); harmonic: `pga` (m/s²), `pga_g`,
-//! `period` (s); record: `record` (its description), `component` (or null), `dt` (s), `points`,
-//! `duration` (s), `pga` (m/s²) and `pga_g` of the record as run, `scale_factor` (1 when not
-//! scaled), and when scaled `scale_to_pga` = { `pga` (m/s²), `pga_g` } or `scale_to_sa` =
+//! `period` (s); record: `record` (its description), `component` (only when the file names it:
+//! summary.json has no nulls), `dt` (s), `points`, `duration` (s), `pga` (m/s²) and `pga_g` of
+//! the record as run, `scale_factor` (1 when not scaled), and when scaled `scale_to_pga` = { `pga` (m/s²), `pga_g` } or `scale_to_sa` =
 //! { `period` (s), `damping`, `sa` (m/s²), `sa_g`, `psa_before` (m/s², the record's PSA at
 //! `period` as read) }.
 
@@ -29,7 +29,6 @@ pub fn ground_section(g: &GroundMotion) -> Value {
             let mut s = json!({
                 "kind": "record",
                 "record": r.description,
-                "component": r.component,
                 "dt": r.dt,
                 "points": r.num_samples(),
                 "duration": r.duration(),
@@ -37,6 +36,9 @@ pub fn ground_section(g: &GroundMotion) -> Value {
                 "pga_g": r.pga() / gr,
                 "scale_factor": r.scaling.map_or(1.0, |s| s.factor),
             });
+            if let Some(c) = &r.component {
+                s["component"] = json!(c);
+            }
             match r.scaling.map(|s| s.target) {
                 Some(ScaleTarget::Pga { pga }) => {
                     s["scale_to_pga"] = json!({ "pga": pga * gr, "pga_g": pga });
