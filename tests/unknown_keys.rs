@@ -135,6 +135,7 @@ fn every_scenario_table_names_itself_and_its_keys() {
         "file",
         "units",
         "scale_to_pga",
+        "scale_to_sa",
         "dt",
         "component",
         "processing",

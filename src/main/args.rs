@@ -175,6 +175,10 @@ pub enum Command {
     ///
     /// Prints each record's factor, the lowest mean-to-target ratio and where, and what governs;
     /// refuses, with the reason, a suite that cannot meet the rule. Draws DIR/scaling.png/.svg.
+    ///
+    /// With --sa T,SA instead (no --target, --rule, --t1): each record on its own scaled to a
+    /// pseudo-acceleration SA (g) at the period T (s), the factor a scenario's
+    /// `scale_to_sa = { period = T, sa = SA }` applies, with the PSA and PGA before and after.
     Scale(ScaleArgs),
     /// How likely pounding is: a fragility study (multi-stripe analysis). Every record of the
     /// study's suite is scaled to each intensity level (stripe) and run with and without
@@ -485,14 +489,21 @@ pub struct ScaleArgs {
     pub records: Vec<PathBuf>,
     /// The target spectrum: asce7:sds=…,sd1=…,tl=… | ec8:ag=…,ground_type=…,type=… |
     /// table:FILE (as `pounding separation --spectrum`).
-    #[arg(long, value_name = "SPEC")]
-    pub target: String,
+    #[arg(long, value_name = "SPEC", required_unless_present = "sa")]
+    pub target: Option<String>,
     /// The code's rule.
-    #[arg(long, value_parser = ["asce7", "ec8"])]
-    pub rule: String,
+    #[arg(long, value_parser = ["asce7", "ec8"], required_unless_present = "sa")]
+    pub rule: Option<String>,
     /// First-mode periods of the structures, s (one or two).
-    #[arg(long, value_name = "T1[,T2]")]
-    pub t1: String,
+    #[arg(long, value_name = "T1[,T2]", required_unless_present = "sa")]
+    pub t1: Option<String>,
+    /// Scale each record on its own to a pseudo-acceleration SA_G (g) at PERIOD (s), instead
+    /// of a suite to a spectrum.
+    #[arg(long, value_name = "PERIOD,SA_G", conflicts_with_all = ["target", "rule", "t1", "range", "factor_limits", "target_scale"])]
+    pub sa: Option<String>,
+    /// With --sa: the oscillator's damping ratio, in [0, 1).
+    #[arg(long, requires = "sa", default_value_t = pounding::analysis::record_spectrum::DEFAULT_DAMPING)]
+    pub damping: f64,
     /// A wider period range than the code's, s (e.g. to include the modes of 90 % mass
     /// participation, ASCE 7-16 §16.2.3.1).
     #[arg(long, value_name = "LO,HI")]

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use pounding::analysis::record_spectrum as rs;
 use pounding::input::scenario::design::spectrum_from_arg;
-use pounding::model::ground_motion::Record;
+use pounding::model::ground_motion::{Record, SaTarget};
 use pounding::output::record_summary;
 
 use super::args::{self, parse_list, parse_pair};
@@ -71,15 +71,22 @@ pub fn spectrum(a: args::SpectrumArgs, quiet: bool) -> anyhow::Result<()> {
 }
 
 pub fn scale(a: args::ScaleArgs, quiet: bool) -> anyhow::Result<()> {
-    let rule = rs::ScalingRule::from_name(&a.rule)
-        .ok_or_else(|| anyhow!("--rule {}: must be asce7 or ec8", a.rule))?;
-    let spectrum = spectrum_from_arg(&a.target)?;
+    if let Some(sa) = &a.sa {
+        return scale_to_sa(&a, sa);
+    }
+    // (clap requires these without --sa)
+    let (Some(rule), Some(target), Some(t1)) = (&a.rule, &a.target, &a.t1) else {
+        anyhow::bail!("give --target, --rule and --t1 (a suite to a spectrum), or --sa T,SA");
+    };
+    let rule = rs::ScalingRule::from_name(rule)
+        .ok_or_else(|| anyhow!("--rule {rule}: must be asce7 or ec8"))?;
+    let spectrum = spectrum_from_arg(target)?;
     let target = match a.target_scale {
         None => rs::Target::for_rule(spectrum, rule),
         Some(f) if f.is_finite() && f > 0.0 => rs::Target::scaled(spectrum, f),
         Some(f) => anyhow::bail!("--target-scale {f}: must be a positive number"),
     };
-    let mut opts = rs::ScalingOptions::new(rule, &parse_list(&a.t1, "--t1")?);
+    let mut opts = rs::ScalingOptions::new(rule, &parse_list(t1, "--t1")?);
     opts.required_ratio = a.ratio;
     if let Some(r) = a.range {
         let (lo, hi) = parse_pair(&r, "--range")?;
@@ -106,6 +113,28 @@ pub fn scale(a: args::ScaleArgs, quiet: bool) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out)?;
     let fig = pounding::figures::spectrum::scaling_figure(&suite, &a.out.join("scaling"))?;
     quiet_or(quiet || a.json, || println!("wrote {}", list_paths(&fig)))
+}
+
+/// `pounding scale --sa T,SA`: each record's factor to the target PSA, table or JSON.
+fn scale_to_sa(a: &args::ScaleArgs, sa: &str) -> anyhow::Result<()> {
+    let (period, sa_g) = parse_pair(sa, "--sa")?;
+    let target = SaTarget {
+        period,
+        sa: sa_g,
+        damping: a.damping,
+    };
+    let read = read_records(&a.records, a.component.as_deref(), a.units.as_deref(), a.dt)?;
+    let members: Vec<rs::SuiteMember> = read
+        .iter()
+        .map(|(name, record)| rs::SuiteMember { name, record })
+        .collect();
+    let scaled = rs::single::SaScaling::compute(&members, &target)?;
+    if a.json {
+        println!("{}", scaled.json());
+    } else {
+        print!("{}", scaled.text());
+    }
+    Ok(())
 }
 
 /// Reads every record file with the same options; the error names the file.

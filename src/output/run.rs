@@ -51,6 +51,8 @@ struct Summary<'a> {
     report: &'a Report,
     contact_law: &'static str,
     solver: SolverInfo,
+    /// What shook the structures, with a record's scaling ([`super::ground_section`]).
+    ground_motion: serde_json::Value,
     /// Keys the scenario left out and the defaults used for them (`key = value`).
     defaults_applied: &'a [String],
     /// A suite's own section ([`RunWriter::with_suite`]); absent for one record.
@@ -79,6 +81,7 @@ pub fn summary_json_with(
             &report.stats,
             (&report.energy, &report.energy_no_contact),
         ),
+        ground_motion: super::ground_section::ground_section(&scenario.ground_motion),
         defaults_applied: &scenario.defaults_applied,
         suite,
     };

@@ -1,8 +1,10 @@
 //! Response spectra of recorded ground motions (issue 27) and the scaling of records and suites
 //! to a target spectrum by the codes' rules.
 //!
-//! - [`sdof`]: the exact response of a linear oscillator to a piecewise-linear ground
-//!   acceleration (Nigam & Jennings 1969), with the peaks of the continuous response;
+//! - [`sdof`] (in the model layer, [`crate::model::ground_motion::sdof`], where the record
+//!   reader's `scale_to_sa` uses it too): the exact response of a linear oscillator to a
+//!   piecewise-linear ground acceleration (Nigam & Jennings 1969), with the peaks of the
+//!   continuous response;
 //! - [`ResponseSpectrum`]: per period T (s) the spectral displacement S_d = max|u| (m), the
 //!   pseudo-velocity PSV = ωS_d (m/s), the pseudo-acceleration PSA = ω²S_d (m/s²) and the peak
 //!   total acceleration max|ü + a_g| (m/s²), ω = 2π/T; at T = 0 (a rigid oscillator) S_d = PSV = 0
@@ -18,7 +20,10 @@
 //! free vibration after the record's end counts (it matters at long periods).
 
 pub mod scaling;
-pub mod sdof;
+pub mod single;
+
+pub use crate::model::ground_motion::sdof;
+pub use crate::model::ground_motion::sdof::{DEFAULT_DAMPING, MIN_PERIOD_OVER_DT};
 
 use std::f64::consts::PI;
 
@@ -30,14 +35,6 @@ pub use scaling::{
     PeriodRange, ScaledRecord, ScaledSuite, ScalingError, ScalingOptions, ScalingRule, SuiteMember,
     SuiteScaling, Target,
 };
-
-/// The damping ratio of the codes' spectra and of `pounding spectrum` by default: 5 %.
-pub const DEFAULT_DAMPING: f64 = 0.05;
-
-/// Shortest positive period computed, as a fraction of the record's time step: below dt/100 the
-/// oscillator follows the ground (PSA is the PGA to about 1/(ωdt) < 0.2 %) and the exact
-/// sub-stepping would cost ∝ 1/T; such a period is refused with that reason.
-pub const MIN_PERIOD_OVER_DT: f64 = 0.01;
 
 /// What is wrong with a spectrum's input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

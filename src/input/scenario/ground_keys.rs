@@ -4,9 +4,13 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use serde::Deserialize;
 use toml::Spanned;
 
-use crate::model::ground_motion::{GroundMotion, Harmonic, Record, RecordOptions};
+use crate::model::ground_motion::sdof::DEFAULT_DAMPING;
+use crate::model::ground_motion::{
+    GroundMotion, Harmonic, Record, RecordError, RecordOptions, SaTarget,
+};
 
 use super::RawGround;
 use super::RecordCache;
@@ -55,6 +59,7 @@ pub(super) fn ground(
                     ("file", g.file.is_some()),
                     ("units", g.units.is_some()),
                     ("scale_to_pga", g.scale_to_pga.is_some()),
+                    ("scale_to_sa", g.scale_to_sa.is_some()),
                     ("dt", g.dt.is_some()),
                     ("component", g.component.is_some()),
                     ("processing", g.processing.is_some()),
@@ -106,21 +111,19 @@ pub(super) fn ground(
                 None => None,
             };
             let path = base_dir.join(file.get_ref());
+            let scale_to_sa = scale_to_sa(c, g)?;
             let opts = RecordOptions {
                 units,
                 dt,
                 scale_to_pga,
+                scale_to_sa,
                 component,
                 processing,
             };
             let read = || {
                 Record::read(&path, &opts)
                     .map(Arc::new)
-                    .map_err(|e| ScenarioError::Record {
-                        at: c.ctx.at(Some(file.span().start)),
-                        key: "ground_motion.file".into(),
-                        source: Box::new(e),
-                    })
+                    .map_err(|e| record_error(c, g, file, e))
             };
             let record = match records {
                 None => read()?,
@@ -147,7 +150,7 @@ pub(super) fn ground(
                         &format!(
                             "the record's {what} is {x:e} {unit}, outside [{lo:e}, {hi:e}] {unit} \
                              ({range_of}): check the file's units (`units`, `dt`) or scale it \
-                             with `scale_to_pga`"
+                             with `scale_to_pga` or `scale_to_sa`"
                         ),
                     ));
                 }
@@ -161,5 +164,93 @@ pub(super) fn ground(
             "ground_motion.kind",
             "must be \"harmonic\", \"record\", \"spectrum\" or \"suite\"",
         )),
+    }
+}
+
+/// `scale_to_sa = { period = 1.0, sa = 0.4, damping = 0.05 }`: a record scaled so that its
+/// pseudo-acceleration at `period` (s) is `sa` (g), damping ratio `damping` (default 5 %).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawScaleToSa {
+    period: Option<Spanned<f64>>,
+    sa: Option<Spanned<f64>>,
+    damping: Option<Spanned<f64>>,
+}
+
+/// `ground_motion.scale_to_sa`, checked: not with `scale_to_pga`; T and S_a finite, > 0 and in
+/// their ranges (the key table's); ζ in [0, 1). That T is at least dt/100 of the record is
+/// checked when it is read ([`record_error`] names the key).
+fn scale_to_sa(c: &Check, g: &super::RawGround) -> Result<Option<SaTarget>, ScenarioError> {
+    let Some(t) = &g.scale_to_sa else {
+        return Ok(None);
+    };
+    let near = Some(t.span().start);
+    if let Some(p) = &g.scale_to_pga {
+        let (line, _) = crate::diagnostics::line_col(c.ctx.text, p.span().start);
+        return Err(ScenarioError::Invalid {
+            at: c.ctx.at(near),
+            key: "ground_motion.scale_to_sa".into(),
+            value: "(given)".into(),
+            reason: format!(
+                "not with `ground_motion.scale_to_pga` (line {line}): a record is scaled to its \
+                 PGA or to a spectral acceleration at one period; keep one"
+            ),
+        });
+    }
+    let r = t.get_ref();
+    let key = |k: &str| format!("ground_motion.scale_to_sa.{k}");
+    let period = c.required(
+        &r.period,
+        &key("period"),
+        "the oscillator's period T in s",
+        near,
+    )?;
+    let period = c.positive(period, &key("period"), "s")?;
+    let sa = c.required(&r.sa, &key("sa"), "the target PSA at T, in g", near)?;
+    let sa = c.positive(sa, &key("sa"), "g")?;
+    let damping = match &r.damping {
+        None => DEFAULT_DAMPING,
+        Some(z) => {
+            let x = *z.get_ref();
+            if !(x.is_finite() && (0.0..1.0).contains(&x)) {
+                return Err(c.invalid(
+                    z,
+                    &key("damping"),
+                    "must be a damping ratio in [0, 1) (0.05 = 5 %, the codes' spectra)",
+                ));
+            }
+            x
+        }
+    };
+    Ok(Some(SaTarget {
+        period,
+        sa,
+        damping,
+    }))
+}
+
+/// A reading error as the scenario reports it: at the `scale_to_sa` key it is about (a period
+/// below the record's dt/100, a record without response), else at `file`.
+fn record_error(
+    c: &Check,
+    g: &super::RawGround,
+    file: &Spanned<String>,
+    e: RecordError,
+) -> ScenarioError {
+    let (key, offset) = match (&e, &g.scale_to_sa) {
+        (RecordError::SaPeriodBelowStep { .. }, Some(t)) => (
+            "ground_motion.scale_to_sa.period",
+            t.get_ref()
+                .period
+                .as_ref()
+                .map_or(t.span().start, |p| p.span().start),
+        ),
+        (RecordError::ZeroSa { .. }, Some(t)) => ("ground_motion.scale_to_sa", t.span().start),
+        _ => ("ground_motion.file", file.span().start),
+    };
+    ScenarioError::Record {
+        at: c.ctx.at(Some(offset)),
+        key: key.into(),
+        source: Box::new(e),
     }
 }

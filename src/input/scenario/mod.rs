@@ -199,6 +199,8 @@ pub(crate) struct RawGround {
     pub(crate) file: Option<Spanned<String>>,
     pub(crate) units: Option<Spanned<String>>,
     pub(crate) scale_to_pga: Option<Spanned<f64>>,
+    /// kind = "record": checked in `ground_keys`.
+    pub(crate) scale_to_sa: Option<Spanned<ground_keys::RawScaleToSa>>,
     pub(crate) dt: Option<Spanned<f64>>,
     /// kind = "record": checked in `record_keys`.
     pub(crate) component: Option<Spanned<toml::Value>>,
@@ -450,11 +452,13 @@ impl RecordCache {
         read: impl FnOnce() -> Result<Arc<Record>, E>,
     ) -> Result<Arc<Record>, E> {
         let key = format!(
-            "{}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}",
+            "{}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}\u{0}{:?}",
             path.display(),
             opts.units,
             opts.dt.map(f64::to_bits),
             opts.scale_to_pga.map(f64::to_bits),
+            opts.scale_to_sa
+                .map(|t| [t.period, t.sa, t.damping].map(f64::to_bits)),
             opts.component,
             opts.processing
         );

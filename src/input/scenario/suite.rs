@@ -215,6 +215,11 @@ pub fn scaled(record: &Record, f: f64) -> Result<Record, crate::model::ground_mo
     r.file_units = record.file_units;
     r.stated_peak = None;
     r.processing = record.processing;
+    // what was applied in all: the factor on the record as read (and its own scaling, if any)
+    r.scaling = Some(crate::model::ground_motion::RecordScaling {
+        factor: f * record.scaling.map_or(1.0, |s| s.factor),
+        target: crate::model::ground_motion::ScaleTarget::Factor,
+    });
     r.warnings = record.warnings.clone();
     Ok(r)
 }
@@ -257,6 +262,7 @@ pub(super) fn suite(
         ("dt", gr.dt.is_some()),
         ("processing", gr.processing.is_some()),
         ("scale_to_pga", gr.scale_to_pga.is_some()),
+        ("scale_to_sa", gr.scale_to_sa.is_some()),
     ] {
         if p {
             return Err(given(

@@ -388,6 +388,53 @@ pub enum RecordError {
         /// The file.
         at: Location,
     },
+    /// `scale_to_pga` and `scale_to_sa` both given.
+    #[error(
+        "{at}: `scale_to_pga` and `scale_to_sa` are both given: a record is scaled to its PGA or \
+         to a spectral acceleration, not both; keep one"
+    )]
+    ScaleConflict {
+        /// The file.
+        at: Location,
+    },
+    /// A `scale_to_sa` target out of its range.
+    #[error("{at}: scale_to_sa.{what} = {value} must be {allowed}")]
+    InvalidSaTarget {
+        /// The file.
+        at: Location,
+        /// `period`, `sa` or `damping`.
+        what: &'static str,
+        /// The offending value.
+        value: f64,
+        /// What it may be.
+        allowed: &'static str,
+    },
+    /// A `scale_to_sa` period below dt/100, where the spectrum code refuses it too.
+    #[error(
+        "{at}: scale_to_sa.period = {period} s is below dt/100 = {limit} s (dt = {dt} s): there \
+         the oscillator follows the ground and PSA is the PGA to 0.2 %; use `scale_to_pga`"
+    )]
+    SaPeriodBelowStep {
+        /// The file.
+        at: Location,
+        /// The period asked, s.
+        period: f64,
+        /// The record's time step, s.
+        dt: f64,
+        /// dt/100, s.
+        limit: f64,
+    },
+    /// `scale_to_sa` was asked for a record with no response at that period (all zeros).
+    #[error(
+        "{at}: cannot scale to a spectral acceleration: the record's PSA at T = {period} s is 0 \
+         (every acceleration is 0)"
+    )]
+    ZeroSa {
+        /// The file.
+        at: Location,
+        /// The period, s.
+        period: f64,
+    },
     /// The integrated velocity overflows f64.
     #[error("{at}: the ground velocity overflows (accelerations or time step too large)")]
     VelocityOverflow {

@@ -2,19 +2,23 @@
 //! (docs/model.md §2.8). Harmonic motion is given by its PGA and period; recorded motion by a file:
 //! [`record`] (the signal model), [`formats`] (one reader per layout, a dispatcher that detects
 //! the layout from the content), [`processing`] (baseline correction and band-pass of
-//! uncorrected records), [`error`] (diagnostics); what `pounding record` prints is
+//! uncorrected records), [`scale`] (`scale_to_pga`, `scale_to_sa` and what was applied), [`sdof`] (the exact oscillator under a record: spectral accelerations,
+//! for `scale_to_sa` and the response spectra), [`error`] (diagnostics); what `pounding record` prints is
 //! [`crate::output::record_summary`].
 
 pub mod error;
 pub mod formats;
 pub mod processing;
 pub mod record;
+pub mod scale;
+pub mod sdof;
 
 pub use error::{Location, RecordError};
 pub use processing::{Baseline, Processing};
 pub use record::{
     AccelUnits, Component, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY, StatedPeak,
 };
+pub use scale::{RecordScaling, SaTarget, ScaleTarget};
 
 use std::f64::consts::PI;
 use std::sync::Arc;

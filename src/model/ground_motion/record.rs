@@ -16,6 +16,7 @@ use std::path::Path;
 use crate::model::ground_motion::error::in_record;
 pub use crate::model::ground_motion::error::{Location, RecordError};
 use crate::model::ground_motion::processing::Processing;
+use crate::model::ground_motion::scale::{RecordScaling, SaTarget};
 
 /// Standard gravity, m/s², used to convert accelerations given in g.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -110,6 +111,10 @@ pub struct RecordOptions {
     /// Target peak ground acceleration, in g: when set, the whole record is scaled so
     /// that max |a| equals `scale_to_pga · 9.80665` m/s². Must be positive and finite.
     pub scale_to_pga: Option<f64>,
+    /// Target pseudo-spectral acceleration at one period: when set, the whole record is
+    /// multiplied by the factor that brings its PSA at `period` (damping `damping`) to `sa` g
+    /// ([`crate::model::ground_motion::scale::sa_factor`]). Not with `scale_to_pga`.
+    pub scale_to_sa: Option<SaTarget>,
     /// The component to read from a file with several; `None` for a file with one.
     pub component: Option<Component>,
     /// Baseline correction and band-pass filtering, required for uncorrected records (V1,
@@ -210,6 +215,9 @@ pub struct Record {
     pub stated_peak: Option<StatedPeak>,
     /// The processing applied ([`RecordOptions::processing`]).
     pub processing: Option<Processing>,
+    /// The scaling applied when read ([`RecordOptions::scale_to_pga`],
+    /// [`RecordOptions::scale_to_sa`]): its factor and target.
+    pub scaling: Option<RecordScaling>,
     /// What the reader noticed but accepted (a `units` option overriding the file's units).
     pub warnings: Vec<String>,
 }
@@ -428,6 +436,7 @@ pub(crate) fn build(
         file_units: None,
         stated_peak: None,
         processing: None,
+        scaling: None,
         warnings: Vec::new(),
     })
 }

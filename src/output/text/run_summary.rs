@@ -35,6 +35,9 @@ fn write_summary(o: &mut String, sc: &Scenario, name: &str, r: &Report) -> fmt::
         sc.solver.duration,
         r.stats.steps
     )?;
+    if let Some(line) = crate::output::ground_section::scaling_line(&sc.ground_motion) {
+        writeln!(o, "  {line}")?;
+    }
     if !sc.defaults_applied.is_empty() {
         writeln!(
             o,

@@ -15,6 +15,8 @@ pub(super) enum Section {
     Contact,
     Level(usize),
     Ground,
+    /// `ground_motion.scale_to_sa` (issue 27).
+    ScaleToSa,
     Solver,
 }
 
@@ -60,6 +62,7 @@ pub(super) fn valid_keys() -> Vec<String> {
         Table::Contact,
         Table::Level,
         Table::Ground,
+        Table::ScaleToSa,
         Table::Solver,
     ] {
         v.extend(scenario(t));
@@ -128,6 +131,13 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
             field,
             kind,
         }),
+        ["ground_motion", "scale_to_sa", f] => {
+            field(Table::ScaleToSa, f).map(|(field, kind)| Target::Key {
+                section: Section::ScaleToSa,
+                field,
+                kind,
+            })
+        }
         ["ground_motion", f] => field(Table::Ground, f).map(|(field, kind)| Target::Key {
             section: Section::Ground,
             field,

@@ -704,6 +704,12 @@ impl Sweep {
                     Section::Contact => section_mut(t, "contact")?,
                     Section::Level(i) => level_mut(t, *i)?,
                     Section::Ground => section_mut(t, "ground_motion")?,
+                    Section::ScaleToSa => {
+                        // a record is scaled one way: the axis's `scale_to_sa` replaces PGA scaling
+                        let g = section_mut(t, "ground_motion")?;
+                        g.remove("scale_to_pga");
+                        section_mut(g, "scale_to_sa")?
+                    }
                     Section::Solver => section_mut(t, "solver")?,
                 };
                 let mut field = *field;
@@ -736,6 +742,10 @@ impl Sweep {
                         if table.get("kind").and_then(Value::as_str) == Some("record") =>
                     {
                         field = "scale_to_pga";
+                        table.remove("scale_to_sa");
+                    }
+                    (Section::Ground, "scale_to_pga") => {
+                        table.remove("scale_to_sa");
                     }
                     _ => {}
                 }

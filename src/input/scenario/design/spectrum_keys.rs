@@ -154,6 +154,7 @@ pub(super) fn spectrum(
         ("pga", g.pga.is_some()),
         ("period", g.period.is_some()),
         ("scale_to_pga", g.scale_to_pga.is_some()),
+        ("scale_to_sa", g.scale_to_sa.is_some()),
         ("dt", g.dt.is_some()),
     ] {
         given(k, p)?;

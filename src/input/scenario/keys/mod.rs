@@ -61,10 +61,12 @@ pub enum Table {
     Scaling,
     /// `ground_motion.scaling.target`.
     Target,
+    /// `ground_motion.scale_to_sa` (a record scaled to a spectral acceleration).
+    ScaleToSa,
 }
 
 /// Every table, in the order of the documentation.
-pub const ALL_TABLES: [Table; 20] = [
+pub const ALL_TABLES: [Table; 21] = [
     Table::Top,
     Table::Output,
     Table::Structure,
@@ -85,6 +87,7 @@ pub const ALL_TABLES: [Table; 20] = [
     Table::Records,
     Table::Scaling,
     Table::Target,
+    Table::ScaleToSa,
 ];
 
 impl Table {
@@ -111,6 +114,7 @@ impl Table {
             Table::Records => "ground_motion.records",
             Table::Scaling => "ground_motion.scaling",
             Table::Target => "ground_motion.scaling.target",
+            Table::ScaleToSa => "ground_motion.scale_to_sa",
         }
     }
 
@@ -138,6 +142,7 @@ impl Table {
             Table::Records => "ground_motion.records[k].",
             Table::Scaling => "ground_motion.scaling.",
             Table::Target => "ground_motion.scaling.target.",
+            Table::ScaleToSa => "ground_motion.scale_to_sa.",
         }
     }
 
@@ -150,6 +155,7 @@ impl Table {
             Table::Contact => Some("contact."),
             Table::Level => Some("contact.level.N."),
             Table::Ground => Some("ground_motion."),
+            Table::ScaleToSa => Some("ground_motion.scale_to_sa."),
             Table::Solver => Some("solver."),
             _ => None,
         }
@@ -159,7 +165,12 @@ impl Table {
     pub const fn in_ground_motion(self) -> bool {
         matches!(
             self,
-            Table::Ground | Table::Processing | Table::Records | Table::Scaling | Table::Target
+            Table::Ground
+                | Table::Processing
+                | Table::Records
+                | Table::Scaling
+                | Table::Target
+                | Table::ScaleToSa
         )
     }
 
@@ -352,6 +363,25 @@ pub const DERIVED: &[(&str, Range)] = &[
 /// `ground_motion` is one of `[ground_motion]`'s tables when they have a key of that name (so
 /// `ground_motion.period` is the ground's, `period` or `structure[1].period` a structure's).
 pub(crate) fn lookup(key: &str, what: impl Fn(&KeyInfo) -> bool) -> Option<&'static KeyInfo> {
+    // a key given by its full path is that entry (`ground_motion.scale_to_sa.period` is not the
+    // ground's `period`), whether or not it has `what`
+    let unindexed = |p: &str| {
+        let mut out = String::with_capacity(p.len());
+        let mut depth = 0;
+        for ch in p.chars() {
+            match ch {
+                '[' => depth += 1,
+                ']' => depth -= 1,
+                _ if depth == 0 => out.push(ch),
+                _ => {}
+            }
+        }
+        out
+    };
+    let bare = unindexed(key);
+    if let Some(k) = all().find(|k| unindexed(&k.path()) == bare) {
+        return what(k).then_some(k);
+    }
     let last = key.rsplit('.').next().unwrap_or(key);
     let named = || all().filter(move |k| k.name == last);
     if key.starts_with("ground_motion") && named().any(|k| k.table.in_ground_motion()) {

@@ -8,6 +8,7 @@ const G: Table = Table::Ground;
 const REC: Table = Table::Records;
 const SC: Table = Table::Scaling;
 const T: Table = Table::Target;
+const SA: Table = Table::ScaleToSa;
 
 const HIGHPASS_WHY: &str = "strong-motion records are high-pass filtered at about 0.02–0.5 Hz; \
                             above 1 Hz the filter removes motion that buildings respond to";
@@ -113,6 +114,14 @@ pub(super) const KEYS: &[KeyInfo] = &[
     .physical(1e-6, 20.0, "a peak ground acceleration")
     .sweep()
     .label("PGA"),
+    KeyInfo::new(
+        G,
+        "scale_to_sa",
+        Kind::Table,
+        "",
+        "record: scale it so that its pseudo-acceleration at a period is this, see \
+         ground_motion.scale_to_sa; not with `scale_to_pga`",
+    ),
     KeyInfo::new(
         G,
         "dt",
@@ -298,5 +307,38 @@ pub(super) const KEYS: &[KeyInfo] = &[
         Kind::File,
         "",
         "spectrum \"table\": as `ground_motion.file`",
+    ),
+    KeyInfo::new(
+        SA,
+        "period",
+        Kind::Number,
+        "s",
+        "the period T of the oscillator whose PSA is set, at least dt/100 of the record",
+    )
+    .physical(0.01, 100.0, "a structural or ground period")
+    .usual(
+        0.01,
+        10.0,
+        "design spectra and ground-motion models give S_a from about 0.01 s to 10 s",
+    )
+    .sweep()
+    .label("T of S_a"),
+    KeyInfo::new(
+        SA,
+        "sa",
+        Kind::Number,
+        "g",
+        "the target pseudo-acceleration PSA(T) = ω²·max|u|; the record is multiplied by \
+         sa / PSA(T) of the record as read",
+    )
+    .physical(1e-6, 50.0, "a spectral acceleration")
+    .sweep()
+    .label("S_a"),
+    KeyInfo::new(
+        SA,
+        "damping",
+        Kind::Number,
+        "",
+        "the oscillator's damping ratio, in [0, 1); default 0.05",
     ),
 ];

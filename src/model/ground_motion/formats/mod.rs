@@ -29,10 +29,10 @@ use std::path::Path;
 
 use crate::model::ground_motion::error::{RecordError, in_record, record_line};
 use crate::model::ground_motion::record::{
-    AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, STANDARD_GRAVITY,
-    StatedPeak, build, max_abs,
+    AccelUnits, Component, DT_REL_TOLERANCE, Record, RecordFormat, RecordOptions, StatedPeak, build,
 };
 use crate::model::ground_motion::record::{MAX_RECORD_BYTES, open_record_file};
+use crate::model::ground_motion::scale;
 
 /// Bytes at the start of a file checked for control characters and invalid UTF-8.
 pub const SNIFF_BYTES: usize = 8192;
@@ -237,6 +237,12 @@ pub(crate) fn read(text: &str, path: &Path, opts: &RecordOptions) -> Result<Reco
     {
         return Err(RecordError::InvalidScale { at: at(), value });
     }
+    if let Some(target) = &opts.scale_to_sa {
+        if opts.scale_to_pga.is_some() {
+            return Err(RecordError::ScaleConflict { at: at() });
+        }
+        target.check(at)?;
+    }
     let has_at2_extension = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("at2"));
@@ -335,17 +341,12 @@ fn finish(parsed: Parsed, file: &str, opts: &RecordOptions) -> Result<Record, Re
             .apply(&accel, dt)
             .map_err(|reason| RecordError::InvalidProcessing { at: at(), reason })?;
     }
-    if let Some(target_g) = opts.scale_to_pga {
-        let pga = max_abs(&accel);
-        if pga <= 0.0 {
-            return Err(RecordError::ZeroPga { at: at() });
-        }
-        // a / pga is within [-1, 1], so this cannot overflow.
-        let target = target_g * STANDARD_GRAVITY;
-        for a in &mut accel {
-            *a = *a / pga * target;
-        }
-    }
+    let scaling = match (opts.scale_to_pga, &opts.scale_to_sa) {
+        (Some(_), Some(_)) => return Err(RecordError::ScaleConflict { at: at() }),
+        (Some(pga_g), None) => Some(scale::to_pga(&mut accel, pga_g, at)?),
+        (None, Some(target)) => Some(scale::to_sa(&mut accel, dt, target, at)?),
+        (None, None) => None,
+    };
     let mut record = build(dt, accel, description, format, file)?;
     record.component = ch.names.first().cloned().filter(|n| !n.is_empty());
     record.file_units = ch.units;
@@ -354,6 +355,7 @@ fn finish(parsed: Parsed, file: &str, opts: &RecordOptions) -> Result<Record, Re
         time,
     });
     record.processing = opts.processing;
+    record.scaling = scaling;
     record.warnings = warnings;
     Ok(record)
 }

@@ -1,9 +1,13 @@
 //! The linear SDOF oscillator `ü + 2ζω u̇ + ω² u = −a_g(t)` under a piecewise-linear ground
-//! acceleration, solved exactly from sample to sample (Nigam & Jennings 1969, "Calculation of
-//! response spectra from strong-motion earthquake records", *BSSA* 59(2), 909–922): the state
-//! (u, u̇) after a step h is `A(h)·(u, u̇) + B(h)·(a₀, a₁)`, A the free-vibration propagator and
-//! B the response to the linear load between the two samples. The coefficients are computed once
-//! per period; the loop over the samples is two 2×2 products and a few comparisons.
+//! acceleration (a [`crate::model::ground_motion::Record`]: linear between samples, zero after
+//! the last), in the model layer so that a record can be scaled to a spectral acceleration when
+//! it is read (`scale_to_sa`); the response spectra of `pounding spectrum` (the analysis
+//! layer's `record_spectrum`) use this same oscillator. The response is solved exactly from
+//! sample to sample (Nigam & Jennings 1969, "Calculation of response spectra from
+//! strong-motion earthquake records", *BSSA* 59(2), 909–922): the state (u, u̇) after a step h
+//! is `A(h)·(u, u̇) + B(h)·(a₀, a₁)`, A the free-vibration propagator and B the response to
+//! the linear load between the two samples. The coefficients are computed once per period; the
+//! loop over the samples is two 2×2 products and a few comparisons.
 //!
 //! The peaks are those of the continuous response, not only at the samples:
 //! - each sample interval is cut into m equal sub-steps with ωh ≤ [`MAX_PHASE_PER_STEP`] (the
@@ -18,6 +22,25 @@
 //!   is the largest.
 
 use std::f64::consts::{FRAC_PI_2, PI};
+
+/// The damping ratio of the codes' spectra, of `pounding spectrum` and of `scale_to_sa` by
+/// default: 5 %.
+pub const DEFAULT_DAMPING: f64 = 0.05;
+
+/// Shortest positive period computed, as a fraction of the record's time step: below dt/100 the
+/// oscillator follows the ground (PSA is the PGA to about 1/(ωdt) < 0.2 %) and the exact
+/// sub-stepping would cost ∝ 1/T; such a period is refused with that reason.
+pub const MIN_PERIOD_OVER_DT: f64 = 0.01;
+
+/// The pseudo-acceleration PSA = ω²·max|u| (m/s²), ω = 2π/T, of the oscillator of period
+/// `period` (s, > 0, at least [`MIN_PERIOD_OVER_DT`]·dt: checked by the callers) and damping
+/// ratio `zeta` in [0, 1) under `accel` (m/s²) sampled every `dt` s, from rest: [`peaks`]'s
+/// displacement. The one expression of PSA: `analysis::record_spectrum::spectral_point` gives
+/// the same bits.
+pub fn pseudo_acceleration(accel: &[f64], dt: f64, period: f64, zeta: f64) -> f64 {
+    let omega = 2.0 * PI / period;
+    omega * omega * peaks(accel, dt, omega, zeta).displacement
+}
 
 /// Largest phase ωh of one sub-step, rad: sample intervals longer than this are cut into equal
 /// sub-steps. Over 0.5 rad a sinusoid departs from its chord by at most 1 − cos(0.25) = 3 % of
