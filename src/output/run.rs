@@ -84,11 +84,7 @@ pub fn summary_json_with(
             max_contact_omega_dt: report.stats.max_contact_omega_dt,
             rtol: adaptive.then_some(scenario.solver.rtol),
             atol: adaptive.then_some(scenario.solver.atol),
-            dt_meaning: match scenario.solver.method {
-                Method::Rk4 => "fixed step",
-                Method::ExactModal => "base step (contact sub-steps below it)",
-                Method::Adaptive => "largest step",
-            },
+            dt_meaning: scenario.solver.method.dt_meaning(),
             rejected_steps: report.stats.rejected,
             events: report.stats.events,
             energy_relative_error: report.energy.relative_error,

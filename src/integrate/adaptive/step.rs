@@ -259,9 +259,12 @@ pub(super) fn free_nodes(
             });
         }
     }
+    // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s exactly, so
+    // this is the former `s − d` bit for bit)
     for (k, lv) in sys.levels.iter().enumerate() {
         for &i in which {
-            w.dfree[k * 3 + i - 1].0 -= lv.gap;
+            let d = &mut w.dfree[k * 3 + i - 1].0;
+            *d = lv.delta(-*d);
         }
     }
 }

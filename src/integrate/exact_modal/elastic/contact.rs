@@ -211,9 +211,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
         }
         for k in 0..nl {
-            let gap = sys.levels[k].gap;
+            // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s
+            // exactly, so this is the former `s − d` bit for bit)
+            let lv = &sys.levels[k];
             for i in 0..6 {
-                self.dfree[k * 6 + i].0 -= gap;
+                let d = &mut self.dfree[k * 6 + i].0;
+                *d = lv.delta(-*d);
             }
             for (p, &node) in NODES8.iter().enumerate() {
                 self.d8free[k * 4 + p] = self.dfree[k * 6 + node];
