@@ -390,7 +390,8 @@ pub(super) fn run<O: Observer>(
         ..Tally::default()
     };
     let mut stats = Stats::default();
-    let (steps, last) = step_plan(settings.dt, settings.duration);
+    let dt = settings.fixed_step();
+    let (steps, last) = step_plan(dt, settings.duration);
     let bounds = level_bounds(sys);
 
     // k1 of the first step, and the state at t = 0. The ground is evaluated twice per step:
@@ -422,8 +423,8 @@ pub(super) fn run<O: Observer>(
     );
 
     for step in 0..steps {
-        let t = step as f64 * settings.dt;
-        let h = if step + 1 == steps { last } else { settings.dt };
+        let t = step as f64 * dt;
+        let h = if step + 1 == steps { last } else { dt };
         for k in 0..nl {
             w.stage_force[0][k] = w.states[k].force;
         }
@@ -474,7 +475,7 @@ pub(super) fn run<O: Observer>(
         let t_end = if step + 1 == steps {
             settings.duration
         } else {
-            (step + 1) as f64 * settings.dt
+            (step + 1) as f64 * dt
         };
         ground_end = sys.ground.accel_velocity(t_end);
         let p4 = eval(
@@ -543,7 +544,7 @@ pub(super) fn run<O: Observer>(
                 } else {
                     st.delta_dot
                 };
-                check_contact(sys, &bounds[k], k, st, v0, h, t_end, settings.dt)?;
+                check_contact(sys, &bounds[k], k, st, v0, h, t_end, dt)?;
             }
         }
         if !(p1.input.is_finite()

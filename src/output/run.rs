@@ -109,11 +109,7 @@ impl SolverInfo {
             max_contact_omega_dt: stats.max_contact_omega_dt,
             rtol: adaptive.then_some(scenario.solver.rtol),
             atol: adaptive.then_some(scenario.solver.atol),
-            dt_meaning: match scenario.solver.method {
-                Method::Rk4 => "fixed step",
-                Method::ExactModal => "base step (contact sub-steps below it)",
-                Method::Adaptive => "largest step",
-            },
+            dt_meaning: scenario.solver.method.dt_meaning(),
             rejected_steps: stats.rejected,
             events: stats.events,
             energy_relative_error: energy.relative_error,

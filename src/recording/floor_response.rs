@@ -32,7 +32,7 @@ use serde::Serialize;
 use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::System;
-use crate::numerics::hermite::hermite_abs_max;
+use crate::numerics::hermite::{Basis, hermite_abs_max};
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
 const HERMITE_REACH: f64 = 4.0 / 27.0;
@@ -628,18 +628,14 @@ impl FloorRecorder {
                 _ => 1.0,
             };
             let hh = h.unwrap_or(0.0);
-            let (t2, t3) = (th * th, th * th * th);
-            let (h00, h10, h01, h11) = (
-                2.0 * t3 - 3.0 * t2 + 1.0,
-                t3 - 2.0 * t2 + th,
-                -2.0 * t3 + 3.0 * t2,
-                t3 - t2,
-            );
+            // h01 = 3θ² − 2θ³ was written −2θ³ + 3θ² here: the same sum (addition commutes
+            // exactly), so the rows are unchanged bit for bit
+            let basis = Basis::at(th);
             let mut k = 0;
             for st in &mut self.stations {
                 for f in 0..st.heights.len() {
                     let ((u0, d0), (u1, d1)) = (st.before[f], st.prev[f]);
-                    self.row[k] = h00 * u0 + h10 * hh * d0 + h01 * u1 + h11 * hh * d1;
+                    self.row[k] = basis.combine(u0, d0, u1, d1, hh);
                     if here && st.abs_now[f].abs() > st.hold[f].abs() {
                         st.hold[f] = st.abs_now[f];
                     }

@@ -1,5 +1,5 @@
 //! Resuming and sharding a fragility study with the sweeps' journal
-//! ([`crate::study::sweep::results::Journal`]): every finished run is appended to
+//! ([`crate::study::sweep::journal::Journal`]): every finished run is appended to
 //! `DIR/journal.csv` (`journal-shard-K-of-N.csv` for part K of N) as soon as it is known, one
 //! write per row; a rerun of the same study into the same directory reads it back, drops a
 //! torn last line, and runs only what is missing. The first line identifies the study
@@ -18,7 +18,8 @@ use std::sync::Mutex;
 
 use super::{FragilityError, RunOutcome, RunStore};
 use crate::input::fragility::FragilityStudy;
-use crate::study::sweep::results::{Journal, JournalKind, csv_field, file_names, parse_csv_line};
+use crate::study::sweep::journal::{Journal, JournalKind};
+use crate::study::sweep::results::{csv_field, file_names, parse_csv_line};
 use crate::study::sweep::{Shard, SweepError};
 
 /// A hash of what the runs of `study` depend on: its text, its base scenario's, every

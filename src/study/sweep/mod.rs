@@ -35,6 +35,7 @@
 mod axes;
 mod edit;
 mod hash;
+pub mod journal;
 mod keys;
 pub mod report;
 pub mod results;

@@ -9,7 +9,8 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use super::results::{self, Journal};
+use super::journal::Journal;
+use super::results;
 use super::shard::Shard;
 use super::{Sweep, SweepError};
 use crate::analysis::simulate::simulate_headline;

@@ -1,0 +1,765 @@
+//! The contact phase of [`Elastic`]: the step controller (quantised lengths, dyadic alignment,
+//! tables), one trial of the collocation pair and its error estimate, the accepted step's
+//! dense observations and quadrature tallies.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::*;
+
+impl<'a, O: Observer> Elastic<'a, O> {
+    // ---------------------------------------------------------------- contact
+
+    /// Whether the current time is a multiple of hh/2^m from the piece's start (to 1e-9 of it).
+    pub(super) fn aligned(&self, pstart: f64, hh: f64, m: usize) -> bool {
+        let unit = hh / (1u64 << m) as f64;
+        let x = (self.t - pstart) / unit;
+        (x - x.round()).abs() <= 1e-9 * x.abs().max(1.0)
+    }
+
+    /// A recorded motion's next contact step: hh/2^m at the current level when the time is
+    /// aligned to it (cached table `DYADIC + m`), else the step to the next multiple of it (a
+    /// one-off length, after an onset or an event).
+    pub(super) fn dyadic_length(
+        &self,
+        pstart: f64,
+        hh: f64,
+        span_end: f64,
+    ) -> (Option<usize>, f64) {
+        // (the current level, or a finer one at which the time is aligned: a step from a
+        // point of a finer grid needs no one-off length)
+        let mut m = self.m_step.min(MAX_LEVEL);
+        while !self.aligned(pstart, hh, m) && m < MAX_LEVEL.min(self.m_step + 20) {
+            m += 1;
+        }
+        let unit = hh / (1u64 << m) as f64;
+        if self.aligned(pstart, hh, m) {
+            let rem = span_end - self.t;
+            // (a step ending on the piece's end: its length within rounding of the level's)
+            if rem >= unit * (1.0 - 1e-9) {
+                return (Some(DYADIC + m), unit);
+            }
+            return (None, rem);
+        }
+        let m = self.m_step.min(MAX_LEVEL);
+        let unit = hh / (1u64 << m) as f64;
+        let x = (self.t - pstart) / unit;
+        let next = (pstart + (x.floor() + 1.0) * unit).min(span_end);
+        (None, next - self.t)
+    }
+
+    /// Quantised step length `dt·2^(−k/4)`.
+    pub(super) fn length(&self, k: usize) -> f64 {
+        self.dt * (-(k as f64) / QUANT).exp2()
+    }
+
+    /// Smallest k whose length is ≤ h.
+    pub(super) fn quantise(&self, h: f64) -> usize {
+        if h >= self.dt {
+            return 0;
+        }
+        let k = (QUANT * (self.dt / h).log2()).ceil();
+        if k.is_finite() {
+            (k.max(0.0) as usize).min(MAX_K)
+        } else {
+            MAX_K
+        }
+    }
+
+    /// The table of step length h (`k`: its quantised index, or `None` for a one-off length).
+    pub(super) fn table(&mut self, k: Option<usize>, h: f64) -> &Table {
+        match k {
+            Some(k) => {
+                if self.tables[k].is_none() {
+                    self.tables[k] = Some(Box::new(Table::new(self.sys, self.big, h)));
+                }
+                self.tables[k].as_deref().expect("table")
+            }
+            None => {
+                match &mut self.scratch_table {
+                    Some(t) if t.h == h => {}
+                    Some(t) => t.fill(self.sys, self.big, h),
+                    None => self.scratch_table = Some(Box::new(Table::new(self.sys, self.big, h))),
+                }
+                self.scratch_table.as_deref().expect("table")
+            }
+        }
+    }
+
+    /// One trial of a contact step of length h from the current state (`k`: its quantised
+    /// index): the free flight to the nodes, both collocations, the estimate.
+    pub(super) fn trial(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        let (n, nl) = (self.n, self.nl);
+        let sys = self.sys;
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
+        self.table(k, h);
+        let tab: &Table = match k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
+        debug_assert_eq!(tab.modes(), n);
+        self.stats.evaluations += 1;
+        // free flight to the nodes projected on the levels: per mode its homogeneous part at
+        // the start, then two dot products per node and level with the coupled propagators;
+        // the particular solutions' projections come per level
+        self.dfree.iter_mut().for_each(|d| *d = (0.0, 0.0));
+        let (q, v) = (&self.q[..n], &self.v[..n]);
+        let (x0s, y0s) = (&mut self.x0[..n], &mut self.y0[..n]);
+        let gm = &self.gm;
+        match (piece, gm.harmonic_plain()) {
+            (Piece::Harmonic, Some((big, g_re, g_im))) => {
+                for j in 0..n {
+                    let (gr, gi) = (g_re[j], g_im[j]);
+                    x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
+                    y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
+                }
+                for i in 0..6 {
+                    let (sh, ch) = tab.rot[i];
+                    let (sn, cn) = (tr0.s * ch + tr0.c * sh, tr0.c * ch - tr0.s * sh);
+                    for k in 0..nl {
+                        let (gre, gim) = self.gk[k];
+                        self.dfree[k * 6 + i] =
+                            (-(sn * gre + cn * gim), -big * (cn * gre - sn * gim));
+                    }
+                }
+            }
+            (Piece::Poly { .. }, _) => {
+                // particular solution A + Bτ + Cτ² per mode, projected per level
+                let mut proj = [[0.0; 3]; 8];
+                let wide = nl > proj.len();
+                for j in 0..n {
+                    let c = gm.poly_load(j, piece, t0);
+                    self.cpoly[j] = c;
+                    let (pa, pb, pc) = poly_coefficients(gm.inv_w2[j], gm.damp[j], &c);
+                    self.pcoef[j] = [pa, pb, pc];
+                    x0s[j] = q[j] - pa;
+                    y0s[j] = v[j] - pb;
+                    if !wide {
+                        for k in 0..nl {
+                            let ck = self.cpl_t[j * nl + k];
+                            proj[k][0] += ck * pa;
+                            proj[k][1] += ck * pb;
+                            proj[k][2] += ck * pc;
+                        }
+                    }
+                }
+                for k in 0..nl {
+                    let [a, b, c] = if wide {
+                        let ck = sys.coupling(k);
+                        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+                        for j in 0..n {
+                            a += ck[j] * self.pcoef[j][0];
+                            b += ck[j] * self.pcoef[j][1];
+                            c += ck[j] * self.pcoef[j][2];
+                        }
+                        [a, b, c]
+                    } else {
+                        proj[k]
+                    };
+                    for i in 0..6 {
+                        let tau = NODES[i] * h;
+                        self.dfree[k * 6 + i] = (-(a + tau * (b + tau * c)), -(b + 2.0 * tau * c));
+                    }
+                }
+            }
+            (Piece::Zero, _) => {
+                x0s.copy_from_slice(q);
+                y0s.copy_from_slice(v);
+            }
+            _ => {
+                // harmonic motion with a mode at undamped resonance: every particular solution
+                // at every node
+                let zero = [0.0; 3];
+                let tr_start = gm.trig(t0);
+                for j in 0..n {
+                    let (e0, d0) = gm.particular(j, piece, &zero, 0.0, &tr_start);
+                    x0s[j] = q[j] - e0;
+                    y0s[j] = v[j] - d0;
+                }
+                for i in 0..6 {
+                    let tr = gm.trig(t0 + NODES[i] * h);
+                    for j in 0..n {
+                        let (e, d) = gm.particular(j, piece, &zero, NODES[i] * h, &tr);
+                        for k in 0..nl {
+                            let ck = self.cpl_t[j * nl + k];
+                            self.dfree[k * 6 + i].0 -= ck * e;
+                            self.dfree[k * 6 + i].1 -= ck * d;
+                        }
+                    }
+                }
+            }
+        }
+        // the homogeneous parts: Σ_j c_kj P(θh)(x0, y0)
+        let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
+        for i in 0..6 {
+            for k in 0..nl {
+                let cp = &tab.cprop[(i * nl + k) * n..(i * nl + k + 1) * n];
+                let (mut d, mut dd) = (0.0, 0.0);
+                for j in 0..n {
+                    let [a, b, c, e] = cp[j];
+                    d += a * x0s[j] + b * y0s[j];
+                    dd += c * x0s[j] + e * y0s[j];
+                }
+                self.dfree[k * 6 + i].0 -= d;
+                self.dfree[k * 6 + i].1 -= dd;
+            }
+        }
+        for k in 0..nl {
+            // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s
+            // exactly, so this is the former `s − d` bit for bit)
+            let lv = &sys.levels[k];
+            for i in 0..6 {
+                let d = &mut self.dfree[k * 6 + i].0;
+                *d = lv.delta(-*d);
+            }
+            for (p, &node) in NODES8.iter().enumerate() {
+                self.d8free[k * 4 + p] = self.dfree[k * 6 + node];
+            }
+            for (p, &node) in NODES6.iter().enumerate() {
+                self.d6free[k * 3 + p] = self.dfree[k * 6 + node];
+            }
+        }
+        // the propagated scheme: start forces, a first guess from the last step's quartic
+        let bases = collocation::bases();
+        let contiguous = self.last_h > 0.0;
+        let ratio = h / self.last_h;
+        for k in 0..nl {
+            let f0 = collocation::start_force(sys, k, &self.states[k], self.onset[k], EVENT_TOL);
+            let prev: [f64; 5] = std::array::from_fn(|p| self.last_f8[k * 5 + p]);
+            self.f8[k * 5] = f0;
+            for p in 1..5 {
+                self.f8[k * 5 + p] = if contiguous {
+                    bases.quartic_at(&prev, 1.0 + THETA8[p] * ratio).max(0.0)
+                } else {
+                    f0
+                };
+            }
+        }
+        collocation::solve::<5>(
+            sys,
+            &tab.w8,
+            &self.d8free,
+            &self.onset,
+            &mut self.f8,
+            &mut self.nodal8,
+            &mut self.newton,
+            self.newton_tol,
+        )?;
+        // the companion, from the propagated quartic at its nodes
+        for k in 0..nl {
+            let vals: [f64; 5] = std::array::from_fn(|p| self.f8[k * 5 + p]);
+            let at = |i: usize| (0..5).map(|p| bases.at6[i][p] * vals[p]).sum::<f64>();
+            self.f6[k * 4] = vals[0];
+            self.f6[k * 4 + 1] = at(0);
+            self.f6[k * 4 + 2] = at(1);
+            self.f6[k * 4 + 3] = vals[4];
+        }
+        collocation::solve::<4>(
+            sys,
+            &tab.w6,
+            &self.d6free,
+            &self.onset,
+            &mut self.f6,
+            &mut self.nodal6,
+            &mut self.newton,
+            self.newton_tol,
+        )?;
+        // the estimate: the two ends' distance on every level's δ and δ̇
+        let tol = self.tol;
+        let mut err = 0.0f64;
+        for k in 0..nl {
+            let st = &self.states[k];
+            let (a, b) = (self.nodal8[k * 4 + 3], self.nodal6[k * 3 + 2]);
+            let w = (st.delta + sys.levels[k].gap).abs();
+            let rate = st.delta_dot.abs().max(self.onset[k]);
+            err = err
+                .max((a.0 - b.0).abs() / (tol.atol + tol.rtol * w))
+                .max((a.1 - b.1).abs() / (tol.atol_rate + tol.rtol * rate));
+        }
+        if !err.is_finite() {
+            return Err(NoConvergence);
+        }
+        Ok(Trial { err, h, k })
+    }
+
+    /// The failure of the contact steps at the shortest length.
+    pub(super) fn unreachable(&self, err: f64, h: f64) -> SolveError {
+        if err.is_finite() {
+            SolveError::ToleranceUnreachable {
+                t: self.t,
+                h,
+                rtol: self.tol.rtol,
+            }
+        } else {
+            SolveError::Diverged {
+                t: self.t,
+                contact_omega_dt: self.max_contact_w2h2.sqrt(),
+            }
+        }
+    }
+
+    /// One accepted contact step from the current state, retried shorter until its estimate
+    /// passes; a step in which a level's δ changes sign (an onset, a release) ends there.
+    #[inline(never)]
+    pub(super) fn contact_step(&mut self) -> Result<(), SolveError> {
+        let (piece, pstart, span_end) = self.piece();
+        let limit = span_end - self.t;
+        if limit <= 0.0 {
+            self.t = span_end;
+            return Ok(());
+        }
+        // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
+        let dyadic = matches!(piece, Piece::Poly { .. });
+        let hh = EqualSteps::new(pstart, span_end, self.dt).h;
+        // (a record's sample intervals are equal to rounding: their tables are the same)
+        if dyadic && (hh - self.dyadic_hh).abs() > 1e-12 * hh || self.dyadic_hh.is_nan() {
+            self.dyadic_hh = hh;
+            for t in &mut self.tables[DYADIC..] {
+                *t = None;
+            }
+        }
+        // the first step of an episode starts near the size the last onset needed
+        let starting = self.last_h == 0.0;
+        if starting && let Some(k) = self.k_onset {
+            self.k_step = k.saturating_sub(1);
+        }
+        if starting && let Some(m) = self.m_onset {
+            self.m_step = m.saturating_sub(1);
+        }
+        let mut rejected = false;
+        loop {
+            let (k, h) = if dyadic {
+                let (id, h) = self.dyadic_length(pstart, hh, span_end);
+                if let Some(id) = id {
+                    self.m_step = id - DYADIC;
+                }
+                (id, h)
+            } else {
+                let hq = self.length(self.k_step);
+                if hq >= limit * (1.0 - 1e-9) {
+                    (None, limit)
+                } else {
+                    (Some(self.k_step), hq)
+                }
+            };
+            let mut trial = self.trial(k, h, &piece).unwrap_or(Trial {
+                err: f64::INFINITY,
+                h,
+                k,
+            });
+            // a level's δ changes sign inside (an onset, a release): the estimate sees the
+            // kink of the law there, so a step that passes is kept; one that fails is redone
+            // once to end at the event as the failed trial's nodes place it (a step that ends
+            // a little short or past it straddles a kink too small to fail the estimate)
+            self.kink = false;
+            // a kink of the law inside contact is one the two schemes err on alike (the
+            // estimate can miss it by several times): such a step always ends there
+            if trial.err.is_finite()
+                && let Some((lev, th, scale)) = self.law_kink_inside(h)
+            {
+                trial = self.locate_kink(&piece, h, lev, th, scale);
+                self.kink = true;
+            } else if trial.err > 1.0
+                && trial.err.is_finite()
+                && let Some(th) = self.event_inside(h)
+                && th > 1e-6
+            {
+                // (the largest cached length short of it: no table to compute, and the next
+                // step straddles the event by at most a fifth (dyadic: a half) of this one)
+                let (kq, s) = if dyadic && k.is_some() {
+                    let more = (1.0 / th).log2().ceil().max(1.0) as usize;
+                    let m = (self.m_step + more).min(MAX_LEVEL);
+                    (DYADIC + m, hh / (1u64 << m) as f64)
+                } else {
+                    let kq = self.quantise(th * h);
+                    (kq, self.length(kq))
+                };
+                trial = self.trial(Some(kq), s, &piece).unwrap_or(Trial {
+                    err: f64::INFINITY,
+                    h: s,
+                    k: Some(kq),
+                });
+                self.stats.events += 1;
+                self.kink = true;
+            }
+            if trial.err > 1.0 {
+                self.stats.rejected += 1;
+                rejected = true;
+                self.progress
+                    .rejected(self.sys, &self.states, self.t, trial.h)?;
+                // (a step over an onset or a release, or near one, errs like h^{3/2 + 2}: a
+                // failed step is cut as if the order were 4, not 7)
+                let fac = if trial.err.is_finite() {
+                    (0.9 * trial.err.powf(-0.25)).clamp(0.1, 0.9)
+                } else {
+                    0.5
+                };
+                if dyadic {
+                    // (halvings as many as the factor asks for, at least one)
+                    let more = (1.0 / fac).log2().ceil().max(1.0) as usize;
+                    let m = match trial.k {
+                        Some(id) if id >= DYADIC => id - DYADIC,
+                        _ => self.m_step,
+                    };
+                    self.m_step = (m.max(self.m_step) + more).min(MAX_LEVEL + 1);
+                    if self.m_step > MAX_LEVEL {
+                        return Err(self.unreachable(trial.err, trial.h));
+                    }
+                    continue;
+                }
+                let next = self.quantise(trial.h * fac).max(self.k_step + 1);
+                if next >= MAX_K {
+                    return Err(self.unreachable(trial.err, trial.h));
+                }
+                self.k_step = next;
+                continue;
+            }
+            if starting {
+                self.k_onset = Some(self.quantise(trial.h));
+                self.m_onset = Some(self.m_step);
+            }
+            let t_end = if trial.h == limit {
+                span_end
+            } else if dyadic && let Some(id) = trial.k.filter(|&id| id >= DYADIC) {
+                // (on the dyadic grid: the end's time from the grid, not by accumulation)
+                let unit = hh / (1u64 << (id - DYADIC)) as f64;
+                let end = pstart + ((self.t + trial.h - pstart) / unit).round() * unit;
+                if (end - span_end).abs() <= 1e-9 * unit {
+                    span_end
+                } else {
+                    end
+                }
+            } else {
+                self.t + trial.h
+            };
+            self.progress
+                .accepting(self.sys, &self.states, self.t, t_end, trial.h)?;
+            self.force_contact = false;
+            self.accept(&piece, trial, t_end);
+            // next length from the estimate (err ∝ h⁷); no growth right after a rejection.
+            // (A PI controller's damped factors, mostly below 2^(1/4), would be rounded away
+            // by the quantised lengths.)
+            if trial.k.is_some() {
+                let mut fac = (0.9 * trial.err.max(1e-12).powf(-1.0 / ORDER)).clamp(0.2, 3.0);
+                if rejected {
+                    fac = fac.min(1.0);
+                }
+                if dyadic {
+                    // the level for the new length, coarser only where the end is aligned
+                    let want = (hh / (trial.h * fac)).log2().ceil().max(0.0) as usize;
+                    let mut m = self.m_step;
+                    if want > m {
+                        m = want.min(MAX_LEVEL);
+                    } else {
+                        while m > want && self.aligned(pstart, hh, m - 1) {
+                            m -= 1;
+                        }
+                    }
+                    self.m_step = m;
+                } else {
+                    self.k_step = self.quantise(trial.h * fac);
+                }
+            }
+            return self.check_finite();
+        }
+    }
+
+    /// Observe the step being accepted (start `t0`, length h) at its three interior nodes, from
+    /// the states the accepted pass left in `dense_q`, `dense_v` and the nodal (δ, δ̇); the
+    /// impulses integrated exactly up to each node (the force quartic), the energy flows
+    /// (`flows`: the step's ground work, dissipation and contact work) in proportion.
+    pub(super) fn observe_dense(&mut self, h: f64, t0: f64, flows: (f64, f64, f64)) {
+        let (n, nl) = (self.n, self.nl);
+        let bases = collocation::bases();
+        for i in 0..3 {
+            let x = THETA8[i + 1];
+            self.dense_tally.input = self.tally.input + x * flows.0;
+            self.dense_tally.damping = self.tally.damping + x * flows.1;
+            self.dense_tally.contact = self.tally.contact + x * flows.2;
+            for k in 0..nl {
+                let w = &bases.partial[i];
+                let imp: f64 = (0..5).map(|p| w[p] * self.f8[k * 5 + p]).sum();
+                self.dense_tally.impulse[k] = self.tally.impulse[k] + h * imp;
+                let (delta, delta_dot) = self.nodal8[k * 4 + i];
+                let v0 = episode_v0(self.onset[k], delta_dot);
+                self.dense_states[k] = LevelState {
+                    delta,
+                    delta_dot,
+                    force: self.sys.levels[k].force.force(delta, delta_dot, v0),
+                };
+            }
+            self.obs.observe(
+                self.sys,
+                &StepView {
+                    t: t0 + x * h,
+                    q: &self.dense_q[i * n..(i + 1) * n],
+                    v: &self.dense_v[i * n..(i + 1) * n],
+                    levels: &self.dense_states,
+                    z: &[],
+                    tally: &self.dense_tally,
+                },
+            );
+        }
+    }
+
+    /// Commit the trial in the work arrays (table of its length): the end state, the tallies,
+    /// the level states, the observation (and dense output when the force peaks inside).
+    ///
+    /// Tallies: the ground's work exact for the computed motion (harmonic: the closed forms
+    /// of [`HarmonicTally`] with the contact quartic's extra term; records: the moments of
+    /// each mode's equation of motion), the work of the contact load on the modes by the
+    /// 5-node Lobatto rule on the nodal values (exact to degree 7), the dissipation from the
+    /// modal energy balance; the work into the contacts with the law itself along the computed
+    /// motion at the companion's Lobatto nodes, so that the energy balance measures the
+    /// collocation's residual (the law against the force quartic between the nodes).
+    #[inline(never)]
+    pub(super) fn accept(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        let (n, nl) = (self.n, self.nl);
+        let h = trial.h;
+        let bases = collocation::bases();
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
+        let tab: &Table = match trial.k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
+        let start = self
+            .trace
+            .is_some()
+            .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
+        // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
+        let trs: [Trig; 5] = std::array::from_fn(|p| {
+            if p == 0 {
+                tr0
+            } else if self.big.is_some() {
+                let (sh, ch) = tab.rot[NODES8[p - 1]];
+                Trig {
+                    t: t0 + THETA8[p] * h,
+                    s: tr0.s * ch + tr0.c * sh,
+                    c: tr0.c * ch - tr0.s * sh,
+                }
+            } else {
+                self.gm.trig(t0 + THETA8[p] * h)
+            }
+        });
+        // dense output: a step whose nodal forces peak inside it is also observed at its
+        // interior nodes, so that the recorder's interpolant around the peak is 4× denser
+        let dense = (0..nl).any(|kk| {
+            let f = &self.f8[kk * 5..kk * 5 + 5];
+            let inner = f[1].max(f[2]).max(f[3]);
+            inner > 0.0 && inner > f[0].max(f[4])
+        });
+        // per level, the contact quartic's integral and first moment (records' ground work)
+        for kk in 0..nl {
+            let f = &self.f8[kk * 5..kk * 5 + 5];
+            let (mut a, mut b) = (0.0, 0.0);
+            for p in 0..5 {
+                a += WEIGHTS8[p] * f[p];
+                b += bases.first[p] * f[p];
+            }
+            self.moments[kk] = (h * a, h * h * b);
+        }
+        let gm = &self.gm;
+        let harmonic = gm.harmonic_plain();
+        let mut sums = StateSums::default();
+        let (mut input, mut d_energy) = (0.0, 0.0);
+        let proj = &mut self.proj;
+        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
+        let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
+        let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
+        let modes = &tab.modes[..n];
+        for j in 0..n {
+            let ms = &modes[j];
+            // the particular solution at the end (and at the interior nodes for dense output)
+            // (a plain fn, not a closure: inlined into this loop)
+            let pcoef = &self.pcoef[j];
+            let part =
+                |p: usize| particular_at(gm, piece, harmonic, pcoef, j, THETA8[p] * h, &trs[p]);
+            let (x0, y0) = (x0s[j], y0s[j]);
+            let mut g = [0.0; 5];
+            for kk in 0..nl {
+                let c = self.cpl_t[j * nl + kk];
+                for p in 0..5 {
+                    g[p] += c * self.f8[kk * 5 + p];
+                }
+            }
+            let (xe, ye) = ms.end.apply(x0, y0);
+            let pe = part(4);
+            let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
+            for p in 0..5 {
+                q1 += g[p] * ms.end8[p].0;
+                v1 += g[p] * ms.end8[p].1;
+            }
+            if dense {
+                for i in 0..3 {
+                    let (x, y) = ms.mid[i].apply(x0, y0);
+                    let pi = part(i + 1);
+                    let (mut e, mut d) = (x + pi.0, y + pi.1);
+                    for p in 0..5 {
+                        e += g[p] * ms.mid8[i][p].0;
+                        d += g[p] * ms.mid8[i][p].1;
+                    }
+                    self.dense_q[i * n + j] = e;
+                    self.dense_v[i * n + j] = d;
+                }
+            }
+            let (q0, v0) = (self.q[j], self.v[j]);
+            match (piece, &self.htally) {
+                (Piece::Harmonic, Some(ht)) => ht.add(&mut sums, j, w2s[j], q1, v1),
+                (Piece::Poly { .. }, _) => {
+                    let (mut gi, mut gt) = (0.0, 0.0);
+                    for kk in 0..nl {
+                        let c = self.cpl_t[j * nl + kk];
+                        gi += c * self.moments[kk].0;
+                        gt += c * self.moments[kk].1;
+                    }
+                    input += poly_ground_work(
+                        (damp[j], iw2[j]),
+                        h,
+                        (q0, v0),
+                        (q1, v1),
+                        &self.cpoly[j],
+                        gi,
+                        gt,
+                    );
+                }
+                (Piece::Zero, _) => {}
+                _ => {
+                    // harmonic motion with a mode at undamped resonance: its exact work for
+                    // the contact load's chord (rare; mode_work's own trapezoid at resonance)
+                    let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
+                    input += mode_work(
+                        gm,
+                        j,
+                        h,
+                        (q0, v0),
+                        (q1, v1),
+                        None,
+                        tm.as_ref(),
+                        g[0],
+                        g[4] - g[0],
+                    )
+                    .input;
+                }
+            }
+            d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
+            for kk in 0..nl {
+                let c = self.cpl_t[j * nl + kk];
+                proj[kk].0 += c * q1;
+                proj[kk].1 += c * v1;
+            }
+            self.q[j] = q1;
+            self.v[j] = v1;
+        }
+        if let (Piece::Harmonic, Some(ht), Some(big)) = (piece, &self.htally, self.big) {
+            // the ground's work: the state sums at both ends, and the contact quartic's extra
+            let tm =
+                TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (trs[4].s, trs[4].c), tab.rot[3]);
+            input = ht.input(&tm, &self.sums, &sums);
+            for kk in 0..nl {
+                let (k4, k5) = self.kextra[kk];
+                for p in 0..5 {
+                    let (a, b) = tab.hmom[p];
+                    let (sp, cp) = (tr0.s * a + tr0.c * b, tr0.c * a - tr0.s * b);
+                    input += self.f8[kk * 5 + p] * (k4 * sp + k5 * cp);
+                }
+            }
+            d_energy = sums.energy - self.sums.energy;
+        }
+        self.sums = sums;
+        self.psums_ok = false;
+        // the contact load's work on the modes (Lobatto, 5 nodes), and the work into the
+        // contacts with the law along the motion (the 7-point rule on every point of the step
+        // whose state is known: the law against the force quartic between the nodes)
+        let mut modal = 0.0;
+        let mut law = 0.0;
+        for kk in 0..nl {
+            let f = &self.f8[kk * 5..kk * 5 + 5];
+            let mut pw = WEIGHTS8[0] * f[0] * self.states[kk].delta_dot;
+            for p in 1..5 {
+                pw += WEIGHTS8[p] * f[p] * self.nodal8[kk * 4 + p - 1].1;
+            }
+            modal -= h * pw;
+            let lv = &self.sys.levels[kk];
+            let v0 = |dd: f64| episode_v0(self.onset[kk], dd);
+            let power = |(d, dd): (f64, f64)| lv.force.force(d, dd, v0(dd)) * dd;
+            // (the start: the law's right limit at a located onset, as the step used)
+            let w7 = &bases.seven;
+            let mut lw = w7[0] * f[0] * self.states[kk].delta_dot;
+            for (i, node) in [(1, 0), (3, 1), (5, 2), (6, 3)] {
+                lw += w7[i] * power(self.nodal8[kk * 4 + node]);
+            }
+            for (i, slot) in [(2, 0), (4, 1)] {
+                let (mut d, mut dd) = self.dfree[kk * 6 + slot];
+                for l in 0..nl {
+                    let base = ((kk * nl + l) * 2 + slot) * 5;
+                    for p in 0..5 {
+                        let (a, b) = tab.w86[base + p];
+                        d -= a * self.f8[l * 5 + p];
+                        dd -= b * self.f8[l * 5 + p];
+                    }
+                }
+                lw += w7[i] * power((d, dd));
+            }
+            law += h * lw;
+        }
+        let damping = input + modal - d_energy;
+        self.energy += d_energy;
+        if dense {
+            self.observe_dense(h, t0, (input, damping, law));
+        }
+        self.tally.input += input;
+        self.tally.damping += damping;
+        self.tally.contact += law;
+        // (the impulse: the force quartic's integral, exact)
+        for kk in 0..nl {
+            self.tally.impulse[kk] += self.moments[kk].0;
+        }
+        self.last_f8.copy_from_slice(&self.f8);
+        self.t = t_end;
+        self.prev_states.copy_from_slice(&self.states);
+        for kk in 0..nl {
+            let (cq, cv) = self.proj[kk];
+            self.set_state(kk, cq, cv);
+        }
+        update_onsets(&mut self.onset, &self.prev_states, &self.states, h);
+        for kk in 0..nl {
+            if self.onset[kk] == 0.0 && Self::at_onset(&self.states[kk]) {
+                self.onset[kk] = self.states[kk].delta_dot;
+            }
+            let st = &self.states[kk];
+            if st.delta > 0.0 {
+                let kt = self.sys.levels[kk].force.tangent_stiffness(st.delta);
+                self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[kk] * h * h);
+            }
+        }
+        self.last_h = if self.in_contact() { h } else { 0.0 };
+        self.stats.steps += 1;
+        self.trig_now = self.exact_trig(self.t);
+        self.since_sync = 1;
+        if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
+            let companion = (0..nl).map(|kk| self.nodal6[kk * 3 + 2]).collect();
+            trace.push(StepTrace {
+                t: t0,
+                h,
+                q0,
+                v0,
+                onset,
+                q1: self.q.clone(),
+                v1: self.v.clone(),
+                err: trial.err,
+                kink: self.kink,
+                z0: Vec::new(),
+                z1: Vec::new(),
+                companion,
+            });
+        }
+        self.observe();
+    }
+}

@@ -1,0 +1,451 @@
+//! The free flight of [`Elastic`]: exact propagation over the base grid, its cached step data,
+//! the exact tallies of a free step, and the segment loop between contact phases.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::*;
+
+impl<'a, O: Observer> Elastic<'a, O> {
+    // ---------------------------------------------------------------- free flight
+
+    /// The cached free-flight data of step length h (or, when `keep` is false and h is not
+    /// cached, freshly computed into the scratch slot): returns `Some(index)` or `None` for
+    /// the scratch slot.
+    pub(super) fn free_index(&mut self, h: f64, keep: bool) -> Option<usize> {
+        if let Some(i) = self.free.iter().position(|e| e.h == h) {
+            return Some(i);
+        }
+        if !keep {
+            if self.scratch_free.as_ref().is_none_or(|e| e.h != h) {
+                self.scratch_free = Some(FreeData::new(self.sys, self.big, h));
+            }
+            return None;
+        }
+        let d = FreeData::new(self.sys, self.big, h);
+        if self.free.len() < FREE_CACHE {
+            self.free.push(d);
+            Some(self.free.len() - 1)
+        } else {
+            let i = self.free_next;
+            self.free[i] = d;
+            self.free_next = (i + 1) % FREE_CACHE;
+            Some(i)
+        }
+    }
+
+    /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
+    /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
+    /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
+    /// (`amp`) and every level's (`fmargin`), and what the step's exact tallies need (`fsums`,
+    /// `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn free_prop(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        tr0: Trig,
+        t0: f64,
+        h: f64,
+        from_search: bool,
+        margin: bool,
+    ) -> Trig {
+        let (n, nl) = (self.n, self.nl);
+        let fd = match fd {
+            Some(i) => &self.free[i],
+            None => self.scratch_free.as_ref().expect("scratch free flight"),
+        };
+        debug_assert_eq!(fd.h, h);
+        let (sh, ch) = fd.rot;
+        let tr1 = match self.big {
+            // sin, cos at the end by rotating those at the start (one ulp per step; re-synced
+            // on the grid every 16 steps and after every contact step)
+            Some(_) => Trig {
+                t: t0 + h,
+                s: tr0.s * ch + tr0.c * sh,
+                c: tr0.c * ch - tr0.s * sh,
+            },
+            None => Trig::default(),
+        };
+        let (q, v) = if from_search {
+            (&self.qs[..n], &self.vs[..n])
+        } else {
+            (&self.q[..n], &self.v[..n])
+        };
+        let (qb, vb, amp) = (&mut self.qb[..n], &mut self.vb[..n], &mut self.amp[..n]);
+        let (props, herm) = (&fd.props[..n], &fd.herm[..n]);
+        let gm = &self.gm;
+        let w2 = &gm.w2[..n];
+        let mut sums = StateSums::default();
+        let mut energy = None;
+        match (piece, gm.harmonic_plain(), &self.htally) {
+            (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
+                let hp = fd.herm_part;
+                let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
+                for j in 0..n {
+                    let (gr, gi) = (g_re[j], g_im[j]);
+                    let (e0, d0) = (gr * tr0.s + gi * tr0.c, big * (gr * tr0.c - gi * tr0.s));
+                    let (e1, d1) = (gr * tr1.s + gi * tr1.c, big * (gr * tr1.c - gi * tr1.s));
+                    let (x0, y0) = (q[j] - e0, v[j] - d0);
+                    let (x, y) = props[j].apply(x0, y0);
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs() + hp * (gr.abs() + gi.abs())
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
+                    if let Some(ht) = ht {
+                        ht.add(&mut sums, j, w2[j], x, y);
+                    }
+                }
+            }
+            (
+                Piece::Poly {
+                    t0: start,
+                    a0,
+                    a1,
+                    v0,
+                },
+                _,
+                _,
+            ) => {
+                // a recorded motion: each mode's load c0 + c1τ + c2τ² from t0 on, its
+                // particular solution A + Bτ + Cτ² (exact under the cubic Hermite), and the
+                // sums of the end state that the ground's exact work needs (PolyTally)
+                let tau = t0 - start;
+                let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
+                let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
+                let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
+                let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
+                let pt = &self.ptally;
+                let mut ps = PolySums::default();
+                let mut e = 0.0;
+                for j in 0..n {
+                    let c = [
+                        la[j] * ag + lv[j] * vg,
+                        la[j] * a1 + lv[j] * ag,
+                        0.5 * lv[j] * a1,
+                    ];
+                    cpoly[j] = c;
+                    let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
+                    pcoef[j] = [pa, pb, pc];
+                    let (e1, d1) = (pa + h * (pb + h * pc), pb + 2.0 * h * pc);
+                    let (x0, y0) = (q[j] - pa, v[j] - pb);
+                    let (x, y) = props[j].apply(x0, y0);
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs()
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
+                    pt.add(&mut ps, j, x, y);
+                    e += y * y + w2[j] * x * x;
+                }
+                self.fpsums = ps;
+                self.fground = (ag, vg, *a1);
+                energy = Some(0.5 * e);
+            }
+            _ => {
+                // no ground load, or harmonic motion with a mode at undamped resonance (its
+                // tallies mode by mode in commit_free)
+                let (tr_start, tr_end) = (gm.trig(t0), gm.trig(t0 + h));
+                for j in 0..n {
+                    let c = [0.0; 3];
+                    self.cpoly[j] = c;
+                    let (e0, d0) = gm.particular(j, piece, &c, 0.0, &tr_start);
+                    let (e1, d1) = gm.particular(j, piece, &c, h, &tr_end);
+                    let (x0, y0) = (q[j] - e0, v[j] - d0);
+                    let (x, y) = props[j].apply(x0, y0);
+                    let (x, y) = (x + e1, y + d1);
+                    qb[j] = x;
+                    vb[j] = y;
+                    let a = if margin {
+                        herm[j].0 * x0.abs()
+                            + herm[j].1 * y0.abs()
+                            + fd.herm_part * (e0.abs().max(e1.abs()) + d0.abs().max(d1.abs()))
+                    } else {
+                        0.0
+                    };
+                    amp[j] = a;
+                }
+            }
+        }
+        // every level's projections and margin, and the modal energy, at the end
+        for k in 0..nl {
+            let c = self.sys.coupling(k);
+            self.fproj[k] = (dot(c, &self.qb), dot(c, &self.vb));
+            self.fmargin[k] = if margin {
+                dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp)
+            } else {
+                0.0
+            };
+        }
+        self.fenergy = match (&self.htally, energy) {
+            (_, Some(e)) => e,
+            (Some(_), _) if matches!(piece, Piece::Harmonic) => sums.energy,
+            _ => {
+                let (qb, vb) = (&self.qb[..n], &self.vb[..n]);
+                let mut e = 0.0;
+                for j in 0..n {
+                    e += vb[j] * vb[j] + w2[j] * qb[j] * qb[j];
+                }
+                0.5 * e
+            }
+        };
+        self.fsums = sums;
+        tr1
+    }
+
+    /// (δ, δ̇) of level k at the state (qb, vb) (from the free flight's projections).
+    pub(super) fn level_at_end(&self, k: usize) -> (f64, f64) {
+        let (cq, cv) = self.fproj[k];
+        self.sys.levels[k].penetration(cq, cv)
+    }
+
+    /// The largest penetration any level can reach over a free step of length h from the
+    /// levels' (δ, δ̇) in `at` to the state in (qb, vb) (margins in `fmargin`): the cubic
+    /// Hermite's maximum plus the modes' margin. Negative: no level can touch.
+    ///
+    /// `sharp`: the margin weighted as Hermite's remainder is, `16 x²(1 − x)²` of its value at
+    /// the middle (x = τ/h: zero at both ends, where the cubic is exact), instead of added at
+    /// its largest everywhere — what lets the search clear a level that has just separated.
+    pub(super) fn free_bound(&self, h: f64, sharp: bool) -> f64 {
+        let mut bound = f64::NEG_INFINITY;
+        for k in 0..self.nl {
+            let (d1, dd1) = self.level_at_end(k);
+            let (d0, dd0) = self.at[k];
+            let margin = self.fmargin[k];
+            let m = if sharp {
+                quartic_bound(d0, dd0, d1, dd1, h, margin)
+            } else {
+                hermite_max(d0, dd0, d1, dd1, h).0 + margin
+            };
+            bound = bound.max(m);
+        }
+        bound
+    }
+
+    /// The free-flight data `fd` names (a cache entry, or the scratch slot).
+    pub(super) fn free_data(&self, fd: Option<usize>) -> &FreeData {
+        match fd {
+            Some(i) => &self.free[i],
+            None => self.scratch_free.as_ref().expect("scratch free flight"),
+        }
+    }
+
+    /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
+    /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
+    /// tallies (the ground's work; the dissipation from the modal energy balance), the new
+    /// state (no observation).
+    pub(super) fn commit_free(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        h: f64,
+        t_end: f64,
+        tr1: Trig,
+    ) {
+        let n = self.n;
+        let tr0 = self.trig_now;
+        let input = match (piece, &self.htally, self.big) {
+            (Piece::Harmonic, Some(ht), Some(big)) => {
+                let half = self.free_data(fd).half;
+                let tm = TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (tr1.s, tr1.c), half);
+                let input = ht.input(&tm, &self.sums, &self.fsums);
+                self.sums = self.fsums;
+                input
+            }
+            (Piece::Poly { .. }, _, _) => {
+                if !self.psums_ok {
+                    self.psums = self.ptally.sums(&self.q[..n], &self.v[..n]);
+                }
+                let w = self
+                    .ptally
+                    .input(h, self.fground, &self.psums, &self.fpsums);
+                self.psums = self.fpsums;
+                w
+            }
+            (Piece::Zero, _, _) => 0.0,
+            _ => {
+                // harmonic motion with a mode at undamped resonance
+                let tm = self
+                    .gm
+                    .harmonic_omega()
+                    .map(|big| TrigMoments::new(big, self.t, h));
+                (0..n)
+                    .map(|j| {
+                        mode_work(
+                            &self.gm,
+                            j,
+                            h,
+                            (self.q[j], self.v[j]),
+                            (self.qb[j], self.vb[j]),
+                            None,
+                            tm.as_ref(),
+                            0.0,
+                            0.0,
+                        )
+                        .input
+                    })
+                    .sum()
+            }
+        };
+        self.psums_ok = matches!(piece, Piece::Poly { .. });
+        self.tally.input += input;
+        self.tally.damping += input - (self.fenergy - self.energy);
+        self.energy = self.fenergy;
+        std::mem::swap(&mut self.q, &mut self.qb);
+        std::mem::swap(&mut self.v, &mut self.vb);
+        self.t = t_end;
+        self.trig_now = Trig { t: t_end, ..tr1 };
+        self.prev_states.copy_from_slice(&self.states);
+        for k in 0..self.nl {
+            let (cq, cv) = self.fproj[k];
+            self.set_state(k, cq, cv);
+        }
+        update_onsets(&mut self.onset, &self.prev_states, &self.states, h);
+        for k in 0..self.nl {
+            if self.onset[k] == 0.0 && Self::at_onset(&self.states[k]) {
+                self.onset[k] = self.states[k].delta_dot;
+            }
+        }
+        self.impulses();
+        self.stats.steps += 1;
+    }
+
+    /// Stereomechanical impacts at the current state (a located onset): velocity jumps.
+    pub(super) fn impulses(&mut self) {
+        if self.sys.has_impulsive()
+            && self.sys.apply_impulses(
+                &mut self.v,
+                &mut self.states,
+                &mut self.tally.impulse,
+                &mut self.tally.contact,
+            )
+        {
+            self.psums_ok = false;
+            self.evaluate_states();
+            self.resync_sums();
+            self.energy = self.modal_energy();
+        }
+    }
+
+    /// The modal energy `Σ ½(η̇² + ω²η²)` at the current state, J.
+    pub(super) fn modal_energy(&self) -> f64 {
+        let w2 = &self.gm.w2;
+        (0..self.n)
+            .map(|j| 0.5 * (self.v[j] * self.v[j] + w2[j] * self.q[j] * self.q[j]))
+            .sum()
+    }
+
+    /// The free flight from the current time to the next grid point, or to the first onset
+    /// before it (located on the exact free flight).
+    #[inline(never)]
+    pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
+        let (piece, start, seg_end) = self.piece();
+        let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
+        let i = ((self.t - start) / hh + 1e-9).floor() + 1.0;
+        let mut target = if i >= steps { seg_end } else { start + i * hh };
+        if target - self.t <= 1e-12 * hh && target < seg_end {
+            target = if i + 1.0 >= steps {
+                seg_end
+            } else {
+                start + (i + 1.0) * hh
+            };
+        }
+        let h = target - self.t;
+        // a grid step keeps its data (its length recurs); a one-off length does not
+        let on_grid = ((self.t - start) / hh - ((self.t - start) / hh).round()).abs() < 1e-9;
+        if self.since_sync == 0 || !on_grid {
+            self.trig_now = self.exact_trig(self.t);
+        }
+        self.since_sync = (self.since_sync + 1) % 16;
+        let fd = self.free_index(h, on_grid);
+        let check = self.nl > 0;
+        let tr1 = self.free_prop(fd, &piece, self.trig_now, self.t, h, false, check);
+        if check {
+            for k in 0..self.nl {
+                self.at[k] = Self::free_start(&self.states[k]);
+            }
+            // (stereomechanical impacts pressed together by the ground chatter without end — a
+            // Zeno sequence, bounces 1e-9 s apart: after ZENO located impacts within one grid
+            // step, or one at the current instant, the rest of the step is taken whole and its
+            // impulse applied at the end, as a fixed-step method does)
+            let impulsive = self.sys.has_impulsive();
+            if self.free_bound(h, false) > 0.0 && !(impulsive && self.zeno >= ZENO) {
+                if let Some(tau) = self
+                    .find_onset(&piece, h, on_grid)
+                    .filter(|&tau| !(impulsive && tau <= 1e-12 * h))
+                {
+                    if impulsive {
+                        self.zeno += 1;
+                    }
+                    // under a recorded motion contact steps are dyadic parts of the grid step
+                    // (see DYADIC): the free flight ends on that grid just before the onset,
+                    // and the first contact step holds it (an onset inside a step is seen by
+                    // the estimate); no step of a one-off length is needed to realign
+                    let tau = match piece {
+                        Piece::Poly { .. } => {
+                            let m = self.m_onset.unwrap_or(self.m_step).min(MAX_LEVEL);
+                            let unit = hh / (1u64 << m) as f64;
+                            let x = (self.t + tau - start) / unit;
+                            (start + x.floor() * unit - self.t).max(0.0)
+                        }
+                        _ => tau,
+                    };
+                    if tau <= 1e-12 * h {
+                        // the onset is within reach now: contact starts here
+                        self.force_contact = true;
+                        return Ok(());
+                    }
+                    if matches!(piece, Piece::Poly { .. }) {
+                        self.force_contact = true;
+                    }
+                    // jump to the onset: the exact free flight from the segment's start
+                    let fd1 = self.free_index(tau, false);
+                    let tr = self.free_prop(fd1, &piece, self.trig_now, self.t, tau, false, false);
+                    let t_on = self.t + tau;
+                    self.commit_free(fd1, &piece, tau, t_on, tr);
+                    self.trig_now = self.exact_trig(self.t);
+                    self.since_sync = 1;
+                    self.observe();
+                    return self.check_finite();
+                }
+                // no onset after all (the search overwrote the end state): the step again
+                let fd = self.free_index(h, on_grid);
+                let tr1 = self.free_prop(fd, &piece, self.trig_now, self.t, h, false, false);
+                self.commit_free(fd, &piece, h, target, tr1);
+                return self.finish_segment(on_grid);
+            }
+        }
+        self.commit_free(fd, &piece, h, target, tr1);
+        self.finish_segment(on_grid)
+    }
+
+    pub(super) fn finish_segment(&mut self, on_grid: bool) -> Result<(), SolveError> {
+        self.zeno = 0;
+        if !on_grid {
+            self.trig_now = self.exact_trig(self.t);
+        }
+        self.observe();
+        self.check_finite()
+    }
+
+    pub(super) fn check_finite(&self) -> Result<(), SolveError> {
+        let finite = self.q.iter().chain(&self.v).all(|x| x.is_finite());
+        if finite {
+            Ok(())
+        } else {
+            Err(SolveError::Diverged {
+                t: self.t,
+                contact_omega_dt: self.max_contact_w2h2.sqrt(),
+            })
+        }
+    }
+}

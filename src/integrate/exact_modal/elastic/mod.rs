@@ -1,0 +1,606 @@
+//! `exact-modal` for elastic structures (no yielding storey): free flight in closed form between
+//! impacts, onsets located on the exact free flight, and contact integrated by the embedded
+//! Lobatto collocation pair of [`crate::integrate::collocation`] with steps chosen by its error
+//! estimate.
+//!
+//! **Free flight.** Every mode's motion is exact over any step (propagator and particular
+//! solution, [`super::super::linear`]); the free flight advances on the base grid (steps `dt`,
+//! cut at a record's samples), one observation per grid point, with exact tallies. Whether a
+//! level can touch within a step is decided on the cubic Hermite interpolant of δ between the
+//! step's ends plus a margin for the modes that oscillate within it (each mode strays at most
+//! `(|λ|h)⁴/384` of its amplitude from its own cubic).
+//!
+//! **Onset.** Where it can, the step is searched in dyadic sub-steps for the first one whose
+//! end penetrates (or whose interpolant touches), and δ = 0 is solved inside it by safeguarded
+//! Newton iterations on the exact free flight (every iterate an exact state), to 1e-12 m. The
+//! state jumps there exactly: contact starts at a located instant, with the law's right limit
+//! (c·δ̇ for Kelvin), so no step straddles the onset. A stereomechanical impact is applied
+//! there.
+//!
+//! **Contact.** Steps of the 5-node collocation (order 8, kept) and its 4-node companion
+//! (order 6, the estimate) from the onset on, of lengths `dt·2^(−k/4)` (tables computed once
+//! per length), each held to the tolerance of [`super::SubstepTolerance`] by the distance of
+//! the two solutions, the next length from `err^(−1/7)`. A level that starts touching inside
+//! a contact step (another level's impact) has its onset located by shortening that step
+//! (secant on the step length, to 1e-12 m). The contact phase ends when no level penetrates;
+//! the free flight then resumes to the next grid point.
+//!
+//! **Tallies.** Free flight: exact (the ground's work from moments of the modal equations,
+//! dissipation from each mode's energy equation). Contact steps: the 5-node Lobatto quadrature
+//! (exact for polynomials of degree 7) of the ground's and the damping's power from the modal
+//! velocities at the nodes, and of `F·δ̇` at the nodes; impulses exact for the force quartic.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+mod contact;
+mod free;
+mod onset;
+
+use super::super::collocation::{
+    self, NODES, NODES6, NODES8, Newton, NoConvergence, THETA8, Table, WEIGHTS8,
+};
+use super::super::linear::{
+    GroundModes, HarmonicTally, Piece, Prop, StateSums, Trig, TrigMoments, mode_work,
+    poly_coefficients, poly_ground_work, propagator,
+};
+use super::super::plan::{DyadicWalk, EqualSteps};
+use super::super::poly_tally::{PolySums, PolyTally};
+use super::super::progress::Progress;
+use super::super::{
+    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
+    update_onsets,
+};
+use super::{SubstepTolerance, hermite_gap_factor};
+use crate::model::system::{LevelState, System, episode_v0};
+use crate::numerics::hermite::{hermite_crossing, hermite_max};
+use crate::numerics::linalg::dot;
+
+/// Onsets are located to |δ| ≤ this, m.
+pub(super) const EVENT_TOL: f64 = 1e-12;
+/// Contact step lengths are `dt·2^(−k/QUANT)`.
+const QUANT: f64 = 4.0;
+/// The shortest contact step, `dt·2^(−MAX_K/4)` ≈ dt·1e-12: below it the tolerance is out of
+/// double precision's reach.
+const MAX_K: usize = 160;
+/// The estimate's local order (the companion is of order 6: error ∝ h⁷).
+const ORDER: f64 = 7.0;
+/// Under a recorded motion contact steps are dyadic parts hh/2^m of the grid step hh, aligned
+/// to their own length (so that they end on the record's samples); their tables follow the
+/// quantised ones in the cache, at `DYADIC + m`.
+const DYADIC: usize = MAX_K + 1;
+/// Deepest dyadic level (hh·2^-48).
+const MAX_LEVEL: usize = 48;
+/// Free-flight step lengths kept (grid steps and their dyadic parts).
+const FREE_CACHE: usize = 24;
+/// Located stereomechanical impacts per grid step before the rest of the step is taken whole.
+const ZENO: u32 = 16;
+/// Depth of the dyadic search for an onset inside a free step.
+const MAX_SCAN: u32 = 24;
+/// A law's kink closer than this many units in the last place of t (and of dt) to a contact
+/// step's start or end is taken as at it (see [`Elastic::law_kink_inside`]).
+const KINK_FLOOR_ULPS: f64 = 64.0;
+
+/// The free flight over one step length: every mode's propagator and its Hermite margin.
+struct FreeData {
+    h: f64,
+    props: Vec<Prop>,
+    /// Per mode, how far its free flight may stray from the cubic Hermite through its ends,
+    /// per unit of |η − η_p| and of |η̇ − η̇_p| ([`hermite_gap_factor`]).
+    herm: Vec<(f64, f64)>,
+    /// The same for the harmonic particular solution (per unit of |G_re| + |G_im|).
+    herm_part: f64,
+    /// Harmonic motion: (sin Ωh, cos Ωh) and (sin Ωh/2, cos Ωh/2).
+    rot: (f64, f64),
+    half: (f64, f64),
+}
+
+impl FreeData {
+    fn new(sys: &System, big: Option<f64>, h: f64) -> FreeData {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let props = (0..sys.len())
+            .map(|j| propagator(omega[j], damp[j], h))
+            .collect();
+        let herm = (0..sys.len())
+            .map(|j| {
+                // |λ| of the mode's free motion: ω when underdamped, the fast root otherwise
+                let (w, zw) = (omega[j], 0.5 * damp[j]);
+                let lam = if zw < w {
+                    w
+                } else {
+                    zw + (zw * zw - w * w).sqrt()
+                };
+                let f = hermite_gap_factor(lam * h);
+                // amplitude of the complex exponential ≤ |x| + 2|ẋ|/|λ| (ζ ≤ 0.6, overdamped)
+                (f, 2.0 * f / lam)
+            })
+            .collect();
+        let (rot, half) = big.map_or(((0.0, 1.0), (0.0, 1.0)), |b| {
+            ((b * h).sin_cos(), (0.5 * b * h).sin_cos())
+        });
+        FreeData {
+            h,
+            props,
+            herm,
+            herm_part: big.map_or(0.0, |b| hermite_gap_factor(b * h)),
+            rot,
+            half,
+        }
+    }
+}
+
+/// One trial of a contact step, as left in the work arrays.
+#[derive(Debug, Clone, Copy)]
+struct Trial {
+    /// Scaled error estimate (≤ 1 passes).
+    err: f64,
+    /// Step length, s.
+    h: f64,
+    /// Its table: quantised index, or `None` for the scratch table (a one-off length).
+    k: Option<usize>,
+}
+
+pub(super) struct Elastic<'a, O: Observer> {
+    sys: &'a System,
+    gm: GroundModes,
+    obs: &'a mut O,
+    trace: Option<&'a mut Vec<StepTrace>>,
+    tol: SubstepTolerance,
+    dt: f64,
+    duration: f64,
+    n: usize,
+    nl: usize,
+    /// Ω of a harmonic motion without a mode at undamped resonance (the fast paths).
+    big: Option<f64>,
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    states: Vec<LevelState>,
+    prev_states: Vec<LevelState>,
+    onset: Vec<f64>,
+    tally: Tally,
+    stats: Stats,
+    // --- free flight
+    free: Vec<FreeData>,
+    free_next: usize,
+    scratch_free: Option<FreeData>,
+    qb: Vec<f64>,
+    vb: Vec<f64>,
+    /// Search state of the onset scan.
+    qs: Vec<f64>,
+    vs: Vec<f64>,
+    /// Each mode's Hermite margin over the last free step (see [`hermite_gap_factor`]).
+    amp: Vec<f64>,
+    /// sin Ωt, cos Ωt at the current time (harmonic), carried by rotations along the grid.
+    trig_now: Trig,
+    /// The last `gm.trig` evaluated (a contact step's trials and its acceptance all start at
+    /// the same instant, which the previous step's end evaluated: one libm call per step).
+    trig_memo: Trig,
+    since_sync: u32,
+    htally: Option<HarmonicTally>,
+    sums: StateSums,
+    /// Records: the free flight's ground work regrouped ([`PolyTally`]), its sums at the
+    /// current state (when `psums_ok`) and at the free pass's end, and the pass's ground
+    /// factors (a_g, v_g, a1).
+    ptally: PolyTally,
+    psums: PolySums,
+    psums_ok: bool,
+    fpsums: PolySums,
+    fground: (f64, f64, f64),
+    /// Each mode's ground load over the current step (records), and its particular solution's
+    /// coefficients.
+    cpoly: Vec<[f64; 3]>,
+    pcoef: Vec<[f64; 3]>,
+    // --- contact
+    tables: Vec<Option<Box<Table>>>,
+    scratch_table: Option<Box<Table>>,
+    k_step: usize,
+    k_onset: Option<usize>,
+    /// Recorded motion: the grid step the dyadic tables were made for, the current level and
+    /// the level the last onset needed.
+    dyadic_hh: f64,
+    m_step: usize,
+    m_onset: Option<usize>,
+    /// Free flight's (δ, δ̇) at the table's nodes: `[k·6 + node]`.
+    dfree: Vec<(f64, f64)>,
+    d8free: Vec<(f64, f64)>,
+    d6free: Vec<(f64, f64)>,
+    /// Each mode's homogeneous part at the step's start, (η − η_p, η̇ − η̇_p), kept from the
+    /// trial for the accepted step's pass.
+    x0: Vec<f64>,
+    y0: Vec<f64>,
+    /// Harmonic motion: per level `(c_k·G_re, c_k·G_im)`, the particular solutions projected.
+    gk: Vec<(f64, f64)>,
+    /// Nodal forces `[k·5 + p]`, `[k·4 + p]` and nodal (δ, δ̇) `[k·4 + p − 1]`, `[k·3 + p − 1]`.
+    f8: Vec<f64>,
+    f6: Vec<f64>,
+    nodal8: Vec<(f64, f64)>,
+    nodal6: Vec<(f64, f64)>,
+    /// The last accepted contact step's nodal forces and length, for the next one's guess.
+    last_f8: Vec<f64>,
+    last_h: f64,
+    newton: Newton,
+    /// Relative convergence tolerance of the Newton iterations: 1e-3 of rtol (not below
+    /// 4e-15), so that their error stays far below the step's.
+    newton_tol: f64,
+    max_contact_w2h2: f64,
+    inv_mstar: Vec<f64>,
+    /// Coupling rows transposed, mode-major: `[j·L + k]`.
+    cpl_t: Vec<f64>,
+    /// Whether the last trial met a level's onset or release inside it (for the trace).
+    kink: bool,
+    /// Per level (δ, δ̇) at a search point, and the end state's projections (scratch).
+    at: Vec<(f64, f64)>,
+    proj: Vec<(f64, f64)>,
+    /// The free flight's pass (see [`Self::free_prop`]): every level's projections of the end
+    /// state and margin, the harmonic sums, the records' ground-work sums and the modal energy at the end.
+    fproj: Vec<(f64, f64)>,
+    fmargin: Vec<f64>,
+    fsums: StateSums,
+    fenergy: f64,
+    /// The modal energy at the current state, J.
+    energy: f64,
+    /// `|c_kj|`, level by level: `[k·n + j]`.
+    cabs_t: Vec<f64>,
+    /// Per level, the contact quartic's (∫F dτ, ∫τF dτ) over the step being accepted.
+    moments: Vec<(f64, f64)>,
+    /// Per level, the coefficients of the ground's extra work under a load along it
+    /// ([`HarmonicTally::row_extra`]; harmonic motion).
+    kextra: Vec<(f64, f64)>,
+    /// Dense output of a step (its interior nodes' modal states, level states, tallies).
+    dense_q: Vec<f64>,
+    dense_v: Vec<f64>,
+    dense_states: Vec<LevelState>,
+    dense_tally: Tally,
+    /// Located stereomechanical impacts in the current grid step (see [`ZENO`]).
+    zeno: u32,
+    /// A level touches now with δ̇ = 0 (an onset at the current instant that is not
+    /// approaching yet): the next step is a contact step.
+    force_contact: bool,
+    /// The guard against steps that cannot be made ([`Progress`]).
+    progress: Progress,
+    /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
+    kink_floor_ulps: f64,
+}
+
+pub(super) fn run<O: Observer>(
+    sys: &System,
+    settings: &SolverSettings,
+    initial: &InitialState,
+    observer: &mut O,
+    trace: Option<&mut Vec<StepTrace>>,
+) -> Result<Stats, SolveError> {
+    let (q0, v0) = initial.resolved(sys.len());
+    Elastic::new(sys, settings, observer, trace, 0.0, q0, v0, None).drive()
+}
+
+impl<'a, O: Observer> Elastic<'a, O> {
+    /// The run from the current state to the end of the duration.
+    fn drive(mut self) -> Result<Stats, SolveError> {
+        self.observe();
+        while self.t < self.duration {
+            let t0 = self.t;
+            if self.in_contact() {
+                self.contact_step()?;
+            } else {
+                self.free_segment()?;
+            }
+            self.progress
+                .passed(self.sys, &self.states, t0, self.t, self.dt)?;
+        }
+        self.stats.max_contact_omega_dt = self.max_contact_w2h2.sqrt();
+        Ok(self.stats)
+    }
+
+    /// The integrator at time `t0` in the modal state (q0, v0); `onset`: the approach speeds of
+    /// the contact episodes in force (`None`: none).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn new(
+        sys: &'a System,
+        settings: &SolverSettings,
+        observer: &'a mut O,
+        trace: Option<&'a mut Vec<StepTrace>>,
+        t0: f64,
+        q0: Vec<f64>,
+        v0: Vec<f64>,
+        onset: Option<&[f64]>,
+    ) -> Elastic<'a, O> {
+        let n = sys.len();
+        let nl = sys.levels.len();
+        let gm = GroundModes::new(sys);
+        let big = gm.harmonic_plain().map(|h| h.0);
+        let htally = HarmonicTally::new(&gm);
+        let kextra = match &htally {
+            Some(ht) => (0..nl).map(|k| ht.row_extra(sys.coupling(k))).collect(),
+            None => vec![(0.0, 0.0); nl],
+        };
+        let mut r = Elastic {
+            sys,
+            obs: observer,
+            trace,
+            tol: SubstepTolerance::new(sys, settings),
+            dt: settings.base_step(),
+            duration: settings.duration,
+            n,
+            nl,
+            big,
+            t: t0,
+            q: q0,
+            v: v0,
+            states: vec![LevelState::default(); nl],
+            prev_states: vec![LevelState::default(); nl],
+            onset: vec![0.0; nl],
+            tally: Tally {
+                impulse: vec![0.0; nl],
+                ..Tally::default()
+            },
+            stats: Stats::default(),
+            free: Vec::with_capacity(FREE_CACHE),
+            free_next: 0,
+            scratch_free: None,
+            qb: vec![0.0; n],
+            vb: vec![0.0; n],
+            qs: vec![0.0; n],
+            vs: vec![0.0; n],
+            amp: vec![0.0; n],
+            trig_now: gm.trig(t0),
+            trig_memo: Trig {
+                t: f64::NAN,
+                ..Trig::default()
+            },
+            since_sync: 0,
+            htally,
+            sums: StateSums::default(),
+            ptally: PolyTally::new(&gm.la, &gm.lv, &gm.damp, &gm.inv_w2),
+            psums: PolySums::default(),
+            psums_ok: false,
+            fpsums: PolySums::default(),
+            fground: (0.0, 0.0, 0.0),
+            cpoly: vec![[0.0; 3]; n],
+            pcoef: vec![[0.0; 3]; n],
+            tables: (0..DYADIC + MAX_LEVEL + 1).map(|_| None).collect(),
+            dyadic_hh: f64::NAN,
+            m_step: 2,
+            m_onset: None,
+            scratch_table: None,
+            k_step: 8,
+            k_onset: None,
+            dfree: vec![(0.0, 0.0); 6 * nl],
+            d8free: vec![(0.0, 0.0); 4 * nl],
+            d6free: vec![(0.0, 0.0); 3 * nl],
+            x0: vec![0.0; n],
+            y0: vec![0.0; n],
+            gk: match gm.harmonic_plain() {
+                Some((_, g_re, g_im)) => (0..nl)
+                    .map(|k| (dot(sys.coupling(k), g_re), dot(sys.coupling(k), g_im)))
+                    .collect(),
+                None => vec![(0.0, 0.0); nl],
+            },
+            f8: vec![0.0; 5 * nl],
+            f6: vec![0.0; 4 * nl],
+            nodal8: vec![(0.0, 0.0); 4 * nl],
+            nodal6: vec![(0.0, 0.0); 3 * nl],
+            last_f8: vec![0.0; 5 * nl],
+            last_h: 0.0,
+            newton: Newton::default(),
+            newton_tol: (1e-3 * settings.rtol).max(4e-15),
+            max_contact_w2h2: 0.0,
+            inv_mstar: sys.levels.iter().map(|l| 1.0 / l.effective_mass).collect(),
+            cpl_t: (0..n)
+                .flat_map(|j| (0..nl).map(move |k| sys.coupling(k)[j]))
+                .collect(),
+            kink: false,
+            at: vec![(0.0, 0.0); nl],
+            proj: vec![(0.0, 0.0); nl],
+            force_contact: false,
+            progress: Progress::new(Method::ExactModal),
+            kink_floor_ulps: KINK_FLOOR_ULPS,
+            zeno: 0,
+            fproj: vec![(0.0, 0.0); nl],
+            fmargin: vec![0.0; nl],
+            fsums: StateSums::default(),
+            fenergy: 0.0,
+            energy: 0.0,
+            cabs_t: (0..nl)
+                .flat_map(|k| sys.coupling(k).iter().map(|c| c.abs()))
+                .collect(),
+            moments: vec![(0.0, 0.0); nl],
+            kextra,
+            dense_q: vec![0.0; 3 * n],
+            dense_v: vec![0.0; 3 * n],
+            dense_states: vec![LevelState::default(); nl],
+            dense_tally: Tally {
+                impulse: vec![0.0; nl],
+                ..Tally::default()
+            },
+            gm,
+        };
+        r.resync_sums();
+        r.energy = r.modal_energy();
+        if let Some(onset) = onset {
+            r.onset.copy_from_slice(onset);
+        }
+        r.evaluate_states();
+        let s0 = r.states.clone();
+        update_onsets(&mut r.onset, &s0, &r.states, 0.0);
+        r
+    }
+
+    /// sin Ωt, cos Ωt at t, evaluated directly (memoised: see `trig_memo`).
+    #[inline]
+    fn exact_trig(&mut self, t: f64) -> Trig {
+        if self.trig_memo.t != t {
+            self.trig_memo = self.gm.trig(t);
+            self.trig_memo.t = t;
+        }
+        self.trig_memo
+    }
+
+    fn observe(&mut self) {
+        self.obs.observe(
+            self.sys,
+            &StepView {
+                t: self.t,
+                q: &self.q,
+                v: &self.v,
+                levels: &self.states,
+                z: &[],
+                tally: &self.tally,
+            },
+        );
+    }
+
+    /// The harmonic tallies' sums at the current state.
+    fn resync_sums(&mut self) {
+        if let Some(ht) = &self.htally {
+            let mut s = StateSums::default();
+            for j in 0..self.n {
+                ht.add(&mut s, j, self.gm.w2[j], self.q[j], self.v[j]);
+            }
+            self.sums = s;
+        }
+    }
+
+    /// δ, δ̇ and the law's force of every level at the current state.
+    fn evaluate_states(&mut self) {
+        for k in 0..self.nl {
+            let c = self.sys.coupling(k);
+            let (cq, cv) = (dot(c, &self.q), dot(c, &self.v));
+            self.set_state(k, cq, cv);
+        }
+    }
+
+    #[inline]
+    fn set_state(&mut self, k: usize, cq: f64, cv: f64) {
+        self.states[k] = self.sys.levels[k].state(cq, cv, self.onset[k]);
+    }
+
+    /// A level at a located onset (δ within [`EVENT_TOL`] below 0, approaching).
+    fn at_onset(st: &LevelState) -> bool {
+        st.delta <= 0.0 && st.delta >= -EVENT_TOL && st.delta_dot > 0.0
+    }
+
+    /// A level penetrating (not just released: within [`EVENT_TOL`] above 0 and separating,
+    /// where the force is ~k·EVENT_TOL^{3/2}, nothing).
+    fn penetrating(st: &LevelState) -> bool {
+        st.delta > EVENT_TOL || (st.delta > 0.0 && st.delta_dot >= 0.0)
+    }
+
+    /// A level's δ at the start of a free step, for the contact test: a just-released level
+    /// counts as at 0.
+    fn free_start(st: &LevelState) -> (f64, f64) {
+        if st.delta > 0.0 && !Self::penetrating(st) {
+            (0.0, st.delta_dot)
+        } else {
+            (st.delta, st.delta_dot)
+        }
+    }
+
+    /// Whether the next step is a contact step: a level penetrates, or is at a located onset
+    /// of a force law.
+    fn in_contact(&self) -> bool {
+        let impulsive = self.sys.has_impulsive();
+        (self.force_contact && !impulsive)
+            || self
+                .states
+                .iter()
+                .any(|st| Self::penetrating(st) || (!impulsive && Self::at_onset(st)))
+    }
+
+    /// The piece of ground load at the current time, its start, and the end of the span the
+    /// current step may not cross (the piece's end or the duration).
+    fn piece(&self) -> (Piece, f64, f64) {
+        let (piece, piece_end) = self.gm.piece_at(self.t);
+        let start = match piece {
+            Piece::Poly { t0, .. } => t0,
+            _ => 0.0,
+        };
+        (piece, start, piece_end.min(self.duration))
+    }
+}
+
+/// Mode j's particular solution (η_p, η̇_p) at τ into a step (sin, cos at that instant in `tr`),
+/// the record's polynomial one from its coefficients `pcoef`.
+#[inline(always)]
+fn particular_at(
+    gm: &GroundModes,
+    piece: &Piece,
+    harmonic: Option<(f64, &[f64], &[f64])>,
+    pcoef: &[f64; 3],
+    j: usize,
+    tau: f64,
+    tr: &Trig,
+) -> (f64, f64) {
+    match (piece, harmonic) {
+        (Piece::Harmonic, Some((big, g_re, g_im))) => {
+            let (gr, gi) = (g_re[j], g_im[j]);
+            (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+        }
+        (Piece::Poly { .. }, _) => {
+            let [pa, pb, pc] = *pcoef;
+            (pa + tau * (pb + tau * pc), pb + 2.0 * tau * pc)
+        }
+        (Piece::Zero, _) => (0.0, 0.0),
+        _ => gm.particular(j, piece, &[0.0; 3], tau, tr),
+    }
+}
+
+/// The largest value over x ∈ [0, 1] of `H(x) + 16 m x²(1 − x)²`, H the cubic Hermite through
+/// (y0, d0) at 0 and (y1, d1) at h (x = τ/h): the bound of a function whose distance from
+/// its Hermite interpolant is at most Hermite's remainder `max|f⁗| τ²(h − τ)²/24`, whose
+/// largest value (at the middle) is m. The quartic's maximum is at an end or a root of its
+/// derivative, a cubic: each interval on which that cubic is monotone (split at the roots of
+/// its own derivative) is bisected where it changes sign.
+fn quartic_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64, m: f64) -> f64 {
+    let (m0, m1) = (h * d0, h * d1);
+    // g(x) = c4 x⁴ + c3 x³ + c2 x² + c1 x + c0
+    let c4 = 16.0 * m;
+    let c3 = 2.0 * y0 + m0 - 2.0 * y1 + m1 - 32.0 * m;
+    let c2 = -3.0 * y0 - 2.0 * m0 + 3.0 * y1 - m1 + 16.0 * m;
+    let (c1, c0) = (m0, y0);
+    let g = |x: f64| (((c4 * x + c3) * x + c2) * x + c1) * x + c0;
+    let dg = |x: f64| ((4.0 * c4 * x + 3.0 * c3) * x + 2.0 * c2) * x + c1;
+    // g'' = 12 c4 x² + 6 c3 x + 2 c2: its roots split [0, 1] into monotone pieces of g'
+    let mut cuts = [0.0, 1.0, 1.0, 1.0];
+    let mut nc = 1;
+    let (a, b, c) = (12.0 * c4, 6.0 * c3, 2.0 * c2);
+    if a.abs() > 1e-300 {
+        let disc = b * b - 4.0 * a * c;
+        if disc > 0.0 {
+            let r = disc.sqrt();
+            let q = -0.5 * (b + b.signum() * r);
+            for x in [q / a, c / q] {
+                if x > 0.0 && x < 1.0 {
+                    cuts[nc] = x;
+                    nc += 1;
+                }
+            }
+        }
+    } else if b != 0.0 && (-c / b) > 0.0 && (-c / b) < 1.0 {
+        cuts[nc] = -c / b;
+        nc += 1;
+    }
+    cuts[nc] = 1.0;
+    cuts[..=nc].sort_by(f64::total_cmp);
+    let mut best = g(0.0).max(g(1.0));
+    for w in cuts[..=nc].windows(2) {
+        let (mut lo, mut hi) = (w[0], w[1]);
+        let (glo, ghi) = (dg(lo), dg(hi));
+        if glo.signum() == ghi.signum() {
+            continue;
+        }
+        for _ in 0..50 {
+            let mid = 0.5 * (lo + hi);
+            if dg(mid).signum() == glo.signum() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        best = best.max(g(0.5 * (lo + hi)));
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests;
