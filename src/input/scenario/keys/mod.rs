@@ -364,22 +364,12 @@ pub const DERIVED: &[(&str, Range)] = &[
 /// `ground_motion.period` is the ground's, `period` or `structure[1].period` a structure's).
 pub(crate) fn lookup(key: &str, what: impl Fn(&KeyInfo) -> bool) -> Option<&'static KeyInfo> {
     // a key given by its full path is that entry (`ground_motion.scale_to_sa.period` is not the
-    // ground's `period`), whether or not it has `what`
-    let unindexed = |p: &str| {
-        let mut out = String::with_capacity(p.len());
-        let mut depth = 0;
-        for ch in p.chars() {
-            match ch {
-                '[' => depth += 1,
-                ']' => depth -= 1,
-                _ if depth == 0 => out.push(ch),
-                _ => {}
-            }
-        }
-        out
-    };
-    let bare = unindexed(key);
-    if let Some(k) = all().find(|k| unindexed(&k.path()) == bare) {
+    // ground's `period`), whether or not it has `what`. Compared character by character with
+    // the indices left out, without building strings: this runs for every key a scenario
+    // validates, and so for every case of a sweep.
+    if let Some(k) = all().find(|k| {
+        unindexed(key).eq(unindexed(k.table.path()).chain(k.name.chars()))
+    }) {
         return what(k).then_some(k);
     }
     let last = key.rsplit('.').next().unwrap_or(key);
@@ -390,6 +380,22 @@ pub(crate) fn lookup(key: &str, what: impl Fn(&KeyInfo) -> bool) -> Option<&'sta
     named()
         .find(|k| !k.table.in_ground_motion() && what(k))
         .or_else(|| named().find(|k| what(k)))
+}
+
+/// The characters of `p` outside brackets (`structure[1].period` → `structure.period`).
+fn unindexed(p: &str) -> impl Iterator<Item = char> + '_ {
+    let mut depth = 0u32;
+    p.chars().filter(move |&ch| match ch {
+        '[' => {
+            depth += 1;
+            false
+        }
+        ']' => {
+            depth = depth.saturating_sub(1);
+            false
+        }
+        _ => depth == 0,
+    })
 }
 
 /// The table whose key set is exactly `keys` (serde's list of a table's fields): every table's
