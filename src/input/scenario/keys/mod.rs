@@ -367,9 +367,9 @@ pub(crate) fn lookup(key: &str, what: impl Fn(&KeyInfo) -> bool) -> Option<&'sta
     // ground's `period`), whether or not it has `what`. Compared character by character with
     // the indices left out, without building strings: this runs for every key a scenario
     // validates, and so for every case of a sweep.
-    if let Some(k) = all().find(|k| {
-        unindexed(key).eq(unindexed(k.table.path()).chain(k.name.chars()))
-    }) {
+    if let Some(k) =
+        all().find(|k| unindexed(key).eq(unindexed(k.table.path()).chain(k.name.chars())))
+    {
         return what(k).then_some(k);
     }
     let last = key.rsplit('.').next().unwrap_or(key);
