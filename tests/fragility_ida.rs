@@ -8,6 +8,8 @@
 //! at x* = x₀ · θ / drift(x₀): each record's hunt-and-fill bracket must contain x* and be
 //! within the tolerance.
 
+mod common;
+
 use std::path::Path;
 
 use pounding::analysis::simulate::simulate;
@@ -348,7 +350,6 @@ fn frames_study(dir: &Path) -> std::path::PathBuf {
 
 #[test]
 fn a_killed_study_resumes_to_the_tables_of_an_uninterrupted_run() {
-    use std::time::{Duration, Instant};
     let d = tempfile::tempdir().unwrap();
     let study = frames_study(d.path());
     let st = study.to_str().unwrap();
@@ -362,8 +363,9 @@ fn a_killed_study_resumes_to_the_tables_of_an_uninterrupted_run() {
         "-q",
     ]);
     // start, wait until some runs are journaled, kill -9 (one thread: runs finish one by one)
-    let mut child = std::process::Command::new(BIN)
-        .args([
+    let journal = cut.join("journal.csv");
+    common::kill_after_journal_rows(
+        std::process::Command::new(BIN).args([
             "fragility",
             st,
             "--out",
@@ -371,24 +373,10 @@ fn a_killed_study_resumes_to_the_tables_of_an_uninterrupted_run() {
             "--no-plot",
             "-j",
             "1",
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let journal = cut.join("journal.csv");
-    let t0 = Instant::now();
-    loop {
-        let rows = std::fs::read_to_string(&journal)
-            .map(|t| t.lines().count().saturating_sub(2))
-            .unwrap_or(0);
-        if rows >= 4 || t0.elapsed() > Duration::from_secs(60) {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    child.kill().unwrap(); // SIGKILL
-    child.wait().unwrap();
+        ]),
+        &journal,
+        4,
+    );
     assert!(
         !cut.join("fit.json").exists(),
         "killed too late to test resuming"

@@ -16,9 +16,10 @@
 //! Records are synthetic (written here), the structures small shear buildings, so that a case
 //! takes milliseconds.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
 
 use pounding::study::sweep::Sweep;
 use pounding::study::sweep::results::parse_csv_line;
@@ -398,8 +399,9 @@ fn killed_suite_sweep_resumes_and_shards_merge() {
     assert_eq!(reference.lines().count(), 37);
     assert!(reference.lines().nth(1).unwrap().contains(",ok,4,max,NaN,"));
 
-    let mut child = Command::new(BIN)
-        .args([
+    let journal = cut.join("journal.csv");
+    common::kill_after_journal_rows(
+        std::process::Command::new(BIN).args([
             "sweep",
             s(&sw),
             "--out",
@@ -407,24 +409,10 @@ fn killed_suite_sweep_resumes_and_shards_merge() {
             "--no-plot",
             "--jobs",
             "1",
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let journal = cut.join("journal.csv");
-    let t0 = Instant::now();
-    loop {
-        let rows = std::fs::read_to_string(&journal)
-            .map(|t| t.lines().count().saturating_sub(2))
-            .unwrap_or(0);
-        if rows >= 3 || t0.elapsed() > Duration::from_secs(60) {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(1));
-    }
-    child.kill().unwrap(); // SIGKILL
-    child.wait().unwrap();
+        ]),
+        &journal,
+        3,
+    );
     assert!(
         !cut.join("results.csv").exists(),
         "killed too late to test resuming"

@@ -1,8 +1,9 @@
 //! `pounding sweep`, `merge` and `plot` driven as a user would: through the binary.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_pounding");
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
@@ -71,8 +72,9 @@ fn killed_sweep_resumes_without_losing_or_repeating_rows() {
     assert_eq!(data_rows(&reference).len(), 60);
 
     // start, wait until some rows are journaled, kill -9
-    let mut child = Command::new(BIN)
-        .args([
+    let journal = cut.join("journal.csv");
+    common::kill_after_journal_rows(
+        std::process::Command::new(BIN).args([
             "sweep",
             s(&sweep),
             "--out",
@@ -80,24 +82,10 @@ fn killed_sweep_resumes_without_losing_or_repeating_rows() {
             "--no-plot",
             "--jobs",
             "1",
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let journal = cut.join("journal.csv");
-    let t0 = Instant::now();
-    loop {
-        let rows = std::fs::read_to_string(&journal)
-            .map(|t| t.lines().count().saturating_sub(2))
-            .unwrap_or(0);
-        if rows >= 5 || t0.elapsed() > Duration::from_secs(60) {
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    child.kill().unwrap(); // SIGKILL
-    child.wait().unwrap();
+        ]),
+        &journal,
+        5,
+    );
     assert!(
         !cut.join("results.csv").exists(),
         "killed too late to test resuming"

@@ -259,3 +259,28 @@ pub fn scenario_named(text: &str, file: &str) -> Result<Scenario, String> {
 pub fn run_named(text: &str, file: &str) -> Report {
     simulate(&scenario_named(text, file).expect("valid scenario")).expect("runs")
 }
+
+/// Start `cmd` (its output discarded), wait until its journal at `journal` holds at least
+/// `rows` rows after the two header lines (at most 60 s), then kill it with SIGKILL: how the
+/// resume tests of sweeps and studies interrupt a run mid-way.
+pub fn kill_after_journal_rows(cmd: &mut Command, journal: &Path, rows: usize) {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let mut child = cmd
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    loop {
+        let done = std::fs::read_to_string(journal)
+            .map(|t| t.lines().count().saturating_sub(2))
+            .unwrap_or(0);
+        if done >= rows || t0.elapsed() > Duration::from_secs(60) {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+}
