@@ -48,9 +48,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
         (None, next - self.t)
     }
 
-    /// Quantised step length `dt·2^(−k/4)`.
+    /// Quantised step length `dt·2^(−k/4)` (from the table of them: no libm call per step).
+    #[inline]
     pub(super) fn length(&self, k: usize) -> f64 {
-        self.dt * (-(k as f64) / QUANT).exp2()
+        self.lengths[k.min(MAX_K)]
     }
 
     /// Smallest k whose length is ≤ h.
@@ -741,6 +742,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         self.last_h = if self.in_contact() { h } else { 0.0 };
         self.stats.steps += 1;
+        // sin, cos at the end: the rotation to the end node (trs[4]), evaluated directly
+        // every SYNC_CONTACT steps and where the end was snapped to a span's end (the
+        // rotations' rounding, about an ulp each, cannot accumulate)
+        self.contact_sync += 1;
+        if self.big.is_some() && self.contact_sync < SYNC_CONTACT && t_end == t0 + h {
+            self.trig_memo = Trig { t: t_end, ..trs[4] };
+        } else {
+            self.contact_sync = 0;
+        }
         self.trig_now = self.exact_trig(self.t);
         self.since_sync = 1;
         if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
@@ -763,3 +773,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.observe();
     }
 }
+
+/// Contact steps between direct evaluations of sin Ωt, cos Ωt (rotations in between).
+const SYNC_CONTACT: u32 = 16;

@@ -261,6 +261,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     progress: Progress,
     /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
     kink_floor_ulps: f64,
+    /// The quantised contact step lengths `dt·2^(−k/4)`, k = 0..=MAX_K.
+    lengths: Vec<f64>,
+    /// Contact steps since sin Ωt, cos Ωt were last evaluated directly.
+    contact_sync: u32,
 }
 
 pub(super) fn run<O: Observer>(
@@ -395,6 +399,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             force_contact: false,
             progress: Progress::new(Method::ExactModal),
             kink_floor_ulps: KINK_FLOOR_ULPS,
+            lengths: (0..=MAX_K)
+                .map(|k| settings.base_step() * (-(k as f64) / QUANT).exp2())
+                .collect(),
+            contact_sync: 0,
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
