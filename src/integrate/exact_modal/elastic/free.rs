@@ -4,7 +4,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::kernel::{HarmonicWave, PolyMap, harmonic_pass, poly_pass};
+use super::kernel::{HarmonicWave, ModeLoads, PolyMap, harmonic_pass, poly_pass};
 use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
@@ -59,13 +59,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
             };
             if slot.poly.is_none() {
                 let gm = &self.gm;
-                let modes = (
-                    &gm.la[..],
-                    &gm.lv[..],
-                    &gm.damp[..],
-                    &gm.w2[..],
-                    &gm.inv_w2[..],
-                );
+                let modes = ModeLoads {
+                    la: &gm.la,
+                    lv: &gm.lv,
+                    damp: &gm.damp,
+                    w2: &gm.w2,
+                    inv_w2: &gm.inv_w2,
+                };
                 slot.poly = Some(PolyMap::new(modes, &slot.props, &slot.herm, slot.h));
             }
         }

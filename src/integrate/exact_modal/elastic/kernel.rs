@@ -101,12 +101,29 @@ const H0: usize = 22;
 const H1: usize = 23;
 const COEFS: usize = 24;
 
+/// Every mode's load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp` (2ζω,
+/// 1/s), `w2` (ω², 1/s²) and `inv_w2` (1/ω², s²), as [`GroundModes`] has them.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ModeLoads<'a> {
+    pub(super) la: &'a [f64],
+    pub(super) lv: &'a [f64],
+    pub(super) damp: &'a [f64],
+    pub(super) w2: &'a [f64],
+    pub(super) inv_w2: &'a [f64],
+}
+
 impl PolyMap {
     /// From the modes' load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp`
     /// (2ζω, 1/s), `w2` (ω², 1/s²), `inv_w2` (1/ω², s²), their propagators over the step h (s)
     /// and Hermite margin factors `herm`.
     pub(super) fn new(
-        (la, lv, damp, w2, inv_w2): (&[f64], &[f64], &[f64], &[f64], &[f64]),
+        ModeLoads {
+            la,
+            lv,
+            damp,
+            w2,
+            inv_w2,
+        }: ModeLoads,
         props: &[Prop],
         herm: &[(f64, f64)],
         h: f64,
@@ -244,7 +261,14 @@ mod tests {
         for h in [0.005, 0.02, 1e-4] {
             let props: Vec<Prop> = (0..5).map(|j| propagator(omega[j], damp[j], h)).collect();
             let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
-            let map = PolyMap::new((&la, &lv, &damp, &w2, &inv_w2), &props, &[(0.0, 0.0); 5], h);
+            let modes = ModeLoads {
+                la: &la,
+                lv: &lv,
+                damp: &damp,
+                w2: &w2,
+                inv_w2: &inv_w2,
+            };
+            let map = PolyMap::new(modes, &props, &[(0.0, 0.0); 5], h);
             for (ag, vg, a1) in [(1.7, -0.3, 40.0), (-3.0, 0.8, -5.0), (0.2, 0.01, 900.0)] {
                 for j in 0..5 {
                     let (w, zw) = (omega[j], zeta[j] * omega[j]);
