@@ -29,6 +29,37 @@ pub struct PolySums {
     c3: f64,
 }
 
+impl PolySums {
+    /// Add a mode with weights `w` (la, lv, la/ω², lv/ω², lv·2ζω/ω⁴, 2ζω) and state (η, η̇).
+    #[inline(always)]
+    fn add(&mut self, w: &[f64; 6], e: f64, v: f64) {
+        let [la, lv, lai, lvi, lvd, d] = *w;
+        let u = v + d * e;
+        self.a1 += la * e;
+        self.a2 += lv * e;
+        self.b1 += lai * u;
+        self.b2 += lvi * u;
+        self.c1 += lvi * e;
+        self.c3 += lvd * u;
+    }
+}
+
+impl PolySums {
+    /// The sums from their parts in the order (Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η,
+    /// Σ lv 2ζω/ω⁴ D), D = η̇ + 2ζωη: what a pass over the modes with the weights of
+    /// [`PolyTally::new`] (la, lv, la/ω², lv/ω², lv·2ζω/ω⁴, 2ζω) accumulated.
+    pub fn from_parts([a1, a2, b1, b2, c1, c3]: [f64; 6]) -> PolySums {
+        PolySums {
+            a1,
+            a2,
+            b1,
+            b2,
+            c1,
+            c3,
+        }
+    }
+}
+
 /// Per-mode weights and mode-constant sums of the regrouped ground work.
 #[derive(Debug, Clone)]
 pub struct PolyTally {
@@ -60,14 +91,7 @@ impl PolyTally {
     /// Contribution of mode j with state (η, η̇) to the sums.
     #[inline(always)]
     pub fn add(&self, sums: &mut PolySums, j: usize, e: f64, v: f64) {
-        let [la, lv, lai, lvi, lvd, d] = self.w[j];
-        let u = v + d * e;
-        sums.a1 += la * e;
-        sums.a2 += lv * e;
-        sums.b1 += lai * u;
-        sums.b2 += lvi * u;
-        sums.c1 += lvi * e;
-        sums.c3 += lvd * u;
+        sums.add(&self.w[j], e, v);
     }
 
     /// The sums at the modal state (q, v).

@@ -4,6 +4,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use super::kernel::{HarmonicWave, ModeLoads, PolyMap, harmonic_pass, poly_pass};
 use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
@@ -51,6 +52,23 @@ impl<'a, O: Observer> Elastic<'a, O> {
         margin: bool,
     ) -> Trig {
         let (n, nl) = (self.n, self.nl);
+        if matches!(piece, Piece::Poly { .. }) {
+            let slot = match fd {
+                Some(i) => &mut self.free[i],
+                None => self.scratch_free.as_mut().expect("scratch free flight"),
+            };
+            if slot.poly.is_none() {
+                let gm = &self.gm;
+                let modes = ModeLoads {
+                    la: &gm.la,
+                    lv: &gm.lv,
+                    damp: &gm.damp,
+                    w2: &gm.w2,
+                    inv_w2: &gm.inv_w2,
+                };
+                slot.poly = Some(PolyMap::new(modes, &slot.props, &slot.herm, slot.h));
+            }
+        }
         let fd = match fd {
             Some(i) => &self.free[i],
             None => self.scratch_free.as_ref().expect("scratch free flight"),
@@ -80,25 +98,30 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let mut energy = None;
         match (piece, gm.harmonic_plain(), &self.htally) {
             (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
-                let hp = fd.herm_part;
-                let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
-                for j in 0..n {
-                    let (gr, gi) = (g_re[j], g_im[j]);
-                    let (e0, d0) = (gr * tr0.s + gi * tr0.c, big * (gr * tr0.c - gi * tr0.s));
-                    let (e1, d1) = (gr * tr1.s + gi * tr1.c, big * (gr * tr1.c - gi * tr1.s));
-                    let (x0, y0) = (q[j] - e0, v[j] - d0);
-                    let (x, y) = props[j].apply(x0, y0);
-                    let (x, y) = (x + e1, y + d1);
-                    qb[j] = x;
-                    vb[j] = y;
-                    let a = if margin {
-                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs() + hp * (gr.abs() + gi.abs())
-                    } else {
-                        0.0
-                    };
-                    amp[j] = a;
-                    if let Some(ht) = ht {
-                        ht.add(&mut sums, j, w2[j], x, y);
+                let hw = HarmonicWave {
+                    big,
+                    g_re: &g_re[..n],
+                    g_im: &g_im[..n],
+                    tr0,
+                    tr1,
+                };
+                let (out, hp) = ((qb, vb, amp), (herm, fd.herm_part));
+                let s = &mut sums;
+                // (the per-mode branches hoisted: one loop per case)
+                match (margin, ht) {
+                    (true, Some(ht)) => {
+                        harmonic_pass::<true>(&hw, props, hp, q, v, out, |j, x, y| {
+                            ht.add(s, j, w2[j], x, y)
+                        })
+                    }
+                    (false, Some(ht)) => {
+                        harmonic_pass::<false>(&hw, props, hp, q, v, out, |j, x, y| {
+                            ht.add(s, j, w2[j], x, y)
+                        })
+                    }
+                    (true, None) => harmonic_pass::<true>(&hw, props, hp, q, v, out, |_, _, _| {}),
+                    (false, None) => {
+                        harmonic_pass::<false>(&hw, props, hp, q, v, out, |_, _, _| {})
                     }
                 }
             }
@@ -112,43 +135,21 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 _,
                 _,
             ) => {
-                // a recorded motion: each mode's load c0 + c1τ + c2τ² from t0 on, its
-                // particular solution A + Bτ + Cτ² (exact under the cubic Hermite), and the
-                // sums of the end state that the ground's exact work needs (PolyTally)
+                // a recorded motion: the ground's acceleration a_g, velocity v_g at the step's
+                // start and the acceleration's slope a1 load every mode (c0 + c1τ + c2τ²), and
+                // the step is one affine map of (η, η̇, a_g, v_g, a1) per mode ([`PolyMap`]);
+                // the same pass sums what the ground's exact work needs (PolyTally)
                 let tau = t0 - start;
-                let (ag, vg) = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau));
-                let (la, lv) = (&gm.la[..n], &gm.lv[..n]);
-                let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
-                let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
-                let pt = &self.ptally;
-                let mut ps = PolySums::default();
-                let mut e = 0.0;
-                for j in 0..n {
-                    let c = [
-                        la[j] * ag + lv[j] * vg,
-                        la[j] * a1 + lv[j] * ag,
-                        0.5 * lv[j] * a1,
-                    ];
-                    cpoly[j] = c;
-                    let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
-                    pcoef[j] = [pa, pb, pc];
-                    let (e1, d1) = (pa + h * (pb + h * pc), pb + 2.0 * h * pc);
-                    let (x0, y0) = (q[j] - pa, v[j] - pb);
-                    let (x, y) = props[j].apply(x0, y0);
-                    let (x, y) = (x + e1, y + d1);
-                    qb[j] = x;
-                    vb[j] = y;
-                    let a = if margin {
-                        herm[j].0 * x0.abs() + herm[j].1 * y0.abs()
-                    } else {
-                        0.0
-                    };
-                    amp[j] = a;
-                    pt.add(&mut ps, j, x, y);
-                    e += y * y + w2[j] * x * x;
-                }
+                let g = (a0 + a1 * tau, v0 + tau * (a0 + 0.5 * a1 * tau), *a1);
+                let map = fd.poly.as_ref().expect("the map is built before the pass");
+                let out = (qb, vb, amp);
+                let (ps, e) = if margin {
+                    poly_pass::<true>(map, g, q, v, out)
+                } else {
+                    poly_pass::<false>(map, g, q, v, out)
+                };
                 self.fpsums = ps;
-                self.fground = (ag, vg, *a1);
+                self.fground = g;
                 energy = Some(0.5 * e);
             }
             _ => {
@@ -415,7 +416,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     self.trig_now = self.exact_trig(self.t);
                     self.since_sync = 1;
                     self.observe();
-                    return self.check_finite();
+                    return self.check_finite_free();
                 }
                 // no onset after all (the search overwrote the end state): the step again
                 let fd = self.free_index(h, on_grid);
@@ -434,7 +435,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.trig_now = self.exact_trig(self.t);
         }
         self.observe();
-        self.check_finite()
+        self.check_finite_free()
+    }
+
+    /// [`Self::check_finite`] after a committed free step, whose modal energy `energy` is
+    /// `Σ ½(η̇² + ω²η²)` of the current state: finite only if every value is (ω² > 0; a
+    /// NaN or an infinity makes it NaN or ∞), so one comparison clears the usual step and the
+    /// scan decides only when it is not (the same error at the same instant as before).
+    fn check_finite_free(&self) -> Result<(), SolveError> {
+        if self.energy.is_finite() {
+            Ok(())
+        } else {
+            self.check_finite()
+        }
     }
 
     pub(super) fn check_finite(&self) -> Result<(), SolveError> {

@@ -35,6 +35,7 @@
 
 mod contact;
 mod free;
+mod kernel;
 mod onset;
 
 use super::super::collocation::{
@@ -93,6 +94,9 @@ struct FreeData {
     /// Harmonic motion: (sin Ωh, cos Ωh) and (sin Ωh/2, cos Ωh/2).
     rot: (f64, f64),
     half: (f64, f64),
+    /// Recorded motion: the step as one affine map per mode (built at first use, see
+    /// [`kernel::PolyMap`]).
+    poly: Option<kernel::PolyMap>,
 }
 
 impl FreeData {
@@ -125,6 +129,7 @@ impl FreeData {
             herm_part: big.map_or(0.0, |b| hermite_gap_factor(b * h)),
             rot,
             half,
+            poly: None,
         }
     }
 }

@@ -1,0 +1,379 @@
+//! The free flight's per-mode passes ([`super::Elastic::free_prop`]): the harmonic motion's,
+//! and a recorded motion's as one precomputed affine map per mode and step length
+//! ([`PolyMap`]) done two modes at a time.
+
+// Index loops over parallel per-mode arrays read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use super::*;
+
+/// The harmonic particular solution `Im[G e^{iΩt}]` of every mode at a free step's ends.
+pub(super) struct HarmonicWave<'g> {
+    pub(super) big: f64,
+    pub(super) g_re: &'g [f64],
+    pub(super) g_im: &'g [f64],
+    pub(super) tr0: Trig,
+    pub(super) tr1: Trig,
+}
+
+/// The free flight of every mode under harmonic motion: (q, v) → `out` = (qb, vb, amp), the
+/// Hermite margin in `amp` when `MARGIN` (else 0), `tally(j, η, η̇)` at each mode's end state.
+#[inline(always)]
+pub(super) fn harmonic_pass<const MARGIN: bool>(
+    hw: &HarmonicWave,
+    props: &[Prop],
+    (herm, hp): (&[(f64, f64)], f64),
+    q: &[f64],
+    v: &[f64],
+    (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+    mut tally: impl FnMut(usize, f64, f64),
+) {
+    let n = qb.len();
+    let (props, herm, q, v) = (&props[..n], &herm[..n], &q[..n], &v[..n]);
+    let (g_re, g_im, vb, amp) = (&hw.g_re[..n], &hw.g_im[..n], &mut vb[..n], &mut amp[..n]);
+    let (big, tr0, tr1) = (hw.big, hw.tr0, hw.tr1);
+    for j in 0..n {
+        let (gr, gi) = (g_re[j], g_im[j]);
+        let (e0, d0) = (gr * tr0.s + gi * tr0.c, big * (gr * tr0.c - gi * tr0.s));
+        let (e1, d1) = (gr * tr1.s + gi * tr1.c, big * (gr * tr1.c - gi * tr1.s));
+        let (x0, y0) = (q[j] - e0, v[j] - d0);
+        let (x, y) = props[j].apply(x0, y0);
+        let (x, y) = (x + e1, y + d1);
+        qb[j] = x;
+        vb[j] = y;
+        amp[j] = if MARGIN {
+            herm[j].0 * x0.abs() + herm[j].1 * y0.abs() + hp * (gr.abs() + gi.abs())
+        } else {
+            0.0
+        };
+        tally(j, x, y);
+    }
+}
+
+/// A free step of length h under a recorded motion as one affine map per mode. The mode's
+/// load over the step is `c0 + c1τ + c2τ²` with `c0 = la·a_g + lv·v_g`, `c1 = la·a1 + lv·a_g`,
+/// `c2 = ½lv·a1` (a_g, v_g the ground's acceleration and velocity at the step's start, a1 the
+/// acceleration's slope), its particular solution `A + Bτ + Cτ²` ([`poly_coefficients`], linear
+/// in (a_g, v_g, a1)), and the exact step `(η', η̇') = P(h)·(η − A, η̇ − B) + (A + Bh + Ch²,
+/// B + 2Ch)` regrouped as
+///
+/// `η' = p11 η + p12 η̇ + qa a_g + qv v_g + q1 a1`, `η̇' = p21 η + p22 η̇ + va a_g + vv v_g + v1 a1`:
+///
+/// ten multiply–adds per mode instead of the particular solution's coefficients, the
+/// subtraction and the propagator at every step (the same algebra: only the rounding moves).
+/// The particular solution's start values `A = aa a_g + av v_g + a1 a1`, `B = ba a_g + b1 a1`
+/// give the Hermite margin, which needs the homogeneous part's size.
+///
+/// Stored two modes at a time, every coefficient of both side by side (`pairs[i][c]` = the
+/// coefficient c of modes 2i and 2i + 1; a missing last odd mode has zeros): one pass reads a
+/// single array and does both modes as one vector operation.
+#[derive(Debug, Clone)]
+pub(super) struct PolyMap {
+    pairs: Vec<[[f64; 2]; COEFS]>,
+}
+
+/// The coefficients of a mode in [`PolyMap`]: the map, the ground-work weights of
+/// [`PolyTally`] (la, lv, la/ω², lv/ω², lv·2ζω/ω⁴, 2ζω), ω², the particular solution's start
+/// and the Hermite margin's factors ([`FreeData::herm`]).
+const P11: usize = 0;
+const P12: usize = 1;
+const P21: usize = 2;
+const P22: usize = 3;
+const QA: usize = 4;
+const QV: usize = 5;
+const Q1: usize = 6;
+const VA: usize = 7;
+const VV: usize = 8;
+const V1: usize = 9;
+const LA: usize = 10;
+const LV: usize = 11;
+const LAI: usize = 12;
+const LVI: usize = 13;
+const LVD: usize = 14;
+const DD: usize = 15;
+const W2: usize = 16;
+const AA: usize = 17;
+const AV: usize = 18;
+const A1: usize = 19;
+const BA: usize = 20;
+const B1: usize = 21;
+const H0: usize = 22;
+const H1: usize = 23;
+const COEFS: usize = 24;
+
+/// Every mode's load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp` (2ζω,
+/// 1/s), `w2` (ω², 1/s²) and `inv_w2` (1/ω², s²), as [`GroundModes`] has them.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ModeLoads<'a> {
+    pub(super) la: &'a [f64],
+    pub(super) lv: &'a [f64],
+    pub(super) damp: &'a [f64],
+    pub(super) w2: &'a [f64],
+    pub(super) inv_w2: &'a [f64],
+}
+
+impl PolyMap {
+    /// From the modes' load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp`
+    /// (2ζω, 1/s), `w2` (ω², 1/s²), `inv_w2` (1/ω², s²), their propagators over the step h (s)
+    /// and Hermite margin factors `herm`.
+    pub(super) fn new(
+        ModeLoads {
+            la,
+            lv,
+            damp,
+            w2,
+            inv_w2,
+        }: ModeLoads,
+        props: &[Prop],
+        herm: &[(f64, f64)],
+        h: f64,
+    ) -> PolyMap {
+        let n = props.len();
+        let mut pairs = vec![[[0.0; 2]; COEFS]; n.div_ceil(2)];
+        for j in 0..n {
+            let (la, lv, d, i) = (la[j], lv[j], damp[j], inv_w2[j]);
+            // poly_coefficients with c = (la a_g + lv v_g, la a1 + lv a_g, ½lv a1), per factor
+            let cc = 0.5 * lv * i;
+            let (ba, b1) = (lv * i, (la - 2.0 * d * cc) * i);
+            let (aa, av, a1) = ((la - d * ba) * i, lv * i, (-d * b1 - 2.0 * cc) * i);
+            let p = &props[j];
+            let (p11, p12, p21, p22) = (p.p11, p.p12, p.p21, p.p22);
+            // η' − Pη = (1 − p11)A + (h − p12)B + h²C, η̇' − Pη̇ = −p21 A + (1 − p22)B + 2hC
+            let (u, w, z) = (1.0 - p11, h - p12, 1.0 - p22);
+            let mut c = [0.0; COEFS];
+            c[P11] = p11;
+            c[P12] = p12;
+            c[P21] = p21;
+            c[P22] = p22;
+            c[QA] = u * aa + w * ba;
+            c[QV] = u * av;
+            c[Q1] = u * a1 + w * b1 + h * h * cc;
+            c[VA] = -p21 * aa + z * ba;
+            c[VV] = -p21 * av;
+            c[V1] = -p21 * a1 + z * b1 + 2.0 * h * cc;
+            // (PolyTally's weights, in its order)
+            c[LA] = la;
+            c[LV] = lv;
+            c[LAI] = la * i;
+            c[LVI] = lv * i;
+            c[LVD] = lv * i * i * d;
+            c[DD] = d;
+            c[W2] = w2[j];
+            c[AA] = aa;
+            c[AV] = av;
+            c[A1] = a1;
+            c[BA] = ba;
+            c[B1] = b1;
+            c[H0] = herm[j].0;
+            c[H1] = herm[j].1;
+            for (k, x) in c.into_iter().enumerate() {
+                pairs[j / 2][k][j % 2] = x;
+            }
+        }
+        PolyMap { pairs }
+    }
+
+    /// Mode j's end state from (η, η̇) under the ground factors `g` = (a_g, v_g, a1).
+    #[cfg(test)]
+    pub(super) fn step(
+        &self,
+        j: usize,
+        (ag, vg, a1): (f64, f64, f64),
+        e: f64,
+        v: f64,
+    ) -> (f64, f64) {
+        let c = |k: usize| self.pairs[j / 2][k][j % 2];
+        (
+            c(P11) * e + c(P12) * v + (c(QA) * ag + c(QV) * vg + c(Q1) * a1),
+            c(P21) * e + c(P22) * v + (c(VA) * ag + c(VV) * vg + c(V1) * a1),
+        )
+    }
+}
+
+/// The free flight of every mode under a recorded motion's piece (ground factors `g`):
+/// (q, v) → `out` = (qb, vb, amp), the Hermite margin in `amp` when `MARGIN` (else 0).
+/// Returns the end state's ground-work sums and `Σ η̇² + ω²η²` (twice the modal energy), each
+/// summed in two lanes (even and odd modes, added at the end).
+#[inline(always)]
+pub(super) fn poly_pass<const MARGIN: bool>(
+    m: &PolyMap,
+    (ag, vg, a1): (f64, f64, f64),
+    q: &[f64],
+    v: &[f64],
+    (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+) -> (PolySums, f64) {
+    let n = qb.len();
+    // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
+    // Σ η̇² + ω²η²
+    let mut acc = [F2([0.0; 2]); 7];
+    let g = (F2([ag; 2]), F2([vg; 2]), F2([a1; 2]));
+    let (qp, _) = q[..n].as_chunks::<2>();
+    let (vp, _) = v[..n].as_chunks::<2>();
+    let (xp, _) = qb.as_chunks_mut::<2>();
+    let (yp, _) = vb[..n].as_chunks_mut::<2>();
+    let (ap, _) = amp[..n].as_chunks_mut::<2>();
+    let full = qp.len();
+    let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
+    for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
+        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2(*qj), F2(*vj), &mut acc);
+    }
+    if n % 2 == 1 {
+        // the last odd mode in lane 0 (lane 1's coefficients are zeros: it adds nothing)
+        let j = n - 1;
+        let (x, y, a) = pair::<MARGIN>(
+            &m.pairs[full],
+            g,
+            F2([q[j], 0.0]),
+            F2([v[j], 0.0]),
+            &mut acc,
+        );
+        (qb[j], vb[j], amp[j]) = (x[0], y[0], a[0]);
+    }
+    let acc = acc.map(|a| a.0);
+    let sum = |k: usize| acc[k][0] + acc[k][1];
+    let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
+    (ps, sum(6))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The affine map of a free step under a recorded motion's piece against the closed form
+    /// of a damped oscillator `η̈ + 2ζωη̇ + ω²η = c0 + c1τ + c2τ²` (the load of a_g, v_g, a1
+    /// through la, lv), written here: the particular solution `A + Bτ + Cτ²` from matching
+    /// powers of τ, and the homogeneous part `e^{−ζωτ}(x0 cos ω_d τ + (y0 + ζωx0)/ω_d sin ω_d τ)`
+    /// with its derivative. Modes from soft to stiff (ωh from 2e-4 to 16), damped and not, at
+    /// three step lengths and three load sets.
+    #[test]
+    fn poly_map_is_the_exact_step_of_a_damped_oscillator_under_a_quadratic_load() {
+        let omega = [2.0, 9.5, 31.0, 140.0, 800.0];
+        let zeta = [0.0, 0.02, 0.05, 0.3, 0.01];
+        let la = [-1200.0, 310.0, -95.0, 40.0, -7.0];
+        let lv = [3.0, -0.4, 11.0, -2.5, 0.8];
+        let damp: Vec<f64> = omega.iter().zip(&zeta).map(|(w, z)| 2.0 * z * w).collect();
+        let inv_w2: Vec<f64> = omega.iter().map(|w| 1.0 / (w * w)).collect();
+        let (q0, v0) = (
+            [0.01, -0.002, 3e-4, 1e-5, -2e-7],
+            [0.05, 0.03, -0.01, 2e-3, 1e-4],
+        );
+        let mut worst = 0.0f64;
+        for h in [0.005, 0.02, 1e-4] {
+            let props: Vec<Prop> = (0..5).map(|j| propagator(omega[j], damp[j], h)).collect();
+            let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+            let modes = ModeLoads {
+                la: &la,
+                lv: &lv,
+                damp: &damp,
+                w2: &w2,
+                inv_w2: &inv_w2,
+            };
+            let map = PolyMap::new(modes, &props, &[(0.0, 0.0); 5], h);
+            for (ag, vg, a1) in [(1.7, -0.3, 40.0), (-3.0, 0.8, -5.0), (0.2, 0.01, 900.0)] {
+                for j in 0..5 {
+                    let (w, zw) = (omega[j], zeta[j] * omega[j]);
+                    let c = [
+                        la[j] * ag + lv[j] * vg,
+                        la[j] * a1 + lv[j] * ag,
+                        0.5 * lv[j] * a1,
+                    ];
+                    // ω²C = c2, ω²B + 2·2ζω·C = c1, ω²A + 2ζω·B + 2C = c0
+                    let cc = c[2] / (w * w);
+                    let b = (c[1] - 4.0 * zw * cc) / (w * w);
+                    let a = (c[0] - 2.0 * zw * b - 2.0 * cc) / (w * w);
+                    let (x0, y0) = (q0[j] - a, v0[j] - b);
+                    let wd = w * (1.0 - zeta[j] * zeta[j]).sqrt();
+                    let (sn, cs, ex) = ((wd * h).sin(), (wd * h).cos(), (-zw * h).exp());
+                    let x = ex * (x0 * cs + (y0 + zw * x0) / wd * sn);
+                    let y = ex * (y0 * cs - (w * w * x0 + zw * y0) / wd * sn);
+                    let want = (x + a + b * h + cc * h * h, y + b + 2.0 * cc * h);
+                    let got = map.step(j, (ag, vg, a1), q0[j], v0[j]);
+                    // (both sides round the particular solution and the homogeneous part at
+                    // their own size: the scale is the largest of them, in displacement and,
+                    // times ω, in velocity; measured ≤ 8e-16 of it: 1e-13 leaves room for other
+                    // compilers' contraction into fused multiply–adds)
+                    let sq = q0[j].abs()
+                        + a.abs()
+                        + (b * h).abs()
+                        + (cc * h * h).abs()
+                        + (v0[j].abs() + b.abs()) / w;
+                    let sv = w * sq + 2.0 * (cc * h).abs();
+                    let err = ((got.0 - want.0).abs() / sq).max((got.1 - want.1).abs() / sv);
+                    worst = worst.max(err);
+                    assert!(
+                        err <= 1e-13,
+                        "mode {j}, h {h}: {got:?} vs {want:?} ({err:e})"
+                    );
+                }
+            }
+        }
+        eprintln!("poly map vs closed form: worst relative error {worst:e}");
+    }
+}
+
+/// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
+/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
+#[inline(always)]
+fn pair<const MARGIN: bool>(
+    c: &[[f64; 2]; COEFS],
+    (g_a, g_v, g_1): (F2, F2, F2),
+    qj: F2,
+    vj: F2,
+    acc: &mut [F2; 7],
+) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let k = |i: usize| F2(c[i]);
+    let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
+    let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
+    let a = if MARGIN {
+        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
+        let pb = k(BA) * g_a + k(B1) * g_1;
+        k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
+    } else {
+        F2([0.0; 2])
+    };
+    let u = y + k(DD) * x;
+    acc[0] = acc[0] + k(LA) * x;
+    acc[1] = acc[1] + k(LV) * x;
+    acc[2] = acc[2] + k(LAI) * u;
+    acc[3] = acc[3] + k(LVI) * u;
+    acc[4] = acc[4] + k(LVI) * x;
+    acc[5] = acc[5] + k(LVD) * u;
+    acc[6] = acc[6] + (y * y + k(W2) * x * x);
+    (x.0, y.0, a.0)
+}
+
+/// Two lanes of f64 (the same operation on two modes), for passes the compiler does as
+/// vector operations.
+#[derive(Debug, Clone, Copy)]
+struct F2([f64; 2]);
+
+impl std::ops::Add for F2 {
+    type Output = F2;
+    #[inline(always)]
+    fn add(self, o: F2) -> F2 {
+        F2([self.0[0] + o.0[0], self.0[1] + o.0[1]])
+    }
+}
+
+impl std::ops::Sub for F2 {
+    type Output = F2;
+    #[inline(always)]
+    fn sub(self, o: F2) -> F2 {
+        F2([self.0[0] - o.0[0], self.0[1] - o.0[1]])
+    }
+}
+
+impl std::ops::Mul for F2 {
+    type Output = F2;
+    #[inline(always)]
+    fn mul(self, o: F2) -> F2 {
+        F2([self.0[0] * o.0[0], self.0[1] * o.0[1]])
+    }
+}
+
+impl F2 {
+    #[inline(always)]
+    fn abs(self) -> F2 {
+        F2([self.0[0].abs(), self.0[1].abs()])
+    }
+}
