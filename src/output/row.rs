@@ -380,3 +380,146 @@ pub fn write_row(
     capture.replay(&mut writer);
     writer.finish(scenario, report, draw)
 }
+
+/// The columns of a row's `history.csv` ([`row_history_columns`]) from a captured run
+/// (`capture`, [`RunCapture`]): the same numbers the file holds (a row the run without contact
+/// did not reach is NaN there, as in the file). Empty when the capture holds no row.
+pub fn row_history_table(scenario: &Scenario, capture: &RunCapture) -> Vec<(String, Vec<f64>)> {
+    let n = capture.row_structures;
+    let width = capture.row_contact_width;
+    if n == 0 || width <= n {
+        return Vec::new();
+    }
+    let rows = capture.row_contact.len() / width;
+    let free = |i: usize, j: usize| {
+        capture
+            .row_free
+            .get(i * (1 + n) + 1 + j)
+            .copied()
+            .unwrap_or(f64::NAN)
+    };
+    let names = row_history_columns(scenario);
+    let mut out = Vec::with_capacity(names.len());
+    for (c, name) in names.into_iter().enumerate() {
+        let col: Vec<f64> = if c < width {
+            (0..rows)
+                .map(|i| capture.row_contact[i * width + c])
+                .collect()
+        } else {
+            (0..rows).map(|i| free(i, c - width)).collect()
+        };
+        out.push((name, col));
+    }
+    out
+}
+
+/// A row's arrays per structure, from a captured run: for each structure (row order) its name
+/// and `t` (s), `w` (with pounding) and `w_free` (without; m) at its headline height — the
+/// `t`, `w_<name>` and `w_<name>_free` columns of history.csv.
+pub fn row_structure_series(
+    scenario: &Scenario,
+    capture: &RunCapture,
+) -> Vec<(String, Vec<(String, Vec<f64>)>)> {
+    let table = row_history_table(scenario, capture);
+    let Some((_, t)) = table.first() else {
+        return Vec::new();
+    };
+    let find = |name: &str| {
+        (table.iter())
+            .find(|(c, _)| c == name)
+            .map_or_else(Vec::new, |(_, v)| v.clone())
+    };
+    (scenario.structures.iter())
+        .map(|s| {
+            let n = s.name();
+            (
+                n.to_string(),
+                vec![
+                    ("t".to_string(), t.clone()),
+                    ("w".to_string(), find(&format!("w_{n}"))),
+                    ("w_free".to_string(), find(&format!("w_{n}_free"))),
+                ],
+            )
+        })
+        .collect()
+}
+
+/// A row's arrays per adjacent pair, from a captured run: for each pair (row order) its two
+/// names and `t` (s), `force` (the sum over its levels, N, summed as a pair's history.csv sums
+/// them) and, with several levels, `force_1 … force_k` — a pair's history.csv force columns.
+pub fn row_pair_series(
+    scenario: &Scenario,
+    capture: &RunCapture,
+) -> Vec<([String; 2], Vec<(String, Vec<f64>)>)> {
+    let n = capture.row_structures;
+    let width = capture.row_contact_width;
+    if n == 0 || width <= n {
+        return Vec::new();
+    }
+    let system = scenario.system();
+    let rows: Vec<&[f64]> = capture.row_contact.chunks_exact(width).collect();
+    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let mut out = Vec::new();
+    let mut first = 0;
+    for p in 0..scenario.structures.len().saturating_sub(1) {
+        let count = system.levels.iter().filter(|l| l.pair == p).count();
+        let range = 1 + n + first..1 + n + first + count;
+        first += count;
+        let mut cols = vec![
+            ("t".to_string(), t.clone()),
+            (
+                "force".to_string(),
+                rows.iter().map(|r| r[range.clone()].iter().sum()).collect(),
+            ),
+        ];
+        if count > 1 {
+            for (k, j) in range.enumerate() {
+                cols.push((
+                    format!("force_{}", k + 1),
+                    rows.iter().map(|r| r[j]).collect(),
+                ));
+            }
+        }
+        let between = [p, p + 1].map(|i| scenario.structures[i].name().to_string());
+        out.push((between, cols));
+    }
+    out
+}
+
+/// The columns of a row's `impacts.csv` ([`row_impacts_csv`]), by its header names: `pair`
+/// and `level` (1-based) whole numbers, `left` and `right` the names, the rest the numbers
+/// the file holds.
+pub fn row_impact_columns(report: &RowReport) -> Vec<(&'static str, crate::output::run::Column)> {
+    use crate::output::run::Column;
+    let log = &report.impact_log;
+    let f = |g: &dyn Fn(&crate::analysis::simulate::RowImpact) -> f64| {
+        Column::Float(log.iter().map(g).collect())
+    };
+    let name = |side: usize| {
+        Column::Text(
+            log.iter()
+                .map(|i| report.pairs[i.pair].between[side].clone())
+                .collect(),
+        )
+    };
+    vec![
+        (
+            "pair",
+            Column::Int(log.iter().map(|i| i.pair as i64 + 1).collect()),
+        ),
+        ("left", name(0)),
+        ("right", name(1)),
+        (
+            "level",
+            Column::Int(log.iter().map(|i| i.level as i64 + 1).collect()),
+        ),
+        ("height", f(&|i| i.height)),
+        ("start", f(&|i| i.start)),
+        ("end", f(&|i| i.end)),
+        ("duration", f(&|i| i.end - i.start)),
+        ("peak_force", f(&|i| i.peak_force)),
+        ("impulse", f(&|i| i.impulse)),
+        ("max_penetration", f(&|i| i.max_penetration)),
+        ("approach_speed", f(&|i| i.approach_speed)),
+    ]
+}
