@@ -15,8 +15,9 @@ use crate::plot::{
 };
 
 /// Palette indices a building's colour cycles through (the palette without black, which is
-/// the contact force's, and yellow, too pale on white): neighbours always differ.
-const BUILDING_COLORS: [usize; 6] = [0, 1, 2, 3, 4, 5];
+/// the contact force's, yellow, too pale on white, and sky blue, too close to blue): five
+/// colours in turn, so that neighbours — also across the wrap, orange then blue — contrast.
+const BUILDING_COLORS: [usize; 5] = [0, 1, 2, 3, 4];
 
 /// Building `i`'s palette index.
 pub fn building_color(i: usize) -> usize {
@@ -292,8 +293,8 @@ pub fn row_history_figure(
     if panels.is_empty() {
         return Err(PlotError::NoData("a row without contact levels".into()));
     }
-    let subtitle = "per adjacent pair: both buildings' displacement where the gap governs, and \
-                    the contact force at each of the pair's levels";
+    let subtitle =
+        "each adjacent pair: the displacements where its gap governs, its contact forces";
     let n = panels.len() as u32;
     let fig = Figure {
         title: &scenario.title,
