@@ -243,27 +243,27 @@ pub fn row_history_figure(
             force,
         });
     }
-    fn col<'h>(hist: &'h RowHistory, k: usize, side: usize) -> &'h [f64] {
+    fn col(hist: &RowHistory, k: usize, side: usize) -> &[f64] {
         hist.levels.get(k).map_or(&[], |c| &c[side])
     }
     let mut panels = Vec::new();
     for (p, lines) in pairs.iter().enumerate() {
         let colors = [building_color(p), building_color(p + 1)];
         let mut series = Vec::new();
-        for side in 0..2 {
+        for (side, &color) in colors.iter().enumerate() {
             series.push(Series {
                 label: &lines.labels[2 * side],
                 x: &h.t,
                 y: col(h, lines.k, side),
                 style: LineStyle::Solid,
-                color: Some(colors[side]),
+                color: Some(color),
             });
             series.push(Series {
                 label: &lines.labels[2 * side + 1],
                 x: &f.t,
                 y: col(f, lines.k, side),
                 style: LineStyle::Dashed,
-                color: Some(colors[side]),
+                color: Some(color),
             });
         }
         panels.push(Panel {

@@ -381,6 +381,9 @@ pub fn write_row(
     writer.finish(scenario, report, draw)
 }
 
+/// Columns of numbers by name, in order.
+pub type NamedColumns = Vec<(String, Vec<f64>)>;
+
 /// The columns of a row's `history.csv` ([`row_history_columns`]) from a captured run
 /// (`capture`, [`RunCapture`]): the same numbers the file holds (a row the run without contact
 /// did not reach is NaN there, as in the file). Empty when the capture holds no row.
@@ -419,7 +422,7 @@ pub fn row_history_table(scenario: &Scenario, capture: &RunCapture) -> Vec<(Stri
 pub fn row_structure_series(
     scenario: &Scenario,
     capture: &RunCapture,
-) -> Vec<(String, Vec<(String, Vec<f64>)>)> {
+) -> Vec<(String, NamedColumns)> {
     let table = row_history_table(scenario, capture);
     let Some((_, t)) = table.first() else {
         return Vec::new();
@@ -450,7 +453,7 @@ pub fn row_structure_series(
 pub fn row_pair_series(
     scenario: &Scenario,
     capture: &RunCapture,
-) -> Vec<([String; 2], Vec<(String, Vec<f64>)>)> {
+) -> Vec<([String; 2], NamedColumns)> {
     let n = capture.row_structures;
     let width = capture.row_contact_width;
     if n == 0 || width <= n {
