@@ -208,6 +208,7 @@ fn run_suite(
 /// self-check unless `--no-check`), streamed into history.csv and floors.csv, then impacts.csv,
 /// the pictures (unless `--no-plot`) and summary.json last.
 fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
+    pounding::output::budget::check_run(sc, a.max_output_size)?;
     let mut writer = pounding::output::row::RowWriter::for_scenario(&a.out, sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };

@@ -288,8 +288,8 @@ def run(
 
     ``check``: also run the self-check (a second run at a 100× tighter tolerance; summary's
     ``accuracy``), as the command line does unless ``--no-check``. ``max_output_size``: the
-    largest history (bytes, as history.csv would hold it) the run may keep (``--max-output-size``;
-    a pair's run). The GIL is released during the simulation. Raises :class:`SolveError` (e.g. an
+    largest history (bytes, as history.csv would hold it) the run may keep (``--max-output-size``).
+    The GIL is released during the simulation. Raises :class:`SolveError` (e.g. an
     unstable step, a scenario whose ground motion is a design spectrum) and
     :class:`ScenarioError` (a history above ``max_output_size``).
 
@@ -299,7 +299,7 @@ def run(
     if not isinstance(scenario, Scenario):
         raise TypeError(f"run() takes a pounding.Scenario, not {type(scenario).__name__}")
     if scenario.is_row:
-        return RowResult(_core.run_row(scenario, check))
+        return RowResult(_core.run_row(scenario, check, max_output_size))
     return RunResult(_core.run(scenario, check, max_output_size))
 
 

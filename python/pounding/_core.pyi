@@ -128,8 +128,9 @@ class RowOutput:
     def save(self, dir: _Path, plots: bool = True) -> list[Path]:
         """Write the files of `pounding run --out DIR` for a row; summary.json last."""
 
-def run_row(scenario: Scenario, check: bool = True) -> RowOutput:
-    """Both runs of a row (and its self-check if `check`), GIL released. Raises SolveError."""
+def run_row(scenario: Scenario, check: bool = True, max_output_size: int = 1_000_000_000) -> RowOutput:
+    """Both runs of a row (and its self-check if `check`), GIL released. Raises SolveError,
+    ScenarioError (a history above max_output_size)."""
 
 class Sweep:
     """A checked sweep (immutable, picklable): its cases and how to compute each."""

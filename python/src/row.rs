@@ -13,7 +13,9 @@ use pyo3::types::{PyDict, PyTuple};
 use pounding::analysis::simulate::{RowReport, RunCapture};
 use pounding::input::scenario::Scenario;
 
-use super::{OutputError, PyScenario, SolveError, column_dict, float_dict, no_panic};
+use super::{
+    OutputError, PyScenario, ScenarioError, SolveError, column_dict, float_dict, no_panic,
+};
 
 /// The outcome of `run_row`: the scenario, the row's report and every history sample.
 #[pyclass(frozen, module = "pounding._core", name = "RowOutput")]
@@ -127,11 +129,12 @@ impl PyRowOutput {
 /// Run a row of buildings with and without pounding (and its self-check unless `check` is
 /// false), as `pounding run` does, with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (scenario, check = true))]
+#[pyo3(signature = (scenario, check = true, max_output_size = 1_000_000_000))]
 pub(crate) fn run_row(
     py: Python<'_>,
     scenario: &Bound<'_, PyScenario>,
     check: bool,
+    max_output_size: u64,
 ) -> PyResult<PyRowOutput> {
     let sc = scenario.get().inner.clone();
     let name = scenario.get().origin.clone();
@@ -139,6 +142,8 @@ pub(crate) fn run_row(
         no_panic(|| {
             pounding::analysis::simulate::require_time_history(&sc)
                 .map_err(|e| SolveError::new_err(e.to_string()))?;
+            pounding::output::budget::check_run(&sc, max_output_size)
+                .map_err(|e| ScenarioError::new_err(e.to_string()))?;
             let mut capture = RunCapture::new();
             let report =
                 pounding::analysis::simulate::simulate_row_streaming(&sc, check, &mut capture)
