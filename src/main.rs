@@ -150,13 +150,13 @@ fn load(path: Option<PathBuf>) -> anyhow::Result<(Scenario, String)> {
 }
 
 fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> {
-    let (sc, name) = load(a.scenario)?;
+    let (sc, name) = load(a.scenario.clone())?;
     if sc.suite.is_some() {
         return run_suite(&sc, &name, &a.out, a.no_plot, a.no_check, quiet);
     }
     simulate::require_time_history(&sc)?;
     if sc.is_row() {
-        return run_row(&sc, &name, &a.out, quiet);
+        return run_row(&sc, &name, &a, quiet);
     }
     pounding::output::budget::check_run(&sc, a.max_output_size)?;
     let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
@@ -204,18 +204,23 @@ fn run_suite(
     Ok(())
 }
 
-/// `pounding run` on a row of buildings (issue 29): the row with and without contact, then
-/// impacts.csv and summary.json (no history, floors or pictures yet: said on stderr).
-fn run_row(sc: &Scenario, name: &str, out: &Path, quiet: bool) -> anyhow::Result<()> {
-    let report = simulate::simulate_row(sc)?;
-    let written = pounding::output::row::write_row(out, sc, &report)?;
+/// `pounding run` on a row of buildings (issue 29): the row with and without contact (and the
+/// self-check unless `--no-check`), streamed into history.csv and floors.csv, then impacts.csv,
+/// the pictures (unless `--no-plot`) and summary.json last.
+fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
+    pounding::output::budget::check_run(sc, a.max_output_size)?;
+    let mut writer = pounding::output::row::RowWriter::for_scenario(&a.out, sc)?;
+    let bar = !quiet && std::io::stderr().is_terminal();
+    let phases = if a.no_check { 2.0 } else { 4.0 };
+    let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
+    let result = simulate::simulate_row_streaming(sc, !a.no_check, &mut sink);
+    sink.finish();
+    let report = result?;
+    let draw = (!a.no_plot).then(|| pounding::figures::row::row_pictures(sc, &report));
+    let written = writer.finish(sc, &report, draw)?;
     if !quiet {
         print!("{}", text::row_summary(sc, name, &report));
         println!("\nwrote {}", list_paths(&written));
-        eprintln!(
-            "note: a row of buildings writes summary.json and impacts.csv; history.csv, \
-             floors.csv, the pictures and the self-check are for pairs only, so far"
-        );
     }
     for w in &report.warnings {
         eprintln!("warning: {w}");

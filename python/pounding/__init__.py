@@ -31,6 +31,7 @@ from ._core import OutputError, Scenario, ScenarioError, SolveError, SweepError
 __all__ = [
     "Scenario",
     "RunResult",
+    "RowResult",
     "SweepTable",
     "run",
     "sweep",
@@ -163,18 +164,142 @@ class RunResult:
         )
 
 
-def run(scenario: Scenario, *, check: bool = True, max_output_size: int = 1_000_000_000) -> RunResult:
+class RowResult:
+    """The outcome of :func:`run` on a row of buildings (more than two ``[[structure]]``
+    tables, README "Rows of buildings"): what ``pounding run --out DIR`` writes for a row, as
+    Python objects (computed once, on first access):
+
+    - ``summary``: dict, exactly the content of summary.json (``structures``, ``pairs``,
+      ``verdict``, ``accuracy``, …);
+    - ``history``: dict of 1-D float64 arrays keyed by history.csv's columns (``t``,
+      ``w_<name>`` per structure at its highest contact level, ``force_<left>_<right>_<k>`` per
+      pair and level, ``w_<name>_free``);
+    - ``structures``: dict keyed by structure name (row order) of dicts of 1-D float64 arrays
+      ``t`` (s), ``w`` and ``w_free`` (m, with and without pounding, at the structure's highest
+      contact level);
+    - ``pairs``: list (row order) of dicts: ``between`` (the two names), ``t`` (s), ``force``
+      (N, the sum over the pair's levels, as a pair's history.csv ``force``) and with several
+      levels ``force_1 … force_k``, and ``impacts`` (the pair's rows of impacts.csv);
+    - ``impacts``: dict of impacts.csv's columns (``pair``, ``level`` int64, 1-based; ``left``,
+      ``right`` lists of str; the rest float64);
+    - ``floors``: dict of floors.csv's columns (``t``, ``w_<name>_<h>``, ``a_<name>_<h>``, then
+      the same with ``_free``);
+    - ``warnings``: list of the run's warnings.
+    """
+
+    __slots__ = ("_out", "_cache")
+
+    def __init__(self, out: _core.RowOutput) -> None:
+        self._out = out
+        self._cache: dict[str, Any] = {}
+
+    def _get(self, name: str, make: Any) -> Any:
+        if name not in self._cache:
+            self._cache[name] = make()
+        return self._cache[name]
+
+    @property
+    def summary(self) -> dict[str, Any]:
+        """summary.json's content (the same text ``pounding run`` writes, parsed)."""
+        return self._get("summary", lambda: json.loads(self._out.summary_json()))
+
+    @property
+    def summary_json(self) -> str:
+        """summary.json's text, byte for byte."""
+        return self._out.summary_json()
+
+    @property
+    def history(self) -> dict[str, Any]:
+        """history.csv's columns: dict of 1-D float64 NumPy arrays (s, m, N)."""
+        return self._get("history", self._out.history)
+
+    @property
+    def structures(self) -> dict[str, dict[str, Any]]:
+        """Per structure (row order): ``t``, ``w``, ``w_free`` arrays (s, m)."""
+        return self._get("structures", self._out.structures)
+
+    @property
+    def pairs(self) -> list[dict[str, Any]]:
+        """Per adjacent pair (row order): ``between``, ``t``, ``force`` (N), ``force_k`` with
+        several levels, and ``impacts`` (its rows of impacts.csv)."""
+
+        def make() -> list[dict[str, Any]]:
+            out = []
+            imp = self.impacts
+            for p, (left, right, cols) in enumerate(self._out.pairs()):
+                mine = imp["pair"] == p + 1
+                rows = {
+                    k: (v[mine] if not isinstance(v, list) else [x for x, m in zip(v, mine) if m])
+                    for k, v in imp.items()
+                }
+                out.append({"between": (left, right), **cols, "impacts": rows})
+            return out
+
+        return self._get("pairs", make)
+
+    @property
+    def impacts(self) -> dict[str, Any]:
+        """impacts.csv's columns: dict of 1-D NumPy arrays (names as lists), one per impact."""
+        return self._get("impacts", self._out.impacts)
+
+    @property
+    def floors(self) -> dict[str, Any]:
+        """floors.csv's columns: dict of 1-D float64 NumPy arrays (m, m/s²)."""
+        return self._get("floors", self._out.floors)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The run's warnings."""
+        return self._out.warnings
+
+    def summary_text(self) -> str:
+        """The summary ``pounding run`` prints for a row: every structure's peaks with and
+        without pounding, every pair's impacts and required separation, the row's verdict, the
+        energy balance and the self-check."""
+        return self._out.summary_text()
+
+    def to_pandas(self) -> dict[str, Any]:
+        """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
+        import pandas as pd  # optional dependency
+
+        return {
+            "history": pd.DataFrame(self.history),
+            "impacts": pd.DataFrame(self.impacts),
+            "floors": pd.DataFrame(self.floors),
+        }
+
+    def save(self, dir: PathLike, plots: bool = True) -> list[str]:
+        """Write the files ``pounding run --out DIR`` writes for a row (history.csv,
+        impacts.csv, floors.csv, the pictures unless ``plots`` is false, summary.json last).
+        Returns the paths written, in order."""
+        return [str(p) for p in self._out.save(os.fspath(dir), plots)]
+
+    def __repr__(self) -> str:
+        s = self.summary
+        names = ", ".join(x["name"] for x in s["structures"])
+        impacts = sum(p["contact"]["impacts"] for p in s["pairs"])
+        return f"RowResult({s['title']!r}: {names}; {impacts} impacts)"
+
+
+def run(
+    scenario: Scenario, *, check: bool = True, max_output_size: int = 1_000_000_000
+) -> Union[RunResult, RowResult]:
     """Simulate ``scenario`` with and without pounding, as ``pounding run`` does.
 
     ``check``: also run the self-check (a second run at a 100× tighter tolerance; summary's
     ``accuracy``), as the command line does unless ``--no-check``. ``max_output_size``: the
     largest history (bytes, as history.csv would hold it) the run may keep (``--max-output-size``).
-    The GIL is released during the simulation. Raises :class:`SolveError` (e.g. an unstable
-    step, a scenario whose ground motion is a design spectrum) and :class:`ScenarioError`
-    (a history above ``max_output_size``).
+    The GIL is released during the simulation. Raises :class:`SolveError` (e.g. an
+    unstable step, a scenario whose ground motion is a design spectrum) and
+    :class:`ScenarioError` (a history above ``max_output_size``).
+
+    A row of buildings (more than two structures) gives a :class:`RowResult`, with arrays per
+    structure and per pair; a pair gives a :class:`RunResult`.
     """
     if not isinstance(scenario, Scenario):
         raise TypeError(f"run() takes a pounding.Scenario, not {type(scenario).__name__}")
+    if scenario.is_row:
+        return RowResult(_core.run_row(scenario, check, max_output_size))
     return RunResult(_core.run(scenario, check, max_output_size))
 
 

@@ -67,6 +67,9 @@ class Scenario:
     def base_dir(self) -> Path:
         """The directory record files are resolved from (absolute)."""
     @property
+    def is_row(self) -> bool:
+        """Whether the scenario is a row of more than two buildings."""
+    @property
     def title(self) -> str:
         """The scenario's title."""
     @property
@@ -101,6 +104,33 @@ class RunOutput:
 def run(scenario: Scenario, check: bool = True, max_output_size: int = 1_000_000_000) -> RunOutput:
     """Both runs of a scenario (and its self-check if `check`), GIL released. Raises
     SolveError, ScenarioError (a history above max_output_size)."""
+
+class RowOutput:
+    """What `run_row` returns (wrapped by pounding.RowResult)."""
+
+    def summary_json(self) -> str:
+        """summary.json's text of a row."""
+    def summary_text(self) -> str:
+        """The summary `pounding run` prints for a row."""
+    def history(self) -> dict[str, npt.NDArray[np.float64]]:
+        """history.csv's columns."""
+    def structures(self) -> dict[str, dict[str, npt.NDArray[np.float64]]]:
+        """Per structure: `t`, `w`, `w_free`."""
+    def pairs(self) -> list[tuple[str, str, dict[str, npt.NDArray[np.float64]]]]:
+        """Per pair: left, right, and `t`, `force` (and `force_k` with several levels)."""
+    def impacts(self) -> dict[str, Any]:
+        """impacts.csv's columns (`pair`, `level` int64; `left`, `right` lists of str)."""
+    def floors(self) -> dict[str, npt.NDArray[np.float64]]:
+        """floors.csv's columns."""
+    @property
+    def warnings(self) -> list[str]:
+        """The run's warnings."""
+    def save(self, dir: _Path, plots: bool = True) -> list[Path]:
+        """Write the files of `pounding run --out DIR` for a row; summary.json last."""
+
+def run_row(scenario: Scenario, check: bool = True, max_output_size: int = 1_000_000_000) -> RowOutput:
+    """Both runs of a row (and its self-check if `check`), GIL released. Raises SolveError,
+    ScenarioError (a history above max_output_size)."""
 
 class Sweep:
     """A checked sweep (immutable, picklable): its cases and how to compute each."""

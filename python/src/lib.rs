@@ -22,6 +22,8 @@ use pounding::input::scenario::{Scenario, ScenarioError as LibScenarioError};
 use pounding::output::run::Column;
 use pounding::study::sweep::Sweep;
 
+mod row;
+
 create_exception!(
     pounding,
     ScenarioError,
@@ -308,6 +310,12 @@ impl PyScenario {
     #[getter]
     fn base_dir(&self) -> PathBuf {
         self.base_dir.clone()
+    }
+
+    /// Whether the scenario is a row of more than two buildings (issue 29).
+    #[getter]
+    fn is_row(&self) -> bool {
+        self.inner.is_row()
     }
 
     /// The scenario's title.
@@ -922,9 +930,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("OutputError", py.get_type::<OutputError>())?;
     m.add_class::<PyScenario>()?;
     m.add_class::<PyRunOutput>()?;
+    m.add_class::<row::PyRowOutput>()?;
     m.add_class::<PySweep>()?;
     m.add_class::<PyFragilityPlan>()?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(row::run_row, m)?)?;
     m.add_function(wrap_pyfunction!(fragility, m)?)?;
     m.add_function(wrap_pyfunction!(available_parallelism, m)?)?;
     m.add_function(wrap_pyfunction!(laws_text, m)?)?;

@@ -1,12 +1,11 @@
 //! The progress bar of `pounding run` on a terminal.
 
 use pounding::analysis::simulate::{Phase, RunSink};
-use pounding::output::run::RunWriter;
 
-/// Streams a run into its [`RunWriter`] and shows a progress bar on a terminal when the run
+/// Streams a run into its writer (a pair's `RunWriter`, a row's `RowWriter`) and shows a progress bar on a terminal when the run
 /// takes more than a second.
 pub struct RunProgress<'a> {
-    writer: &'a mut RunWriter,
+    writer: &'a mut dyn RunSink,
     enabled: bool,
     bar: Option<indicatif::ProgressBar>,
     started: std::time::Instant,
@@ -18,7 +17,7 @@ pub struct RunProgress<'a> {
 impl<'a> RunProgress<'a> {
     /// A sink into `writer` for a run of `duration` s in `phases` phases (2, or 4 with the
     /// self-check); the bar shows only when `enabled` (stderr a terminal, not --quiet).
-    pub fn new(writer: &'a mut RunWriter, enabled: bool, duration: f64, phases: f64) -> Self {
+    pub fn new(writer: &'a mut dyn RunSink, enabled: bool, duration: f64, phases: f64) -> Self {
         RunProgress {
             writer,
             enabled,
@@ -45,6 +44,14 @@ impl RunSink for RunProgress<'_> {
 
     fn free_row(&mut self, t: f64, w: [f64; 2]) {
         self.writer.free_row(t, w);
+    }
+
+    fn row_contact_row(&mut self, t: f64, w: &[f64], forces: &[f64]) {
+        self.writer.row_contact_row(t, w, forces);
+    }
+
+    fn row_free_row(&mut self, t: f64, w: &[f64]) {
+        self.writer.row_free_row(t, w);
     }
 
     fn contact_floor_row(&mut self, t: f64, values: &[f64]) {

@@ -122,12 +122,22 @@ impl Axis {
     fn new(r: Option<(f64, f64)>, pad: f64, scale: AxisScale, n: usize) -> Axis {
         let (lo, hi) = style::pad(r, pad);
         let ticks = match scale {
-            // (plotters' ticks may put −2.8e-17 for 0)
-            AxisScale::Linear => (RangedCoordf64::from(lo..hi)
-                .key_points(n.max(2))
-                .into_iter())
-            .map(|t: f64| if t.abs() < 1e-9 * (hi - lo) { 0.0 } else { t })
-            .collect(),
+            // (plotters' ticks may put −2.8e-17 for 0; on a short panel its coarse choice can
+            // leave a lone tick, e.g. only 0 on ±0.045: then a finer one, so the axis has a
+            // scale)
+            AxisScale::Linear => {
+                let pick = |k: usize| -> Vec<f64> {
+                    (RangedCoordf64::from(lo..hi).key_points(k).into_iter())
+                        .map(|t: f64| if t.abs() < 1e-9 * (hi - lo) { 0.0 } else { t })
+                        .collect()
+                };
+                let first = pick(n.max(2));
+                if first.len() < 2 {
+                    pick(2 * n.max(2))
+                } else {
+                    first
+                }
+            }
             AxisScale::Log => style::log_ticks(10f64.powf(lo), 10f64.powf(hi), n.max(2))
                 .into_iter()
                 .map(f64::log10)

@@ -79,9 +79,11 @@ impl Render for ProfileFigure<'_> {
         // one legend for the whole figure (the first panel's series), centred under the title
         if let Some(p) = self.panels.first() {
             let sample = 30;
+            // (a series without a label is not in the legend)
             let items: Vec<(i32, &ProfileSeries)> = p
                 .series
                 .iter()
+                .filter(|s| !s.label.is_empty())
                 .map(|s| (sample + 8 + style::text_width(s.label, f.tick) + 24, s))
                 .collect();
             let total: i32 = items.iter().map(|(w, _)| w).sum();

@@ -4,8 +4,13 @@
 
 pub mod accuracy;
 mod row;
+pub mod row_check;
+pub mod row_history;
 
-pub use row::{PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_with};
+pub use row::{
+    PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
+    simulate_row_streaming, simulate_row_with,
+};
 
 use serde::Serialize;
 
@@ -358,6 +363,18 @@ pub trait RunSink {
     fn free_floor_row(&mut self, t: f64, values: &[f64]) {
         let _ = (t, values);
     }
+    /// A history sample of a row's run with contact (issue 29, [`simulate_row_streaming`]):
+    /// `t` (s), every structure's displacement at its headline height (its highest contact
+    /// level with either neighbour; m, row order), every level's force (N, pair by pair). All
+    /// come before any of the run without contact. A row sends these instead of
+    /// [`RunSink::contact_row`].
+    fn row_contact_row(&mut self, t: f64, w: &[f64], forces: &[f64]) {
+        let _ = (t, w, forces);
+    }
+    /// A history sample of a row's run without contact (same times).
+    fn row_free_row(&mut self, t: f64, w: &[f64]) {
+        let _ = (t, w);
+    }
     /// `phase` has reached simulated time `t` (s); called at every history sample.
     fn progress(&mut self, phase: Phase, t: f64) {
         let _ = (phase, t);
@@ -398,6 +415,15 @@ pub struct RunCapture {
     pub contact_floors: Vec<f64>,
     /// The floor rows of the run without contact, flattened.
     pub free_floors: Vec<f64>,
+    /// A row of buildings (issue 29): its number of structures N (0 for a pair).
+    pub row_structures: usize,
+    /// A row: numbers per row of `row_contact` (t, N displacements, one force per level).
+    pub row_contact_width: usize,
+    /// A row's history rows of the run with contact, flattened
+    /// ([`RunSink::row_contact_row`]).
+    pub row_contact: Vec<f64>,
+    /// A row's history rows of the run without contact, flattened: t and N displacements.
+    pub row_free: Vec<f64>,
 }
 
 impl RunCapture {
@@ -409,6 +435,12 @@ impl RunCapture {
     /// Hand every captured sample to `sink`, in the order [`simulate_streaming`] gives them:
     /// the run with contact (history and floor rows), then the run without.
     pub fn replay(&self, sink: &mut dyn RunSink) {
+        let n = self.row_structures;
+        if n > 0 && self.row_contact_width > n {
+            for r in self.row_contact.chunks_exact(self.row_contact_width) {
+                sink.row_contact_row(r[0], &r[1..1 + n], &r[1 + n..]);
+            }
+        }
         if self.contact_width >= 3 {
             for r in self.contact.chunks_exact(self.contact_width) {
                 sink.contact_row(r[0], [r[1], r[2]], &r[3..]);
@@ -417,6 +449,11 @@ impl RunCapture {
         if self.floor_width >= 1 {
             for r in self.contact_floors.chunks_exact(self.floor_width) {
                 sink.contact_floor_row(r[0], &r[1..]);
+            }
+        }
+        if n > 0 {
+            for r in self.row_free.chunks_exact(1 + n) {
+                sink.row_free_row(r[0], &r[1..]);
             }
         }
         for r in self.free.chunks_exact(3) {
@@ -485,6 +522,19 @@ impl RunCapture {
 }
 
 impl RunSink for RunCapture {
+    fn row_contact_row(&mut self, t: f64, w: &[f64], forces: &[f64]) {
+        self.row_structures = w.len();
+        self.row_contact_width = 1 + w.len() + forces.len();
+        self.row_contact.push(t);
+        self.row_contact.extend_from_slice(w);
+        self.row_contact.extend_from_slice(forces);
+    }
+
+    fn row_free_row(&mut self, t: f64, w: &[f64]) {
+        self.row_free.push(t);
+        self.row_free.extend_from_slice(w);
+    }
+
     fn contact_row(&mut self, t: f64, w: [f64; 2], forces: &[f64]) {
         self.contact_width = 3 + forces.len();
         self.contact.extend_from_slice(&[t, w[0], w[1]]);

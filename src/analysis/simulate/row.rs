@@ -13,14 +13,21 @@
 
 use serde::Serialize;
 
+use std::cell::RefCell;
+use std::collections::VecDeque;
+
+use super::row_check::RowAccuracyCheck;
+use super::row_history::{RowHistory, RowObserver, RowPhaseSink, RowSampler};
 use super::{
     ContactReport, LevelReport, NoSink, Phase, RunSink, StructureReport, contact_report,
-    level_report, level_warnings, no_spectrum, run_phase, run_warnings, separations,
+    free_run_is_exact, level_report, level_warnings, no_spectrum, run_warnings, separations,
     structure_report,
 };
 use crate::analysis::level_checks::{Governing, Separations, complete_run_separation};
 use crate::input::scenario::Scenario;
-use crate::integrate::{SolveError, Stats};
+use crate::integrate::{InitialState, SolveError, SolverSettings, Stats, integrate};
+use crate::model::system::System;
+use crate::recording::recorder::Recorder;
 use crate::recording::run_record::{EnergyBalance, RunRecord};
 
 /// One adjacent pair of a row: structures `index` and `index + 1` (0-based, row order).
@@ -103,6 +110,9 @@ pub struct RowReport {
     pub energy_no_contact: EnergyBalance,
     /// Every impact, in time order.
     pub impact_log: Vec<RowImpact>,
+    /// The self-check ([`simulate_row_checked`]): every structure's and every pair's headline
+    /// numbers against a 100× tighter rerun; `checked: false` from [`simulate_row`].
+    pub accuracy: RowAccuracyCheck,
     /// Solver counters (with contact).
     #[serde(skip)]
     pub stats: Stats,
@@ -114,6 +124,13 @@ pub struct RowReport {
     /// The run without contact.
     #[serde(skip)]
     pub without_contact: RunRecord,
+    /// The displacement histories of the run with contact: every structure at its headline
+    /// height, both structures at every level (empty for the self-check's runs).
+    #[serde(skip)]
+    pub history: RowHistory,
+    /// The same of the run without contact.
+    #[serde(skip)]
+    pub history_no_contact: RowHistory,
 }
 
 /// Run a row (or a pair: the same numbers as [`super::simulate`]'s, arranged per pair) with
@@ -122,11 +139,117 @@ pub fn simulate_row(scenario: &Scenario) -> Result<RowReport, SolveError> {
     simulate_row_with(scenario, &mut NoSink)
 }
 
-/// [`simulate_row`] reporting progress to `sink` (its history rows are those of the highest
-/// level's pair at that level; a row's outputs do not write them).
+/// [`simulate_row`] streaming to `sink`: every history sample of the two runs
+/// ([`RunSink::row_contact_row`], [`RunSink::row_free_row`]: each structure's displacement at
+/// its headline height and every level's force), the floor rows, and the progress. Not
+/// self-checked.
 pub fn simulate_row_with(
     scenario: &Scenario,
     sink: &mut dyn RunSink,
+) -> Result<RowReport, SolveError> {
+    simulate_row_phases(scenario, sink, false, None)
+}
+
+/// [`simulate_row`] and, with `check`, its self-check ([`RowAccuracyCheck`]): the row run again
+/// with [`super::accuracy::tightened`] settings and its numbers compared; a row whose numbers
+/// move by more than 1 % gets `accuracy.converged = false` and the warning "self-check NOT
+/// converged: …", as a pair's ([`super::simulate_checked`]).
+pub fn simulate_row_checked(scenario: &Scenario, check: bool) -> Result<RowReport, SolveError> {
+    simulate_row_streaming(scenario, check, &mut NoSink)
+}
+
+/// [`simulate_row_checked`] streaming the two runs of the result to `sink` (the self-check's
+/// runs report progress only); how `pounding run` writes a row
+/// ([`crate::output::row::RowWriter`]).
+pub fn simulate_row_streaming(
+    scenario: &Scenario,
+    check: bool,
+    sink: &mut dyn RunSink,
+) -> Result<RowReport, SolveError> {
+    let mut report = simulate_row_phases(scenario, sink, false, None)?;
+    if !check {
+        return Ok(report);
+    }
+    let mut tight = scenario.clone();
+    tight.solver = super::accuracy::tightened(&scenario.solver);
+    // (the run without contact again only where the tolerance changes it)
+    let reuse = free_run_is_exact(scenario).then_some(&report.without_contact);
+    report.accuracy = match simulate_row_phases(&tight, sink, true, reuse) {
+        Ok(t) => RowAccuracyCheck::compare(&report, &t, &scenario.solver),
+        Err(e) => RowAccuracyCheck::failed(&scenario.solver, &e),
+    };
+    if let Some(w) = report.accuracy.warning(&scenario.solver) {
+        report.warnings.push(w);
+    }
+    if super::accuracy::limited_tightening(&scenario.solver) {
+        report.warnings.push(format!(
+            "self-check: could not tighten rtol {:e} / atol {:e} m a full 100× (the smallest \
+             tolerances are {:e} and {:e} m): its changes understate the error",
+            scenario.solver.rtol,
+            scenario.solver.atol,
+            super::accuracy::MIN_RTOL,
+            super::accuracy::MIN_ATOL
+        ));
+    }
+    Ok(report)
+}
+
+/// One integration of a row `system` with its recorder and (unless `check`) the row's sampler
+/// ([`RowSampler`]), streaming to `sink` as `phase`.
+#[allow(clippy::too_many_arguments)]
+fn run_row_phase(
+    system: &System,
+    settings: &SolverSettings,
+    (heights, pairs): (&[f64], &[usize]),
+    interval: f64,
+    sink: &mut dyn RunSink,
+    phase: Phase,
+    floors: Option<crate::recording::stations::FloorStations>,
+    check: bool,
+) -> Result<(RunRecord, Stats, RowHistory), SolveError> {
+    let pending = RefCell::new(VecDeque::new());
+    let sampler = RowSampler::new(
+        system,
+        (heights, pairs),
+        interval,
+        settings.duration,
+        &pending,
+    );
+    let width = if check { 0 } else { sampler.width() };
+    let mut adapter = RowPhaseSink {
+        sink,
+        phase,
+        pending: &pending,
+        width,
+        structures: system.structures.len(),
+        row: Vec::with_capacity(width),
+    };
+    let mut rec = Recorder::for_row(system, heights, pairs, interval, settings.duration);
+    rec = match floors {
+        Some(stations) => rec.with_floor_stations(system, heights, stations),
+        None => rec.without_floors(),
+    };
+    let recorder = rec.with_sink(&mut adapter);
+    let initial = InitialState::default();
+    if check {
+        // (the self-check compares headline numbers only: no sampler)
+        let mut recorder = recorder;
+        let stats = integrate(system, settings, &initial, &mut recorder)?;
+        return Ok((recorder.finish(), stats, RowHistory::default()));
+    }
+    let mut obs = RowObserver { sampler, recorder };
+    let stats = integrate(system, settings, &initial, &mut obs)?;
+    let RowObserver { sampler, recorder } = obs;
+    Ok((recorder.finish(), stats, sampler.finish()))
+}
+
+/// The two runs of a row (with `check`: the self-check's, `reuse` the run without contact to
+/// take instead of integrating it again) and its report.
+fn simulate_row_phases(
+    scenario: &Scenario,
+    sink: &mut dyn RunSink,
+    check: bool,
+    reuse: Option<&RunRecord>,
 ) -> Result<RowReport, SolveError> {
     no_spectrum(scenario)?;
     let system = scenario.system();
@@ -134,25 +257,38 @@ pub fn simulate_row_with(
     let heights: Vec<f64> = system.levels.iter().map(|l| l.height).collect();
     let pair_of: Vec<usize> = system.levels.iter().map(|l| l.pair).collect();
     let interval = scenario.output_interval;
-    let stations = Some(scenario.floor_stations);
-    let (with, stats) = run_phase(
+    let (p1, p2) = if check {
+        (Phase::CheckWithContact, Phase::CheckWithoutContact)
+    } else {
+        (Phase::WithContact, Phase::WithoutContact)
+    };
+    let stations = (!check).then_some(scenario.floor_stations);
+    let (with, stats, history) = run_row_phase(
         &system,
         &scenario.solver,
         (&heights, &pair_of),
         interval,
         sink,
-        Phase::WithContact,
+        p1,
         stations,
+        check,
     )?;
-    let (without, _) = run_phase(
-        &free,
-        &scenario.solver,
-        (&heights, &pair_of),
-        interval,
-        sink,
-        Phase::WithoutContact,
-        stations,
-    )?;
+    let (without, history_no_contact) = match reuse {
+        Some(r) => (r.clone(), RowHistory::default()),
+        None => {
+            let (r, _, h) = run_row_phase(
+                &free,
+                &scenario.solver,
+                (&heights, &pair_of),
+                interval,
+                sink,
+                p2,
+                stations,
+                check,
+            )?;
+            (r, h)
+        }
+    };
     let n = system.structures.len();
     // each structure's headline level: its highest contact level with either neighbour
     let structures: Vec<StructureReport> = (0..n)
@@ -266,10 +402,13 @@ pub fn simulate_row_with(
         energy: with.energy,
         energy_no_contact: without.energy,
         impact_log,
+        accuracy: RowAccuracyCheck::unchecked(),
         stats,
         warnings,
         with_contact: with,
         without_contact: without,
+        history,
+        history_no_contact,
     })
 }
 

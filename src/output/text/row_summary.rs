@@ -145,9 +145,35 @@ fn write_row(o: &mut String, sc: &Scenario, name: &str, r: &RowReport) -> fmt::R
         "  energy balance error: {:.1e} with contact, {:.1e} without",
         r.energy.relative_error, r.energy_no_contact.relative_error
     )?;
-    writeln!(
-        o,
-        "  self-check: not run for a row (a row's run is not yet checked against a tighter one)"
-    )?;
+    writeln!(o, "  {}", row_self_check_line(&r.accuracy))?;
     Ok(())
+}
+
+/// The self-check's line of a row's summary, in the words of a pair's
+/// ([`super::run_summary::self_check_line`]).
+pub fn row_self_check_line(a: &crate::analysis::simulate::row_check::RowAccuracyCheck) -> String {
+    use crate::analysis::simulate::accuracy::percent;
+    let against = a.settings.map(|s| s.describe()).unwrap_or_default();
+    if !a.checked {
+        return "self-check: not done (--no-check): this result was NOT self-checked".into();
+    }
+    if let Some(f) = &a.failure {
+        return format!("self-check: NOT CONVERGED — not verified: {f} (see the warning)");
+    }
+    let worst = (a.quantities.iter())
+        .find(|q| Some(&q.name) == a.max_change_quantity.as_ref())
+        .map_or("", |q| q.label.as_str());
+    let change = percent(a.max_change.unwrap_or(f64::NAN));
+    if a.is_converged() {
+        format!(
+            "self-check: converged within {} % (largest change {change}, {worst}, against a run at {against})",
+            100.0 * a.threshold
+        )
+    } else {
+        format!(
+            "self-check: NOT CONVERGED — {worst} changed by {change} against a run at {against} \
+             (more than {} %); see the warning",
+            100.0 * a.threshold
+        )
+    }
 }
