@@ -349,6 +349,7 @@ impl Table {
         self.w6.resize(nl * nl * 12, (0.0, 0.0));
         self.w86.clear();
         self.w86.resize(nl * nl * 10, (0.0, 0.0));
+        let row = sys.structures.len() > 2;
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
             for (i, p) in props.iter().enumerate() {
@@ -389,8 +390,10 @@ impl Table {
                 mid: [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]],
                 mid8: [g8[0], g8[1], g8[2]],
             };
-            for k in 0..nl {
-                for l in 0..nl {
+            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
+            let holds = |k: usize| !row || sys.coupling_modes(k).contains(&j);
+            for k in (0..nl).filter(|&k| holds(k)) {
+                for l in (0..nl).filter(|&l| holds(l)) {
                     let w = sys.coupling(k)[j] * sys.coupling(l)[j];
                     if w == 0.0 {
                         continue;

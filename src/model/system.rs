@@ -317,6 +317,16 @@ impl System {
         &self.coupling[k * n..(k + 1) * n]
     }
 
+    /// The modal coordinates level k's coupling row can be non-zero on: its pair's two
+    /// structures' (`modes_of(pair)` then `modes_of(pair + 1)`); zero elsewhere, so that a sum
+    /// over the row may skip the rest (a pair: every mode). Of a row of N structures, a level
+    /// then costs its pair's modes, not all N structures'.
+    #[inline]
+    pub fn coupling_modes(&self, k: usize) -> std::ops::Range<usize> {
+        let p = self.levels[k].pair;
+        self.offsets[p]..self.offsets[p + 2]
+    }
+
     /// Displacements (w_left, w_right) of level k's pair at its height for modal coordinates
     /// `q`, m.
     #[inline]

@@ -3,9 +3,14 @@
 //! `simulate_checked(&Scenario, true)` (see [`accuracy`]).
 
 pub mod accuracy;
+mod reuse;
+#[cfg(test)]
+mod reuse_tests;
 mod row;
 pub mod row_check;
 pub mod row_history;
+
+pub use reuse::{FreeRunKey, FreeRuns, free_run_of};
 
 pub use row::{
     PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
@@ -379,13 +384,23 @@ pub trait RunSink {
     fn progress(&mut self, phase: Phase, t: f64) {
         let _ = (phase, t);
     }
+    /// Whether the sink uses the rows of the result's runs (false: progress at most), so
+    /// that a run without contact the run with contact already is need not be integrated
+    /// to stream it ([`free_run_of`]).
+    fn wants_rows(&self) -> bool {
+        true
+    }
 }
 
 /// A [`RunSink`] that ignores everything.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NoSink;
 
-impl RunSink for NoSink {}
+impl RunSink for NoSink {
+    fn wants_rows(&self) -> bool {
+        false
+    }
+}
 
 /// Refuse a scenario without a time history to simulate (its ground motion is a design
 /// spectrum, which only `pounding separation` uses), as `pounding run` does before running.
@@ -711,7 +726,7 @@ pub fn separation(scenario: &Scenario) -> Result<SeparationReport, SolveError> {
 /// Run a scenario with and without contact and compare. The result is not self-checked
 /// (`accuracy.checked` is false); [`simulate_checked`] checks it.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
-    simulate_phases(scenario, &mut NoSink, false, true, None)
+    simulate_phases(scenario, &mut NoSink, false, true, None, true)
 }
 
 /// Whether the scenario's run without contact is the same at any tolerance, so that the
@@ -735,13 +750,16 @@ pub fn simulate_headline(scenario: &Scenario, check: bool) -> Result<Report, Sol
 /// of the self-check.
 /// `reuse`: the run without contact to take as this one's instead of integrating it again
 /// (the self-check of a run whose run without contact does not depend on the tolerance, see
-/// [`free_run_is_exact`]).
+/// [`free_run_is_exact`], or another scenario's with the same [`FreeRunKey`]).
+/// `shortcut`: take the run without contact from the run with contact when that never
+/// touched ([`free_run_of`]; only where the sink does not stream the result's rows).
 fn simulate_phases(
     scenario: &Scenario,
     sink: &mut dyn RunSink,
     check: bool,
     floors: bool,
     reuse: Option<&RunRecord>,
+    shortcut: bool,
 ) -> Result<Report, SolveError> {
     refuse_row(scenario)?;
     no_spectrum(scenario)?;
@@ -766,9 +784,14 @@ fn simulate_phases(
         p1,
         floors,
     )?;
-    let without = match reuse {
-        Some(r) => r.clone(),
-        None => {
+    // a run with contact that never touched is the run without contact (bit for bit)
+    let derived = (shortcut && reuse.is_none() && (check || !sink.wants_rows()))
+        .then(|| free_run_of(scenario, &stats, &with))
+        .flatten();
+    let without = match (reuse, derived) {
+        (Some(r), _) => r.clone(),
+        (None, Some(r)) => r,
+        (None, None) => {
             run_phase(
                 &free,
                 &scenario.solver,
@@ -1020,16 +1043,63 @@ fn simulate_run(
     sink: &mut dyn RunSink,
     floors: bool,
 ) -> Result<Report, SolveError> {
-    let mut report = simulate_phases(scenario, sink, false, floors, None)?;
+    simulate_run_reusing(scenario, check, sink, floors, None, true).map(|(r, _)| r)
+}
+
+/// [`simulate_checked`] (`floors`) or [`simulate_headline`] (not `floors`), taking the runs
+/// without contact from `free` when given — those of another scenario with the same
+/// [`FreeRunKey`] (`FreeRunKey::of(scenario, check, floors)`), which a sweep over contact
+/// keys caches — and returning them with the report, for the next such scenario. The report
+/// is bit-identical to the one computed without `free` (tested).
+pub fn simulate_reusing(
+    scenario: &Scenario,
+    check: bool,
+    floors: bool,
+    free: Option<&FreeRuns>,
+) -> Result<(Report, FreeRuns), SolveError> {
+    let (report, check_run) =
+        simulate_run_reusing(scenario, check, &mut NoSink, floors, free, true)?;
+    let runs = FreeRuns {
+        run: report.without_contact.clone(),
+        check: check_run,
+    };
+    Ok((report, runs))
+}
+
+/// [`simulate_run`], with the runs without contact from `free`; also the self-check's run
+/// without contact when it integrated its own. `shortcut`: see [`simulate_phases`] (false
+/// only in the tests that compare both ways).
+fn simulate_run_reusing(
+    scenario: &Scenario,
+    check: bool,
+    sink: &mut dyn RunSink,
+    floors: bool,
+    free: Option<&FreeRuns>,
+    shortcut: bool,
+) -> Result<(Report, Option<RunRecord>), SolveError> {
+    let f = free.map(|f| &f.run);
+    let mut report = simulate_phases(scenario, sink, false, floors, f, shortcut)?;
     if !check {
-        return Ok(report);
+        return Ok((report, None));
     }
     let mut tight = scenario.clone();
     tight.solver = tightened(&scenario.solver);
     // (the run without contact again only where the tolerance changes it)
-    let reuse = free_run_is_exact(scenario).then_some(&report.without_contact);
-    report.accuracy = match simulate_phases(&tight, sink, true, false, reuse) {
-        Ok(t) => AccuracyCheck::compare(&report, &t, &scenario.solver),
+    let exact = free_run_is_exact(scenario);
+    let reuse = if exact {
+        Some(&report.without_contact)
+    } else {
+        free.and_then(|f| f.check.as_ref())
+    };
+    let mut check_run = None;
+    report.accuracy = match simulate_phases(&tight, sink, true, false, reuse, shortcut) {
+        Ok(t) => {
+            let a = AccuracyCheck::compare(&report, &t, &scenario.solver);
+            if !exact {
+                check_run = Some(t.without_contact);
+            }
+            a
+        }
         Err(e) => AccuracyCheck::failed(&scenario.solver, &e),
     };
     if let Some(w) = report.accuracy.warning(&scenario.solver) {
@@ -1045,5 +1115,5 @@ fn simulate_run(
             crate::analysis::simulate::accuracy::MIN_ATOL
         ));
     }
-    Ok(report)
+    Ok((report, check_run))
 }

@@ -34,6 +34,7 @@
 
 mod axes;
 mod edit;
+pub mod free_cache;
 mod hash;
 pub mod journal;
 mod keys;
@@ -187,6 +188,8 @@ pub struct Sweep {
     base_text: String,
     records: RecordCache,
     kind: RowKind,
+    /// The runs without contact shared by cases that differ only in their contact.
+    free_runs: free_cache::FreeRunCache,
 }
 
 struct Ctx<'a> {
@@ -411,6 +414,7 @@ impl Sweep {
             hash.end_part();
         }
         let identity = hash.finish();
+        let free_runs = free_cache::FreeRunCache::new(&axes);
         Ok(Sweep {
             text: text.to_string(),
             base_text,
@@ -423,6 +427,7 @@ impl Sweep {
             identity,
             records: RecordCache::new(),
             kind,
+            free_runs,
         })
     }
 
@@ -527,6 +532,11 @@ impl Sweep {
     /// Hash of the sweep file's and the base scenario's text and of every record file's bytes.
     pub fn identity(&self) -> u64 {
         self.identity
+    }
+
+    /// The runs without contact this sweep's cases share (see [`free_cache`]).
+    pub fn free_runs(&self) -> &free_cache::FreeRunCache {
+        &self.free_runs
     }
 
     /// The index along each axis of case `case` (first axis slowest).

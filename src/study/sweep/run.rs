@@ -13,7 +13,6 @@ use super::journal::Journal;
 use super::results;
 use super::shard::Shard;
 use super::{Sweep, SweepError};
-use crate::analysis::simulate::simulate_headline;
 
 /// How to run a sweep.
 #[derive(Debug, Clone)]
@@ -249,12 +248,12 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         }
         // (the floor responses only when the table has floor columns: they cost more than the
         // integration of a small model)
-        let report = if sweep.floor_columns().is_empty() {
-            simulate_headline(&sc, check)
-        } else {
-            crate::analysis::simulate::simulate_checked(&sc, check)
-        }
-        .map_err(|e| e.to_string())?;
+        // (cases that differ only in their contact share their runs without contact)
+        let floors = !sweep.floor_columns().is_empty();
+        let report = sweep
+            .free_runs()
+            .simulate(&sc, check, floors)
+            .map_err(|e| e.to_string())?;
         // the self-check's verdict is counted from the `converged` column instead
         warning = report
             .warnings
@@ -335,13 +334,17 @@ pub fn compute_all(sweep: &Sweep, jobs: usize, check: bool) -> Result<Vec<CaseRe
         .num_threads(jobs)
         .build()
         .map_err(|e| SweepError::Usage(format!("cannot start {jobs} threads: {e}")))?;
-    let cases: Vec<usize> = (0..sweep.len()).collect();
+    let mut cases: Vec<usize> = (0..sweep.len()).collect();
     pool.install(|| {
         require_valid_case(sweep, &cases)?;
-        Ok(cases
+        // (computed in the order that shares runs without contact, returned in case order)
+        sweep.free_runs().order(&mut cases, |c| sweep.indices(c));
+        let mut done: Vec<(usize, CaseResult)> = cases
             .par_iter()
-            .map(|&c| compute_case(sweep, c, check))
-            .collect())
+            .map(|&c| (c, compute_case(sweep, c, check)))
+            .collect();
+        done.sort_by_key(|(c, _)| *c);
+        Ok(done.into_iter().map(|(_, r)| r).collect())
     })
 }
 
@@ -361,9 +364,12 @@ pub fn run(
     let (results_name, journal_name) = results::file_names(opts.shard);
     let mut journal = Journal::open(&opts.out_dir.join(&journal_name), sweep, opts.shard)?;
     let resumed = journal.rows.len();
-    let pending: Vec<usize> = (0..sweep.len())
+    let mut pending: Vec<usize> = (0..sweep.len())
         .filter(|&c| opts.shard.contains(c) && !journal.rows.contains_key(&c))
         .collect();
+    // cases that share their run without contact one after another (the journal and the
+    // results are by case number, so the order is free)
+    sweep.free_runs().order(&mut pending, |c| sweep.indices(c));
     let cases = resumed + pending.len();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs)

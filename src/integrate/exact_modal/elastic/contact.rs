@@ -198,11 +198,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // the homogeneous parts: Σ_j c_kj P(θh)(x0, y0)
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
-        for i in 0..6 {
-            for k in 0..nl {
+        for k in 0..nl {
+            // (over the level's pair's modes only: the row's others have c_kj = 0)
+            let r = sys.coupling_modes(k);
+            for i in 0..6 {
                 let cp = &tab.cprop[(i * nl + k) * n..(i * nl + k + 1) * n];
                 let (mut d, mut dd) = (0.0, 0.0);
-                for j in 0..n {
+                for j in r.clone() {
                     let [a, b, c, e] = cp[j];
                     d += a * x0s[j] + b * y0s[j];
                     dd += c * x0s[j] + e * y0s[j];
