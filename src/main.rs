@@ -266,11 +266,19 @@ fn convergence(a: args::ConvergenceArgs, quiet: bool) -> anyhow::Result<()> {
 
 fn separation(a: args::SeparationArgs) -> anyhow::Result<()> {
     let (sc, _) = load(a.scenario)?;
-    if sc.is_row() {
-        return Err(pounding::integrate::SolveError::Row(sc.structures.len()).into());
-    }
     let spectrum = a.spectrum.as_deref().map(spectrum_from_arg).transpose()?;
     let codes = (!a.code.is_empty()).then_some(a.code.as_slice());
+    if sc.is_row() {
+        // each adjacent pair's report, then the row's verdict (issue 29)
+        let report =
+            pounding::analysis::row_separation::row_gap_report(&sc, spectrum.as_ref(), codes)?;
+        if a.json {
+            println!("{}", serde_json::to_string_pretty(&report)?);
+        } else {
+            print!("{}", text::row_separation_report(&report));
+        }
+        return Ok(());
+    }
     let report = pounding::analysis::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
