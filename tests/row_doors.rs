@@ -190,3 +190,181 @@ fn a_rows_separation_refuses_an_unknown_code() {
         .to_string();
     assert!(e.contains("--code nbcc"), "{e}");
 }
+
+use pounding::analysis::simulate::simulate;
+use pounding::output::run::Column;
+use pounding::study::sweep::Sweep;
+use pounding::study::sweep::run::compute_all;
+
+/// A sweep over `base` (a scenario's text) with the axes `axes` (TOML of `[[axis]]` tables).
+fn sweep(base: &str, axes: &str) -> Result<Sweep, String> {
+    let text = format!("scenario = \"row.toml\"\n{axes}");
+    Sweep::from_toml_with_base(
+        &text,
+        Path::new("sweep.toml"),
+        Some((base, Path::new("row.toml"))),
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// The table of every case of `sw`, by column name.
+fn table(sw: &Sweep) -> Vec<(String, Column)> {
+    let rows = compute_all(sw, 2, false).expect("sweep");
+    let lines: Vec<&str> = rows.iter().map(|r| r.line.as_str()).collect();
+    pounding::study::sweep::results::columns(sw, &lines).expect("columns")
+}
+
+fn floats<'a>(t: &'a [(String, Column)], name: &str) -> &'a [f64] {
+    match t.iter().find(|(k, _)| k == name).map(|(_, c)| c) {
+        Some(Column::Float(v)) => v,
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+fn texts<'a>(t: &'a [(String, Column)], name: &str) -> &'a [String] {
+    match t.iter().find(|(k, _)| k == name).map(|(_, c)| c) {
+        Some(Column::Text(v)) => v,
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+/// A sweep over `contact[2].gap` flips pair 2's verdict exactly at its required separation:
+/// the rules' required separations come from the run without contact, which no gap changes,
+/// so pair 2's gap suffices by every rule iff it is at least the largest of them, R (the
+/// governing rule's at its one level), taken here from `pounding separation`'s report of the
+/// row. Just below R the verdict is `false` with margin −1e-9 R, at R `true` with margin 0.
+#[test]
+fn a_sweep_over_a_pairs_gap_flips_its_verdict_at_its_required_separation() {
+    let base = row_abc(0.02);
+    let report = row_gap_report(&scenario(&base), None, None).unwrap();
+    let g = report.pairs[1].report.verdict.governing.clone().unwrap();
+    let r = g.required;
+    let below = r * (1.0 - 1e-9);
+    let sw = sweep(
+        &base,
+        &format!(
+            "[[axis]]\nkey = \"contact[2].gap\"\nvalues = [{below:e}, {r:e}, {:e}]\n",
+            2.0 * r
+        ),
+    )
+    .unwrap();
+    let t = table(&sw);
+    assert_eq!(texts(&t, "status"), ["ok", "ok", "ok"]);
+    assert_eq!(texts(&t, "pair2_sufficient"), ["false", "true", "true"]);
+    assert_eq!(texts(&t, "pair2_governing_rule")[1], g.key);
+    for (c, gap) in [below, r, 2.0 * r].into_iter().enumerate() {
+        assert_eq!(
+            floats(&t, "pair2_required")[c],
+            r,
+            "case {c}: gap-independent"
+        );
+        assert_eq!(floats(&t, "pair2_margin")[c], gap - r, "case {c}");
+    }
+    // the first pair is not touched by the second pair's gap: its required separation and
+    // verdict are the same in every case, and the row is sufficient only if both pairs are
+    let p1: Vec<bool> = texts(&t, "pair1_sufficient")
+        .iter()
+        .map(|s| s == "true")
+        .collect();
+    assert!(p1.iter().all(|&x| x == p1[0]));
+    let row: Vec<bool> = texts(&t, "sufficient")
+        .iter()
+        .map(|s| s == "true")
+        .collect();
+    let p2: Vec<bool> = texts(&t, "pair2_sufficient")
+        .iter()
+        .map(|s| s == "true")
+        .collect();
+    for c in 0..3 {
+        assert_eq!(row[c], p1[c] && p2[c], "case {c}");
+    }
+}
+
+/// A sweep's case of a row whose second gap never closes: its pair 1 and structure columns
+/// are those of the pair scenario of the first two buildings run alone (the same arithmetic,
+/// `a_row_whose_second_gap_never_closes_is_the_pair_and_the_third_alone` in tests/rows.rs),
+/// and varying the third building's stiffness (`structure[3].…`) changes neither.
+#[test]
+fn a_rows_sweep_row_is_the_pairs_numbers_where_the_second_gap_never_closes() {
+    let base = row_abc(10.0);
+    let sw = sweep(
+        &base,
+        "[[axis]]\nkey = \"structure[3].storey_stiffness\"\nvalues = [1.0e8, 1.4e8]\n",
+    )
+    .unwrap();
+    let t = table(&sw);
+    let ab = scenario(&format!(
+        "{}{}{}{HARMONIC}{SOLVER}{CODES}",
+        building("A", 4, 3.0e8),
+        building("B", 5, 1.6e8),
+        pair_contact(14.0, 0.01)
+    ));
+    let p = simulate(&ab).unwrap();
+    assert!(p.contact.impacts > 0, "the test needs pounding in the pair");
+    for c in 0..2 {
+        assert_eq!(floats(&t, "pair1_peak_force")[c], p.contact.peak_force);
+        assert_eq!(
+            floats(&t, "pair1_sep_time_history")[c],
+            p.separation.time_history
+        );
+        assert_eq!(
+            floats(&t, "structure1_peak_displacement")[c],
+            p.structures[0].peak_displacement
+        );
+        assert_eq!(floats(&t, "pair2_impacts")[c], 0.0);
+    }
+    match t.iter().find(|(k, _)| k == "pair1_impacts").map(|(_, c)| c) {
+        Some(Column::Float(v)) => assert!(v.iter().all(|&x| x == p.contact.impacts as f64)),
+        other => panic!("{other:?}"),
+    }
+    // the third building's stiffness changes its own peak
+    let c3 = floats(&t, "structure3_peak_displacement_no_contact");
+    assert_ne!(c3[0], c3[1]);
+}
+
+/// Bad axes of a row name the axis's key and say why: a pair out of range, a structure out
+/// of range, `contact.…` without its pair (ambiguous in a row), a level the pair has not.
+#[test]
+fn a_rows_bad_axes_name_the_key() {
+    let base = row_abc(0.02);
+    for (key, expect) in [
+        ("contact[3].gap", "out of range"),
+        ("contact[0].gap", "not a valid pair index"),
+        ("structure[4].period", "3 structures"),
+        ("contact.gap", "ambiguous"),
+        ("contact.level[1].gap", "ambiguous"),
+        ("contact[1].level[1].gap", "level"),
+    ] {
+        let e = sweep(
+            &base,
+            &format!("[[axis]]\nkey = \"{key}\"\nvalues = [0.01]\n"),
+        )
+        .err()
+        .unwrap_or_else(|| panic!("{key} accepted"));
+        assert!(e.contains("axis[1].key"), "{key}: {e}");
+        assert!(e.contains(expect), "{key}: {e}");
+    }
+    // a pair's own scenario takes contact[1] (its one pair) and refuses contact[2]
+    let pair = format!(
+        "{}{}{}{HARMONIC}{SOLVER}",
+        building("A", 4, 3.0e8),
+        building("B", 5, 1.6e8),
+        pair_contact(14.0, 0.01)
+    );
+    let sw = sweep(
+        &pair,
+        "[[axis]]\nkey = \"contact[1].gap\"\nvalues = [0.02]\n",
+    )
+    .unwrap();
+    assert!(sw.case_toml(0).unwrap().contains("gap = 0.02"));
+    let e = sweep(
+        &pair,
+        "[[axis]]\nkey = \"contact[2].gap\"\nvalues = [0.02]\n",
+    )
+    .err()
+    .unwrap();
+    assert!(
+        e.contains("axis[1].key") && e.contains("out of range"),
+        "{e}"
+    );
+}
