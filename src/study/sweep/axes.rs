@@ -340,11 +340,14 @@ pub(super) fn check_value(
     Ok(())
 }
 
+/// `row_shape`: the base's number of structures and each adjacent pair's number of contact
+/// levels (`edit::row_shape`).
 pub(super) fn check_axes(
     ctx: &Ctx,
     axes: &[Axis],
     spans: &[usize],
     base: &Table,
+    row_shape: &RowShape,
 ) -> Result<(), SweepError> {
     let find = |pred: &dyn Fn(&Target) -> bool| axes.iter().position(|a| pred(&a.target));
     let is_key = |t: &Target, s: &Section, f: &[&str]| matches!(t, Target::Key { section, field, .. } if section == s && f.contains(field));
@@ -418,7 +421,7 @@ pub(super) fn check_axes(
             ),
         ));
     }
-    check_row_axes(ctx, axes, spans, base)?;
+    check_row_axes(ctx, axes, spans, row_shape)?;
     let base_contact = base.get("contact").and_then(Value::as_table);
     let levels = base_contact
         .and_then(|c| c.get("level"))
@@ -458,6 +461,10 @@ pub(super) fn check_axes(
     Ok(())
 }
 
+/// A base scenario's number of structures and, per adjacent pair, its contact's number of
+/// levels (`None` without a `level` list; the outer `None`: no table for the pair).
+pub(super) type RowShape = (usize, Vec<Option<Option<usize>>>);
+
 /// The axes of a row of buildings (issue 29), or of a pair written with the row's paths:
 /// `structure[N]` within the base's structures, `contact[P]` within its adjacent pairs (and
 /// `contact[P].level[L]` within the pair's levels), and `contact.…` without a pair refused for
@@ -466,9 +473,9 @@ fn check_row_axes(
     ctx: &Ctx,
     axes: &[Axis],
     spans: &[usize],
-    base: &Table,
+    (n, pairs): &RowShape,
 ) -> Result<(), SweepError> {
-    let (n, pairs) = super::edit::row_shape(base);
+    let (n, pairs) = (*n, pairs);
     for (j, a) in axes.iter().enumerate() {
         let refuse = |why: String| {
             Err(ctx.invalid(

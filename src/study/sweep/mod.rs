@@ -327,7 +327,8 @@ impl Sweep {
         // and a suite's record files and target table, likewise
         let mut kind = suite_rows::absolute_suite_files(&mut base, &base_dir);
         // a row of buildings (issue 29): its own columns
-        let structures = edit::row_shape(&base).0;
+        let shape = edit::row_shape(&base);
+        let structures = shape.0;
         if kind == RowKind::Single && structures > 2 {
             kind = RowKind::Row { structures };
         }
@@ -360,7 +361,7 @@ impl Sweep {
             axes.push(axis);
             spans.push(a.span().start);
         }
-        check_axes(&ctx, &axes, &spans, &base)?;
+        check_axes(&ctx, &axes, &spans, &base, &shape)?;
         let mut cases: usize = 1;
         for a in &axes {
             cases = cases.saturating_mul(a.values.len());
