@@ -255,7 +255,10 @@ fn convergence(a: args::ConvergenceArgs, quiet: bool) -> anyhow::Result<()> {
         anyhow::bail!("--tolerance must be in (0, 1) (a relative change, e.g. 0.01 for 1 %)");
     }
     let (sc, name) = load(a.scenario)?;
-    refuse_suite(&sc)?;
+    // (a row of buildings is studied as a pair is: per structure and per pair, issue 29)
+    if let Some(s) = &sc.suite {
+        return Err(pounding::integrate::SolveError::Suite(s.records.len()).into());
+    }
     simulate::require_time_history(&sc)?;
     if !quiet {
         print!("{}", text::heading(&sc.title, &name));
@@ -271,11 +274,19 @@ fn convergence(a: args::ConvergenceArgs, quiet: bool) -> anyhow::Result<()> {
 
 fn separation(a: args::SeparationArgs) -> anyhow::Result<()> {
     let (sc, _) = load(a.scenario)?;
-    if sc.is_row() {
-        return Err(pounding::integrate::SolveError::Row(sc.structures.len()).into());
-    }
     let spectrum = a.spectrum.as_deref().map(spectrum_from_arg).transpose()?;
     let codes = (!a.code.is_empty()).then_some(a.code.as_slice());
+    if sc.is_row() {
+        // each adjacent pair's report, then the row's verdict (issue 29)
+        let report =
+            pounding::analysis::row_separation::row_gap_report(&sc, spectrum.as_ref(), codes)?;
+        if a.json {
+            println!("{}", serde_json::to_string_pretty(&report)?);
+        } else {
+            print!("{}", text::row_separation_report(&report));
+        }
+        return Ok(());
+    }
     let report = pounding::analysis::gap_report::gap_report(&sc, spectrum.as_ref(), codes)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

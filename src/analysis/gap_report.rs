@@ -15,6 +15,7 @@ use crate::codes::spectrum::{
 use crate::input::scenario::Scenario;
 use crate::input::scenario::design::CODE_KEYS;
 use crate::integrate::SolveError;
+use crate::recording::run_record::LevelRecord;
 
 /// Why the report could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -80,6 +81,17 @@ pub fn gap_report(
     spectrum: Option<&DesignSpectrum>,
     codes: Option<&[String]>,
 ) -> Result<GapReport, GapError> {
+    check_codes(scenario, codes)?;
+    let time_history = if scenario.design.spectrum.is_none() {
+        Some(crate::analysis::simulate::separation(scenario)?.levels)
+    } else {
+        None
+    };
+    pair_gap_report(scenario, spectrum, codes, time_history.as_deref())
+}
+
+/// `--code`'s names: each a code, and one the scenario gives the factors of.
+pub(crate) fn check_codes(scenario: &Scenario, codes: Option<&[String]>) -> Result<(), GapError> {
     if let Some(list) = codes {
         for k in list {
             if !CODE_KEYS.contains(&k.as_str()) {
@@ -90,16 +102,25 @@ pub fn gap_report(
             }
         }
     }
+    Ok(())
+}
+
+/// [`gap_report`] of a pair `scenario` (a scenario of two structures: a pair, or one pair of a
+/// row, [`Scenario::pair`]) whose run without contact at its contact levels, in their order, is
+/// `time_history` (`None` when the scenario's ground motion is a design spectrum). The one
+/// body of a pair's report and of each pair's in a row's
+/// ([`crate::analysis::row_separation`]).
+pub(crate) fn pair_gap_report(
+    scenario: &Scenario,
+    spectrum: Option<&DesignSpectrum>,
+    codes: Option<&[String]>,
+    time_history: Option<&[LevelRecord]>,
+) -> Result<GapReport, GapError> {
     let spectrum = spectrum.or(scenario.design.spectrum.as_ref());
     let models = [
         scenario.structures[0].modal(),
         scenario.structures[1].modal(),
     ];
-    let time_history = if scenario.design.spectrum.is_none() {
-        Some(crate::analysis::simulate::separation(scenario)?)
-    } else {
-        None
-    };
     let yielding = [0, 1].map(|i| scenario.structures[i].hysteresis().is_some());
     let mut warnings = scenario.warnings.clone();
     let peaks_from = match spectrum {
@@ -130,7 +151,7 @@ pub fn gap_report(
             Some(s) => Some(relative_peak(&models[0], h, &models[1], h, s)?),
             None => None,
         };
-        let record = time_history.as_ref().map(|t| &t.levels[k]);
+        let record = time_history.map(|t| &t[k]);
         let peaks = match (&spectral, record) {
             (Some(s), _) => [s.structure1.cqc, s.structure2.cqc],
             (None, Some(l)) => [l.peak_w1, l.peak_w2],

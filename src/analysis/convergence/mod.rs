@@ -20,11 +20,12 @@ pub mod quantities;
 
 use serde::{Serialize, Serializer};
 
-use crate::analysis::simulate::run_system;
 use crate::input::scenario::Scenario;
 use crate::integrate::{
-    InitialState, MIN_ATOL, MIN_RTOL, Method, SolveError, SolverSettings, rk4_max_stable_dt,
+    InitialState, MIN_ATOL, MIN_RTOL, Method, SolveError, SolverSettings, integrate,
+    rk4_max_stable_dt,
 };
+use crate::recording::recorder::Recorder;
 use quantities::{Yielding, headline_changes, named, within, worst, yield_changes};
 
 /// Mode counts tried (per structure), capped at [`MAX_MODES`].
@@ -77,24 +78,24 @@ pub struct Row {
     pub dt: f64,
     /// Relative tolerance (`adaptive` only).
     pub rtol: Option<f64>,
-    /// Peak |w₁(h)| and |w₂(h)| with pounding at the main contact height, m.
-    pub peak_w1: f64,
-    /// See `peak_w1`.
-    pub peak_w2: f64,
-    /// Peak contact force over all levels, N.
-    pub peak_force: f64,
+    /// Each structure's peak |w(h)| with pounding at its highest contact level (a pair: both
+    /// at the main contact height; a row: with either neighbour), m, in row order.
+    pub peaks: Vec<f64>,
+    /// Each adjacent pair's peak contact force over its levels, N (a pair: one).
+    pub forces: Vec<f64>,
     /// Contact episodes over all levels.
     pub impacts: usize,
-    /// |x − x_finest|/|x_finest| for w₁, w₂ and the force (0 when x_finest = 0).
-    pub change: [f64; 3],
+    /// |x − x_finest|/|x_finest| for each of `peaks` then each of `forces` (0 when
+    /// x_finest = 0): a pair's w₁, w₂ and force ([`quantities::quantity_names`]).
+    pub change: Vec<f64>,
     /// Yielding buildings only (issue 16), per structure: peak ductility, largest |residual
     /// drift| and hysteretic energy with pounding (`None` for an elastic structure).
-    pub yielding: [Option<Yielding>; 2],
+    pub yielding: Vec<Option<Yielding>>,
     /// Their changes relative to the finest row, per structure: ductility relative, residual
     /// drift in units of the larger of the finest's and the smallest yield drift, hysteretic
     /// energy in units of the larger of the finest's and 0.1 % of its input energy (as the
     /// self-check measures them, [`crate::analysis::simulate::accuracy`]).
-    pub yield_change: [Option<[f64; 3]>; 2],
+    pub yield_change: Vec<Option<[f64; 3]>>,
     /// Steps taken.
     pub steps: usize,
     /// `None`, or why the row could not be computed (beyond RK4's stability limit for the
@@ -103,10 +104,16 @@ pub struct Row {
 }
 
 impl Row {
-    /// Every change with its name (`peak w1`, `peak w2`, `peak force`, then `peak ductility
-    /// of 2`, `residual drift of 2`, `hysteretic energy of 2` for each yielding structure).
+    /// Every change with its name (`peak w1`, `peak w2`, `peak force` — a row: `peak w{i}` of
+    /// every structure, `peak force of pair {p}` of every pair — then `peak ductility of 2`,
+    /// `residual drift of 2`, `hysteretic energy of 2` for each yielding structure).
     pub fn changes(&self) -> Vec<(String, f64)> {
         named(&self.change, &self.yield_change)
+    }
+
+    /// The largest peak contact force over every pair, N (a pair's peak force).
+    pub fn peak_force(&self) -> f64 {
+        self.forces.iter().copied().fold(f64::NAN, f64::max)
     }
 
     /// Largest of the changes (a NaN counts as the largest).
@@ -201,19 +208,19 @@ pub struct ConvergenceTable {
     pub recommendation: String,
 }
 
-fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
+/// A row not run (yet) for `n` structures.
+fn empty_row(modes: usize, settings: &SolverSettings, n: usize) -> Row {
     Row {
         modes,
         method: settings.method.name(),
         dt: settings.dt,
         rtol: settings.method.has_tolerance().then_some(settings.rtol),
-        peak_w1: f64::NAN,
-        peak_w2: f64::NAN,
-        peak_force: f64::NAN,
+        peaks: vec![f64::NAN; n],
+        forces: vec![f64::NAN; n - 1],
         impacts: 0,
-        change: [f64::NAN; 3],
-        yielding: [None, None],
-        yield_change: [None, None],
+        change: vec![f64::NAN; 2 * n - 1],
+        yielding: vec![None; n],
+        yield_change: vec![None; n],
         steps: 0,
         failure: None,
     }
@@ -221,14 +228,16 @@ fn empty_row(modes: usize, settings: &SolverSettings) -> Row {
 
 fn with_modes(scenario: &Scenario, modes: usize) -> Scenario {
     let mut sc = scenario.clone();
-    sc.structures[0].set_modes(modes);
-    sc.structures[1].set_modes(modes);
+    for s in &mut sc.structures {
+        s.set_modes(modes);
+    }
     sc
 }
 
 fn one_run(scenario: &Scenario, modes: usize, settings: SolverSettings) -> Row {
     let sc = with_modes(scenario, modes);
-    let mut row = empty_row(modes, &settings);
+    let n = sc.structures.len();
+    let mut row = empty_row(modes, &settings, n);
     // what `pounding run` refuses before solving (scenario validation of solver.dt)
     if !(settings.dt < settings.duration && settings.duration / settings.dt <= 1e9) {
         row.failure = Some(format!(
@@ -237,22 +246,44 @@ fn one_run(scenario: &Scenario, modes: usize, settings: SolverSettings) -> Row {
         ));
         return row;
     }
+    // every pair's levels (a pair's: its own), tracked as `simulate_row` tracks them
     let system = sc.system();
-    let heights: Vec<f64> = sc.contact.levels.iter().map(|l| l.height).collect();
-    let out: Result<_, SolveError> = run_system(
+    let heights: Vec<f64> = system.levels.iter().map(|l| l.height).collect();
+    let pairs: Vec<usize> = system.levels.iter().map(|l| l.pair).collect();
+    let mut rec = Recorder::for_row(
         &system,
-        &settings,
-        &InitialState::default(),
         &heights,
+        &pairs,
         sc.output_interval,
+        settings.duration,
     );
+    let out: Result<_, SolveError> =
+        integrate(&system, &settings, &InitialState::default(), &mut rec)
+            .map(|s| (rec.finish(), s));
     match out {
         Ok((rec, stats)) => {
-            row.peak_w1 = rec.peak[0];
-            row.peak_w2 = rec.peak[1];
-            row.peak_force = rec.levels.iter().map(|l| l.peak_force).fold(0.0, f64::max);
+            for (i, peak) in row.peaks.iter_mut().enumerate() {
+                // its highest level with either neighbour (the first on a tie, as the
+                // recorder's main level: a pair's `peak`)
+                let main = (0..heights.len())
+                    .filter(|&k| pairs[k] == i || pairs[k] + 1 == i)
+                    .fold(None, |best: Option<usize>, k| match best {
+                        Some(b) if heights[k] <= heights[b] => Some(b),
+                        _ => Some(k),
+                    });
+                *peak = main.map_or(0.0, |k| {
+                    let l = &rec.levels[k];
+                    if pairs[k] == i { l.peak_w1 } else { l.peak_w2 }
+                });
+            }
+            for (p, force) in row.forces.iter_mut().enumerate() {
+                *force = (rec.levels.iter().zip(&pairs))
+                    .filter(|(_, q)| **q == p)
+                    .map(|(l, _)| l.peak_force)
+                    .fold(0.0, f64::max);
+            }
             row.impacts = rec.levels.iter().map(|l| l.impacts).sum();
-            row.yielding = quantities::yielding(&rec);
+            row.yielding = quantities::yielding(&rec, n);
             row.steps = stats.steps;
         }
         Err(e) => row.failure = Some(e.to_string()),
@@ -353,9 +384,10 @@ pub fn convergence_with(
         })
         .collect();
     fill_changes(&mut modes);
-    let n_modes = scenario.structures[0]
-        .modes()
-        .max(scenario.structures[1].modes());
+    let n_modes = (scenario.structures.iter())
+        .map(|s| s.modes())
+        .max()
+        .unwrap_or(1);
     let rtols = match base.method {
         Method::Adaptive => Some(&ladders.rtols),
         Method::ExactModal => Some(&ladders.exact_modal_rtols),
@@ -382,7 +414,7 @@ pub fn convergence_with(
                 if base.method == Method::Rk4 {
                     let (max_dt, _) = rk4_max_stable_dt(&with_modes(scenario, n_modes).system());
                     if s.dt > max_dt {
-                        let mut r = empty_row(n_modes, &s);
+                        let mut r = empty_row(n_modes, &s, scenario.structures.len());
                         r.failure = Some(format!("beyond RK4's stability limit {max_dt:.3e} s"));
                         return r;
                     }
@@ -454,8 +486,13 @@ pub fn convergence_with(
             } else {
                 ""
             };
+            let what = if scenario.structures.len() == 2 {
+                "both peaks and the peak force"
+            } else {
+                "every structure's peak and every pair's peak force"
+            };
             format!(
-                "{}: both peaks and the peak force{yielding} within {pct} % of the finest run of \
+                "{}: {what}{yielding} within {pct} % of the finest run of \
                  each ladder ({finest_modes} modes with {}; {finest_step} with {} and {n_modes} \
                  modes) and of the same settings at {}.",
                 r.describe(),
@@ -511,12 +548,10 @@ fn finer(settings: SolverSettings) -> SolverSettings {
     }
 }
 
-/// Relative changes of a row's peaks and peak force against a reference row.
-fn changes(row: &Row, reference: &Row) -> [f64; 3] {
-    headline_changes(
-        [row.peak_w1, row.peak_w2, row.peak_force],
-        [reference.peak_w1, reference.peak_w2, reference.peak_force],
-    )
+/// Relative changes of a row's peaks and peak forces against a reference row.
+fn changes(row: &Row, reference: &Row) -> Vec<f64> {
+    let q = |r: &Row| [r.peaks.as_slice(), r.forces.as_slice()].concat();
+    headline_changes(&q(row), &q(reference))
 }
 
 /// The recommended settings from the chosen mode row and step row: run (so that `pounding run`
@@ -561,7 +596,7 @@ fn combine(
         let system = with_modes(scenario, m).system();
         match settings.check_stability(&system) {
             Err(e) => {
-                let mut r = empty_row(m, &settings);
+                let mut r = empty_row(m, &settings, scenario.structures.len());
                 r.failure = Some(e.to_string());
                 r
             }

@@ -1,5 +1,6 @@
-//! What the convergence study compares between runs: the peaks at the main contact height and
-//! the peak contact force, and for yielding buildings (issue 16) the peak ductility, the largest
+//! What the convergence study compares between runs: each structure's peak at its highest
+//! contact level and each adjacent pair's peak contact force (a pair: the peaks at the main
+//! contact height and the peak force; a row of buildings, issue 29: per structure and per pair), and for yielding buildings (issue 16) the peak ductility, the largest
 //! residual drift and the hysteretic energy, each change measured as the self-check measures
 //! it ([`crate::analysis::simulate::accuracy`]).
 
@@ -24,26 +25,29 @@ pub struct Yielding {
     pub energy_floor: f64,
 }
 
-/// Each structure's [`Yielding`] numbers from a run (`None` for an elastic structure).
-pub fn yielding(rec: &RunRecord) -> [Option<Yielding>; 2] {
-    [0, 1].map(|i| {
-        let mut it = rec.storeys.iter().filter(|s| s.structure == i).peekable();
-        it.peek()?;
-        let mut y = Yielding {
-            ductility: 0.0,
-            residual_drift: 0.0,
-            hysteretic_energy: 0.0,
-            min_yield_drift: f64::INFINITY,
-            energy_floor: 1e-3 * rec.energy.input.abs(),
-        };
-        for s in it {
-            y.ductility = y.ductility.max(s.peak_ductility());
-            y.residual_drift = y.residual_drift.max(s.residual_drift.abs());
-            y.hysteretic_energy += s.hysteretic_energy;
-            y.min_yield_drift = y.min_yield_drift.min(s.yield_drift);
-        }
-        Some(y)
-    })
+/// Each of the `structures` structures' [`Yielding`] numbers from a run (`None` for an
+/// elastic structure).
+pub fn yielding(rec: &RunRecord, structures: usize) -> Vec<Option<Yielding>> {
+    (0..structures)
+        .map(|i| {
+            let mut it = rec.storeys.iter().filter(|s| s.structure == i).peekable();
+            it.peek()?;
+            let mut y = Yielding {
+                ductility: 0.0,
+                residual_drift: 0.0,
+                hysteretic_energy: 0.0,
+                min_yield_drift: f64::INFINITY,
+                energy_floor: 1e-3 * rec.energy.input.abs(),
+            };
+            for s in it {
+                y.ductility = y.ductility.max(s.peak_ductility());
+                y.residual_drift = y.residual_drift.max(s.residual_drift.abs());
+                y.hysteretic_energy += s.hysteretic_energy;
+                y.min_yield_drift = y.min_yield_drift.min(s.yield_drift);
+            }
+            Some(y)
+        })
+        .collect()
 }
 
 /// |x − reference| / max(|reference|, `floor`); 0 when both are 0, infinite when only the
@@ -57,9 +61,12 @@ fn change(x: f64, reference: f64, floor: f64) -> f64 {
     }
 }
 
-/// Relative changes of peak w₁, peak w₂ and the peak force against a reference.
-pub fn headline_changes(x: [f64; 3], reference: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|k| change(x[k], reference[k], 0.0))
+/// Relative changes of each quantity against a reference (peaks, forces, …).
+pub fn headline_changes(x: &[f64], reference: &[f64]) -> Vec<f64> {
+    x.iter()
+        .zip(reference)
+        .map(|(a, r)| change(*a, *r, 0.0))
+        .collect()
 }
 
 /// Changes of each structure's ductility (relative), residual drift (in units of the larger
@@ -67,31 +74,48 @@ pub fn headline_changes(x: [f64; 3], reference: [f64; 3]) -> [f64; 3] {
 /// larger of the reference's and 0.1 % of the reference run's input energy): a residual drift
 /// near zero and a storey that barely yields are not judged by their own tiny size.
 pub fn yield_changes(
-    x: &[Option<Yielding>; 2],
-    reference: &[Option<Yielding>; 2],
-) -> [Option<[f64; 3]>; 2] {
-    [0, 1].map(|i| {
-        let (a, r) = (x[i]?, reference[i]?);
-        Some([
-            change(a.ductility, r.ductility, 0.0),
-            change(a.residual_drift, r.residual_drift, r.min_yield_drift),
-            change(a.hysteretic_energy, r.hysteretic_energy, r.energy_floor),
-        ])
-    })
+    x: &[Option<Yielding>],
+    reference: &[Option<Yielding>],
+) -> Vec<Option<[f64; 3]>> {
+    x.iter()
+        .zip(reference)
+        .map(|(a, r)| {
+            let (a, r) = ((*a)?, (*r)?);
+            Some([
+                change(a.ductility, r.ductility, 0.0),
+                change(a.residual_drift, r.residual_drift, r.min_yield_drift),
+                change(a.hysteretic_energy, r.hysteretic_energy, r.energy_floor),
+            ])
+        })
+        .collect()
 }
 
-/// The names of the headline changes.
+/// The names of a pair's headline changes (the N = 2 case of [`quantity_names`]).
 pub const HEADLINE: [&str; 3] = ["peak w1", "peak w2", "peak force"];
 
 /// The names of a yielding structure's changes.
 pub const YIELDING: [&str; 3] = ["peak ductility", "residual drift", "hysteretic energy"];
 
-/// Every change with its name (`peak w1`, …, `peak ductility of 2`, …), headline first.
-pub fn named(headline: &[f64; 3], yielding: &[Option<[f64; 3]>; 2]) -> Vec<(String, f64)> {
-    let mut out: Vec<(String, f64)> = HEADLINE
-        .iter()
-        .zip(headline)
-        .map(|(n, c)| (n.to_string(), *c))
+/// The names of the compared quantities of `structures` structures in a row (a pair: N = 2):
+/// each structure's peak `peak w{i}` (at its highest contact level), then each adjacent pair's
+/// peak force (`peak force` for a pair, `peak force of pair {p}` in a row; 1-based).
+pub fn quantity_names(structures: usize) -> Vec<String> {
+    let mut v: Vec<String> = (1..=structures).map(|i| format!("peak w{i}")).collect();
+    if structures == 2 {
+        v.push(HEADLINE[2].to_string());
+    } else {
+        v.extend((1..structures).map(|p| format!("peak force of pair {p}")));
+    }
+    v
+}
+
+/// Every change with its name (`peak w1`, …, `peak force…`, then `peak ductility of 2`, …),
+/// quantities first ([`quantity_names`]).
+pub fn named(quantities: &[f64], yielding: &[Option<[f64; 3]>]) -> Vec<(String, f64)> {
+    let mut out: Vec<(String, f64)> = quantity_names(yielding.len())
+        .into_iter()
+        .zip(quantities)
+        .map(|(n, c)| (n, *c))
         .collect();
     for (i, y) in yielding.iter().enumerate() {
         if let Some(y) = y {

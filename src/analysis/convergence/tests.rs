@@ -35,8 +35,12 @@ fn study_of_a_short_case_recommends_within_tolerance() {
 }
 
 fn row(modes: usize, change: f64, failure: Option<&str>) -> Row {
-    let mut r = empty_row(modes, &SolverSettings::new(Method::ExactModal, 1e-3, 1.0));
-    r.change = [0.0, change, 0.0];
+    let mut r = empty_row(
+        modes,
+        &SolverSettings::new(Method::ExactModal, 1e-3, 1.0),
+        2,
+    );
+    r.change = vec![0.0, change, 0.0];
     r.failure = failure.map(str::to_string);
     r
 }
@@ -92,7 +96,7 @@ fn a_ladder_judges_the_yielding_quantities_too() {
     let label = |r: &Row| format!("{} modes", r.modes);
     let yielding = |change: [f64; 3]| {
         let mut r = row(0, 0.0, None);
-        r.yield_change = [None, Some(change)];
+        r.yield_change = vec![None, Some(change)];
         r
     };
     let mut rows = [

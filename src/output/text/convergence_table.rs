@@ -13,25 +13,34 @@ pub fn convergence_table(t: &ConvergenceTable) -> String {
     o
 }
 
-/// One ladder of runs with each run's change against the finest.
+/// One ladder of runs with each run's change against the finest: each structure's peak (a
+/// pair: w1, w2 at the main contact height; a row: w_i at structure i's highest contact level)
+/// and each adjacent pair's peak force (a pair: F; a row: F_p of pair p, between structures p
+/// and p + 1).
 fn write_rows(o: &mut String, title: &str, rows: &[Row]) -> fmt::Result {
+    let n = rows.first().map_or(2, |r| r.peaks.len());
+    let force = |p: usize| if n == 2 { String::new() } else { p.to_string() };
     writeln!(o)?;
     writeln!(o, "  {title}")?;
-    writeln!(
+    write!(
         o,
-        "  {:>6} {:>12} {:>10} {:>8} {:>11} {:>11} {:>13} {:>8} {:>9} {:>9} {:>9}",
-        "modes",
-        "method",
-        "dt [s]",
-        "rtol",
-        "peak w1 [m]",
-        "peak w2 [m]",
-        "peak F [N]",
-        "impacts",
-        "Δw1 [%]",
-        "Δw2 [%]",
-        "ΔF [%]"
+        "  {:>6} {:>12} {:>10} {:>8}",
+        "modes", "method", "dt [s]", "rtol"
     )?;
+    for i in 1..=n {
+        write!(o, " {:>11}", format!("peak w{i} [m]"))?;
+    }
+    for p in 1..n {
+        write!(o, " {:>13}", format!("peak F{} [N]", force(p)))?;
+    }
+    write!(o, " {:>8}", "impacts")?;
+    for i in 1..=n {
+        write!(o, " {:>9}", format!("Δw{i} [%]"))?;
+    }
+    for p in 1..n {
+        write!(o, " {:>9}", format!("ΔF{} [%]", force(p)))?;
+    }
+    writeln!(o)?;
     for r in rows {
         let rtol = r.rtol.map_or("-".to_string(), |x| format!("{x:.0e}"));
         if let Some(f) = &r.failure {
@@ -46,21 +55,22 @@ fn write_rows(o: &mut String, title: &str, rows: &[Row]) -> fmt::Result {
             )?;
             continue;
         }
-        writeln!(
+        write!(
             o,
-            "  {:>6} {:>12} {:>10.2e} {:>8} {:>11.5} {:>11.5} {:>13.5e} {:>8} {:>9.3} {:>9.3} {:>9.3}",
-            r.modes,
-            r.method,
-            r.dt,
-            rtol,
-            r.peak_w1,
-            r.peak_w2,
-            r.peak_force,
-            r.impacts,
-            100.0 * r.change[0],
-            100.0 * r.change[1],
-            100.0 * r.change[2]
+            "  {:>6} {:>12} {:>10.2e} {:>8}",
+            r.modes, r.method, r.dt, rtol
         )?;
+        for w in &r.peaks {
+            write!(o, " {w:>11.5}")?;
+        }
+        for f in &r.forces {
+            write!(o, " {f:>13.5e}")?;
+        }
+        write!(o, " {:>8}", r.impacts)?;
+        for c in &r.change {
+            write!(o, " {:>9.3}", 100.0 * c)?;
+        }
+        writeln!(o)?;
     }
     Ok(())
 }
@@ -124,7 +134,8 @@ fn write_yielding(o: &mut String, yielding: &[usize], rows: &[Row]) -> fmt::Resu
 
 fn write_table(o: &mut String, t: &ConvergenceTable) -> fmt::Result {
     // yielding buildings (issue 24): their ductility, residual drift and hysteretic energy
-    let yielding: Vec<usize> = (0..2)
+    let structures = t.modes.first().map_or(2, |r| r.peaks.len());
+    let yielding: Vec<usize> = (0..structures)
         .filter(|&i| {
             t.modes
                 .iter()

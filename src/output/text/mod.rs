@@ -8,6 +8,7 @@
 pub mod convergence_table;
 pub mod laws_table;
 pub mod modes_table;
+pub mod row_separation_report;
 pub mod row_summary;
 pub mod run_summary;
 pub mod separation_report;
@@ -15,6 +16,7 @@ pub mod separation_report;
 pub use convergence_table::convergence_table;
 pub use laws_table::laws_table;
 pub use modes_table::modes_table;
+pub use row_separation_report::row_separation_report;
 pub use row_summary::row_summary;
 pub use run_summary::{run_summary, self_check_line, time_history_verdict};
 pub use separation_report::separation_report;

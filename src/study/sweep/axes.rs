@@ -340,11 +340,14 @@ pub(super) fn check_value(
     Ok(())
 }
 
+/// `row_shape`: the base's number of structures and each adjacent pair's number of contact
+/// levels (`edit::row_shape`).
 pub(super) fn check_axes(
     ctx: &Ctx,
     axes: &[Axis],
     spans: &[usize],
     base: &Table,
+    row_shape: &RowShape,
 ) -> Result<(), SweepError> {
     let find = |pred: &dyn Fn(&Target) -> bool| axes.iter().position(|a| pred(&a.target));
     let is_key = |t: &Target, s: &Section, f: &[&str]| matches!(t, Target::Key { section, field, .. } if section == s && f.contains(field));
@@ -418,6 +421,7 @@ pub(super) fn check_axes(
             ),
         ));
     }
+    check_row_axes(ctx, axes, spans, row_shape)?;
     let base_contact = base.get("contact").and_then(Value::as_table);
     let levels = base_contact
         .and_then(|c| c.get("level"))
@@ -450,6 +454,98 @@ pub(super) fn check_axes(
                         levels.unwrap_or(0)
                     ),
                 ));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// A base scenario's number of structures and, per adjacent pair, its contact's number of
+/// levels (`None` without a `level` list; the outer `None`: no table for the pair).
+pub(super) type RowShape = (usize, Vec<Option<Option<usize>>>);
+
+/// The axes of a row of buildings (issue 29), or of a pair written with the row's paths:
+/// `structure[N]` within the base's structures, `contact[P]` within its adjacent pairs (and
+/// `contact[P].level[L]` within the pair's levels), and `contact.…` without a pair refused for
+/// a row, where it would be ambiguous; each error names the axis's key.
+fn check_row_axes(
+    ctx: &Ctx,
+    axes: &[Axis],
+    spans: &[usize],
+    (n, pairs): &RowShape,
+) -> Result<(), SweepError> {
+    let (n, pairs) = (*n, pairs);
+    for (j, a) in axes.iter().enumerate() {
+        let refuse = |why: String| {
+            Err(ctx.invalid(
+                Some(spans[j]),
+                &format!("axis[{}].key", j + 1),
+                format!("`{}`: {why}", a.key),
+            ))
+        };
+        let section = match &a.target {
+            Target::Scale { structure, .. } => Some(Section::Structure(*structure)),
+            Target::Key { section, .. } => Some(section.clone()),
+            _ => None,
+        };
+        let field = match &a.target {
+            Target::Key { field, .. } => *field,
+            _ => "",
+        };
+        match section {
+            Some(Section::Structure(i) | Section::Hysteresis(i)) if i >= n => {
+                return refuse(format!(
+                    "the base scenario has {n} structures (structure[1] … structure[{n}])"
+                ));
+            }
+            Some(Section::Contact | Section::Level(_)) if n > 2 => {
+                let list = (0..n - 1)
+                    .map(|p| {
+                        format!(
+                            "contact[{}] the pair of structures {} and {}",
+                            p + 1,
+                            p + 1,
+                            p + 2
+                        )
+                    })
+                    .take(3)
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let rest = a.key.strip_prefix("contact.").unwrap_or(&a.key);
+                return refuse(format!(
+                    "ambiguous: the base scenario is a row of {n} structures with one contact per \
+                     adjacent pair; name the pair, `contact[P].{rest}` ({list}{})",
+                    if n > 4 { ", …" } else { "" }
+                ));
+            }
+            Some(Section::PairContact(p) | Section::PairLevel(p, _)) if p >= pairs.len() => {
+                return refuse(format!(
+                    "pair {} is out of range: the base scenario has {n} structures, so {} \
+                     adjacent pair(s) (contact[1] … contact[{}])",
+                    p + 1,
+                    pairs.len(),
+                    pairs.len()
+                ));
+            }
+            Some(Section::PairContact(p)) if matches!(field, "gap" | "height") => {
+                if let Some(Some(levels)) = pairs[p] {
+                    return refuse(format!(
+                        "pair {}'s contact has {levels} levels (`level = [...]`): sweep \
+                         `contact[{}].level[L].{field}` instead",
+                        p + 1,
+                        p + 1
+                    ));
+                }
+            }
+            Some(Section::PairLevel(p, i)) => {
+                let levels = pairs[p].flatten().unwrap_or(0);
+                if i >= levels {
+                    return refuse(format!(
+                        "pair {}'s contact has {levels} level(s) in a `level` list",
+                        p + 1
+                    ));
+                }
             }
             _ => {}
         }

@@ -205,3 +205,110 @@ pub(super) fn reason(e: &ScenarioError) -> String {
         ScenarioError::SweepFile { .. } => e.to_string(),
     }
 }
+
+/// The structures' names of a scenario table, in row order (a structure without `name` is
+/// "structure i", as the scenario names it).
+fn structure_names(t: &Table) -> Vec<String> {
+    match t.get("structure") {
+        Some(Value::Array(a)) => (a.iter().enumerate())
+            .map(|(i, s)| {
+                s.get("name")
+                    .and_then(Value::as_str)
+                    .map_or_else(|| format!("structure {}", i + 1), str::to_string)
+            })
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// The contact table of adjacent pair `p` (0-based: structures p and p + 1) of a scenario
+/// table: a pair's `[contact]` (p = 0), or the `[[contact]]` table whose `between` names the
+/// pair (in either order), or a pair's one `[[contact]]` without `between`. `Err`: the
+/// reason, naming the key `contact[p + 1]`.
+pub(super) fn pair_contact_mut(t: &mut Table, p: usize) -> Result<&mut Table, String> {
+    let names = structure_names(t);
+    let pairs = names.len().saturating_sub(1);
+    if p >= pairs {
+        return Err(format!(
+            "contact[{}]: the base scenario has {} structure(s), so {pairs} adjacent pair(s) \
+             (contact[1] … contact[{pairs}])",
+            p + 1,
+            names.len()
+        ));
+    }
+    let (a, b) = (names[p].as_str(), names[p + 1].as_str());
+    let names_pair = |c: &Value| {
+        c.get("between")
+            .and_then(Value::as_array)
+            .is_some_and(|list| {
+                let l: Vec<&str> = list.iter().filter_map(Value::as_str).collect();
+                l == [a, b] || l == [b, a]
+            })
+    };
+    match t.get_mut("contact") {
+        Some(Value::Table(c)) if p == 0 => Ok(c),
+        Some(Value::Array(list)) => {
+            let lone = list.len() == 1 && pairs == 1 && list[0].get("between").is_none();
+            let at = if lone {
+                Some(0)
+            } else {
+                list.iter().position(names_pair)
+            };
+            match at.and_then(|i| list.get_mut(i)) {
+                Some(Value::Table(c)) => Ok(c),
+                _ => Err(format!(
+                    "contact[{}]: the base scenario has no [[contact]] table with between = \
+                     [\"{a}\", \"{b}\"]",
+                    p + 1
+                )),
+            }
+        }
+        _ => Err(format!(
+            "contact[{}]: the base scenario has no contact table for \"{a}\"–\"{b}\"",
+            p + 1
+        )),
+    }
+}
+
+/// Level `i` (0-based) of pair `p`'s contact: its `level` list (`level = [...]` or
+/// `[[contact.level]]` tables).
+pub(super) fn pair_level_mut(t: &mut Table, p: usize, i: usize) -> Result<&mut Table, String> {
+    let c = pair_contact_mut(t, p)?;
+    match c.get_mut("level") {
+        Some(Value::Array(a)) => {
+            let n = a.len();
+            match a.get_mut(i) {
+                Some(Value::Table(s)) => Ok(s),
+                _ => Err(format!(
+                    "contact[{}].level[{}]: the pair's contact has {n} level(s)",
+                    p + 1,
+                    i + 1
+                )),
+            }
+        }
+        _ => Err(format!(
+            "contact[{}].level[{}]: the pair's contact has no levels (`level = [...]`); sweep \
+             contact[{}].gap or contact[{}].height",
+            p + 1,
+            i + 1,
+            p + 1,
+            p + 1
+        )),
+    }
+}
+
+/// The number of structures and, per adjacent pair, its contact's number of levels (`None`
+/// without a `level` list) of a base scenario table; a pair whose table is missing is left
+/// out (the base scenario's own validation names it).
+pub(super) fn row_shape(t: &Table) -> (usize, Vec<Option<Option<usize>>>) {
+    let mut t = t.clone();
+    let n = structure_names(&t).len();
+    let pairs = (0..n.saturating_sub(1))
+        .map(|p| {
+            pair_contact_mut(&mut t, p)
+                .ok()
+                .map(|c| c.get("level").and_then(Value::as_array).map(Vec::len))
+        })
+        .collect();
+    (n, pairs)
+}

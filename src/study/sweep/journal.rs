@@ -64,10 +64,10 @@ impl Journal {
         let this_version = journal_version(sweep);
         let names = sweep.result_columns();
         let columns = 2 + sweep.axes.len() + names.len();
-        let suite = sweep.row_kind() != super::RowKind::Single;
+        let kind = sweep.row_kind();
         let check = |body: &str| {
             let whole = parse_csv_line(body).is_some_and(|f| f.len() == columns);
-            check_row(body, &names, suite, sweep.len())
+            check_row(body, &names, kind, sweep.len())
                 .filter(|(case, _)| whole && shard.contains(*case))
         };
         // rows of the other kind (a suite of records per case, or one run): never mixed, and

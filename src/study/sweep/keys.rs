@@ -1,8 +1,11 @@
 //! The key paths an axis may set: derived ratios (`period_ratio`, `ground_period_ratio`) and
-//! any scenario key by path (`structure.1.period`, `contact.level.2.gap`, …), each with the
+//! any scenario key by path (`structure.1.period`, `contact.level.2.gap`, and for a row of
+//! buildings `structure[3].period`, `contact[2].gap`, `contact[2].level[1].gap`: the contact of
+//! adjacent pair 2, structures 2 and 3), each with the
 //! type of its value (`parse_key`, `valid_keys` for suggestions): which keys and their types
 //! come from the scenario's key table (`input::scenario::keys`, `sweep`).
 
+use crate::input::scenario::MAX_ROW;
 pub(super) use crate::input::scenario::keys::Kind;
 use crate::input::scenario::keys::{KeyInfo, Table};
 
@@ -14,6 +17,11 @@ pub(super) enum Section {
     Hysteresis(usize),
     Contact,
     Level(usize),
+    /// `contact[P].…`: the contact of adjacent pair P (0-based here) of a row, whichever
+    /// `[[contact]]` table of the base names it (issue 29).
+    PairContact(usize),
+    /// `contact[P].level[L].…`: level L of pair P's contact (both 0-based here).
+    PairLevel(usize, usize),
     Ground,
     /// `ground_motion.scale_to_sa` (issue 27).
     ScaleToSa,
@@ -57,14 +65,14 @@ pub(super) fn valid_keys() -> Vec<String> {
     let scenario = |t: Table| fields(t).filter_map(KeyInfo::sweep_key);
     v.extend(scenario(Table::Structure));
     v.extend(DERIVED_AXES[2..].iter().map(|k| k.to_string()));
-    for t in [
-        Table::Hysteresis,
-        Table::Contact,
-        Table::Level,
-        Table::Ground,
-        Table::ScaleToSa,
-        Table::Solver,
-    ] {
+    for t in [Table::Hysteresis, Table::Contact, Table::Level] {
+        v.extend(scenario(t));
+    }
+    // a row's pairs (issue 29): the contact and level keys of pair P
+    for t in [Table::Contact, Table::Level] {
+        v.extend(scenario(t).map(|k| k.replacen("contact.", "contact.P.", 1)));
+    }
+    for t in [Table::Ground, Table::ScaleToSa, Table::Solver] {
         v.extend(scenario(t));
     }
     v
@@ -92,18 +100,19 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
             )),
         }
     };
+    let is_index = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_digit());
     let target = match parts.as_slice() {
         ["period_ratio"] => Ok(Target::PeriodRatio),
         ["ground_period_ratio"] => Ok(Target::GroundPeriodRatio),
         ["structure", n, f @ ("stiffness_scale" | "mass_scale")] => {
-            let i = index(n, "structure", Some(2))?;
+            let i = index(n, "structure", Some(MAX_ROW))?;
             Ok(Target::Scale {
                 structure: i,
                 mass: *f == "mass_scale",
             })
         }
         ["structure", n, "hysteresis", f] => {
-            let i = index(n, "structure", Some(2))?;
+            let i = index(n, "structure", Some(MAX_ROW))?;
             field(Table::Hysteresis, f).map(|(field, kind)| Target::Key {
                 section: Section::Hysteresis(i),
                 field,
@@ -111,7 +120,7 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
             })
         }
         ["structure", n, f] => {
-            let i = index(n, "structure", Some(2))?;
+            let i = index(n, "structure", Some(MAX_ROW))?;
             field(Table::Structure, f).map(|(field, kind)| Target::Key {
                 section: Section::Structure(i),
                 field,
@@ -122,6 +131,23 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
             let i = index(n, "contact level", None)?;
             field(Table::Level, f).map(|(field, kind)| Target::Key {
                 section: Section::Level(i),
+                field,
+                kind,
+            })
+        }
+        ["contact", p, "level", n, f] if is_index(p) => {
+            let p = index(p, "pair", Some(MAX_ROW - 1))?;
+            let i = index(n, "contact level", None)?;
+            field(Table::Level, f).map(|(field, kind)| Target::Key {
+                section: Section::PairLevel(p, i),
+                field,
+                kind,
+            })
+        }
+        ["contact", p, f] if is_index(p) => {
+            let p = index(p, "pair", Some(MAX_ROW - 1))?;
+            field(Table::Contact, f).map(|(field, kind)| Target::Key {
+                section: Section::PairContact(p),
                 field,
                 kind,
             })
@@ -175,7 +201,10 @@ pub(super) fn parse_key(raw: &str) -> Result<(String, Target), String> {
             {
                 msg.push_str(&format!("; did you mean `{k}`?"));
             }
-            msg.push_str(&format!(" (valid keys: {}; N is 1-based)", keys.join(", ")));
+            msg.push_str(&format!(
+                " (valid keys: {}; N is 1-based; P is 1-based too: a row's adjacent pair P, between its structures P and P + 1)",
+                keys.join(", ")
+            ));
             Err(msg)
         }
     }

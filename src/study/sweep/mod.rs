@@ -40,6 +40,7 @@ pub mod journal;
 mod keys;
 pub mod report;
 pub mod results;
+pub mod row_columns;
 pub mod run;
 mod shard;
 pub mod suite_rows;
@@ -327,7 +328,13 @@ impl Sweep {
             *f = absolute(&base_dir.join(&*f)).display().to_string();
         }
         // and a suite's record files and target table, likewise
-        let kind = suite_rows::absolute_suite_files(&mut base, &base_dir);
+        let mut kind = suite_rows::absolute_suite_files(&mut base, &base_dir);
+        // a row of buildings (issue 29): its own columns
+        let shape = edit::row_shape(&base);
+        let structures = shape.0;
+        if kind == RowKind::Single && structures > 2 {
+            kind = RowKind::Row { structures };
+        }
 
         let list = raw.axis.as_ref().ok_or_else(|| {
             ctx.invalid(
@@ -357,7 +364,7 @@ impl Sweep {
             axes.push(axis);
             spans.push(a.span().start);
         }
-        check_axes(&ctx, &axes, &spans, &base)?;
+        check_axes(&ctx, &axes, &spans, &base, &shape)?;
         let mut cases: usize = 1;
         for a in &axes {
             cases = cases.saturating_mul(a.values.len());
@@ -447,6 +454,7 @@ impl Sweep {
                 .map(|f| f.to_string())
                 .collect(),
             RowKind::Suite { levels } => suite_rows::columns(levels),
+            RowKind::Row { structures } => row_columns::columns(structures),
         }
     }
 
@@ -714,6 +722,8 @@ impl Sweep {
                     Section::Hysteresis(i) => section_mut(structure_mut(t, *i)?, "hysteresis")?,
                     Section::Contact => section_mut(t, "contact")?,
                     Section::Level(i) => level_mut(t, *i)?,
+                    Section::PairContact(p) => edit::pair_contact_mut(t, *p)?,
+                    Section::PairLevel(p, i) => edit::pair_level_mut(t, *p, *i)?,
                     Section::Ground => section_mut(t, "ground_motion")?,
                     Section::ScaleToSa => {
                         // a record is scaled one way: the axis's `scale_to_sa` replaces PGA scaling
@@ -859,7 +869,11 @@ mod tests {
         let e = sweep("[[axis]]\nkey = \"structure.3.mass\"\nvalues = [1]\n")
             .unwrap_err()
             .to_string();
-        assert!(e.contains("use 1 to 2"), "{e}");
+        // (a row may have more: the base scenario's count decides)
+        assert!(
+            e.contains("has 2 structures") && e.contains("axis[1].key"),
+            "{e}"
+        );
         let e = sweep("[[axis]]\nkey = \"contact.gap\"\nfrom = 0\nto = 1\n")
             .unwrap_err()
             .to_string();

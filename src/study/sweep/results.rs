@@ -103,7 +103,9 @@ pub const DUCTILITY_FIELDS: [&str; 4] = [
 /// rows, [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`] (codes, floors), else
 /// [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
-    if sweep.row_kind() != super::RowKind::Single {
+    if let super::RowKind::Row { .. } = sweep.row_kind() {
+        super::row_columns::JOURNAL_VERSION_ROW
+    } else if sweep.row_kind() != super::RowKind::Single {
         super::suite_rows::JOURNAL_VERSION_SUITE
     } else if sweep.extra_columns().is_empty() {
         JOURNAL_VERSION
@@ -297,7 +299,7 @@ pub fn columns(
         .chain(std::iter::once("status".to_string()))
         .chain(sweep.result_columns())
         .collect();
-    let suite = sweep.row_kind() != super::RowKind::Single;
+    let kind = sweep.row_kind();
     let mut cols: Vec<Column> = names
         .iter()
         .enumerate()
@@ -309,7 +311,7 @@ pub fn columns(
                 Some(_) => Column::Text(Vec::new()),
                 None if j == 0 => Column::Int(Vec::new()),
                 None if name == "status" || name == "converged" => Column::Text(Vec::new()),
-                None if suite && super::suite_rows::is_text(name) => Column::Text(Vec::new()),
+                None if kind.is_text(name) => Column::Text(Vec::new()),
                 None => Column::Float(Vec::new()),
             }
         })
@@ -347,12 +349,12 @@ pub fn columns(
 }
 
 /// Checks a row read back: right number of fields, case in range, a known status, values
-/// of each result column's kind (`names`, after `status`; `suite`: a suite's row) where the
+/// of each result column's kind (`names`, after `status`; `kind`: the sweep's row kind) where the
 /// status is `ok`. Returns the case and whether it failed.
 pub(super) fn check_row(
     line: &str,
     names: &[String],
-    suite: bool,
+    kind: super::RowKind,
     cases: usize,
 ) -> Option<(usize, bool)> {
     let f = parse_csv_line(line)?;
@@ -368,8 +370,8 @@ pub(super) fn check_row(
     let nums = &f[columns - names.len()..];
     if status == "ok" {
         if nums.iter().zip(names).enumerate().all(|(k, (x, name))| {
-            if suite {
-                super::suite_rows::parse(name, x).is_some()
+            if kind != super::RowKind::Single {
+                kind.parse(name, x).is_some()
             } else if k < NFIELDS {
                 parse_field(k, x).is_some()
             } else {
@@ -433,8 +435,9 @@ pub struct Table {
     /// [`DUCTILITY_FIELDS`]: those the table has); for a sweep over a suite, every column
     /// after `status` ([`super::suite_rows::columns`]).
     pub codes: Vec<String>,
-    /// The rows are suites of records ([`super::suite_rows`]): [`TableRow::fields`] are NaN
-    /// and the values are in [`TableRow::codes`].
+    /// The rows are suites of records ([`super::suite_rows`]) or rows of buildings
+    /// ([`super::row_columns`]): [`TableRow::fields`] are NaN and the values are in
+    /// [`TableRow::codes`].
     pub suite: bool,
 }
 
@@ -584,37 +587,64 @@ impl Table {
     }
 
     /// A table of a sweep over a suite (columns `case`, the axes, `status`,
-    /// [`super::suite_rows::columns`]), or `None` when `all` (the header's columns) is not one.
+    /// [`super::suite_rows::columns`]) or over a row of buildings
+    /// ([`super::row_columns::columns`]), or `None` when `all` (the header's columns) is
+    /// neither.
     fn read_suite(
         path: &Path,
         header: &str,
         all: &[String],
         text: &str,
     ) -> Result<Option<Table>, SweepError> {
-        use super::suite_rows::{HEAD, PER_LEVEL, TAIL, columns, parse};
+        use super::row_columns as row;
+        use super::suite_rows::{HEAD, PER_LEVEL, TAIL, columns};
         let bad = |line: usize, msg: String| SweepError::Journal {
             path: format!("{}:{line}", path.display()),
             message: msg,
         };
-        let Some(st) = all
-            .iter()
-            .position(|c| c == "status")
-            .filter(|&st| all.get(st + 1).map(String::as_str) == Some(HEAD[0]))
-        else {
+        let after_status = |first: &str| {
+            all.iter()
+                .position(|c| c == "status")
+                .filter(|&st| all.get(st + 1).map(String::as_str) == Some(first))
+        };
+        let (st, kind, names, expected) = if let Some(st) = after_status(HEAD[0]) {
+            let rest = all.len() - st - 1;
+            let levels = rest.saturating_sub(HEAD.len() + TAIL.len()) / PER_LEVEL.len();
+            let expected = format!(
+                "a suite: expected columns case, <axis keys>, status, {}",
+                columns(1).join(", ").replace("level1_", "levelK_")
+            );
+            (
+                st,
+                super::RowKind::Suite { levels },
+                columns(levels),
+                expected,
+            )
+        } else if let Some(st) = after_status(row::HEAD[0]) {
+            // a row of buildings (issue 29): N structures' and N − 1 pairs' columns
+            let rest = all.len() - st - 1;
+            let (per_s, per_p) = (row::PER_STRUCTURE.len(), row::PER_PAIR.len());
+            let body = rest.saturating_sub(row::HEAD.len() + row::TAIL.len()) + per_p;
+            let structures = body / (per_s + per_p);
+            let expected = format!(
+                "a row of buildings: expected columns case, <axis keys>, status, {}",
+                row::columns(2)
+                    .join(", ")
+                    .replace("structure2_", "structureI_")
+                    .replace("structure1_", "structureI_")
+                    .replace("pair1_", "pairP_")
+            );
+            (
+                st,
+                super::RowKind::Row { structures },
+                row::columns(structures),
+                expected,
+            )
+        } else {
             return Ok(None);
         };
-        let rest = all.len() - st - 1;
-        let levels = rest.saturating_sub(HEAD.len() + TAIL.len()) / PER_LEVEL.len();
-        let names = columns(levels);
         if all[0] != "case" || all[st + 1..] != names[..] {
-            return Err(bad(
-                1,
-                format!(
-                    "not a sweep results table of a suite: expected columns case, <axis keys>, \
-                     status, {}",
-                    columns(1).join(", ").replace("level1_", "levelK_")
-                ),
-            ));
+            return Err(bad(1, format!("not a sweep results table of {expected}")));
         }
         let mut rows = BTreeMap::new();
         for (i, line) in text.lines().enumerate().skip(1) {
@@ -636,7 +666,7 @@ impl Table {
             let mut values = vec![f64::NAN; names.len()];
             for (k, x) in f[st + 1..].iter().enumerate() {
                 if !x.is_empty() {
-                    values[k] = parse(&names[k], x).ok_or_else(|| {
+                    values[k] = kind.parse(&names[k], x).ok_or_else(|| {
                         bad(lineno, format!("`{}` = `{x}` is not valid", names[k]))
                     })?;
                 }

@@ -243,8 +243,10 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
-        if let super::RowKind::Suite { .. } = sweep.row_kind() {
-            return suite_case(&sc, check, &mut warning);
+        match sweep.row_kind() {
+            super::RowKind::Suite { .. } => return suite_case(&sc, check, &mut warning),
+            super::RowKind::Row { .. } => return row_case(&sc, &mut warning),
+            super::RowKind::Single => {}
         }
         // (the floor responses only when the table has floor columns: they cost more than the
         // integration of a small model)
@@ -295,6 +297,18 @@ fn suite_case(
             .map(|w| format!("record {} ({}): {w}", i + 1, r.file))
     });
     Ok(super::suite_rows::fields(&run, check))
+}
+
+/// A case of a sweep over a row of buildings: the row run with and without contact
+/// ([`crate::analysis::simulate::simulate_row`], not self-checked) to the fields of its row
+/// ([`super::row_columns::fields`]); `warning` receives the run's first warning.
+fn row_case(
+    sc: &crate::input::scenario::Scenario,
+    warning: &mut Option<String>,
+) -> Result<Vec<String>, String> {
+    let report = crate::analysis::simulate::simulate_row(sc).map_err(|e| e.to_string())?;
+    *warning = report.warnings.first().cloned();
+    Ok(super::row_columns::fields(&report))
 }
 
 /// Refuse a sweep none of whose `cases` is a valid scenario (a mistake in the base scenario

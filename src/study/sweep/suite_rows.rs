@@ -45,6 +45,34 @@ pub enum RowKind {
         /// Number of contact levels of the base scenario (the axes cannot change it).
         levels: usize,
     },
+    /// A row of buildings (issue 29): [`super::row_columns::columns`] for `structures`
+    /// structures.
+    Row {
+        /// Number of structures of the base scenario (the axes cannot change it).
+        structures: usize,
+    },
+}
+
+impl RowKind {
+    /// Is `name` a column of text of this kind's rows (after [`super::results::FIELDS`]
+    /// for a single run, which has none)?
+    pub fn is_text(self, name: &str) -> bool {
+        match self {
+            RowKind::Single => false,
+            RowKind::Suite { .. } => is_text(name),
+            RowKind::Row { .. } => super::row_columns::is_text(name),
+        }
+    }
+
+    /// A field of this kind's own columns read back (a suite's [`parse`], a row's
+    /// [`super::row_columns::parse`]; a single run's extra columns are numbers).
+    pub fn parse(self, name: &str, x: &str) -> Option<f64> {
+        match self {
+            RowKind::Single => x.parse().ok(),
+            RowKind::Suite { .. } => parse(name, x),
+            RowKind::Row { .. } => super::row_columns::parse(name, x),
+        }
+    }
 }
 
 /// Version of the journal format of a sweep over a suite (its first line).
