@@ -436,3 +436,39 @@ fn a_rows_convergence_is_the_pairs_where_the_second_gap_never_closes() {
     }
     assert!(r.modes[0].impacts > 0, "the test needs pounding");
 }
+
+/// A sweep over a row is self-checked as `pounding run` checks a row: the case's `converged`
+/// and `check_max_change` are those of `simulate_row_checked` on the same scenario (an `rk4`
+/// row at dt = 6 ms, which its self-check flags — its forces move by more than 1 % — and at
+/// 1 ms, which passes), and `unchecked` without the check.
+#[test]
+fn a_rows_sweep_is_self_checked() {
+    let base = format!(
+        "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"rk4\"\ndt = 0.001\nduration = 5.0\n",
+        building("A", 3, 3.0e8),
+        building("B", 5, 1.6e8),
+        building("C", 4, 2.2e8),
+        contact("A", "B", 10.5, 0.004),
+        contact("B", "C", 14.0, 0.006),
+    );
+    let sw = sweep(
+        &base,
+        "[[axis]]\nkey = \"solver.dt\"\nvalues = [0.006, 0.001]\n",
+    )
+    .unwrap();
+    let rows = compute_all(&sw, 2, true).expect("sweep");
+    let lines: Vec<&str> = rows.iter().map(|r| r.line.as_str()).collect();
+    let t = pounding::study::sweep::results::columns(&sw, &lines).expect("columns");
+    assert_eq!(texts(&t, "converged"), ["false", "true"]);
+    for (c, dt) in [0.006, 0.001].into_iter().enumerate() {
+        let sc = scenario(&base.replace("dt = 0.001", &format!("dt = {dt}")));
+        let r = pounding::analysis::simulate::simulate_row_checked(&sc, true).unwrap();
+        assert_eq!(
+            floats(&t, "check_max_change")[c],
+            r.accuracy.max_change.unwrap(),
+            "case {c}"
+        );
+    }
+    let t = table(&sw);
+    assert_eq!(texts(&t, "converged"), ["unchecked", "unchecked"]);
+}

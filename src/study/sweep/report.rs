@@ -73,10 +73,6 @@ pub fn summary(sweep: &Sweep, path: &Path, o: &RunOutcome, jobs: usize, shard: S
     let ok = o.cases - o.failed;
     if ok == 0 {
         // nothing ran to the end: nothing to check
-    } else if c.unchecked == ok && matches!(sweep.row_kind(), super::RowKind::Row { .. }) {
-        s.push_str(
-            "self-check: not done: a row of buildings is not self-checked yet (column converged = unchecked)\n",
-        );
     } else if c.unchecked == ok {
         s.push_str(
             "self-check: not done (--no-check): the cases were NOT self-checked (column converged = unchecked)\n",

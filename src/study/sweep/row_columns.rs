@@ -26,7 +26,7 @@
 //! | `pair{p}_required` | that rule's required separation there, m |
 //! | `pair{p}_margin` | gap − required there, m |
 //! | `pair{p}_sufficient` | `true` if the pair's gap suffices by every rule at every level |
-//! | `check_max_change`, `converged` | the self-check, as a single run's row: a row is not self-checked yet (empty, `unchecked`) |
+//! | `check_max_change`, `converged` | the row's self-check ([`crate::analysis::simulate::row_check`]), as a single run's row: the largest relative change, `true`/`false` (`unchecked` with `--no-check`) |
 //!
 //! The structures' columns for i = 1 … N come before the pairs' for p = 1 … N − 1. The pair's
 //! numbers are summary.json's `pairs[p − 1]` (`contact`, `separation.time_history`,
@@ -75,7 +75,7 @@ pub const PER_PAIR: [&str; 10] = [
 /// The last columns: the self-check (as in a single run's row).
 pub const TAIL: [&str; 2] = ["check_max_change", "converged"];
 
-/// The `converged` value of a row not self-checked.
+/// The `converged` value of a row run without its self-check (`--no-check`).
 const UNCHECKED: &str = "unchecked";
 
 /// The columns of a row's results row after `status`, for `structures` structures.
@@ -156,8 +156,14 @@ pub fn fields(r: &RowReport) -> Vec<String> {
         out.push(num(g.map(|g| g.margin)));
         out.push((p.separation.verdict.insufficient == 0).to_string());
     }
-    out.push(String::new());
-    out.push(UNCHECKED.to_string());
+    // (the self-check, as a single run's row: `converged` false where it could not decide)
+    let acc = &r.accuracy;
+    out.push(acc.max_change.map(fmt_f64).unwrap_or_default());
+    out.push(match acc.converged {
+        _ if !acc.checked => UNCHECKED.to_string(),
+        Some(c) => c.to_string(),
+        None => "false".to_string(),
+    });
     out
 }
 

@@ -245,7 +245,7 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         let sc = sweep.case_scenario(case)?;
         match sweep.row_kind() {
             super::RowKind::Suite { .. } => return suite_case(&sc, check, &mut warning),
-            super::RowKind::Row { .. } => return row_case(&sc, &mut warning),
+            super::RowKind::Row { .. } => return row_case(&sc, check, &mut warning),
             super::RowKind::Single => {}
         }
         // (the floor responses only when the table has floor columns: they cost more than the
@@ -299,15 +299,23 @@ fn suite_case(
     Ok(super::suite_rows::fields(&run, check))
 }
 
-/// A case of a sweep over a row of buildings: the row run with and without contact
-/// ([`crate::analysis::simulate::simulate_row`], not self-checked) to the fields of its row
-/// ([`super::row_columns::fields`]); `warning` receives the run's first warning.
+/// A case of a sweep over a row of buildings: the row run with and without contact and
+/// self-checked unless `check` is off ([`crate::analysis::simulate::simulate_row_checked`]) to
+/// the fields of its row ([`super::row_columns::fields`]); `warning` receives the run's first
+/// warning other than the self-check's (that one is counted from `converged`).
 fn row_case(
     sc: &crate::input::scenario::Scenario,
+    check: bool,
     warning: &mut Option<String>,
 ) -> Result<Vec<String>, String> {
-    let report = crate::analysis::simulate::simulate_row(sc).map_err(|e| e.to_string())?;
-    *warning = report.warnings.first().cloned();
+    let report =
+        crate::analysis::simulate::simulate_row_checked(sc, check).map_err(|e| e.to_string())?;
+    // the self-check's verdict is counted from the `converged` column instead
+    *warning = report
+        .warnings
+        .iter()
+        .find(|w| !crate::analysis::simulate::accuracy::is_check_warning(w))
+        .cloned();
     Ok(super::row_columns::fields(&report))
 }
 
