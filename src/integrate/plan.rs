@@ -86,6 +86,43 @@ impl DyadicWalk {
         DyadicWalk { pos: 0, level, max }
     }
 
+    /// A walk at position `pos` (in units of hh/2^max from the base step's start, ≤ 2^max), at
+    /// `level`: one that starts mid-step (a phase entering the grid at a point of it).
+    #[inline]
+    pub(crate) fn at(pos: u64, level: u32, max: u32) -> DyadicWalk {
+        debug_assert!(level <= max && max < 64 && pos <= 1u64 << max);
+        DyadicWalk { pos, level, max }
+    }
+
+    /// The position from the base step's start, in units of hh/2^max.
+    #[inline]
+    pub(crate) fn pos(&self) -> u64 {
+        self.pos
+    }
+
+    /// Whether the position is a point of the grid of `level` (a multiple of hh/2^level).
+    #[inline]
+    pub(crate) fn aligned(&self, level: u32) -> bool {
+        self.pos
+            .is_multiple_of((1u64 << self.max) >> level.min(self.max))
+    }
+
+    /// The number of the last grid point of `level` at or before the position: ⌊pos/2^(max −
+    /// level)⌋ (the position's offset is that times hh/2^level where the walk is aligned).
+    #[inline]
+    pub(crate) fn index(&self, level: u32) -> u64 {
+        self.pos >> (self.max - level.min(self.max))
+    }
+
+    /// The distance to the next grid point of `level` after the position, in units of
+    /// hh/2^max: a whole sub-step hh/2^level where the position is on that grid, else the rest
+    /// of the one it is inside.
+    #[inline]
+    pub(crate) fn until_next(&self, level: u32) -> u64 {
+        let unit = (1u64 << self.max) >> level.min(self.max);
+        unit - self.pos % unit
+    }
+
     /// Whether the whole base step has been walked.
     #[inline]
     pub(crate) fn done(&self) -> bool {
@@ -195,5 +232,49 @@ mod tests {
         }
         assert!((covered - hh).abs() < 1e-15, "{covered}");
         assert!(w.level == 0 && !w.finest());
+    }
+
+    /// A walk placed mid-step answers by its definition in exact integers: aligned at level m
+    /// iff pos is a multiple of 2^(max−m), the index ⌊pos/2^(max−m)⌋, the distance to the
+    /// next level-m point 2^(max−m) − pos mod 2^(max−m). An entry step to the next level-3
+    /// point followed by level-3 sub-steps tiles the rest of the base step exactly.
+    #[test]
+    fn a_walk_placed_mid_step_tiles_the_rest() {
+        let max = 10;
+        let w = DyadicWalk::at(0b01_0110_0000, 2, max); // 352 = 11·32 = 5.5·64
+        assert_eq!(w.pos(), 352);
+        assert!(w.aligned(5) && w.aligned(6) && w.aligned(10));
+        assert!(!w.aligned(4) && !w.aligned(3) && !w.aligned(0));
+        assert_eq!((w.index(5), w.index(3), w.index(0)), (11, 2, 0));
+        assert_eq!(
+            (w.until_next(5), w.until_next(3), w.until_next(2)),
+            (32, 32, 160)
+        );
+        assert_eq!(w.until_next(0), 1024 - 352);
+        // every position: the next point is on the grid, and no point lies between
+        for pos in 0..1u64 << max {
+            let w = DyadicWalk::at(pos, 0, max);
+            for m in 0..=max {
+                let unit = 1u64 << (max - m);
+                let d = w.until_next(m);
+                assert!(
+                    (1..=unit).contains(&d) && (pos + d) / unit * unit == pos + d,
+                    "{pos} {m}"
+                );
+                assert_eq!(w.aligned(m), pos / unit * unit == pos);
+                assert_eq!(w.index(m), pos / unit);
+            }
+        }
+        // the entry step, then level-3 sub-steps: positions exact, lengths sum to the rest
+        let mut w = DyadicWalk::at(352, 3, max);
+        let first = w.until_next(3);
+        w = DyadicWalk::at(w.pos() + first, 3, max);
+        let mut walked = first;
+        while !w.done() {
+            assert!(w.aligned(3));
+            walked += w.until_next(3);
+            w.advance();
+        }
+        assert_eq!((w.pos(), walked), (1024, 1024 - 352));
     }
 }

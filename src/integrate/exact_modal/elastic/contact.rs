@@ -10,42 +10,66 @@ use super::*;
 impl<'a, O: Observer> Elastic<'a, O> {
     // ---------------------------------------------------------------- contact
 
-    /// Whether the current time is a multiple of hh/2^m from the piece's start (to 1e-9 of it).
-    pub(super) fn aligned(&self, pstart: f64, hh: f64, m: usize) -> bool {
-        let unit = hh / (1u64 << m) as f64;
-        let x = (self.t - pstart) / unit;
-        (x - x.round()).abs() <= 1e-9 * x.abs().max(1.0)
-    }
-
-    /// A recorded motion's next contact step: hh/2^m at the current level when the time is
-    /// aligned to it (cached table `DYADIC + m`), else the step to the next multiple of it (a
-    /// one-off length, after an onset or an event).
-    pub(super) fn dyadic_length(
-        &self,
-        pstart: f64,
-        hh: f64,
-        span_end: f64,
-    ) -> (Option<usize>, f64) {
-        // (the current level, or a finer one at which the time is aligned: a step from a
-        // point of a finer grid needs no one-off length)
+    /// The contact steps' position on the piece's dyadic grid at the current time: the walk the
+    /// last contact step left (while the time is still where that step ended, in the same
+    /// piece), else the time located on the grid of the current level or of one up to 20 finer
+    /// (to 1e-9 of a point: the time comes from a free flight that ended on the grid by float
+    /// arithmetic, or from the piece's start), else none (off the grid: an onset located
+    /// between its points, or the end of an event).
+    pub(super) fn walk_here(&self, pstart: f64, hh: f64) -> Option<GridWalk> {
+        if let Some(w) = self.walk
+            && w.t == self.t
+            && w.start == pstart
+        {
+            return Some(w);
+        }
+        let top = MAX_LEVEL.min(self.m_step + 20);
         let mut m = self.m_step.min(MAX_LEVEL);
-        while !self.aligned(pstart, hh, m) && m < MAX_LEVEL.min(self.m_step + 20) {
+        loop {
+            let x = (self.t - pstart) / (hh / (1u64 << m) as f64);
+            if (x - x.round()).abs() <= 1e-9 * x.abs().max(1.0) {
+                return Some(GridWalk::at(pstart, self.t, x.round() as u128, m));
+            }
+            if m >= top {
+                return None;
+            }
             m += 1;
         }
-        let unit = hh / (1u64 << m) as f64;
-        if self.aligned(pstart, hh, m) {
-            let rem = span_end - self.t;
-            // (a step ending on the piece's end: its length within rounding of the level's)
-            if rem >= unit * (1.0 - 1e-9) {
-                return (Some(DYADIC + m), unit);
-            }
-            return (None, rem);
-        }
+    }
+
+    /// A recorded motion's next contact step from the walk `here` (see [`Self::walk_here`]):
+    /// hh/2^m at the current level, or at a finer one where only that is a grid point (cached
+    /// table `DYADIC + m`), else a one-off length to the next point of the current level's
+    /// grid (after an onset or an event: the entry step back onto the grid), with the walk at
+    /// that point. `steps`: the piece's number of grid steps hh.
+    pub(super) fn dyadic_length(
+        &self,
+        here: Option<GridWalk>,
+        (pstart, hh, steps): (f64, f64, u64),
+        span_end: f64,
+    ) -> (Option<usize>, f64, Option<GridWalk>) {
         let m = self.m_step.min(MAX_LEVEL);
-        let unit = hh / (1u64 << m) as f64;
-        let x = (self.t - pstart) / unit;
-        let next = (pstart + (x.floor() + 1.0) * unit).min(span_end);
-        (None, next - self.t)
+        let next = match here {
+            Some(w) if w.base >= steps => return (None, span_end - self.t, None),
+            Some(w) => {
+                let top = MAX_LEVEL.min(self.m_step + 20);
+                let mut lm = m;
+                while !w.walk.aligned(lm as u32) && lm < top {
+                    lm += 1;
+                }
+                if w.walk.aligned(lm as u32) {
+                    return (Some(DYADIC + lm), hh / (1u64 << lm) as f64, None);
+                }
+                w.next_point(m)
+            }
+            None => ((self.t - pstart) / (hh / (1u64 << m) as f64)).floor() as u128 + 1,
+        };
+        let end = GridWalk::at(pstart, f64::NAN, next, m);
+        if next >= (steps as u128) << m {
+            return (None, span_end - self.t, Some(end));
+        }
+        let t_next = pstart + next as f64 * (hh / (1u64 << m) as f64);
+        (None, t_next - self.t, Some(end))
     }
 
     /// Quantised step length `dt·2^(−k/4)` (from the table of them: no libm call per step).
@@ -319,7 +343,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
         let dyadic = matches!(piece, Piece::Poly { .. });
-        let hh = EqualSteps::new(pstart, span_end, self.dt).h;
+        let plan = EqualSteps::new(pstart, span_end, self.dt);
+        let (hh, steps) = (plan.h, plan.steps as u64);
         // (a record's sample intervals are equal to rounding: their tables are the same)
         if dyadic && (hh - self.dyadic_hh).abs() > 1e-12 * hh || self.dyadic_hh.is_nan() {
             self.dyadic_hh = hh;
@@ -337,11 +362,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         let mut rejected = false;
         loop {
+            // (a recorded motion: where the walk stands, and where a one-off step takes it)
+            let (mut here, mut entry) = (None, None);
             let (k, h) = if dyadic {
-                let (id, h) = self.dyadic_length(pstart, hh, span_end);
+                here = self.walk_here(pstart, hh);
+                let (id, h, end) = self.dyadic_length(here, (pstart, hh, steps), span_end);
                 if let Some(id) = id {
                     self.m_step = id - DYADIC;
                 }
+                entry = end;
                 (id, h)
             } else {
                 let hq = self.length(self.k_step);
@@ -427,16 +456,24 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 self.k_onset = Some(self.quantise(trial.h));
                 self.m_onset = Some(self.m_step);
             }
+            // where the step leaves the walk: a dyadic step advances it, the planned one-off
+            // step enters the grid at its next point; one cut short at an event leaves it
+            let after = match (trial.k, here) {
+                (Some(id), Some(w)) if dyadic && id >= DYADIC => Some(w.advance(id - DYADIC)),
+                (None, _) if dyadic && !self.kink && trial.h == h => entry,
+                _ => None,
+            };
             let t_end = if trial.h == limit {
                 span_end
             } else if dyadic && let Some(id) = trial.k.filter(|&id| id >= DYADIC) {
-                // (on the dyadic grid: the end's time from the grid, not by accumulation)
-                let unit = hh / (1u64 << (id - DYADIC)) as f64;
-                let end = pstart + ((self.t + trial.h - pstart) / unit).round() * unit;
-                if (end - span_end).abs() <= 1e-9 * unit {
+                // (on the dyadic grid: the end's time from the walk's integer position, not
+                // by accumulation)
+                let m = id - DYADIC;
+                let end = after.map_or(u128::MAX, |w| w.point(m));
+                if end >= (steps as u128) << m {
                     span_end
                 } else {
-                    end
+                    pstart + end as f64 * (hh / (1u64 << m) as f64)
                 }
             } else {
                 self.t + trial.h
@@ -445,6 +482,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 .accepting(self.sys, &self.states, self.t, t_end, trial.h)?;
             self.force_contact = false;
             self.accept(&piece, trial, t_end);
+            self.walk = after.map(|w| GridWalk { t: self.t, ..w });
             // next length from the estimate (err ∝ h⁷); no growth right after a rejection.
             // (A PI controller's damped factors, mostly below 2^(1/4), would be rounded away
             // by the quantised lengths.)
@@ -460,7 +498,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     if want > m {
                         m = want.min(MAX_LEVEL);
                     } else {
-                        while m > want && self.aligned(pstart, hh, m - 1) {
+                        while m > want && self.walk.is_some_and(|w| w.walk.aligned(m as u32 - 1)) {
                             m -= 1;
                         }
                     }
@@ -778,3 +816,50 @@ impl<'a, O: Observer> Elastic<'a, O> {
 
 /// Contact steps between direct evaluations of sin Ωt, cos Ωt (rotations in between).
 const SYNC_CONTACT: u32 = 16;
+
+/// Where a recorded motion's contact steps stand on the piece's dyadic grid: grid step `base`
+/// (of the piece's grid steps hh, from its start `start`) and the [`DyadicWalk`] inside it at
+/// [`MAX_LEVEL`], at the time `t` (the walk holds while the time is still that).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct GridWalk {
+    start: f64,
+    t: f64,
+    base: u64,
+    walk: DyadicWalk,
+}
+
+impl GridWalk {
+    /// At the piece's grid point number `k` of level `m` (k·hh/2^m from its start).
+    fn at(start: f64, t: f64, k: u128, m: usize) -> GridWalk {
+        let pos = ((k & ((1u128 << m) - 1)) as u64) << (MAX_LEVEL - m);
+        GridWalk {
+            start,
+            t,
+            base: (k >> m) as u64,
+            walk: DyadicWalk::at(pos, m as u32, MAX_LEVEL as u32),
+        }
+    }
+
+    /// The number of the last grid point of level `m` at or before the position.
+    fn point(&self, m: usize) -> u128 {
+        ((self.base as u128) << m) + self.walk.index(m as u32) as u128
+    }
+
+    /// The number of the next grid point of level `m` after the position.
+    fn next_point(&self, m: usize) -> u128 {
+        let end = self.walk.pos() + self.walk.until_next(m as u32);
+        ((self.base as u128) << m) + (end >> (MAX_LEVEL - m)) as u128
+    }
+
+    /// Past one sub-step hh/2^m (from a point of that level's grid), into the next grid step
+    /// at the end of this one.
+    fn advance(mut self, m: usize) -> GridWalk {
+        self.walk.level = m as u32;
+        self.walk.advance();
+        if self.walk.done() {
+            self.base += 1;
+            self.walk = DyadicWalk::at(0, m as u32, MAX_LEVEL as u32);
+        }
+        self
+    }
+}

@@ -206,6 +206,8 @@ pub(super) struct Elastic<'a, O: Observer> {
     dyadic_hh: f64,
     m_step: usize,
     m_onset: Option<usize>,
+    /// Recorded motion: where the contact steps stand on the piece's dyadic grid.
+    walk: Option<contact::GridWalk>,
     /// Free flight's (δ, δ̇) at the table's nodes: `[k·6 + node]`.
     dfree: Vec<(f64, f64)>,
     d8free: Vec<(f64, f64)>,
@@ -371,6 +373,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             dyadic_hh: f64::NAN,
             m_step: 2,
             m_onset: None,
+            walk: None,
             scratch_table: None,
             k_step: 8,
             k_onset: None,
