@@ -349,11 +349,13 @@ impl Table {
         self.w6.resize(nl * nl * 12, (0.0, 0.0));
         self.w86.clear();
         self.w86.resize(nl * nl * 10, (0.0, 0.0));
-        let row = sys.structures.len() > 2;
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others, and
+            // their entries, never read, stay 0)
+            let holding = sys.levels_of_mode(j);
             for (i, p) in props.iter().enumerate() {
-                for k in 0..nl {
+                for k in holding.clone() {
                     let c = sys.coupling(k)[j];
                     self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
                 }
@@ -390,10 +392,8 @@ impl Table {
                 mid: [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]],
                 mid8: [g8[0], g8[1], g8[2]],
             };
-            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
-            let holds = |k: usize| !row || sys.coupling_modes(k).contains(&j);
-            for k in (0..nl).filter(|&k| holds(k)) {
-                for l in (0..nl).filter(|&l| holds(l)) {
+            for k in holding.clone() {
+                for l in holding.clone() {
                     let w = sys.coupling(k)[j] * sys.coupling(l)[j];
                     if w == 0.0 {
                         continue;
@@ -461,8 +461,11 @@ fn trig_moments(a: f64) -> [(f64, f64); 5] {
 /// Scratch of the Newton iterations on the nodal forces.
 #[derive(Default)]
 pub(super) struct Newton {
-    jac: Vec<f64>,
     rhs: Vec<f64>,
+    /// Per unknown, the law's derivatives (∂φ/∂δ, ∂φ/∂δ̇) at its node: its Jacobian row is
+    /// `e_r + kd·w.0 + kv·w.1`, assembled only for the unknowns in contact, over the levels
+    /// sharing a structure with its own (the rest of the row is exactly zero).
+    slopes: Vec<(f64, f64)>,
     /// Per unknown, whether its node is out of contact (the law's force and derivatives 0:
     /// its row of the Jacobian is the identity's).
     free: Vec<bool>,
@@ -504,20 +507,22 @@ pub(super) fn solve<const S: usize>(
     }
     let m = S - 1;
     let dim = nl * m;
-    scratch.jac.resize(dim * dim, 0.0);
     scratch.rhs.resize(dim, 0.0);
+    scratch.slopes.resize(dim, (0.0, 0.0));
     scratch.free.resize(dim, false);
     let w = &w[..nl * nl * m * S];
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
-        // nodal states from the current forces, the residual and the Jacobian
+        // nodal states from the current forces, the residual and the law's derivatives (the
+        // weights of levels sharing no structure are zero: skipped)
         let mut scale: f64 = 0.0;
         for k in 0..nl {
             let law = &sys.levels[k].force;
             let fk = &force[k * S..(k + 1) * S];
+            let band = sys.sharing_levels(k);
             for p in 0..m {
                 let (mut d, mut dd) = dfree[k * m + p];
-                for l in 0..nl {
+                for l in band.clone() {
                     let base = ((k * nl + l) * m + p) * S;
                     let (row, fl) = (&w[base..base + S], &force[l * S..(l + 1) * S]);
                     for q in 0..S {
@@ -531,19 +536,9 @@ pub(super) fn solve<const S: usize>(
                 let r = k * m + p;
                 let f = fk[p + 1];
                 scratch.rhs[r] = phi - f;
+                scratch.slopes[r] = (kd, kv);
                 scratch.free[r] = kd == 0.0 && kv == 0.0;
                 scale = scale.max(phi.abs()).max(f.abs());
-                // the system solved is (I + kd·w.0 + kv·w.1)·ΔF = φ − F (δ falls as F grows)
-                let jrow = &mut scratch.jac[r * dim..(r + 1) * dim];
-                for l in 0..nl {
-                    let base = ((k * nl + l) * m + p) * S;
-                    let row = &w[base + 1..base + S];
-                    let out = &mut jrow[l * m..(l + 1) * m];
-                    for q in 0..m {
-                        out[q] = kd * row[q].0 + kv * row[q].1;
-                    }
-                }
-                jrow[r] += 1.0;
             }
         }
         let residual = scratch.rhs.iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -553,7 +548,7 @@ pub(super) fn solve<const S: usize>(
         if residual <= tol * scale || residual <= 1e-300 {
             return Ok(iter);
         }
-        if !solve_touching(scratch, dim) {
+        if !solve_touching::<S>(sys, w, scratch, dim) {
             return Err(NoConvergence);
         }
         let mut change: f64 = 0.0;
@@ -660,34 +655,59 @@ fn solve_one<const S: usize>(
     Err(NoConvergence)
 }
 
-/// The Newton update of [`solve`]: `jac·x = rhs` in place (rhs becomes x). An unknown whose
+/// The Newton update of [`solve`]: `J·x = rhs` in place (rhs becomes x), with the Jacobian
+/// `J = I + kd·w.0 + kv·w.1` (δ falls as F grows) from the scratch's slopes. An unknown whose
 /// node is out of contact has the identity's row (F = φ = 0 there, ∂φ = 0), so its update is
 /// its residual: those are eliminated first and only the nodes in contact are solved for by
 /// LU (block elimination, the same solution: with one level of three touching, a 4×4 system
-/// instead of 12×12). False if singular.
-fn solve_touching(s: &mut Newton, dim: usize) -> bool {
+/// instead of 12×12). The reduced rows are assembled from the weights over the levels sharing
+/// a structure with the row's own only (the others' entries are exact zeros). False if
+/// singular.
+fn solve_touching<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    s: &mut Newton,
+    dim: usize,
+) -> bool {
+    let m = S - 1;
+    let nl = dim / m;
     s.act.clear();
     s.act.extend((0..dim).filter(|&r| !s.free[r]));
     let na = s.act.len();
-    if na == dim {
-        return lu_solve(&mut s.jac, &mut s.rhs, dim);
+    if na == 0 {
+        return true;
     }
+    s.red.clear();
     s.red.resize(na * na, 0.0);
     s.red_rhs.resize(na, 0.0);
-    for (i, &r) in s.act.iter().enumerate() {
-        let row = &s.jac[r * dim..(r + 1) * dim];
+    for i in 0..na {
+        let r = s.act[i];
+        let (k, p) = (r / m, r % m);
+        let (kd, kv) = s.slopes[r];
+        // the row's entry at unknown c = l·m + q
+        let entry = |c: usize| {
+            let (l, q) = (c / m, c % m);
+            let x = w[((k * nl + l) * m + p) * S + q + 1];
+            let e = kd * x.0 + kv * x.1;
+            if c == r { e + 1.0 } else { e }
+        };
+        let band = sys.sharing_levels(k);
+        let cols = band.start * m..band.end * m;
         let mut b = s.rhs[r];
-        for c in 0..dim {
+        for c in cols.clone() {
             if s.free[c] {
-                b -= row[c] * s.rhs[c];
+                b -= entry(c) * s.rhs[c];
             }
         }
         s.red_rhs[i] = b;
-        for (j, &c) in s.act.iter().enumerate() {
-            s.red[i * na + j] = row[c];
+        for j in 0..na {
+            let c = s.act[j];
+            if cols.contains(&c) {
+                s.red[i * na + j] = entry(c);
+            }
         }
     }
-    if na > 0 && !lu_solve(&mut s.red, &mut s.red_rhs, na) {
+    if !lu_solve(&mut s.red, &mut s.red_rhs, na) {
         return false;
     }
     for (i, &r) in s.act.iter().enumerate() {
@@ -874,56 +894,183 @@ mod tests {
         }
     }
 
-    /// The update with the out-of-contact unknowns eliminated first is the full system's
-    /// solution: a 6×6 Jacobian whose rows 1, 3 and 4 are the identity's (their columns
-    /// coupled into the others), against `lu_solve` on the whole, and the residual of the
-    /// original system (round-off: the entries are O(1), the system well conditioned).
+    /// A row of five cantilevers of different heights, periods and mode counts, with one to
+    /// four levels per pair (10 levels): every level's pair and neighbours differ.
+    fn random_row() -> System {
+        use crate::model::contact::ContactLaw;
+        use crate::model::ground_motion::GroundMotion;
+        use crate::model::structure::{Cantilever, Damping, Stiffness};
+        use crate::model::system::{ContactLevel, PairContact};
+        let spec = [
+            (0.5, 12.0, 3),
+            (0.8, 15.0, 4),
+            (0.35, 9.0, 2),
+            (1.1, 20.0, 5),
+            (0.6, 11.0, 3),
+        ];
+        let models = spec
+            .iter()
+            .map(|&(t, l, modes)| {
+                Cantilever {
+                    name: "s".into(),
+                    length: l,
+                    mass: 2e6,
+                    stiffness: Stiffness::Period(t),
+                    modes,
+                    damping: Damping::Modal(vec![0.03]),
+                }
+                .modal()
+            })
+            .collect();
+        let levels = [
+            vec![11.0],
+            vec![4.0, 8.5],
+            vec![3.0, 6.0, 8.9],
+            vec![2.5, 7.0, 10.5, 5.0],
+        ];
+        let pairs: Vec<PairContact> = levels
+            .iter()
+            .map(|hs| PairContact {
+                law: ContactLaw::Hertz { stiffness: 1e10 },
+                levels: hs
+                    .iter()
+                    .map(|&height| ContactLevel { height, gap: 0.01 })
+                    .collect(),
+            })
+            .collect();
+        System::row(models, &pairs, GroundMotion::None)
+    }
+
+    /// The level tables, assembled over the levels that hold each mode only, are the dense
+    /// definition `W_kl = Σ_j c_kj c_lj Γ_j` over every mode of the row (Γ_j: the mode's
+    /// responses to the Lagrange loads, kept in `modes[j]`), exactly: the terms skipped are
+    /// products with a zero coupling, and adding zeros changes no sum. And `sharing_levels`
+    /// holds every level pair with a non-zero weight.
     #[test]
-    fn eliminating_free_nodes_gives_the_full_solution() {
-        let dim = 6;
-        let free = [false, true, false, true, true, false];
-        let mut a = vec![0.0; dim * dim];
-        for r in 0..dim {
-            for c in 0..dim {
-                a[r * dim + c] = if free[r] {
-                    if r == c { 1.0 } else { 0.0 }
+    fn banded_level_tables_equal_the_dense_definition() {
+        let sys = random_row();
+        let (n, nl) = (sys.len(), sys.levels.len());
+        assert_eq!(nl, 10);
+        let t = Table::new(&sys, None, 0.013);
+        let mut nonzero = 0;
+        for k in 0..nl {
+            for l in 0..nl {
+                let kl = k * nl + l;
+                for i in 0..4 {
+                    for p in 0..5 {
+                        let (mut a, mut b) = (0.0, 0.0);
+                        for j in 0..n {
+                            let c = sys.coupling(k)[j] * sys.coupling(l)[j];
+                            let g = if i < 3 {
+                                t.modes[j].mid8[i][p]
+                            } else {
+                                t.modes[j].end8[p]
+                            };
+                            a += c * g.0;
+                            b += c * g.1;
+                        }
+                        assert_eq!(t.w8[(kl * 4 + i) * 5 + p], (a, b), "w8 {k} {l} {i} {p}");
+                        let share = sys.sharing_levels(k).contains(&l);
+                        assert_eq!(share, sys.sharing_levels(l).contains(&k));
+                        if a != 0.0 {
+                            assert!(share, "levels {k}, {l} share no structure: {a}");
+                            nonzero += 1;
+                        }
+                    }
+                }
+                // the same skipping in the companion's and the mid-node tables
+                let far = !sys.sharing_levels(k).contains(&l);
+                let zero = |t: &[(f64, f64)]| t.iter().all(|&x| x == (0.0, 0.0));
+                if far {
+                    assert!(
+                        zero(&t.w6[kl * 12..(kl + 1) * 12]) && zero(&t.w86[kl * 10..(kl + 1) * 10])
+                    );
                 } else {
-                    ((r * 7 + c * 3) % 5) as f64 * 0.3 - 0.4 + if r == c { 3.0 } else { 0.0 }
-                };
+                    assert!(!zero(&t.w6[kl * 12..(kl + 1) * 12]), "w6 {k} {l}");
+                }
             }
         }
-        let b: Vec<f64> = (0..dim)
-            .map(|r| 1.0 + r as f64 * 0.7 - (r % 2) as f64)
-            .collect();
-        let mut s = Newton {
-            jac: a.clone(),
-            rhs: b.clone(),
-            free: free.to_vec(),
-            ..Newton::default()
-        };
-        assert!(solve_touching(&mut s, dim));
-        let (mut full_a, mut full_b) = (a.clone(), b.clone());
-        assert!(lu_solve(&mut full_a, &mut full_b, dim));
-        for r in 0..dim {
-            assert!(
-                (s.rhs[r] - full_b[r]).abs() < 1e-13,
-                "{r}: {:?} vs {full_b:?}",
-                s.rhs
-            );
-            let ax: f64 = (0..dim).map(|c| a[r * dim + c] * s.rhs[c]).sum();
-            assert!((ax - b[r]).abs() < 1e-13, "row {r}: {ax} vs {}", b[r]);
+        // (the band is not the whole: levels 0 and 9 are three pairs apart)
+        assert!(nonzero > 0 && !sys.sharing_levels(0).contains(&9));
+        // and the levels holding each mode are those with a non-zero coupling there
+        for j in 0..n {
+            for k in 0..nl {
+                if sys.coupling(k)[j] != 0.0 {
+                    assert!(sys.levels_of_mode(j).contains(&k), "mode {j} level {k}");
+                }
+            }
         }
-        // (every node free: the updates are the residuals)
-        let mut s = Newton {
-            jac: (0..dim * dim)
-                .map(|i| if i % (dim + 1) == 0 { 1.0 } else { 0.0 })
-                .collect(),
-            rhs: b.clone(),
-            free: vec![true; dim],
-            ..Newton::default()
-        };
-        assert!(solve_touching(&mut s, dim));
-        assert_eq!(s.rhs, b);
+    }
+
+    /// The Newton update with the out-of-contact unknowns eliminated and the contact rows
+    /// assembled over the sharing levels only solves the dense system `(I + kd·w.0 + kv·w.1)x
+    /// = rhs` written from the definition over every level pair (the free rows: identity),
+    /// checked against `lu_solve` on the whole and by the dense residual. Tolerance: the
+    /// system is scaled to O(1) entries and well conditioned (identity plus a perturbation of
+    /// norm < 1), so both solutions agree to a few ulps of O(1) values.
+    #[test]
+    fn banded_newton_update_solves_the_dense_system() {
+        let sys = random_row();
+        let nl = sys.levels.len();
+        let t = Table::new(&sys, None, 0.013);
+        const S: usize = 5;
+        let m = S - 1;
+        let dim = nl * m;
+        // scale the slopes so that kd·w is O(0.1)
+        let wmax = t.w8.iter().fold(0.0f64, |a, x| a.max(x.0.abs()));
+        let vmax = t.w8.iter().fold(0.0f64, |a, x| a.max(x.1.abs()));
+        for pattern in 0..3 {
+            let mut s = Newton::default();
+            s.rhs = (0..dim)
+                .map(|r| ((r * 37 + 11) % 17) as f64 / 8.0 - 1.0)
+                .collect();
+            s.free = (0..dim)
+                .map(|r| match pattern {
+                    0 => r % 3 == 1 || (r / m) % 4 == 2,
+                    1 => false,
+                    _ => true,
+                })
+                .collect();
+            s.slopes = (0..dim)
+                .map(|r| {
+                    if s.free[r] {
+                        (0.0, 0.0)
+                    } else {
+                        let x = ((r * 13 + 5) % 7) as f64 / 7.0;
+                        (
+                            0.02 * (1.0 + x) / wmax / nl as f64,
+                            0.01 * x / vmax / nl as f64,
+                        )
+                    }
+                })
+                .collect();
+            let mut dense = vec![0.0; dim * dim];
+            for r in 0..dim {
+                let (k, p) = (r / m, r % m);
+                let (kd, kv) = s.slopes[r];
+                for c in 0..dim {
+                    let (l, q) = (c / m, c % m);
+                    let x = t.w8[((k * nl + l) * m + p) * S + q + 1];
+                    dense[r * dim + c] = kd * x.0 + kv * x.1 + if r == c { 1.0 } else { 0.0 };
+                }
+            }
+            let b = s.rhs.clone();
+            let (mut a_full, mut x_full) = (dense.clone(), b.clone());
+            assert!(lu_solve(&mut a_full, &mut x_full, dim));
+            assert!(solve_touching::<S>(&sys, &t.w8, &mut s, dim));
+            for r in 0..dim {
+                assert!(
+                    (s.rhs[r] - x_full[r]).abs() < 1e-13,
+                    "pattern {pattern}, {r}"
+                );
+                let ax: f64 = (0..dim).map(|c| dense[r * dim + c] * s.rhs[c]).sum();
+                assert!((ax - b[r]).abs() < 1e-13, "pattern {pattern}, row {r}");
+            }
+            if pattern == 2 {
+                // every node free: the updates are the residuals
+                assert_eq!(s.rhs, b);
+            }
+        }
     }
 
     /// `lu_solve` solves a pivoting-needing system.

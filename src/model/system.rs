@@ -327,6 +327,35 @@ impl System {
         self.offsets[p]..self.offsets[p + 2]
     }
 
+    /// The levels whose coupling rows can be non-zero at mode j: those of the (at most two)
+    /// pairs that hold mode j's structure, a contiguous range since the levels are assembled
+    /// pair by pair in row order (a pair: every level). Elsewhere `c_kj = 0`.
+    #[inline]
+    pub fn levels_of_mode(&self, j: usize) -> std::ops::Range<usize> {
+        if self.structures.len() <= 2 {
+            return 0..self.levels.len();
+        }
+        let s = self.structure_of_mode(j).0;
+        // pairs s − 1 (s its right structure) and s (its left one)
+        let lo = self.levels.partition_point(|l| l.pair + 1 < s);
+        let hi = self.levels.partition_point(|l| l.pair <= s);
+        lo..hi
+    }
+
+    /// The levels that share a structure with level k (k's own pair and the two neighbouring
+    /// pairs), a contiguous range: outside it `Σ_j c_kj c_lj (…)` vanishes, every term being
+    /// zero (a pair: every level).
+    #[inline]
+    pub fn sharing_levels(&self, k: usize) -> std::ops::Range<usize> {
+        if self.structures.len() <= 2 {
+            return 0..self.levels.len();
+        }
+        let p = self.levels[k].pair;
+        let lo = self.levels.partition_point(|l| l.pair + 1 < p);
+        let hi = self.levels.partition_point(|l| l.pair <= p + 1);
+        lo..hi
+    }
+
     /// Displacements (w_left, w_right) of level k's pair at its height for modal coordinates
     /// `q`, m.
     #[inline]

@@ -176,9 +176,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 }
                 for k in 0..nl {
                     let [a, b, c] = if wide {
+                        // (over the level's pair's modes: c_kj = 0 elsewhere)
                         let ck = sys.coupling(k);
                         let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-                        for j in 0..n {
+                        for j in sys.coupling_modes(k) {
                             a += ck[j] * self.pcoef[j][0];
                             b += ck[j] * self.pcoef[j][1];
                             c += ck[j] * self.pcoef[j][2];
@@ -615,6 +616,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
         let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
         let modes = &tab.modes[..n];
+        // (a row's levels couple to few modes and levels: see `levels_of_mode`)
+        let row = self.sys.structures.len() > 2;
         for j in 0..n {
             let ms = &modes[j];
             // the particular solution at the end (and at the interior nodes for dense output)
@@ -623,11 +626,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let part =
                 |p: usize| particular_at(gm, piece, harmonic, pcoef, j, THETA8[p] * h, &trs[p]);
             let (x0, y0) = (x0s[j], y0s[j]);
+            // (the levels whose coupling can be non-zero at mode j: of a row, its structure's
+            // pairs; the others' terms are exact zeros)
+            let holding = if row {
+                self.sys.levels_of_mode(j)
+            } else {
+                0..nl
+            };
+            let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
             let mut g = [0.0; 5];
-            for kk in 0..nl {
-                let c = self.cpl_t[j * nl + kk];
+            for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
                 for p in 0..5 {
-                    g[p] += c * self.f8[kk * 5 + p];
+                    g[p] += c * f[p];
                 }
             }
             let (xe, ye) = ms.end.apply(x0, y0);
@@ -655,10 +665,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 (Piece::Harmonic, Some(ht)) => ht.add(&mut sums, j, w2s[j], q1, v1),
                 (Piece::Poly { .. }, _) => {
                     let (mut gi, mut gt) = (0.0, 0.0);
-                    for kk in 0..nl {
-                        let c = self.cpl_t[j * nl + kk];
-                        gi += c * self.moments[kk].0;
-                        gt += c * self.moments[kk].1;
+                    for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
+                        gi += c * mo.0;
+                        gt += c * mo.1;
                     }
                     input += poly_ground_work(
                         (damp[j], iw2[j]),
@@ -690,10 +699,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 }
             }
             d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
-            for kk in 0..nl {
-                let c = self.cpl_t[j * nl + kk];
-                proj[kk].0 += c * q1;
-                proj[kk].1 += c * v1;
+            for (c, pr) in cj.iter().zip(&mut proj[holding]) {
+                pr.0 += c * q1;
+                pr.1 += c * v1;
             }
             self.q[j] = q1;
             self.v[j] = v1;
@@ -738,7 +746,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             for (i, slot) in [(2, 0), (4, 1)] {
                 let (mut d, mut dd) = self.dfree[kk * 6 + slot];
-                for l in 0..nl {
+                // (the levels sharing no structure with kk weigh exactly 0)
+                let band = if row {
+                    self.sys.sharing_levels(kk)
+                } else {
+                    0..nl
+                };
+                for l in band {
                     let base = ((kk * nl + l) * 2 + slot) * 5;
                     for p in 0..5 {
                         let (a, b) = tab.w86[base + p];
