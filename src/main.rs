@@ -14,17 +14,15 @@
 //! src/main/ for a family of commands) that loads, calls the library and prints the strings
 //! its reports return.
 
-use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::anyhow;
 use clap::Parser;
 
 use pounding::analysis::simulate;
 use pounding::input::scenario::{Scenario, design::spectrum_from_arg};
 use pounding::output::text;
-use pounding::study::{rule_study, suite, sweep};
+use pounding::study::{rule_study, sweep};
 
 #[path = "main/args.rs"]
 mod args;
@@ -36,6 +34,8 @@ mod opensees;
 mod progress;
 #[path = "main/records.rs"]
 mod records;
+#[path = "main/run.rs"]
+mod run;
 
 use args::{Cli, Command, ExportTarget};
 
@@ -75,7 +75,7 @@ fn restore_sigpipe() {
 fn run(cli: Cli) -> anyhow::Result<()> {
     let q = cli.quiet;
     match cli.command {
-        Command::Run(a) => run_scenario(a, q),
+        Command::Run(a) => run::run_scenario(a, q),
         Command::Modes(a) => {
             print!("{}", text::modes_table(&load(a.scenario)?.0));
             Ok(())
@@ -147,85 +147,6 @@ fn load(path: Option<PathBuf>) -> anyhow::Result<(Scenario, String)> {
             Ok((sc, DEFAULT_NAME.to_string()))
         }
     }
-}
-
-fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> {
-    let (sc, name) = load(a.scenario.clone())?;
-    if sc.suite.is_some() {
-        return run_suite(&sc, &name, &a.out, a.no_plot, a.no_check, quiet);
-    }
-    simulate::require_time_history(&sc)?;
-    if sc.is_row() {
-        return run_row(&sc, &name, &a, quiet);
-    }
-    pounding::output::budget::check_run(&sc, a.max_output_size)?;
-    let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
-    let bar = !quiet && std::io::stderr().is_terminal();
-    let phases = if a.no_check { 2.0 } else { 4.0 };
-    let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
-    let result = simulate::simulate_streaming(&sc, !a.no_check, &mut sink);
-    sink.finish();
-    let report = result?;
-    let draw = (!a.no_plot).then(|| pounding::figures::run::run_pictures(&sc, &report));
-    let written = writer.finish(&sc, &report, draw)?;
-    if !quiet {
-        print!("{}", text::run_summary(&sc, &name, &report));
-        println!("\nwrote {}", list_paths(&written));
-    }
-    for w in &report.warnings {
-        eprintln!("warning: {w}");
-    }
-    Ok(())
-}
-
-/// `pounding run` on a suite of records (`[ground_motion] kind = "suite"`): every record run
-/// (in parallel), the files written (summary.json last), the report printed.
-fn run_suite(
-    sc: &Scenario,
-    name: &str,
-    out: &Path,
-    no_plot: bool,
-    no_check: bool,
-    quiet: bool,
-) -> anyhow::Result<()> {
-    if !quiet && std::io::stderr().is_terminal() {
-        eprintln!("{}", suite::report::progress_line(sc, !no_check));
-    }
-    let run = suite::run(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
-    let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
-    let written = suite::write::write(out, &run, draw)?;
-    if !quiet {
-        print!("{}", suite::report::text(&run, &sc.title, name));
-        println!("\nwrote {}", list_paths(&written));
-    }
-    for w in suite::report::warnings(sc, &run) {
-        eprintln!("warning: {w}");
-    }
-    Ok(())
-}
-
-/// `pounding run` on a row of buildings (issue 29): the row with and without contact (and the
-/// self-check unless `--no-check`), streamed into history.csv and floors.csv, then impacts.csv,
-/// the pictures (unless `--no-plot`) and summary.json last.
-fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
-    pounding::output::budget::check_run(sc, a.max_output_size)?;
-    let mut writer = pounding::output::row::RowWriter::for_scenario(&a.out, sc)?;
-    let bar = !quiet && std::io::stderr().is_terminal();
-    let phases = if a.no_check { 2.0 } else { 4.0 };
-    let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
-    let result = simulate::simulate_row_streaming(sc, !a.no_check, &mut sink);
-    sink.finish();
-    let report = result?;
-    let draw = (!a.no_plot).then(|| pounding::figures::row::row_pictures(sc, &report));
-    let written = writer.finish(sc, &report, draw)?;
-    if !quiet {
-        print!("{}", text::row_summary(sc, name, &report));
-        println!("\nwrote {}", list_paths(&written));
-    }
-    for w in &report.warnings {
-        eprintln!("warning: {w}");
-    }
-    Ok(())
 }
 
 /// Commands of one ground motion refuse a suite of records (which `pounding run` runs), and

@@ -1,0 +1,94 @@
+//! `pounding run`: the scenario's run (a pair, a suite of records or a row of buildings)
+//! streamed into its files with a progress bar, its report printed.
+
+use std::io::IsTerminal as _;
+use std::path::Path;
+
+use anyhow::anyhow;
+use pounding::analysis::simulate;
+use pounding::input::scenario::Scenario;
+use pounding::output::text;
+use pounding::study::suite;
+
+use crate::{args, list_paths, load, progress};
+
+/// `pounding run`: a pair's run streamed into its files (summary.json last), a suite of records
+/// or a row of buildings by their own writers; the report printed, the warnings on stderr.
+pub(super) fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> {
+    let (sc, name) = load(a.scenario.clone())?;
+    if sc.suite.is_some() {
+        return run_suite(&sc, &name, &a.out, a.no_plot, a.no_check, quiet);
+    }
+    simulate::require_time_history(&sc)?;
+    if sc.is_row() {
+        return run_row(&sc, &name, &a, quiet);
+    }
+    pounding::output::budget::check_run(&sc, a.max_output_size)?;
+    let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
+    let bar = !quiet && std::io::stderr().is_terminal();
+    let phases = if a.no_check { 2.0 } else { 4.0 };
+    let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
+    let result = simulate::simulate_streaming(&sc, !a.no_check, &mut sink);
+    sink.finish();
+    let report = result?;
+    let draw = (!a.no_plot).then(|| pounding::figures::run::run_pictures(&sc, &report));
+    let written = writer.finish(&sc, &report, draw)?;
+    if !quiet {
+        print!("{}", text::run_summary(&sc, &name, &report));
+        println!("\nwrote {}", list_paths(&written));
+    }
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// `pounding run` on a suite of records (`[ground_motion] kind = "suite"`): every record run
+/// (in parallel), the files written (summary.json last), the report printed.
+fn run_suite(
+    sc: &Scenario,
+    name: &str,
+    out: &Path,
+    no_plot: bool,
+    no_check: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    if !quiet && std::io::stderr().is_terminal() {
+        eprintln!("{}", suite::report::progress_line(sc, !no_check));
+    }
+    let run = suite::run(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
+    let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
+    let written = suite::write::write(out, &run, draw)?;
+    if !quiet {
+        print!("{}", suite::report::text(&run, &sc.title, name));
+        println!("\nwrote {}", list_paths(&written));
+    }
+    for w in suite::report::warnings(sc, &run) {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// `pounding run` on a row of buildings (issue 29): the row with and without contact (and the
+/// self-check unless `--no-check`), streamed into history.csv and floors.csv, then impacts.csv,
+/// the pictures (unless `--no-plot`) and summary.json last.
+fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
+    pounding::output::budget::check_run(sc, a.max_output_size)?;
+    let mut writer = pounding::output::row::RowWriter::for_scenario(&a.out, sc)?;
+    let bar = !quiet && std::io::stderr().is_terminal();
+    let phases = if a.no_check { 2.0 } else { 4.0 };
+    let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
+    let result = simulate::simulate_row_streaming(sc, !a.no_check, &mut sink);
+    sink.finish();
+    let report = result?;
+    let draw = (!a.no_plot).then(|| pounding::figures::row::row_pictures(sc, &report));
+    let written = writer.finish(sc, &report, draw)?;
+    if !quiet {
+        print!("{}", text::row_summary(sc, name, &report));
+        println!("\nwrote {}", list_paths(&written));
+    }
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
