@@ -174,12 +174,14 @@ fn suite_field_label(field: &str) -> Option<(String, String, f64)> {
     }
     Some(match field {
         "sufficient" => (
-            s("Gap suffices at every level by the code's procedure (1 = yes, 0 = no)"),
+            // (the same words for a suite's verdict by the code's procedure and a row's by
+            // every rule of every pair: both are "at every level checked")
+            s("Gap suffices at every level checked (1 = yes, 0 = no)"),
             s("suffices"),
             1.0,
         ),
         "governing_margin" => (
-            s("Gap − design required separation at the governing level"),
+            s("Gap − required separation where the margin is smallest"),
             s("margin [m]"),
             1.0,
         ),
