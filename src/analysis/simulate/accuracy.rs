@@ -483,16 +483,6 @@ impl AccuracyCheck {
             return None;
         }
         let cs = self.settings.unwrap_or_else(|| CheckSettings::of(settings));
-        let knob = setting_to_tighten(settings.method);
-        let scope = "The check varies the time integration only, not the number of modes \
-                     (see `pounding convergence`).";
-        if let Some(f) = &self.failure {
-            return Some(format!(
-                "self-check NOT converged: not verified against a 100× tighter rerun ({}): \
-                 {f}. {scope}",
-                cs.describe()
-            ));
-        }
         let moved: Vec<String> = self
             .exceeded()
             .map(|q| format!("the {} changed by {}", q.label(), percent(q.change)))
@@ -504,18 +494,48 @@ impl AccuracyCheck {
         } else {
             ""
         };
-        Some(format!(
-            "self-check NOT converged: against a 100× tighter rerun ({}), {} (limit {} %); \
-             tighten `{knob}` (e.g. to the check's {}) and rerun. {scope}{count_note}",
-            cs.describe(),
-            moved.join(", "),
-            100.0 * CHECK_THRESHOLD,
-            match cs.rtol {
-                Some(r) => format!("{r:.0e}"),
-                None => format!("{:.3e} s", cs.dt),
-            },
+        Some(not_converged_warning(
+            &cs,
+            settings,
+            self.failure.as_deref(),
+            &moved,
+            count_note,
         ))
     }
+}
+
+/// The self-check's warning, in one wording for a pair ([`AccuracyCheck::warning`]) and a row
+/// ([`super::row_check::RowAccuracyCheck::warning`]): the check that could not be done
+/// (`failure`), or the quantities that `moved`, the limit and the setting to tighten, then
+/// `count_note` (what it means when only numbers of impacts moved).
+pub(crate) fn not_converged_warning(
+    cs: &CheckSettings,
+    settings: &SolverSettings,
+    failure: Option<&str>,
+    moved: &[String],
+    count_note: &str,
+) -> String {
+    let knob = setting_to_tighten(settings.method);
+    let scope = "The check varies the time integration only, not the number of modes \
+                 (see `pounding convergence`).";
+    if let Some(f) = failure {
+        return format!(
+            "self-check NOT converged: not verified against a 100× tighter rerun ({}): \
+             {f}. {scope}",
+            cs.describe()
+        );
+    }
+    format!(
+        "self-check NOT converged: against a 100× tighter rerun ({}), {} (limit {} %); \
+         tighten `{knob}` (e.g. to the check's {}) and rerun. {scope}{count_note}",
+        cs.describe(),
+        moved.join(", "),
+        100.0 * CHECK_THRESHOLD,
+        match cs.rtol {
+            Some(r) => format!("{r:.0e}"),
+            None => format!("{:.3e} s", cs.dt),
+        },
+    )
 }
 
 /// A relative change as a percentage for people (`24.1 %`, `0.0031 %`).

@@ -1,5 +1,5 @@
 //! The self-check of a row of buildings (issue 29): a pair's check ([`super::accuracy`]) over
-//! every structure and every pair. The row is run again with [`tightened`] settings (100×
+//! every structure and every pair. The row is run again with [`tightened`](super::accuracy::tightened) settings (100×
 //! tighter tolerance; `dt/√10` for `rk4`) and its headline numbers compared: each structure's
 //! peak displacement with and without pounding (at its headline height), and for a yielding
 //! one its peak ductility with and without, largest residual drift and hysteretic energy
@@ -15,8 +15,8 @@ use serde::ser::SerializeMap;
 
 use super::RowReport;
 use super::accuracy::{
-    CHECK_THRESHOLD, CheckSettings, count_change, percent, relative_change, setting_to_tighten,
-    tightened,
+    CHECK_THRESHOLD, CheckSettings, count_change, not_converged_warning, percent, relative_change,
+    setting_to_tighten,
 };
 use crate::integrate::{SolveError, SolverSettings};
 
@@ -110,7 +110,7 @@ impl RowAccuracyCheck {
     }
 
     /// Compare `report` (run with `settings`) with `tight`, the same row run with
-    /// [`tightened`]`(settings)`.
+    /// [`tightened`](super::accuracy::tightened)`(settings)`.
     pub fn compare(
         report: &RowReport,
         tight: &RowReport,
@@ -262,16 +262,6 @@ impl RowAccuracyCheck {
             return None;
         }
         let cs = self.settings.unwrap_or_else(|| CheckSettings::of(settings));
-        let knob = setting_to_tighten(settings.method);
-        let scope = "The check varies the time integration only, not the number of modes \
-                     (see `pounding convergence`).";
-        if let Some(f) = &self.failure {
-            return Some(format!(
-                "self-check NOT converged: not verified against a 100× tighter rerun ({}): \
-                 {f}. {scope}",
-                cs.describe()
-            ));
-        }
         let moved: Vec<String> = self
             .exceeded()
             .map(|q| format!("the {} changed by {}", q.label, percent(q.change)))
@@ -283,17 +273,12 @@ impl RowAccuracyCheck {
         } else {
             ""
         };
-        let tight = tightened(settings);
-        Some(format!(
-            "self-check NOT converged: against a 100× tighter rerun ({}), {} (limit {} %); \
-             tighten `{knob}` (e.g. to the check's {}) and rerun. {scope}{count_note}",
-            cs.describe(),
-            moved.join(", "),
-            100.0 * CHECK_THRESHOLD,
-            match cs.rtol {
-                Some(r) => format!("{r:.0e}"),
-                None => format!("{:.3e} s", tight.dt),
-            },
+        Some(not_converged_warning(
+            &cs,
+            settings,
+            self.failure.as_deref(),
+            &moved,
+            count_note,
         ))
     }
 }
