@@ -3,40 +3,23 @@
 //! gap never closes answers, pair by pair, as the pair scenarios do; the mirror row under the
 //! negated ground motion gives the same per-pair answers; bad inputs name their key.
 
+mod common;
+use common::{
+    ROW_HARMONIC as HARMONIC, row_building as building, row_contact as contact,
+    row_scenario as scenario,
+};
+
 use std::path::Path;
 
 use pounding::analysis::gap_report::gap_report;
 use pounding::analysis::row_separation::row_gap_report;
-use pounding::input::scenario::Scenario;
 use pounding::model::ground_motion::{GroundMotion, Harmonic};
-
-fn scenario(text: &str) -> Scenario {
-    Scenario::from_toml(text, "row.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// A shear building of `n` storeys of 3.5 m named `name`, all its modes kept.
-fn building(name: &str, n: usize, k: f64) -> String {
-    format!(
-        "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
-         storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\ndamping_ratio = 0.05\n\
-         modes = {n}\n"
-    )
-}
-
-/// A `[[contact]]` between `a` and `b` at `h` with gap `gap` (m), Hertz.
-fn contact(a: &str, b: &str, h: f64, gap: f64) -> String {
-    format!(
-        "[[contact]]\nbetween = [\"{a}\", \"{b}\"]\nlaw = \"hertz\"\nstiffness = 2.0e10\n\
-         height = {h}\ngap = {gap}\n"
-    )
-}
 
 /// The same pair as one `[contact]` table.
 fn pair_contact(h: f64, gap: f64) -> String {
     format!("[contact]\nlaw = \"hertz\"\nstiffness = 2.0e10\nheight = {h}\ngap = {gap}\n")
 }
 
-const HARMONIC: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n";
 const SOLVER: &str = "[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n";
 /// Every code of the scenario format, so that the codes are checked per pair too.
 const CODES: &str = "[separation]\nasce7 = { cd = 5.5, ie = 1.0, r = 8, boundary = \"same-property\" }\n\

@@ -2,6 +2,12 @@
 //! columns against the impact log, the in-memory history's bound, the self-check, and what
 //! `pounding run` writes for a row.
 
+mod common;
+use common::{
+    ROW_HARMONIC as HARMONIC, row_building as building, row_contact as contact,
+    row_scenario as scenario,
+};
+
 use std::path::{Path, PathBuf};
 
 use pounding::analysis::simulate::{
@@ -11,29 +17,6 @@ use pounding::input::scenario::Scenario;
 use pounding::output::row::RowWriter;
 use pounding::output::run::RunWriter;
 use pounding::recording::history::{MAX_KEPT_SAMPLES, sample_count};
-
-fn scenario(text: &str) -> Scenario {
-    Scenario::from_toml(text, "row.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// A shear building of `n` storeys of 3.5 m named `name`, all its modes kept.
-fn building(name: &str, n: usize, k: f64) -> String {
-    format!(
-        "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
-         storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\ndamping_ratio = 0.05\n\
-         modes = {n}\n"
-    )
-}
-
-/// A `[[contact]]` between `a` and `b` at `h` with gap `gap` (m), Hertz.
-fn contact(a: &str, b: &str, h: f64, gap: f64) -> String {
-    format!(
-        "[[contact]]\nbetween = [\"{a}\", \"{b}\"]\nlaw = \"hertz\"\nstiffness = 2.0e10\n\
-         height = {h}\ngap = {gap}\n"
-    )
-}
-
-const HARMONIC: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n";
 
 fn tmp(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("pounding-row-outputs-{tag}-{}", std::process::id()));

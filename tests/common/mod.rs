@@ -3,6 +3,8 @@
 //!
 //! - running the `pounding` binary ([`pounding`]), a scenario from TOML text
 //!   ([`scenario_named`], [`run_named`]);
+//! - rows of buildings from TOML pieces ([`row_scenario`], [`row_building`], [`row_contact`],
+//!   [`ROW_HARMONIC`]): used by `tests/row_outputs.rs` and `tests/row_doors.rs`;
 //! - an integration of buildings in physical coordinates, `M ü + C u̇ + K u = −M 1 a_g + F`, by
 //!   RK4 at a small fixed step: the independent reference of the floor-response tests (it
 //!   shares nothing with the program but the equations of motion). Used by
@@ -284,3 +286,30 @@ pub fn kill_after_journal_rows(cmd: &mut Command, journal: &Path, rows: usize) {
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
 }
+
+/// A row's scenario from its TOML text (named `row.toml`, read from `.`); panics with the
+/// scenario's error.
+pub fn row_scenario(text: &str) -> Scenario {
+    Scenario::from_toml(text, "row.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A shear building of `n` storeys of 3.5 m named `name`, floor mass 2e5 kg, storey stiffness
+/// `k` (N/m), 5 % damping, all its modes kept.
+pub fn row_building(name: &str, n: usize, k: f64) -> String {
+    format!(
+        "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
+         storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\ndamping_ratio = 0.05\n\
+         modes = {n}\n"
+    )
+}
+
+/// A `[[contact]]` between `a` and `b` at height `h` (m) with gap `gap` (m), Hertz 2e10.
+pub fn row_contact(a: &str, b: &str, h: f64, gap: f64) -> String {
+    format!(
+        "[[contact]]\nbetween = [\"{a}\", \"{b}\"]\nlaw = \"hertz\"\nstiffness = 2.0e10\n\
+         height = {h}\ngap = {gap}\n"
+    )
+}
+
+/// A harmonic ground motion of 0.35 g at 0.8 s.
+pub const ROW_HARMONIC: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n";
