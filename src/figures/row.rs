@@ -33,21 +33,10 @@ pub fn row_pictures<'a>(
 ) -> Box<crate::output::run::DrawPictures<'a>> {
     Box::new(move |dir: &Path| {
         let envelopes = || row_envelope_figure(report, &dir.join("envelopes"));
-        let (history, envelopes) = std::thread::scope(|scope| {
-            let other = std::thread::Builder::new()
-                .name("envelopes".into())
-                .spawn_scoped(scope, envelopes);
-            let history = row_history_figure(scenario, report, &dir.join("history"));
-            let envelopes = match other {
-                Ok(handle) => handle.join().unwrap_or_else(|_| {
-                    Err(PlotError::Draw(
-                        "internal error (panic) in the plotting code".into(),
-                    ))
-                }),
-                Err(_) => envelopes(),
-            };
-            (history, envelopes)
-        });
+        let (history, envelopes) = super::run::beside_each_other(
+            || row_history_figure(scenario, report, &dir.join("history")),
+            envelopes,
+        );
         let mut files = history.map_err(|e| e.to_string())?;
         files.extend(envelopes.map_err(|e| e.to_string())?);
         for ext in ["png", "svg"] {

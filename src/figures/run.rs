@@ -46,6 +46,31 @@ pub fn drawn_force(
     pts.into_iter().unzip()
 }
 
+/// Draws `here` on this thread while `other` (an independent figure) is drawn on a second
+/// one, named `envelopes`; a panic there is an error, and without a thread to be had `other`
+/// is drawn after `here`, on this one. For [`run_pictures`] and
+/// [`super::row::row_pictures`]: a user's run waits for the longer figure, not the sum.
+pub(crate) fn beside_each_other<T: Send>(
+    here: impl FnOnce() -> Result<T, PlotError>,
+    other: impl FnOnce() -> Result<T, PlotError> + Send + Copy,
+) -> (Result<T, PlotError>, Result<T, PlotError>) {
+    std::thread::scope(|scope| {
+        let spawned = std::thread::Builder::new()
+            .name("envelopes".into())
+            .spawn_scoped(scope, other);
+        let first = here();
+        let second = match spawned {
+            Ok(handle) => handle.join().unwrap_or_else(|_| {
+                Err(PlotError::Draw(
+                    "internal error (panic) in the plotting code".into(),
+                ))
+            }),
+            Err(_) => other(),
+        };
+        (first, second)
+    })
+}
+
 /// The pictures of a run, as `pounding run` draws them into its directory: the time-history
 /// figure (`history.png/.svg`, [`time_history_figure`]) and the envelopes over height
 /// (`envelopes.png/.svg`, [`envelope_figure`]) and, with yielding storeys, the hysteresis loops
@@ -59,22 +84,10 @@ pub fn run_pictures<'a>(
         // the two figures are independent: the envelopes are drawn on a second thread while
         // the time histories are drawn here (a user's run waits for the longer, not the sum)
         let envelopes = || envelope_figure(report, &dir.join("envelopes"));
-        let (history, envelopes) = std::thread::scope(|scope| {
-            let other = std::thread::Builder::new()
-                .name("envelopes".into())
-                .spawn_scoped(scope, envelopes);
-            let history = time_history_figure(scenario, report, &dir.join("history"));
-            let envelopes = match other {
-                Ok(handle) => handle.join().unwrap_or_else(|_| {
-                    Err(PlotError::Draw(
-                        "internal error (panic) in the plotting code".into(),
-                    ))
-                }),
-                // no thread to be had: after the time histories, on this one
-                Err(_) => envelopes(),
-            };
-            (history, envelopes)
-        });
+        let (history, envelopes) = beside_each_other(
+            || time_history_figure(scenario, report, &dir.join("history")),
+            envelopes,
+        );
         let mut files = history.map_err(|e| e.to_string())?;
         files.extend(envelopes.map_err(|e| e.to_string())?);
         match hysteresis_figure(report, &dir.join("hysteresis")).map_err(|e| e.to_string())? {
