@@ -141,7 +141,11 @@ pub fn field_label(field: &str) -> (String, String, f64) {
             s("drift [m]"),
             1.0,
         ),
-        other => return suite_field_label(other).unwrap_or((s(other), s(other), 1.0)),
+        other => {
+            return suite_field_label(other)
+                .or_else(|| row_field_label(other))
+                .unwrap_or((s(other), s(other), 1.0));
+        }
     };
     (title, short, scale)
 }
@@ -196,12 +200,107 @@ fn suite_field_label(field: &str) -> Option<(String, String, f64)> {
     })
 }
 
+/// The labels of a row sweep's columns (`crate::study::sweep::row_columns`): each
+/// structure's `structure{i}_…` and each pair's `pair{p}_…` (pair p: structures p and p + 1),
+/// and the row's governing pair and count of pounding pairs.
+fn row_field_label(field: &str) -> Option<(String, String, f64)> {
+    let s = |t: &str| t.to_string();
+    let numbered = |prefix: &str| -> Option<(usize, &str)> {
+        let rest = field.strip_prefix(prefix)?;
+        let (k, what) = rest.split_once('_')?;
+        Some((k.parse().ok()?, what))
+    };
+    if let Some((i, what)) = numbered("structure") {
+        return Some(match what {
+            "peak_displacement" => (
+                format!("Structure {i}: peak displacement with pounding"),
+                s("peak w [m]"),
+                1.0,
+            ),
+            "peak_displacement_no_contact" => (
+                format!("Structure {i}: peak displacement without pounding"),
+                s("peak w [m]"),
+                1.0,
+            ),
+            "change_percent" => (
+                format!("Structure {i}: change of the peak displacement by pounding"),
+                s("change [%]"),
+                1.0,
+            ),
+            _ => return None,
+        });
+    }
+    if let Some((p, what)) = numbered("pair") {
+        let pair = format!("Pair {p} (structures {p}–{})", p + 1);
+        return Some(match what {
+            "impacts" => (format!("{pair}: number of impacts"), s("impacts"), 1.0),
+            "peak_force" => (
+                format!("{pair}: peak contact force"),
+                s("peak force [MN]"),
+                1e-6,
+            ),
+            "max_penetration" => (
+                format!("{pair}: largest penetration"),
+                s("penetration [m]"),
+                1.0,
+            ),
+            "contact_time" => (
+                format!("{pair}: time in contact"),
+                s("time in contact [s]"),
+                1.0,
+            ),
+            "sep_time_history" => (
+                format!("{pair}: required separation from the time history"),
+                s("separation [m]"),
+                1.0,
+            ),
+            "governing_height" => (
+                format!("{pair}: height where its margin is smallest"),
+                s("height [m]"),
+                1.0,
+            ),
+            "required" => (
+                format!("{pair}: required separation where its margin is smallest"),
+                s("separation [m]"),
+                1.0,
+            ),
+            "margin" => (
+                format!("{pair}: gap − required separation where the margin is smallest"),
+                s("margin [m]"),
+                1.0,
+            ),
+            "sufficient" => (
+                format!("{pair}: gap suffices by every rule at every level (1 = yes, 0 = no)"),
+                s("suffices"),
+                1.0,
+            ),
+            _ => return None,
+        });
+    }
+    Some(match field {
+        "governing_pair" => (s("Pair of least margin"), s("pair"), 1.0),
+        "governing_height" => (
+            s("Height where the margin is smallest"),
+            s("height [m]"),
+            1.0,
+        ),
+        "governing_required" => (
+            s("Required separation where the margin is smallest"),
+            s("separation [m]"),
+            1.0,
+        ),
+        "pounding_pairs" => (s("Number of pairs that pound"), s("pairs"), 1.0),
+        "structures" => (s("Number of structures in the row"), s("count"), 1.0),
+        _ => return None,
+    })
+}
+
 /// How a field is coloured (and whether its line-plot axis is logarithmic), given its values:
 /// the amplification ratio on the diverging log scale, else [`ColorScale::auto`].
 pub fn field_scale(field: &str, values: &[f64]) -> ColorScale {
     if field.starts_with("change_percent_") {
         ColorScale::Ratio { limit: RATIO_LIMIT }
-    } else if field.ends_with("sufficient") || field == "governing_margin" {
+    } else if field.ends_with("sufficient") || field.ends_with("margin") {
         // a verdict (0/1) and a signed margin: linear, whatever their spread
         ColorScale::Linear
     } else {
@@ -661,4 +760,46 @@ pub fn count_pictures(files: &[PathBuf]) -> usize {
         stems.insert(f.with_extension(""), ());
     }
     stems.len()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::sweep::row_columns;
+
+    /// Every numeric column of a row sweep has a title of its own naming its structure or pair
+    /// and a unit, not its raw column name (the text columns are not drawn).
+    #[test]
+    fn a_row_sweeps_columns_are_titled_by_structure_and_pair() {
+        for name in row_columns::columns(4) {
+            if row_columns::is_text(&name) {
+                continue;
+            }
+            let (title, short, _) = field_label(&name);
+            assert_ne!(title, name, "{name} has no title");
+            assert_ne!(short, name, "{name} has no axis label");
+            if let Some(rest) = name.strip_prefix("pair") {
+                let p: usize = rest.split('_').next().unwrap().parse().unwrap();
+                assert!(
+                    title.starts_with(&format!("Pair {p} (structures {p}–{})", p + 1)),
+                    "{name}: {title}"
+                );
+            }
+            if let Some(rest) = name.strip_prefix("structure") {
+                if let Some(i) = rest.split('_').next().and_then(|i| i.parse::<usize>().ok()) {
+                    assert!(
+                        title.starts_with(&format!("Structure {i}:")),
+                        "{name}: {title}"
+                    );
+                }
+            }
+        }
+        // a pair's force is drawn in MN, as a pair sweep's
+        assert_eq!(field_label("pair2_peak_force").2, 1e-6);
+        // a pair's margin and verdict on a linear colour scale, as the row's
+        assert!(matches!(
+            field_scale("pair3_margin", &[1e-4, 1.0]),
+            ColorScale::Linear
+        ));
+    }
 }
