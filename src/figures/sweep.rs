@@ -785,13 +785,13 @@ mod tests {
                     "{name}: {title}"
                 );
             }
-            if let Some(rest) = name.strip_prefix("structure") {
-                if let Some(i) = rest.split('_').next().and_then(|i| i.parse::<usize>().ok()) {
-                    assert!(
-                        title.starts_with(&format!("Structure {i}:")),
-                        "{name}: {title}"
-                    );
-                }
+            if let Some(rest) = name.strip_prefix("structure")
+                && let Some(i) = rest.split('_').next().and_then(|i| i.parse::<usize>().ok())
+            {
+                assert!(
+                    title.starts_with(&format!("Structure {i}:")),
+                    "{name}: {title}"
+                );
             }
         }
         // a pair's force is drawn in MN, as a pair sweep's
