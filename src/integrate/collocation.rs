@@ -279,20 +279,26 @@ pub(super) struct Table {
     pub h: f64,
     /// Modes.
     n: usize,
-    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], at
-    /// `[(node·L + k)·n + j]`: the free flight's δ, δ̇ at the nodes are two dot products per
+    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], level by level
+    /// over the level's pair's modes only (`System::coupling_modes`; c_kj = 0 elsewhere):
+    /// level k's block starts at `cstart[k]`, node i's row of it at `i·n_k` (see
+    /// [`Table::cprop_at`]). The free flight's δ, δ̇ at the nodes are two dot products per
     /// node and level.
-    pub cprop: Vec<[f64; 4]>,
+    cprop: Vec<[f64; 4]>,
+    /// Where each level's block of `cprop` starts (L + 1 entries).
+    cstart: Vec<usize>,
     /// Per mode, see [`ModeStep`].
     pub modes: Vec<ModeStep>,
     /// Level tables of the 5-node scheme: the response of `c_k·η` (and `c_k·η̇`) at its node i
     /// (B1, ½, B3, end) to a unit force at level l shaped as ℓ_p,
-    /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[((k·L + l)·4 + i)·5 + p]`.
+    /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[(kl·4 + i)·5 + p]`, kl = `System::band_slot(k, l)`. Banded:
+    /// only the levels l sharing a structure with k are stored (`System::sharing_levels`; the
+    /// others' weights are sums of zeros); a pair's band is every level (kl = k·L + l).
     pub w8: Vec<(f64, f64)>,
-    /// The same for the 4-node companion at its nodes (A1, A2, end): `[((k·L + l)·3 + i)·4 + p]`.
+    /// The same for the 4-node companion at its nodes (A1, A2, end): `[(kl·3 + i)·4 + p]`.
     pub w6: Vec<(f64, f64)>,
     /// The 5-node scheme's response at the companion's interior nodes (A1, A2), for the work
-    /// of the contacts along the computed motion: `[((k·L + l)·2 + i)·5 + p]`.
+    /// of the contacts along the computed motion: `[(kl·2 + i)·5 + p]`.
     pub w86: Vec<(f64, f64)>,
     /// Harmonic motion: (sin Ωθh, cos Ωθh) at every node of [`NODES`].
     pub rot: [(f64, f64); 6],
@@ -308,6 +314,7 @@ impl Table {
             h: f64::NAN,
             n: 0,
             cprop: Vec::new(),
+            cstart: Vec::new(),
             modes: Vec::new(),
             w8: Vec::new(),
             w6: Vec::new(),
@@ -339,25 +346,31 @@ impl Table {
                 (h * a, h * b)
             });
         }
-        self.cprop.clear();
-        self.cprop.resize(6 * nl * n, [0.0; 4]);
-        self.modes.clear();
+        // (every entry of `cprop` and `modes` is written below: no clearing; the level tables
+        // are sums, cleared over the band only)
+        self.cstart.clear();
+        self.cstart.push(0);
+        for k in 0..nl {
+            let w = sys.coupling_modes(k).len();
+            self.cstart.push(self.cstart[k] + 6 * w);
+        }
+        self.cprop.resize(self.cstart[nl], [0.0; 4]);
         self.modes.resize(n, ModeStep::default());
-        self.w8.clear();
-        self.w8.resize(nl * nl * 20, (0.0, 0.0));
-        self.w6.clear();
-        self.w6.resize(nl * nl * 12, (0.0, 0.0));
-        self.w86.clear();
-        self.w86.resize(nl * nl * 10, (0.0, 0.0));
+        let slots = sys.band_slots();
+        for (t, per) in [(&mut self.w8, 20), (&mut self.w6, 12), (&mut self.w86, 10)] {
+            t.clear();
+            t.resize(slots * per, (0.0, 0.0));
+        }
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
-            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others, and
-            // their entries, never read, stay 0)
+            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
             let holding = sys.levels_of_mode(j);
-            for (i, p) in props.iter().enumerate() {
-                for k in holding.clone() {
-                    let c = sys.coupling(k)[j];
-                    self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+            for k in holding.clone() {
+                let c = sys.coupling(k)[j];
+                let modes = sys.coupling_modes(k);
+                let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
+                for (i, p) in props.iter().enumerate() {
+                    self.cprop[at + i * w] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
                 }
             }
             let mut mono = [[(0.0, 0.0); 5]; 6];
@@ -398,7 +411,7 @@ impl Table {
                     if w == 0.0 {
                         continue;
                     }
-                    let kl = k * nl + l;
+                    let kl = sys.band_slot(k, l);
                     let add = |t: &mut [(f64, f64)], g: &[(f64, f64)]| {
                         for (e, g) in t.iter_mut().zip(g) {
                             e.0 += w * g.0;
@@ -416,6 +429,15 @@ impl Table {
     /// Modes the table was made for.
     pub(super) fn modes(&self) -> usize {
         self.n
+    }
+
+    /// Level k's coupled propagators at node i of [`NODES`], over `sys.coupling_modes(k)`
+    /// (the same system the table was filled for).
+    #[inline]
+    pub(super) fn cprop_at(&self, sys: &System, k: usize, i: usize) -> &[[f64; 4]] {
+        let w = sys.coupling_modes(k).len();
+        let at = self.cstart[k] + i * w;
+        &self.cprop[at..at + w]
     }
 }
 
@@ -510,7 +532,7 @@ pub(super) fn solve<const S: usize>(
     scratch.rhs.resize(dim, 0.0);
     scratch.slopes.resize(dim, (0.0, 0.0));
     scratch.free.resize(dim, false);
-    let w = &w[..nl * nl * m * S];
+    let w = &w[..sys.band_slots() * m * S];
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
         // nodal states from the current forces, the residual and the law's derivatives (the
@@ -523,7 +545,7 @@ pub(super) fn solve<const S: usize>(
             for p in 0..m {
                 let (mut d, mut dd) = dfree[k * m + p];
                 for l in band.clone() {
-                    let base = ((k * nl + l) * m + p) * S;
+                    let base = (sys.band_slot(k, l) * m + p) * S;
                     let (row, fl) = (&w[base..base + S], &force[l * S..(l + 1) * S]);
                     for q in 0..S {
                         d -= row[q].0 * fl[q];
@@ -670,7 +692,6 @@ fn solve_touching<const S: usize>(
     dim: usize,
 ) -> bool {
     let m = S - 1;
-    let nl = dim / m;
     s.act.clear();
     s.act.extend((0..dim).filter(|&r| !s.free[r]));
     let na = s.act.len();
@@ -687,7 +708,7 @@ fn solve_touching<const S: usize>(
         // the row's entry at unknown c = l·m + q
         let entry = |c: usize| {
             let (l, q) = (c / m, c % m);
-            let x = w[((k * nl + l) * m + p) * S + q + 1];
+            let x = w[(sys.band_slot(k, l) * m + p) * S + q + 1];
             let e = kd * x.0 + kv * x.1;
             if c == r { e + 1.0 } else { e }
         };
@@ -941,21 +962,53 @@ mod tests {
         System::row(models, &pairs, GroundMotion::None)
     }
 
-    /// The level tables, assembled over the levels that hold each mode only, are the dense
-    /// definition `W_kl = Σ_j c_kj c_lj Γ_j` over every mode of the row (Γ_j: the mode's
-    /// responses to the Lagrange loads, kept in `modes[j]`), exactly: the terms skipped are
-    /// products with a zero coupling, and adding zeros changes no sum. And `sharing_levels`
-    /// holds every level pair with a non-zero weight.
+    /// The level tables, assembled over the levels that hold each mode only and stored over
+    /// each level's band, are the dense definition `W_kl = Σ_j c_kj c_lj Γ_j` over every mode
+    /// of the row (Γ_j: the mode's responses to the Lagrange loads, kept in `modes[j]`),
+    /// exactly: the terms skipped are products with a zero coupling, and adding zeros changes
+    /// no sum. `sharing_levels` holds every level pair with a non-zero weight (the pairs left
+    /// out of the storage weigh exactly 0), and the banded propagator rows are the dense
+    /// `c_kj P_j(θh)` over every mode (zero outside the level's pair's modes).
     #[test]
     fn banded_level_tables_equal_the_dense_definition() {
         let sys = random_row();
         let (n, nl) = (sys.len(), sys.levels.len());
         assert_eq!(nl, 10);
         let t = Table::new(&sys, None, 0.013);
+        assert_eq!(
+            t.w8.len(),
+            20 * (0..nl).map(|k| sys.sharing_levels(k).len()).sum::<usize>()
+        );
+        for k in 0..nl {
+            for i in 0..6 {
+                let cp = t.cprop_at(&sys, k, i);
+                let modes = sys.coupling_modes(k);
+                for j in 0..n {
+                    let p = propagator(
+                        sys.omega()[j],
+                        sys.damping_coefficients()[j],
+                        NODES[i] * 0.013,
+                    );
+                    let c = sys.coupling(k)[j];
+                    let want = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                    if modes.contains(&j) {
+                        assert_eq!(cp[j - modes.start], want, "cprop {k} {i} {j}");
+                    } else {
+                        assert_eq!(c, 0.0, "level {k} mode {j} outside its pair");
+                    }
+                }
+            }
+        }
         let mut nonzero = 0;
+        let mut slots = std::collections::BTreeSet::new();
         for k in 0..nl {
             for l in 0..nl {
-                let kl = k * nl + l;
+                let share = sys.sharing_levels(k).contains(&l);
+                assert_eq!(share, sys.sharing_levels(l).contains(&k));
+                let kl = share.then(|| sys.band_slot(k, l));
+                if let Some(kl) = kl {
+                    assert!(slots.insert(kl), "slot {kl} twice");
+                }
                 for i in 0..4 {
                     for p in 0..5 {
                         let (mut a, mut b) = (0.0, 0.0);
@@ -969,27 +1022,30 @@ mod tests {
                             a += c * g.0;
                             b += c * g.1;
                         }
-                        assert_eq!(t.w8[(kl * 4 + i) * 5 + p], (a, b), "w8 {k} {l} {i} {p}");
-                        let share = sys.sharing_levels(k).contains(&l);
-                        assert_eq!(share, sys.sharing_levels(l).contains(&k));
-                        if a != 0.0 {
-                            assert!(share, "levels {k}, {l} share no structure: {a}");
-                            nonzero += 1;
+                        match kl {
+                            Some(kl) => {
+                                assert_eq!(
+                                    t.w8[(kl * 4 + i) * 5 + p],
+                                    (a, b),
+                                    "w8 {k} {l} {i} {p}"
+                                );
+                                nonzero += usize::from(a != 0.0);
+                            }
+                            None => assert_eq!((a, b), (0.0, 0.0), "levels {k}, {l} share none"),
                         }
                     }
                 }
-                // the same skipping in the companion's and the mid-node tables
-                let far = !sys.sharing_levels(k).contains(&l);
+                // the companion's and the mid-node tables: stored over the band, non-zero there
                 let zero = |t: &[(f64, f64)]| t.iter().all(|&x| x == (0.0, 0.0));
-                if far {
-                    assert!(
-                        zero(&t.w6[kl * 12..(kl + 1) * 12]) && zero(&t.w86[kl * 10..(kl + 1) * 10])
-                    );
-                } else {
+                if let Some(kl) = kl {
                     assert!(!zero(&t.w6[kl * 12..(kl + 1) * 12]), "w6 {k} {l}");
+                    assert!(!zero(&t.w86[kl * 10..(kl + 1) * 10]), "w86 {k} {l}");
                 }
             }
         }
+        // (the slots tile the storage)
+        assert_eq!(slots.len(), sys.band_slots());
+        assert_eq!(slots.last().copied(), Some(sys.band_slots() - 1));
         // (the band is not the whole: levels 0 and 9 are three pairs apart)
         assert!(nonzero > 0 && !sys.sharing_levels(0).contains(&9));
         // and the levels holding each mode are those with a non-zero coupling there
@@ -1050,7 +1106,12 @@ mod tests {
                 let (kd, kv) = s.slopes[r];
                 for c in 0..dim {
                     let (l, q) = (c / m, c % m);
-                    let x = t.w8[((k * nl + l) * m + p) * S + q + 1];
+                    // (outside k's band the weight is zero: see the test above)
+                    let x = if sys.sharing_levels(k).contains(&l) {
+                        t.w8[(sys.band_slot(k, l) * m + p) * S + q + 1]
+                    } else {
+                        (0.0, 0.0)
+                    };
                     dense[r * dim + c] = kd * x.0 + kv * x.1 + if r == c { 1.0 } else { 0.0 };
                 }
             }
