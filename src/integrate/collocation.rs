@@ -273,26 +273,55 @@ pub(super) struct ModeStep {
     pub mid8: [[(f64, f64); 5]; 3],
 }
 
+/// One mode's Γ_j of the level tables `W_kl = Σ_j c_kj c_lj Γ_j` (see [`Table::w8`]), or
+/// one slot's sum of them: the 5-node scheme's at its 4 nodes, the companion's at its 3, the
+/// 5-node scheme's at the companion's 2 interior nodes.
+#[derive(Debug, Clone, Copy)]
+struct Gammas {
+    g8: [(f64, f64); 20],
+    g6: [(f64, f64); 12],
+    g86: [(f64, f64); 10],
+}
+
+impl Default for Gammas {
+    fn default() -> Gammas {
+        Gammas {
+            g8: [(0.0, 0.0); 20],
+            g6: [(0.0, 0.0); 12],
+            g86: [(0.0, 0.0); 10],
+        }
+    }
+}
+
 /// Everything of a step of length h that does not depend on the state.
 pub(super) struct Table {
     /// Step length, s.
     pub h: f64,
     /// Modes.
     n: usize,
-    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], at
-    /// `[(node·L + k)·n + j]`: the free flight's δ, δ̇ at the nodes are two dot products per
+    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], level by level
+    /// over the level's pair's modes only (`System::coupling_modes`; c_kj = 0 elsewhere):
+    /// level k's block starts at `cstart[k]`, node i's row of it at `i·n_k` (see
+    /// [`Table::cprop_at`]). The free flight's δ, δ̇ at the nodes are two dot products per
     /// node and level.
-    pub cprop: Vec<[f64; 4]>,
+    cprop: Vec<[f64; 4]>,
+    /// Where each level's block of `cprop` starts (L + 1 entries).
+    cstart: Vec<usize>,
     /// Per mode, see [`ModeStep`].
     pub modes: Vec<ModeStep>,
+    /// Per mode, its responses to the Lagrange loads in the level tables' layout (scratch of
+    /// [`Table::fill`]).
+    gammas: Vec<Gammas>,
     /// Level tables of the 5-node scheme: the response of `c_k·η` (and `c_k·η̇`) at its node i
     /// (B1, ½, B3, end) to a unit force at level l shaped as ℓ_p,
-    /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[((k·L + l)·4 + i)·5 + p]`.
+    /// `Σ_j c_kj c_lj Γ_j(i, p)`: `[(kl·4 + i)·5 + p]`, kl = `System::band_slot(k, l)`. Banded:
+    /// only the levels l sharing a structure with k are stored (`System::sharing_levels`; the
+    /// others' weights are sums of zeros); a pair's band is every level (kl = k·L + l).
     pub w8: Vec<(f64, f64)>,
-    /// The same for the 4-node companion at its nodes (A1, A2, end): `[((k·L + l)·3 + i)·4 + p]`.
+    /// The same for the 4-node companion at its nodes (A1, A2, end): `[(kl·3 + i)·4 + p]`.
     pub w6: Vec<(f64, f64)>,
     /// The 5-node scheme's response at the companion's interior nodes (A1, A2), for the work
-    /// of the contacts along the computed motion: `[((k·L + l)·2 + i)·5 + p]`.
+    /// of the contacts along the computed motion: `[(kl·2 + i)·5 + p]`.
     pub w86: Vec<(f64, f64)>,
     /// Harmonic motion: (sin Ωθh, cos Ωθh) at every node of [`NODES`].
     pub rot: [(f64, f64); 6],
@@ -308,7 +337,9 @@ impl Table {
             h: f64::NAN,
             n: 0,
             cprop: Vec::new(),
+            cstart: Vec::new(),
             modes: Vec::new(),
+            gammas: Vec::new(),
             w8: Vec::new(),
             w6: Vec::new(),
             w86: Vec::new(),
@@ -339,25 +370,30 @@ impl Table {
                 (h * a, h * b)
             });
         }
-        self.cprop.clear();
-        self.cprop.resize(6 * nl * n, [0.0; 4]);
-        self.modes.clear();
+        // (every entry of `cprop`, `modes`, `gammas` and the level tables is written below:
+        // nothing is cleared)
+        self.cstart.clear();
+        self.cstart.push(0);
+        for k in 0..nl {
+            let w = sys.coupling_modes(k).len();
+            self.cstart.push(self.cstart[k] + 6 * w);
+        }
+        self.cprop.resize(self.cstart[nl], [0.0; 4]);
         self.modes.resize(n, ModeStep::default());
-        self.w8.clear();
-        self.w8.resize(nl * nl * 20, (0.0, 0.0));
-        self.w6.clear();
-        self.w6.resize(nl * nl * 12, (0.0, 0.0));
-        self.w86.clear();
-        self.w86.resize(nl * nl * 10, (0.0, 0.0));
+        self.gammas.resize(n, Gammas::default());
+        let slots = sys.band_slots();
+        for (t, per) in [(&mut self.w8, 20), (&mut self.w6, 12), (&mut self.w86, 10)] {
+            t.resize(slots * per, (0.0, 0.0));
+        }
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
-            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others, and
-            // their entries, never read, stay 0)
-            let holding = sys.levels_of_mode(j);
-            for (i, p) in props.iter().enumerate() {
-                for k in holding.clone() {
-                    let c = sys.coupling(k)[j];
-                    self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
+            for k in sys.levels_of_mode(j) {
+                let c = sys.coupling(k)[j];
+                let modes = sys.coupling_modes(k);
+                let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
+                for (i, p) in props.iter().enumerate() {
+                    self.cprop[at + i * w] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
                 }
             }
             let mut mono = [[(0.0, 0.0); 5]; 6];
@@ -392,23 +428,38 @@ impl Table {
                 mid: [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]],
                 mid8: [g8[0], g8[1], g8[2]],
             };
-            for k in holding.clone() {
-                for l in holding.clone() {
-                    let w = sys.coupling(k)[j] * sys.coupling(l)[j];
+            let g = &mut self.gammas[j];
+            g.g8.copy_from_slice(g8.as_flattened());
+            g.g6.copy_from_slice(g6.as_flattened());
+            g.g86.copy_from_slice(g86.as_flattened());
+        }
+        // the level tables, slot by slot over each level's band: the sum over the modes both
+        // levels couple to (c_kj c_lj = 0 on every other mode), in mode order from 0
+        for k in 0..nl {
+            let (ck, mk) = (sys.coupling(k), sys.coupling_modes(k));
+            for l in sys.sharing_levels(k) {
+                let (cl, ml) = (sys.coupling(l), sys.coupling_modes(l));
+                let mut sum = Gammas::default();
+                for j in mk.start.max(ml.start)..mk.end.min(ml.end) {
+                    let w = ck[j] * cl[j];
                     if w == 0.0 {
                         continue;
                     }
-                    let kl = k * nl + l;
+                    let g = &self.gammas[j];
                     let add = |t: &mut [(f64, f64)], g: &[(f64, f64)]| {
                         for (e, g) in t.iter_mut().zip(g) {
                             e.0 += w * g.0;
                             e.1 += w * g.1;
                         }
                     };
-                    add(&mut self.w8[kl * 20..(kl + 1) * 20], g8.as_flattened());
-                    add(&mut self.w6[kl * 12..(kl + 1) * 12], g6.as_flattened());
-                    add(&mut self.w86[kl * 10..(kl + 1) * 10], g86.as_flattened());
+                    add(&mut sum.g8, &g.g8);
+                    add(&mut sum.g6, &g.g6);
+                    add(&mut sum.g86, &g.g86);
                 }
+                let kl = sys.band_slot(k, l);
+                self.w8[kl * 20..(kl + 1) * 20].copy_from_slice(&sum.g8);
+                self.w6[kl * 12..(kl + 1) * 12].copy_from_slice(&sum.g6);
+                self.w86[kl * 10..(kl + 1) * 10].copy_from_slice(&sum.g86);
             }
         }
     }
@@ -416,6 +467,15 @@ impl Table {
     /// Modes the table was made for.
     pub(super) fn modes(&self) -> usize {
         self.n
+    }
+
+    /// Level k's coupled propagators at node i of [`NODES`], over `sys.coupling_modes(k)`
+    /// (the same system the table was filled for).
+    #[inline]
+    pub(super) fn cprop_at(&self, sys: &System, k: usize, i: usize) -> &[[f64; 4]] {
+        let w = sys.coupling_modes(k).len();
+        let at = self.cstart[k] + i * w;
+        &self.cprop[at..at + w]
     }
 }
 
@@ -469,6 +529,10 @@ pub(super) struct Newton {
     /// Per unknown, whether its node is out of contact (the law's force and derivatives 0:
     /// its row of the Jacobian is the identity's).
     free: Vec<bool>,
+    /// Per level, whether its forces are all zero (start and nodes): out of contact over the
+    /// step as far as the iterate goes, it weighs on no level's state (its products with the
+    /// weights are zeros, skipped).
+    quiet: Vec<bool>,
     /// The unknowns of the nodes in contact, and their reduced system.
     act: Vec<usize>,
     red: Vec<f64>,
@@ -510,11 +574,17 @@ pub(super) fn solve<const S: usize>(
     scratch.rhs.resize(dim, 0.0);
     scratch.slopes.resize(dim, (0.0, 0.0));
     scratch.free.resize(dim, false);
-    let w = &w[..nl * nl * m * S];
+    scratch.quiet.resize(nl, false);
+    let w = &w[..sys.band_slots() * m * S];
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
         // nodal states from the current forces, the residual and the law's derivatives (the
-        // weights of levels sharing no structure are zero: skipped)
+        // weights of levels sharing no structure are zero, and so are the forces of a level
+        // out of contact throughout: both skipped, so that a row's level far from contact
+        // costs its free flight and the law's test only)
+        for (l, q) in scratch.quiet.iter_mut().enumerate() {
+            *q = force[l * S..(l + 1) * S].iter().all(|&f| f == 0.0);
+        }
         let mut scale: f64 = 0.0;
         for k in 0..nl {
             let law = &sys.levels[k].force;
@@ -523,7 +593,10 @@ pub(super) fn solve<const S: usize>(
             for p in 0..m {
                 let (mut d, mut dd) = dfree[k * m + p];
                 for l in band.clone() {
-                    let base = ((k * nl + l) * m + p) * S;
+                    if scratch.quiet[l] {
+                        continue;
+                    }
+                    let base = (sys.band_slot(k, l) * m + p) * S;
                     let (row, fl) = (&w[base..base + S], &force[l * S..(l + 1) * S]);
                     for q in 0..S {
                         d -= row[q].0 * fl[q];
@@ -670,7 +743,6 @@ fn solve_touching<const S: usize>(
     dim: usize,
 ) -> bool {
     let m = S - 1;
-    let nl = dim / m;
     s.act.clear();
     s.act.extend((0..dim).filter(|&r| !s.free[r]));
     let na = s.act.len();
@@ -687,7 +759,7 @@ fn solve_touching<const S: usize>(
         // the row's entry at unknown c = l·m + q
         let entry = |c: usize| {
             let (l, q) = (c / m, c % m);
-            let x = w[((k * nl + l) * m + p) * S + q + 1];
+            let x = w[(sys.band_slot(k, l) * m + p) * S + q + 1];
             let e = kd * x.0 + kv * x.1;
             if c == r { e + 1.0 } else { e }
         };
@@ -941,21 +1013,53 @@ mod tests {
         System::row(models, &pairs, GroundMotion::None)
     }
 
-    /// The level tables, assembled over the levels that hold each mode only, are the dense
-    /// definition `W_kl = Σ_j c_kj c_lj Γ_j` over every mode of the row (Γ_j: the mode's
-    /// responses to the Lagrange loads, kept in `modes[j]`), exactly: the terms skipped are
-    /// products with a zero coupling, and adding zeros changes no sum. And `sharing_levels`
-    /// holds every level pair with a non-zero weight.
+    /// The level tables, assembled over the levels that hold each mode only and stored over
+    /// each level's band, are the dense definition `W_kl = Σ_j c_kj c_lj Γ_j` over every mode
+    /// of the row (Γ_j: the mode's responses to the Lagrange loads, kept in `modes[j]`),
+    /// exactly: the terms skipped are products with a zero coupling, and adding zeros changes
+    /// no sum. `sharing_levels` holds every level pair with a non-zero weight (the pairs left
+    /// out of the storage weigh exactly 0), and the banded propagator rows are the dense
+    /// `c_kj P_j(θh)` over every mode (zero outside the level's pair's modes).
     #[test]
     fn banded_level_tables_equal_the_dense_definition() {
         let sys = random_row();
         let (n, nl) = (sys.len(), sys.levels.len());
         assert_eq!(nl, 10);
         let t = Table::new(&sys, None, 0.013);
+        assert_eq!(
+            t.w8.len(),
+            20 * (0..nl).map(|k| sys.sharing_levels(k).len()).sum::<usize>()
+        );
+        for k in 0..nl {
+            for i in 0..6 {
+                let cp = t.cprop_at(&sys, k, i);
+                let modes = sys.coupling_modes(k);
+                for j in 0..n {
+                    let p = propagator(
+                        sys.omega()[j],
+                        sys.damping_coefficients()[j],
+                        NODES[i] * 0.013,
+                    );
+                    let c = sys.coupling(k)[j];
+                    let want = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                    if modes.contains(&j) {
+                        assert_eq!(cp[j - modes.start], want, "cprop {k} {i} {j}");
+                    } else {
+                        assert_eq!(c, 0.0, "level {k} mode {j} outside its pair");
+                    }
+                }
+            }
+        }
         let mut nonzero = 0;
+        let mut slots = std::collections::BTreeSet::new();
         for k in 0..nl {
             for l in 0..nl {
-                let kl = k * nl + l;
+                let share = sys.sharing_levels(k).contains(&l);
+                assert_eq!(share, sys.sharing_levels(l).contains(&k));
+                let kl = share.then(|| sys.band_slot(k, l));
+                if let Some(kl) = kl {
+                    assert!(slots.insert(kl), "slot {kl} twice");
+                }
                 for i in 0..4 {
                     for p in 0..5 {
                         let (mut a, mut b) = (0.0, 0.0);
@@ -969,27 +1073,30 @@ mod tests {
                             a += c * g.0;
                             b += c * g.1;
                         }
-                        assert_eq!(t.w8[(kl * 4 + i) * 5 + p], (a, b), "w8 {k} {l} {i} {p}");
-                        let share = sys.sharing_levels(k).contains(&l);
-                        assert_eq!(share, sys.sharing_levels(l).contains(&k));
-                        if a != 0.0 {
-                            assert!(share, "levels {k}, {l} share no structure: {a}");
-                            nonzero += 1;
+                        match kl {
+                            Some(kl) => {
+                                assert_eq!(
+                                    t.w8[(kl * 4 + i) * 5 + p],
+                                    (a, b),
+                                    "w8 {k} {l} {i} {p}"
+                                );
+                                nonzero += usize::from(a != 0.0);
+                            }
+                            None => assert_eq!((a, b), (0.0, 0.0), "levels {k}, {l} share none"),
                         }
                     }
                 }
-                // the same skipping in the companion's and the mid-node tables
-                let far = !sys.sharing_levels(k).contains(&l);
+                // the companion's and the mid-node tables: stored over the band, non-zero there
                 let zero = |t: &[(f64, f64)]| t.iter().all(|&x| x == (0.0, 0.0));
-                if far {
-                    assert!(
-                        zero(&t.w6[kl * 12..(kl + 1) * 12]) && zero(&t.w86[kl * 10..(kl + 1) * 10])
-                    );
-                } else {
+                if let Some(kl) = kl {
                     assert!(!zero(&t.w6[kl * 12..(kl + 1) * 12]), "w6 {k} {l}");
+                    assert!(!zero(&t.w86[kl * 10..(kl + 1) * 10]), "w86 {k} {l}");
                 }
             }
         }
+        // (the slots tile the storage)
+        assert_eq!(slots.len(), sys.band_slots());
+        assert_eq!(slots.last().copied(), Some(sys.band_slots() - 1));
         // (the band is not the whole: levels 0 and 9 are three pairs apart)
         assert!(nonzero > 0 && !sys.sharing_levels(0).contains(&9));
         // and the levels holding each mode are those with a non-zero coupling there
@@ -1050,7 +1157,12 @@ mod tests {
                 let (kd, kv) = s.slopes[r];
                 for c in 0..dim {
                     let (l, q) = (c / m, c % m);
-                    let x = t.w8[((k * nl + l) * m + p) * S + q + 1];
+                    // (outside k's band the weight is zero: see the test above)
+                    let x = if sys.sharing_levels(k).contains(&l) {
+                        t.w8[(sys.band_slot(k, l) * m + p) * S + q + 1]
+                    } else {
+                        (0.0, 0.0)
+                    };
                     dense[r * dim + c] = kd * x.0 + kv * x.1 + if r == c { 1.0 } else { 0.0 };
                 }
             }
@@ -1070,6 +1182,107 @@ mod tests {
                 // every node free: the updates are the residuals
                 assert_eq!(s.rhs, b);
             }
+        }
+    }
+
+    /// `solve` on a row where three of ten levels penetrate in free flight (pair 0's and
+    /// both of pair 1's) and the rest are 10 mm short: the nodal forces it returns satisfy
+    /// the collocation equations `F_kp = φ_k(δ_kp)` with δ written from the dense definition
+    /// `δ_kp = δfree_kp − Σ_l Σ_q Σ_j c_kj c_lj Γ_j(p, q) F_lq` over every level pair and every
+    /// mode (so the skipped zero weights and zero forces change nothing), the levels out of
+    /// contact carry exactly zero force, and a level whose whole band is out of contact has its
+    /// free flight's states, to the bit. Tolerance: Newton stops when an update moves no force
+    /// by more than 1e-10 of the largest; the residual after it is of that order or below
+    /// (1e-8 of the largest force allows for the law's δ^{3/2} and the weights' round-off).
+    #[test]
+    fn newton_over_a_row_solves_the_dense_collocation_equations() {
+        let sys = random_row();
+        let (n, nl) = (sys.len(), sys.levels.len());
+        let t = Table::new(&sys, None, 0.013);
+        const S: usize = 5;
+        let m = S - 1;
+        // penetrating: level 0 (pair 0), levels 1 and 2 (pair 1); pair 3's band (pairs 2, 3)
+        // holds none of them
+        let touching = [0usize, 1, 2];
+        let dfree: Vec<(f64, f64)> = (0..nl * m)
+            .map(|r| {
+                let (k, p) = (r / m, r % m);
+                if touching.contains(&k) {
+                    (2e-4 * (1.0 + 0.3 * p as f64), 0.05)
+                } else {
+                    (-0.01, 0.02)
+                }
+            })
+            .collect();
+        let onset = vec![0.0; nl];
+        let mut force = vec![0.0; nl * S];
+        let mut nodal = vec![(0.0, 0.0); nl * m];
+        let mut scratch = Newton::default();
+        solve::<S>(
+            &sys,
+            &t.w8,
+            &dfree,
+            &onset,
+            &mut force,
+            &mut nodal,
+            &mut scratch,
+            1e-10,
+        )
+        .expect("converges");
+        let fmax = force.iter().fold(0.0f64, |a, f| a.max(f.abs()));
+        assert!(fmax > 0.0);
+        let mut calm_levels = 0;
+        for k in 0..nl {
+            let law = &sys.levels[k].force;
+            for p in 0..m {
+                let (mut d, mut dd) = dfree[k * m + p];
+                for l in 0..nl {
+                    for q in 0..S {
+                        let (mut a, mut b) = (0.0, 0.0);
+                        for j in 0..n {
+                            let c = sys.coupling(k)[j] * sys.coupling(l)[j];
+                            let g = if p < 3 {
+                                t.modes[j].mid8[p][q]
+                            } else {
+                                t.modes[j].end8[q]
+                            };
+                            a += c * g.0;
+                            b += c * g.1;
+                        }
+                        d -= a * force[l * S + q];
+                        dd -= b * force[l * S + q];
+                    }
+                }
+                let (phi, _, _) = law.force_jacobian(d, dd, 0.0);
+                let f = force[k * S + p + 1];
+                assert!(
+                    (phi - f).abs() <= 1e-8 * fmax,
+                    "level {k} node {p}: φ {phi} F {f}"
+                );
+                if d <= 0.0 {
+                    assert_eq!(f, 0.0, "level {k} node {p} out of contact");
+                }
+                let calm = sys
+                    .sharing_levels(k)
+                    .all(|l| force[l * S..(l + 1) * S].iter().all(|&x| x == 0.0));
+                if calm {
+                    assert_eq!(nodal[k * m + p], dfree[k * m + p], "level {k} node {p}");
+                    calm_levels += 1;
+                } else {
+                    // (elsewhere the returned states are those of the forces before Newton's
+                    // last update, below 1e-10 of the largest force: far below 1e-9 m here)
+                    let (a, b) = nodal[k * m + p];
+                    assert!(
+                        (a - d).abs() < 1e-9 && (b - dd).abs() < 1e-6,
+                        "level {k} node {p}"
+                    );
+                }
+            }
+        }
+        // pair 3's four levels, at four nodes each
+        assert_eq!(calm_levels, 16);
+        for &k in &touching {
+            assert!(force[k * S + m] > 0.0, "level {k} touches");
         }
     }
 

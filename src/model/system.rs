@@ -148,6 +148,8 @@ pub struct System {
     /// Whether any level's law is impulsive (stereomechanical): the step-end hook is skipped
     /// otherwise.
     impulsive: bool,
+    /// The contact steps' banded level tables: see [`Bands`].
+    bands: Bands,
     /// Yielding storeys (issue 16): their pseudo-forces enter through drift rows as contact
     /// forces do, with one hysteretic variable z per storey as extra state. Empty when both
     /// structures are elastic.
@@ -231,9 +233,11 @@ impl System {
             }
         }
         let impulsive = assembled.iter().any(|l| l.force.impulsive().is_some());
+        let bands = Bands::new(&assembled, &offsets);
         System {
             structures,
             impulsive,
+            bands,
             levels: assembled,
             ground,
             offsets,
@@ -259,6 +263,7 @@ impl System {
         s.levels.clear();
         s.coupling.clear();
         s.impulsive = false;
+        s.bands = Bands::new(&s.levels, &s.offsets);
         s
     }
 
@@ -332,14 +337,8 @@ impl System {
     /// pair by pair in row order (a pair: every level). Elsewhere `c_kj = 0`.
     #[inline]
     pub fn levels_of_mode(&self, j: usize) -> std::ops::Range<usize> {
-        if self.structures.len() <= 2 {
-            return 0..self.levels.len();
-        }
-        let s = self.structure_of_mode(j).0;
-        // pairs s − 1 (s its right structure) and s (its left one)
-        let lo = self.levels.partition_point(|l| l.pair + 1 < s);
-        let hi = self.levels.partition_point(|l| l.pair <= s);
-        lo..hi
+        let (lo, hi) = self.bands.mode_levels[j];
+        lo as usize..hi as usize
     }
 
     /// The levels that share a structure with level k (k's own pair and the two neighbouring
@@ -347,13 +346,27 @@ impl System {
     /// zero (a pair: every level).
     #[inline]
     pub fn sharing_levels(&self, k: usize) -> std::ops::Range<usize> {
-        if self.structures.len() <= 2 {
-            return 0..self.levels.len();
-        }
-        let p = self.levels[k].pair;
-        let lo = self.levels.partition_point(|l| l.pair + 1 < p);
-        let hi = self.levels.partition_point(|l| l.pair <= p + 1);
-        lo..hi
+        let (lo, hi) = self.bands.sharing[k];
+        lo as usize..hi as usize
+    }
+
+    /// Where the level pair (k, l), l in [`Self::sharing_levels`]`(k)`, stands in the banded
+    /// storage of a level-to-level table: the bands of the levels one after the other
+    /// (`k·L + l` for a pair, whose band is every level: the dense layout).
+    #[inline]
+    pub fn band_slot(&self, k: usize, l: usize) -> usize {
+        let lo = self.bands.sharing[k].0 as usize;
+        debug_assert!(
+            self.sharing_levels(k).contains(&l),
+            "level {l} outside {k}'s band"
+        );
+        self.bands.start[k] + (l - lo)
+    }
+
+    /// The number of level pairs (k, l) with l in k's band: the slots of a banded table.
+    #[inline]
+    pub fn band_slots(&self) -> usize {
+        self.bands.start.last().copied().unwrap_or(0)
     }
 
     /// Displacements (w_left, w_right) of level k's pair at its height for modal coordinates
@@ -452,6 +465,64 @@ impl System {
             };
         }
         p
+    }
+}
+
+/// The band structure of a row's contact levels, computed once: of each mode the levels whose
+/// coupling can be non-zero there, of each level those sharing a structure with it, and where
+/// each level's band starts in a banded table (the contact step's hot loops read these at
+/// every step; a pair: every level everywhere).
+#[derive(Debug, Clone, Default)]
+struct Bands {
+    /// Per mode, `levels_of_mode` as (start, end).
+    mode_levels: Vec<(u32, u32)>,
+    /// Per level, `sharing_levels` as (start, end).
+    sharing: Vec<(u32, u32)>,
+    /// Per level, its band's first slot; then the total (L + 1 entries).
+    start: Vec<usize>,
+}
+
+impl Bands {
+    fn new(levels: &[Level], offsets: &[usize]) -> Bands {
+        let nl = levels.len() as u32;
+        let n = offsets.last().copied().unwrap_or(0);
+        let pair = offsets.len() <= 3;
+        // (the levels are assembled pair by pair in row order: a set of pairs is a range)
+        let pairs = |lo: usize, hi: usize| {
+            let a = levels.partition_point(|l| l.pair < lo) as u32;
+            let b = levels.partition_point(|l| l.pair <= hi) as u32;
+            (a, b)
+        };
+        let mode_levels = (0..n)
+            .map(|j| {
+                if pair {
+                    return (0, nl);
+                }
+                // structure s holds j: pairs s − 1 (s its right structure) and s (its left one)
+                let s = offsets[1..].partition_point(|&end| end <= j);
+                pairs(s.saturating_sub(1), s)
+            })
+            .collect();
+        let sharing: Vec<(u32, u32)> = levels
+            .iter()
+            .map(|l| {
+                if pair {
+                    (0, nl)
+                } else {
+                    pairs(l.pair.saturating_sub(1), l.pair + 1)
+                }
+            })
+            .collect();
+        let mut start = Vec::with_capacity(sharing.len() + 1);
+        start.push(0);
+        for &(a, b) in &sharing {
+            start.push(start.last().copied().unwrap_or(0) + (b - a) as usize);
+        }
+        Bands {
+            mode_levels,
+            sharing,
+            start,
+        }
     }
 }
 

@@ -226,13 +226,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
         for k in 0..nl {
             // (over the level's pair's modes only: the row's others have c_kj = 0)
             let r = sys.coupling_modes(k);
+            let (xs, ys) = (&x0s[r.clone()], &y0s[r]);
             for i in 0..6 {
-                let cp = &tab.cprop[(i * nl + k) * n..(i * nl + k + 1) * n];
+                let cp = tab.cprop_at(sys, k, i);
                 let (mut d, mut dd) = (0.0, 0.0);
-                for j in r.clone() {
-                    let [a, b, c, e] = cp[j];
-                    d += a * x0s[j] + b * y0s[j];
-                    dd += c * x0s[j] + e * y0s[j];
+                for ((&[a, b, c, e], &x), &y) in cp.iter().zip(xs).zip(ys) {
+                    d += a * x + b * y;
+                    dd += c * x + e * y;
                 }
                 self.dfree[k * 6 + i].0 -= d;
                 self.dfree[k * 6 + i].1 -= dd;
@@ -753,7 +753,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     0..nl
                 };
                 for l in band {
-                    let base = ((kk * nl + l) * 2 + slot) * 5;
+                    let base = (self.sys.band_slot(kk, l) * 2 + slot) * 5;
                     for p in 0..5 {
                         let (a, b) = tab.w86[base + p];
                         d -= a * self.f8[l * 5 + p];
