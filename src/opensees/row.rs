@@ -15,9 +15,8 @@ use serde::Serialize;
 
 use super::{
     BOUC_WEN_MAPPING, DRIVER, ExportError, ExportGround, ExportLevel, ExportOptions,
-    ExportStructure, NEWTON_TOLERANCE, Only, TESTED_OPENSEESPY, checked_duration,
-    contact_material, damping_notes, export_ground, export_structure, mapping_text, one_line,
-    structure_line,
+    ExportStructure, NEWTON_TOLERANCE, Only, TESTED_OPENSEESPY, checked_duration, contact_material,
+    damping_notes, export_ground, export_structure, mapping_text, one_line, structure_line,
 };
 use crate::input::scenario::Scenario;
 
@@ -121,13 +120,9 @@ pub fn row_model(scenario: &Scenario, opts: &ExportOptions) -> Result<RowExportM
     let system = scenario.system();
     let mut levels = Vec::with_capacity(system.levels.len());
     for lv in &system.levels {
-        let material = contact_material(
-            &contacts[lv.pair].law,
-            &lv.force,
-            lv.gap,
-            lv.effective_mass,
-        )
-        .map_err(|e| in_pair(scenario, lv.pair, e))?;
+        let material =
+            contact_material(&contacts[lv.pair].law, &lv.force, lv.gap, lv.effective_mass)
+                .map_err(|e| in_pair(scenario, lv.pair, e))?;
         levels.push(RowLevel {
             pair: lv.pair,
             level: ExportLevel {

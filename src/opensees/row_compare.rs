@@ -240,7 +240,12 @@ impl RowCrosscheck {
         let list = |v: Vec<String>| v.join(", ");
         let mut s = format!(
             "  program: {} modes ({}), {} at dt = {} s over {} s\n",
-            list(sc.structures.iter().map(|x| x.modes().to_string()).collect()),
+            list(
+                sc.structures
+                    .iter()
+                    .map(|x| x.modes().to_string())
+                    .collect()
+            ),
             list(sc.structures.iter().map(|x| x.name().to_string()).collect()),
             sc.solver.method.name(),
             sc.solver.dt,
