@@ -149,12 +149,9 @@ fn load(path: Option<PathBuf>) -> anyhow::Result<(Scenario, String)> {
     }
 }
 
-/// Commands of one ground motion refuse a suite of records (which `pounding run` runs), and
-/// the commands of a pair refuse a row of buildings.
+/// Commands of one ground motion refuse a suite of records (which `pounding run` runs); the
+/// OpenSees commands, its users, take a pair or a row of buildings (issue 29).
 fn refuse_suite(sc: &Scenario) -> anyhow::Result<()> {
-    if sc.is_row() {
-        return Err(pounding::integrate::SolveError::Row(sc.structures.len()).into());
-    }
     match &sc.suite {
         Some(s) => Err(pounding::integrate::SolveError::Suite(s.records.len()).into()),
         None => Ok(()),

@@ -151,6 +151,7 @@ pub enum Command {
     ///
     /// Needs python3 with openseespy (`pip install openseespy==3.7.1.2`); the interpreter is
     /// $POUNDING_PYTHON, else python3. Without openseespy: an error saying how to install it.
+    /// A row of buildings is compared per structure and per adjacent pair.
     Crosscheck(CrosscheckArgs),
     /// What the program reads from a ground-motion record file: layout (detected from the
     /// content), component, units in the file, time step, number of points, PGA (m/s² and g)
@@ -231,7 +232,9 @@ pub enum ExportTarget {
     /// Cantilevers become N elasticBeamColumn elements (consistent mass), shear buildings
     /// floor masses with storey springs, each contact level a zeroLength element with the
     /// law's material (hertz, linear, jankowski: exact; kelvin, hertzdamp: approximate;
-    /// stereomechanical: refused). See the README, "Checking in OpenSees".
+    /// stereomechanical: refused). A row of buildings gives one script with every structure
+    /// and every adjacent pair's contact, printing per structure and per pair. See the
+    /// README, "Checking in OpenSees".
     Opensees(OpenseesArgs),
 }
 

@@ -18,7 +18,7 @@ pub fn export(a: args::OpenseesArgs, quiet: bool) -> anyhow::Result<()> {
             .as_deref()
             .and_then(pounding::opensees::Only::from_name),
     };
-    let script = pounding::opensees::script(&sc, &opts, &name)?;
+    let script = pounding::opensees::row::any_script(&sc, &opts, &name)?;
     let Some(path) = a.out else {
         print!("{script}");
         return Ok(());
@@ -49,7 +49,11 @@ pub fn crosscheck(a: args::CrosscheckArgs, quiet: bool) -> anyhow::Result<()> {
     if !quiet {
         eprintln!("  running OpenSees ({python}) and the program …");
     }
-    let c = compare::crosscheck(&sc, &name, &opts, &python)?;
-    print!("{}{}", text::heading(&sc.title, &name), c.table());
+    let table = if sc.is_row() {
+        pounding::opensees::row_compare::crosscheck_row(&sc, &name, &opts, &python)?.table()
+    } else {
+        compare::crosscheck(&sc, &name, &opts, &python)?.table()
+    };
+    print!("{}{}", text::heading(&sc.title, &name), table);
     Ok(())
 }

@@ -127,6 +127,18 @@ pub fn run_script(
     dir: &Path,
     extra: &[String],
 ) -> Result<OpenSeesResults, CrosscheckError> {
+    let (text, json) = run_script_text(python, script, dir, extra)?;
+    parse_results(&text, &json)
+}
+
+/// [`run_script`] up to the text of `opensees.json` (and its path), for a pair's or a row's
+/// results.
+pub fn run_script_text(
+    python: &str,
+    script: &str,
+    dir: &Path,
+    extra: &[String],
+) -> Result<(String, String), CrosscheckError> {
     let model = dir.join("model.py");
     let json = dir.join("opensees.json");
     let log = dir.join("opensees.log");
@@ -159,7 +171,7 @@ pub fn run_script(
         path: json.display().to_string(),
         detail: e.to_string(),
     })?;
-    parse_results(&text, &json.display().to_string())
+    Ok((text, json.display().to_string()))
 }
 
 /// The heights whose peaks are reported for structure `s` (as in the export).
@@ -343,9 +355,15 @@ pub fn rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
 
 /// What explains the differences, for this scenario and these options.
 pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
+    notes_for(scenario, &o.elements, o.dt)
+}
+
+/// [`notes`] from OpenSees' elements per structure and its step `dt` (s): a pair's or a row's
+/// (each distinct contact law of a row's pairs once).
+pub(super) fn notes_for(scenario: &Scenario, elements: &[usize], dt: f64) -> Vec<String> {
     let mut notes = Vec::new();
     for (s, st) in scenario.structures.iter().enumerate() {
-        let elements = o.elements.get(s).copied().unwrap_or(0);
+        let elements = elements.get(s).copied().unwrap_or(0);
         notes.push(match st {
             Structure::Cantilever(_) => format!(
                 "{}: mode truncation vs discretisation — the program keeps {} modes of the \
@@ -363,24 +381,30 @@ pub fn notes(scenario: &Scenario, o: &OpenSeesResults) -> Vec<String> {
             ),
         });
     }
-    notes.extend([
-        format!(
-            "time step: OpenSees runs Newmark average acceleration at dt = {} s (period \
-             elongation ≈ (ωdt)²/12 per mode; peaks only at step ends), the program {} at \
-             dt = {} s",
-            o.dt,
-            scenario.solver.method.name(),
-            scenario.solver.dt
-        ),
-        match law_mapping(&scenario.contact.law) {
+    notes.push(format!(
+        "time step: OpenSees runs Newmark average acceleration at dt = {dt} s (period \
+         elongation ≈ (ωdt)²/12 per mode; peaks only at step ends), the program {} at \
+         dt = {} s",
+        scenario.solver.method.name(),
+        scenario.solver.dt
+    ));
+    let mut laws: Vec<&'static str> = Vec::new();
+    for c in scenario.contacts() {
+        if laws.contains(&c.law.name()) {
+            continue;
+        }
+        laws.push(c.law.name());
+        notes.push(match law_mapping(&c.law) {
             Mapping::Exact(t) => format!("contact law mapped exactly: {t}"),
             Mapping::Approximate(t) => format!("contact law mapped approximately: {t}"),
             Mapping::Refused(t) => t.to_string(),
-        },
+        });
+    }
+    notes.push(
         "impacts and contact time follow the sequence of impacts, which a small difference \
          early on changes (a chaotic response): compare them loosely"
             .to_string(),
-    ]);
+    );
     notes.extend(super::damping_notes(scenario));
     if scenario.structures.iter().any(|s| s.hysteresis().is_some()) {
         notes.push(format!(
@@ -418,14 +442,12 @@ pub struct Crosscheck {
     pub notes: Vec<String>,
 }
 
-/// Export `scenario` (named `source`), run it with `python`'s openseespy and the program, and
-/// compare.
-pub fn crosscheck(
+/// `scenario` as the program runs it in a crosscheck: over `--duration` and with `--modes`
+/// when given (checked), with a note when the method had to change.
+pub(super) fn prepared(
     scenario: &Scenario,
-    source: &str,
     opts: &CrosscheckOptions,
-    python: &str,
-) -> Result<Crosscheck, CrosscheckError> {
+) -> Result<(Scenario, Vec<String>), CrosscheckError> {
     let mut sc = scenario.clone();
     if let Some(t) = opts.export.duration {
         if !(t.is_finite() && t > 0.0) {
@@ -436,7 +458,7 @@ pub fn crosscheck(
         }
         sc = with_duration(&sc, t);
     }
-    let mut extra_notes = Vec::new();
+    let mut notes = Vec::new();
     if let Some(n) = opts.modes {
         if n == 0 || n > crate::input::scenario::MAX_MODES as usize {
             return Err(ExportError::Option(format!(
@@ -447,28 +469,46 @@ pub fn crosscheck(
         }
         let (s, note) = with_modes(&sc, n);
         sc = s;
-        extra_notes.extend(note);
+        notes.extend(note);
     }
-    let script = super::script(&sc, &opts.export, source)?;
-    probe(python)?;
-    let tmp;
-    let dir = match &opts.keep {
+    Ok((sc, notes))
+}
+
+/// `f` in the directory `keep` (created), or in a temporary one removed afterwards.
+pub(super) fn in_dir<T>(
+    keep: &Option<std::path::PathBuf>,
+    f: impl FnOnce(&Path) -> Result<T, CrosscheckError>,
+) -> Result<T, CrosscheckError> {
+    match keep {
         Some(d) => {
             std::fs::create_dir_all(d).map_err(|e| CrosscheckError::Io {
                 path: d.display().to_string(),
                 detail: e.to_string(),
             })?;
-            d.as_path()
+            f(d)
         }
         None => {
-            tmp = tempfile::tempdir().map_err(|e| CrosscheckError::Io {
+            let tmp = tempfile::tempdir().map_err(|e| CrosscheckError::Io {
                 path: "a temporary directory".into(),
                 detail: e.to_string(),
             })?;
-            tmp.path()
+            f(tmp.path())
         }
-    };
-    let opensees = run_script(python, &script, dir, &[])?;
+    }
+}
+
+/// Export `scenario` (named `source`), run it with `python`'s openseespy and the program, and
+/// compare.
+pub fn crosscheck(
+    scenario: &Scenario,
+    source: &str,
+    opts: &CrosscheckOptions,
+    python: &str,
+) -> Result<Crosscheck, CrosscheckError> {
+    let (sc, extra_notes) = prepared(scenario, opts)?;
+    let script = super::script(&sc, &opts.export, source)?;
+    probe(python)?;
+    let opensees = in_dir(&opts.keep, |dir| run_script(python, &script, dir, &[]))?;
     let program = program(&sc)?;
     let rows = rows(&program, &opensees);
     let mut notes = extra_notes;
@@ -515,30 +555,7 @@ impl Crosscheck {
             o.dt,
             o.duration
         ));
-        let width = self
-            .rows
-            .iter()
-            .map(|r| r.quantity.chars().count())
-            .fold(44, usize::max);
-        s.push_str(&format!(
-            "  {:<width$} {:>14} {:>14} {:>10}\n",
-            "quantity", "program", "OpenSees", "diff"
-        ));
-        for r in &self.rows {
-            let os = r
-                .opensees
-                .map_or_else(|| "—".to_string(), |v| format!("{v:.6e}"));
-            let diff = r
-                .relative()
-                .map_or_else(|| "—".to_string(), |d| format!("{:+.2} %", 100.0 * d));
-            s.push_str(&format!(
-                "  {:<width$} {:>14} {:>14} {:>10}\n",
-                r.quantity,
-                format!("{:.6e}", r.program),
-                os,
-                diff
-            ));
-        }
+        s.push_str(&rows_table(&self.rows));
         s.push_str(&format!(
             "\n  run time (both runs): program {:.3} s, OpenSees {:.1} s ({} steps, {} needed the fallback)\n",
             self.program.seconds,
@@ -546,10 +563,45 @@ impl Crosscheck {
             o.runs.values().map(|r| r.steps).sum::<u64>(),
             o.runs.values().map(|r| r.fallbacks).sum::<u64>()
         ));
-        s.push_str("\n  what explains the differences:\n");
-        for n in &self.notes {
-            s.push_str(&format!("  - {n}\n"));
-        }
+        s.push_str(&notes_block(&self.notes));
         s
     }
+}
+
+/// The table of compared quantities: quantity, program, OpenSees, relative difference.
+pub(super) fn rows_table(rows: &[Row]) -> String {
+    let mut s = String::new();
+    let width = rows
+        .iter()
+        .map(|r| r.quantity.chars().count())
+        .fold(44, usize::max);
+    s.push_str(&format!(
+        "  {:<width$} {:>14} {:>14} {:>10}\n",
+        "quantity", "program", "OpenSees", "diff"
+    ));
+    for r in rows {
+        let os = r
+            .opensees
+            .map_or_else(|| "—".to_string(), |v| format!("{v:.6e}"));
+        let diff = r
+            .relative()
+            .map_or_else(|| "—".to_string(), |d| format!("{:+.2} %", 100.0 * d));
+        s.push_str(&format!(
+            "  {:<width$} {:>14} {:>14} {:>10}\n",
+            r.quantity,
+            format!("{:.6e}", r.program),
+            os,
+            diff
+        ));
+    }
+    s
+}
+
+/// The notes under a crosscheck's table.
+pub(super) fn notes_block(notes: &[String]) -> String {
+    let mut s = String::from("\n  what explains the differences:\n");
+    for n in notes {
+        s.push_str(&format!("  - {n}\n"));
+    }
+    s
 }

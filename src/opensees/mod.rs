@@ -30,6 +30,8 @@
 
 pub mod compare;
 pub mod results;
+pub mod row;
+pub mod row_compare;
 mod storeys;
 mod yielding;
 
@@ -143,6 +145,18 @@ pub enum ExportError {
     /// An option out of range.
     #[error("{0}")]
     Option(String),
+    /// A row's pair that cannot be exported (issue 29): which pair, and why.
+    #[error("contact[{pair}] (between \"{left}\" and \"{right}\"): {source}")]
+    Pair {
+        /// The pair's place in the row, 1-based (`contact[P]`, as a sweep names it).
+        pair: usize,
+        /// Its left structure's name.
+        left: String,
+        /// Its right structure's name.
+        right: String,
+        /// Why.
+        source: Box<ExportError>,
+    },
 }
 
 /// How exactly a contact law maps onto OpenSees.
@@ -523,6 +537,39 @@ pub fn damping_notes(scenario: &Scenario) -> Vec<String> {
 
 /// The exported model of `scenario` (see the module documentation).
 pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, ExportError> {
+    let duration = checked_duration(scenario, opts)?;
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    let mut structures = Vec::with_capacity(2);
+    for s in &scenario.structures {
+        structures.push(export_structure(s, &heights, opts.elements)?);
+    }
+    let system = scenario.system();
+    let mut levels = Vec::with_capacity(system.levels.len());
+    for lv in &system.levels {
+        let material =
+            contact_material(&scenario.contact.law, &lv.force, lv.gap, lv.effective_mass)?;
+        levels.push(ExportLevel {
+            height: lv.height,
+            gap: lv.gap,
+            material,
+        });
+    }
+    let ground = export_ground(scenario, &structures);
+    Ok(ExportModel {
+        title: scenario.title.clone(),
+        source: format!("pounding {}", env!("CARGO_PKG_VERSION")),
+        dt: opts.dt,
+        duration,
+        tolerance: NEWTON_TOLERANCE,
+        only: opts.only,
+        structures,
+        levels,
+        ground,
+    })
+}
+
+/// The options checked (elements, step, duration, number of steps); the simulated time, s.
+fn checked_duration(scenario: &Scenario, opts: &ExportOptions) -> Result<f64, ExportError> {
     if opts.elements == 0 || opts.elements > 10_000 {
         return Err(ExportError::Option(format!(
             "--elements must be a whole number from 1 to 10000, got {}",
@@ -547,24 +594,14 @@ pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, E
             opts.dt
         )));
     }
-    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
-    let mut structures = Vec::with_capacity(2);
-    for s in &scenario.structures {
-        structures.push(export_structure(s, &heights, opts.elements)?);
-    }
-    let system = scenario.system();
-    let mut levels = Vec::with_capacity(system.levels.len());
-    for lv in &system.levels {
-        let material =
-            contact_material(&scenario.contact.law, &lv.force, lv.gap, lv.effective_mass)?;
-        levels.push(ExportLevel {
-            height: lv.height,
-            gap: lv.gap,
-            material,
-        });
-    }
+    Ok(duration)
+}
+
+/// The scenario's ground motion for the script (the record's velocity only when a structure
+/// has air damping).
+fn export_ground(scenario: &Scenario, structures: &[ExportStructure]) -> ExportGround {
     let air = structures.iter().any(|s| s.air_damping > 0.0);
-    let ground = match &scenario.ground_motion {
+    match &scenario.ground_motion {
         GroundMotion::None => ExportGround::None,
         GroundMotion::Harmonic(h) => ExportGround::Harmonic {
             pga: h.pga,
@@ -575,18 +612,7 @@ pub fn model(scenario: &Scenario, opts: &ExportOptions) -> Result<ExportModel, E
             accel: r.accel.clone(),
             velocity: air.then(|| r.velocity_samples().to_vec()),
         },
-    };
-    Ok(ExportModel {
-        title: scenario.title.clone(),
-        source: format!("pounding {}", env!("CARGO_PKG_VERSION")),
-        dt: opts.dt,
-        duration,
-        tolerance: NEWTON_TOLERANCE,
-        only: opts.only,
-        structures,
-        levels,
-        ground,
-    })
+    }
 }
 
 fn export_structure(
@@ -718,37 +744,12 @@ pub fn script(
         m.dt, m.duration
     ));
     for (s, st) in m.structures.iter().enumerate() {
-        out.push_str(&format!(
-            "# structure {} ({}): {}\n",
-            s + 1,
-            one_line(&st.name),
-            match st.kind {
-                "cantilever" => format!(
-                    "{} elasticBeamColumn elements, EI = {:e} N·m², m = {:e} kg/m, consistent mass",
-                    st.node_heights.len() - 1,
-                    st.bending_stiffness.unwrap_or(0.0),
-                    st.mass_per_length.unwrap_or(0.0)
-                ),
-                _ => format!(
-                    "shear building, {} floors (nodal masses, twoNodeLink storey springs{})",
-                    st.node_heights.len() - 1,
-                    if st.bouc_wen.is_some() {
-                        ", BoucWen: yielding"
-                    } else {
-                        ""
-                    }
-                ),
-            }
-        ));
+        out.push_str(&structure_line(s, st));
     }
     out.push_str(&format!(
         "# contact `{}`: {}\n",
         scenario.contact.law.name(),
-        match law_mapping(&scenario.contact.law) {
-            Mapping::Exact(t) => format!("exact — {t}"),
-            Mapping::Approximate(t) => format!("approximate — {t}"),
-            Mapping::Refused(t) => t.to_string(),
-        }
+        mapping_text(&scenario.contact.law)
     ));
     for n in damping_notes(scenario) {
         out.push_str(&format!("# damping: {}\n", one_line(&n)));
@@ -761,6 +762,41 @@ pub fn script(
     out.push_str("''')\n\n");
     out.push_str(DRIVER);
     Ok(out)
+}
+
+/// How `law` maps onto OpenSees, as the script's header says it.
+fn mapping_text(law: &ContactLaw) -> String {
+    match law_mapping(law) {
+        Mapping::Exact(t) => format!("exact — {t}"),
+        Mapping::Approximate(t) => format!("approximate — {t}"),
+        Mapping::Refused(t) => t.to_string(),
+    }
+}
+
+/// The header line of structure `s` (0-based) of the script.
+fn structure_line(s: usize, st: &ExportStructure) -> String {
+    format!(
+        "# structure {} ({}): {}\n",
+        s + 1,
+        one_line(&st.name),
+        match st.kind {
+            "cantilever" => format!(
+                "{} elasticBeamColumn elements, EI = {:e} N·m², m = {:e} kg/m, consistent mass",
+                st.node_heights.len() - 1,
+                st.bending_stiffness.unwrap_or(0.0),
+                st.mass_per_length.unwrap_or(0.0)
+            ),
+            _ => format!(
+                "shear building, {} floors (nodal masses, twoNodeLink storey springs{})",
+                st.node_heights.len() - 1,
+                if st.bouc_wen.is_some() {
+                    ", BoucWen: yielding"
+                } else {
+                    ""
+                }
+            ),
+        }
+    )
 }
 
 /// `text` on one line (for comments).

@@ -2,7 +2,8 @@
 //! program's storey peaks, and a yielding building's ductility, residual drift and hysteretic
 //! energy.
 
-use super::results::{OpenSeesResults, OsStorey, ProgramNumbers, Row};
+use super::results::{OpenSeesResults, OsStorey, OsStructure, ProgramNumbers, Row};
+use crate::analysis::simulate::StructureReport;
 
 /// The storeys of each shear building: every storey's peak drift and peak storey force
 /// (`floors[].peak_shear`, the force the storey carries: OpenSees' link force) with and without
@@ -10,19 +11,33 @@ use super::results::{OpenSeesResults, OsStorey, ProgramNumbers, Row};
 /// (against its smallest yield drift when smaller) and total hysteretic energy (against 0.1 %
 /// of the input energy when smaller), with and without contact.
 pub(super) fn storey_rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
-    let mut rows = Vec::new();
     let r = &p.report;
+    storey_rows_of(&r.structures, r.energy.input, &o.structures, &|s| {
+        (s + 1).to_string()
+    })
+}
+
+/// [`storey_rows`] of any number of structures (a pair's or a row's): the program's
+/// `structures` (with `input_energy`, J, the run's input energy with contact) against OpenSees'
+/// `os`, structure `s` (0-based) called `label(s)` in the quantities' names.
+pub(super) fn storey_rows_of(
+    structures: &[StructureReport],
+    input_energy: f64,
+    os: &[OsStructure],
+    label: &dyn Fn(usize) -> String,
+) -> Vec<Row> {
+    let mut rows = Vec::new();
     let row = |q: String, program: f64, opensees: Option<f64>, scale: f64| Row {
         quantity: q,
         program,
         opensees,
         scale,
     };
-    for (s, st) in r.structures.iter().enumerate() {
-        let Some(os) = o.structures.get(s).filter(|x| !x.storeys.is_empty()) else {
+    for (s, st) in structures.iter().enumerate() {
+        let Some(os) = os.get(s).filter(|x| !x.storeys.is_empty()) else {
             continue;
         };
-        let i = s + 1;
+        let i = label(s);
         for (j, (f, x)) in st.floors.iter().zip(&os.storeys).enumerate() {
             let j = j + 1;
             rows.push(row(
@@ -64,7 +79,7 @@ pub(super) fn storey_rows(p: &ProgramNumbers, o: &OpenSeesResults) -> Vec<Row> {
             let v: Option<Vec<f64>> = os.storeys.iter().map(pick).collect();
             v.map(|v| v.iter().zip(&ys).map(|(d, y)| d / y).fold(0.0f64, f64::max))
         };
-        let energy_scale = 1e-3 * r.energy.input.abs();
+        let energy_scale = 1e-3 * input_energy.abs();
         let total = |v: &[f64]| v.iter().sum::<f64>();
         rows.extend([
             row(
