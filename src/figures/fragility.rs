@@ -83,9 +83,34 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
             }
         })
         .collect();
+    let row = s.scenario.is_row();
     let mut panels = Vec::new();
     for l in 0..n_ls {
         let ls = &s.limit_states[l];
+        let row_title = row.then(|| {
+            // (a row has many panels: its titles short, "with / without")
+            let fit = |m: usize| {
+                run.curves
+                    .iter()
+                    .find(|c| c.limit_state == l && c.model == m)
+                    .and_then(|c| c.fit.as_ref().ok())
+            };
+            let pair = |f: &dyn Fn(&crate::study::fragility::LognormalFit) -> String| {
+                [0, 1]
+                    .map(|m| fit(m).map_or("–".to_string(), f))
+                    .join(" / ")
+            };
+            if fit(0).is_none() && fit(1).is_none() {
+                ls.name.clone()
+            } else {
+                format!(
+                    "{}: θ = {}, β = {}",
+                    ls.name,
+                    pair(&|f| format!("{:.3}", f.theta)),
+                    pair(&|f| format!("{:.2}", f.beta))
+                )
+            }
+        });
         let mut fits = Vec::new();
         for d in data.iter().filter(|d| d.ls == l) {
             let c = run
@@ -99,7 +124,9 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
                 ));
             }
         }
-        let title = if fits.is_empty() {
+        let title = if let Some(t) = row_title {
+            t
+        } else if fits.is_empty() {
             ls.name.clone()
         } else {
             format!("{} ({})", ls.name, fits.join("; "))
@@ -137,7 +164,19 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
     let cols = if n_ls <= 1 { 1 } else { 2 };
     let rows = n_ls.div_ceil(cols);
     let x_label = format!("{} [{}]", s.measure.label(), s.units.key());
-    let subtitle = if s.ida.is_some() {
+    let subtitle = if row {
+        format!(
+            "{} records{}; θ, β: with / without pounding (solid / dashed); points: fractions \
+             (filled: with); bands: {:.0} % bootstrap",
+            s.record_names.len(),
+            if s.ida.is_some() {
+                " (IDA)".to_string()
+            } else {
+                format!(" × {} stripes", stripes.len())
+            },
+            100.0 * s.confidence
+        )
+    } else if s.ida.is_some() {
         format!(
             "IDA of {} records; points: the fraction of records whose capacity is at most IM; \
              lines: lognormal of the capacities; bands: {:.0} % bootstrap over records",
@@ -301,7 +340,12 @@ fn row_pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
                     y: p,
                     band: (&[], &[]),
                     color: record_color(j),
-                    style: LineStyle::Solid,
+                    // (seven colours: the next seven intensities dashed)
+                    style: if j < 7 {
+                        LineStyle::Solid
+                    } else {
+                        LineStyle::Dashed
+                    },
                 })
                 .collect();
             if let Some((x, y)) = &d.target {
@@ -325,13 +369,12 @@ fn row_pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     let cols = if n <= 1 { 1 } else { 2 };
     let rows = n.div_ceil(cols);
     let subtitle = format!(
-        "{}; each pair from the runs without contact: a record pounds for every gap below its \
-         critical gap ({}); dashed: the gap for the target probability",
+        "{}; from the runs without contact ({}); black: the gap for the target probability",
         s.measure.label(),
         match s.gap_mode {
-            crate::input::fragility::GapMode::Uniform => "the same gap at every level of the pair",
+            crate::input::fragility::GapMode::Uniform => "one gap at every level of the pair",
             crate::input::fragility::GapMode::Scaled => {
-                "the pair's gaps scaled together; the gap at its highest level"
+                "the pair's gaps scaled; the gap at its highest level"
             }
         }
     );
