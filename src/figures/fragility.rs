@@ -339,13 +339,9 @@ fn row_pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
                     x: &d.gaps_mm,
                     y: p,
                     band: (&[], &[]),
+                    // (seven colours, in turn)
                     color: record_color(j),
-                    // (seven colours: the next seven intensities dashed)
-                    style: if j < 7 {
-                        LineStyle::Solid
-                    } else {
-                        LineStyle::Dashed
-                    },
+                    style: LineStyle::Solid,
                 })
                 .collect();
             if let Some((x, y)) = &d.target {

@@ -19,6 +19,13 @@
 //! - `fit.json`: the study (measure, units, stripes, records), per limit state and model the
 //!   fit (`theta` in IM units, `beta`, `theta_interval`, `beta_interval`, …), the gap for the
 //!   target probability.
+//!
+//! A row of buildings (more than two structures; a pair's files are unchanged): per pair
+//! `p_pounding.csv` rows (a first column `pair`, 1-based), `runs.csv` columns
+//! `pair{p}_critical_gap`, `pair{p}_level{k}_required_separation`, `pair{p}_impacts`,
+//! `pair{p}_peak_force` and the structures' for i = 1 … N; `fit.json` with `structures`,
+//! `pairs`, `pair` in every fit and `target_gap` a list (one per pair, with `pair` and
+//! `between`).
 
 use std::path::{Path, PathBuf};
 
