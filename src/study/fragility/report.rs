@@ -204,8 +204,7 @@ pub fn report(run: &FragilityRun) -> String {
                 ""
             },
             match (s.gap_mode, row) {
-                (crate::input::fragility::GapMode::Uniform, false) => "the same",
-                (crate::input::fragility::GapMode::Uniform, true) => "the same",
+                (crate::input::fragility::GapMode::Uniform, _) => "the same",
                 (crate::input::fragility::GapMode::Scaled, false) => {
                     "the scenario's gaps scaled; the"
                 }
