@@ -210,7 +210,10 @@ fn a_row_whose_second_gap_never_closes_gives_the_pairs_study_for_pair_1() {
     // every run of the pair's buildings is the same number, to the last digit
     for (a, b) in row.outcomes.iter().zip(&pr.outcomes) {
         assert_eq!(a.required[0], b.required[0]);
-        assert_eq!((a.impacts[0], a.peak_force[0]), (b.impacts[0], b.peak_force[0]));
+        assert_eq!(
+            (a.impacts[0], a.peak_force[0]),
+            (b.impacts[0], b.peak_force[0])
+        );
         assert_eq!(a.impacts[1], 0);
         assert_eq!(a.floor_acceleration[..2], b.floor_acceleration[..]);
         assert_eq!(a.drift_ratio[..2], b.drift_ratio[..]);
@@ -228,7 +231,10 @@ fn the_rows_pounding_is_any_pairs_and_p_pounding_per_pair_is_counted_by_hand() {
         contact("A", "B", &[(14.0, 0.012), (10.5, 0.008)]),
         contact("B", "C", &[(10.5, 0.02)]),
     )
-    .replace("dt = 0.002\n\noutput_interval", "dt = 0.002\noutput_interval");
+    .replace(
+        "dt = 0.002\n\noutput_interval",
+        "dt = 0.002\noutput_interval",
+    );
     let d = setup(&[("base.toml", text)]);
     let gaps = [0.0, 0.004, 0.01, 0.02, 0.035, 0.05, 0.08];
     let stripes = [0.05, 0.1, 0.2, 0.3];
@@ -251,7 +257,17 @@ fn the_rows_pounding_is_any_pairs_and_p_pounding_per_pair_is_counted_by_hand() {
     let (head, rows) = csv(&text("runs.csv"));
     let col = |name: &str| head.iter().position(|h| h == name).unwrap();
     let (fh, frows) = csv(&text("fragility.csv"));
-    assert_eq!(fh, ["limit_state", "model", "im", "runs", "exceedances", "fraction"]);
+    assert_eq!(
+        fh,
+        [
+            "limit_state",
+            "model",
+            "im",
+            "runs",
+            "exceedances",
+            "fraction"
+        ]
+    );
     let level_gaps = [[0.012, 0.008].as_slice(), [0.02].as_slice()];
     let mut both = [false; 2];
     for (j, x) in stripes.iter().enumerate() {
@@ -301,7 +317,10 @@ fn the_rows_pounding_is_any_pairs_and_p_pounding_per_pair_is_counted_by_hand() {
             both[1] |= per_pair[1] > 0;
         }
     }
-    assert!(both[0] && both[1], "the test needs each pair to pound somewhere");
+    assert!(
+        both[0] && both[1],
+        "the test needs each pair to pound somewhere"
+    );
     // before the first impact of the row the runs with and without contact are one motion:
     // the row pounds with contact exactly when it does without (record by record, away from
     // the gap by 1 %: there the answer depends on where inside a step the closing peaks)
@@ -315,7 +334,10 @@ fn the_rows_pounding_is_any_pairs_and_p_pounding_per_pair_is_counted_by_hand() {
             .flat_map(|(r, g)| r.iter().zip(g))
             .any(|(r, g)| (r / g - 1.0).abs() < 0.01);
         if !close {
-            assert_eq!(o.exceeds(row_ls, 0, &gaps_pp), o.exceeds(row_ls, 1, &gaps_pp));
+            assert_eq!(
+                o.exceeds(row_ls, 0, &gaps_pp),
+                o.exceeds(row_ls, 1, &gaps_pp)
+            );
         }
     }
 
@@ -377,7 +399,10 @@ fn the_rows_pounding_is_any_pairs_and_p_pounding_per_pair_is_counted_by_hand() {
         }
     }
     // (2 pairs × 4 stripes × 7 gaps, a few left out near a peak; some strictly between 0 and 1)
-    assert!(checked >= 45 && between >= 6, "{checked} checked, {between} between 0 and 1");
+    assert!(
+        checked >= 45 && between >= 6,
+        "{checked} checked, {between} between 0 and 1"
+    );
 }
 
 #[test]
@@ -413,7 +438,10 @@ fn a_rows_study_in_parts_is_the_study_in_one_go() {
     assert_eq!(merged.curves, whole.curves);
     // resumed: every run is found in a part's journal again
     let again = fragility::journal::open(&s, &dir, Shard { k: 1, n: 2 }).unwrap();
-    assert_eq!(again.resumed(), fragility::journal::part(&s, Shard { k: 1, n: 2 }).len());
+    assert_eq!(
+        again.resumed(),
+        fragility::journal::part(&s, Shard { k: 1, n: 2 }).len()
+    );
     let names: Vec<&str> = s.limit_states.iter().map(|l| l.name.as_str()).collect();
     assert_eq!(
         names,
@@ -511,7 +539,10 @@ fn bad_row_inputs_name_their_key() {
         &ok.replace("base.toml", "pair.toml")
             .replace("kind = \"pounding\"", "kind = \"pounding\"\npair = 2"),
     );
-    assert!(e.contains("`limit_state[1].pair`") && e.contains("must be in 1..=1"), "{e}");
+    assert!(
+        e.contains("`limit_state[1].pair`") && e.contains("must be in 1..=1"),
+        "{e}"
+    );
     // a row with a zero gap at a pair's highest level has no "scaled" axis
     std::fs::write(d.path().join("zero.toml"), row_text(0.01, 0.0)).unwrap();
     let e = study_error(
@@ -598,7 +629,10 @@ fn a_pair_study_keeps_its_files() {
         .iter()
         .map(|f| f["limit_state"].as_str().unwrap())
         .collect();
-    assert_eq!(names, ["pounding", "pounding", "ductility>2", "ductility>2"]);
+    assert_eq!(
+        names,
+        ["pounding", "pounding", "ductility>2", "ductility>2"]
+    );
 }
 
 /// The bundled row example (README, "Fragility"): its files per pair and per structure agree
@@ -635,7 +669,10 @@ fn the_bundled_row_example_runs_and_its_outputs_agree() {
     assert_eq!(counts("pounding", "with"), counts("pounding", "without"));
     assert_eq!(counts("pounding", "with").len(), 7);
     for s in 1..=3 {
-        assert_eq!(counts(&format!("floor_acceleration>1g({s})"), "with").len(), 7);
+        assert_eq!(
+            counts(&format!("floor_acceleration>1g({s})"), "with").len(),
+            7
+        );
     }
     let (rh, rows) = csv(&text("runs.csv"));
     let col = |n: &str| rh.iter().position(|h| h == n).unwrap();

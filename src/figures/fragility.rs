@@ -329,21 +329,20 @@ fn row_pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
         .iter()
         .zip(&run.pounding)
         .map(|(d, t)| {
-            let mut curves: Vec<BandCurve> = t
-                .p
-                .iter()
-                .zip(&labels)
-                .enumerate()
-                .map(|(j, (p, l))| BandCurve {
-                    label: l,
-                    x: &d.gaps_mm,
-                    y: p,
-                    band: (&[], &[]),
-                    // (seven colours, in turn)
-                    color: record_color(j),
-                    style: LineStyle::Solid,
-                })
-                .collect();
+            let mut curves: Vec<BandCurve> =
+                t.p.iter()
+                    .zip(&labels)
+                    .enumerate()
+                    .map(|(j, (p, l))| BandCurve {
+                        label: l,
+                        x: &d.gaps_mm,
+                        y: p,
+                        band: (&[], &[]),
+                        // (seven colours, in turn)
+                        color: record_color(j),
+                        style: LineStyle::Solid,
+                    })
+                    .collect();
             if let Some((x, y)) = &d.target {
                 curves.push(BandCurve {
                     label: "",

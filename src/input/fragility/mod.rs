@@ -574,7 +574,10 @@ pub fn pair_top_gaps(scenario: &Scenario) -> Vec<f64> {
                 .iter()
                 .map(|l| l.height)
                 .fold(f64::NEG_INFINITY, f64::max);
-            c.levels.iter().find(|l| l.height == h).map_or(0.0, |l| l.gap)
+            c.levels
+                .iter()
+                .find(|l| l.height == h)
+                .map_or(0.0, |l| l.gap)
         })
         .collect()
 }

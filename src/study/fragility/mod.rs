@@ -150,8 +150,7 @@ fn structure_peaks(s: &StructureReport) -> ([Option<f64>; 2], [f64; 2], [f64; 2]
 impl RunOutcome {
     /// The numbers of a pair's `report`.
     pub fn of(report: &Report, record: usize, stripe: usize, im: f64, factor: f64) -> RunOutcome {
-        let (ductility, drift_ratio, floor_acceleration) =
-            per_structure(report.structures.iter());
+        let (ductility, drift_ratio, floor_acceleration) = per_structure(report.structures.iter());
         RunOutcome {
             record,
             stripe,
@@ -176,8 +175,7 @@ impl RunOutcome {
         im: f64,
         factor: f64,
     ) -> RunOutcome {
-        let (ductility, drift_ratio, floor_acceleration) =
-            per_structure(report.structures.iter());
+        let (ductility, drift_ratio, floor_acceleration) = per_structure(report.structures.iter());
         let p = &report.pairs;
         RunOutcome {
             record,
