@@ -431,7 +431,7 @@ fn a_study_runs_and_writes_its_files() {
     assert_eq!(run.outcomes.len(), RECORDS.len() * 4);
     // pounding: the run with contact has an impact exactly when a level's relative
     // displacement without contact passes its gap (record by record)
-    let gaps = [0.02, 0.015];
+    let gaps = [vec![0.02, 0.015]];
     for o in &run.outcomes {
         let ls = &s.limit_states[0];
         assert_eq!(o.exceeds(ls, 0, &gaps), o.exceeds(ls, 1, &gaps), "{o:?}");
@@ -447,13 +447,13 @@ fn a_study_runs_and_writes_its_files() {
         .iter()
         .find(|c| c.limit_state == 0 && c.model == 1)
         .unwrap();
-    for (j, p) in run.pounding.p.iter().enumerate() {
+    for (j, p) in run.pounding[0].p.iter().enumerate() {
         let frac = pound.exceedances[j] as f64 / pound.runs[j] as f64;
         assert!(p[2] <= frac + 1e-12 && frac <= p[1] + 1e-12, "{p:?} {frac}");
         // a probability, non-increasing in the gap
         assert!(p.windows(2).all(|w| w[1] <= w[0]));
     }
-    let t = run.target_gap.as_ref().unwrap();
+    let t = run.target_gap.first().unwrap();
     assert_eq!(t.records, RECORDS.len());
     let out = d.path().join("out");
     let written = fragility::write::write(&run, &out, || {

@@ -195,7 +195,7 @@ fn hunt_and_fill_brackets_the_closed_form_capacity() {
         assert!(run.record_runs(r).count() <= 40);
     }
     // the target: each record's critical gap at 0.33 g is linear in x: GAP · 0.33 / x*
-    let t = run.target_gap.as_ref().unwrap();
+    let t = run.target_gap.first().unwrap();
     let mut crit: Vec<f64> = pound_star.iter().map(|x| GAP * 0.33 / x).collect();
     crit.sort_by(|a, b| b.total_cmp(a));
     // ⌊0.25 · 4⌋ = 1: the second largest
@@ -207,10 +207,10 @@ fn hunt_and_fill_brackets_the_closed_form_capacity() {
     );
     // P(pounding) at the hunt's intensities: the fraction of records with x* below (uniform
     // gap = the scenario's gap 0.02: column 2)
-    for (j, x) in run.pounding.im.iter().enumerate() {
+    for (j, x) in run.pounding[0].im.iter().enumerate() {
         let expect = pound_star.iter().filter(|s| *s * (1.0 + 1e-9) < *x).count() as f64
             / RECORDS.len() as f64;
-        assert_eq!(run.pounding.p[j][2], expect, "IM {x}");
+        assert_eq!(run.pounding[0].p[j][2], expect, "IM {x}");
     }
     // the files: ida.csv (every run), capacities.csv (2 + 1 + 2 curves × 4 records: pounding
     // with/without, drift with/without)

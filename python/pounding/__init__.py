@@ -400,6 +400,12 @@ class FragilityResult:
     ``fits`` (its list: per limit state and model ``theta``, ``beta``, ``theta_interval``,
     ``beta_interval``, …); ``target_gap`` (the gap for the target probability, or None);
     ``report`` (the printed text).
+
+    A row of buildings (more than two structures): ``structures`` (the names, row order; None
+    for a pair), ``p_pounding`` with a ``pair`` column (1-based), ``target_gap`` one entry per
+    pair (with ``pair`` and ``between``), the fits of each pair's and each structure's limit
+    states (``pounding(1-2)``, ``ductility>4(2)``, … with ``pair`` / ``structure``), and
+    ``pairs``: per pair its ``p_pounding``, ``target_gap`` and ``fits`` (one entry for a pair).
     """
 
     def __init__(self, parts: dict[str, str]) -> None:
@@ -414,6 +420,36 @@ class FragilityResult:
         # ``capacities`` capacities.csv (``record``, ``file``, ``limit_state``, ``model``,
         # ``im_lo``, ``im_hi``, ``capacity``); no rows for stripes
         self.capacities: dict[str, Any] = _columns(parts.get("capacities_csv", ""))
+        # a row (more than two structures): the structures' names, ``p_pounding`` with a
+        # ``pair`` column, ``target_gap`` a list (one per pair); ``pairs`` gathers each pair's
+        self.structures: list[str] | None = self.fit.get("structures")
+        self.pairs: list[dict[str, Any]] = self._pairs()
+
+    def _pairs(self) -> list[dict[str, Any]]:
+        """Per adjacent pair (row order; one for a pair of structures): ``pair`` (1-based),
+        ``between`` (the two names; None for a pair of structures), ``p_pounding`` (its
+        P(pounding | IM, gap): ``im``, ``gap``, ``p_pounding``), ``target_gap`` (or None) and
+        ``fits`` (the fits of its pair's limit states: pounding, contact force)."""
+        if self.structures is None:
+            fits = [f for f in self.fits if f["kind"] in ("pounding", "contact_force")]
+            return [
+                {"pair": 1, "between": None, "p_pounding": self.p_pounding, "target_gap": self.target_gap, "fits": fits}
+            ]
+        targets = {t["pair"]: t for t in (self.target_gap or [])}
+        out = []
+        for q in self.fit["pairs"]:
+            p = q["pair"]
+            at = self.p_pounding["pair"] == p
+            out.append(
+                {
+                    "pair": p,
+                    "between": q["between"],
+                    "p_pounding": {k: v[at] for k, v in self.p_pounding.items() if k != "pair"},
+                    "target_gap": targets.get(p),
+                    "fits": [f for f in self.fits if f.get("pair") == p],
+                }
+            )
+        return out
 
     def to_pandas(self, table: str = "fragility") -> Any:
         """One table (``fragility``, ``p_pounding``, ``runs`` or ``capacities``) as a pandas

@@ -75,3 +75,66 @@ def test_fragility_bad_study_raises_scenario_error(tmp_path: Path) -> None:
     p.write_text('scenario = "nothere.toml"\n')
     with pytest.raises(pounding.ScenarioError, match="`scenario`"):
         pounding.fragility(p)
+
+
+ROW_STUDY = """scenario = "row.toml"
+[ground_motion]
+records = [
+  {{ file = "{records}/RSN753_LOMAP_CLS000.AT2" }},
+  {{ file = "{records}/RSN786_LOMAP_PAE055.AT2" }},
+  {{ file = "{records}/INGLEWOO.V2", component = 1 }},
+]
+[intensity]
+measure = "sa"
+structure = 2
+[[limit_state]]
+kind = "pounding"
+[[limit_state]]
+kind = "ductility"
+value = 2.0
+[fragility]
+stripes = [0.05, 0.2]
+gaps = [0.0, 0.02, 0.05, 0.1, 0.2]
+target = {{ im = 0.2, probability = 0.4 }}
+bootstrap = 20
+"""
+
+
+def test_fragility_of_a_row_is_per_pair_and_per_structure(tmp_path: Path, examples: Path) -> None:
+    # the bundled row (A4, B8 yielding, C5), 8 s of motion
+    base = (examples / "fragility-row-frames.toml").read_text().replace("duration = 20.0", "duration = 8.0")
+    base = base.replace('file = "records/', f'file = "{examples}/records/')
+    (tmp_path / "row.toml").write_text(base)
+    study = tmp_path / "study.toml"
+    study.write_text(ROW_STUDY.format(records=examples / "records"))
+    r = pounding.fragility(study, jobs=2, plots=False)
+    assert r.structures == ["A4", "B8", "C5"]
+    # the row's pounding, then each pair's; the ductility of B8, the one yielding building
+    names = [f["limit_state"] for f in r.fits if f["model"] == "without"]
+    assert names == ["pounding", "pounding(1-2)", "pounding(2-3)", "ductility>2", "ductility>2(2)"]
+    assert len(r.pairs) == 2
+    for q in r.pairs:
+        p = q["pair"]
+        assert q["between"] == r.structures[p - 1 : p + 1]
+        assert [f["limit_state"] for f in q["fits"]] == [f"pounding({p}-{p + 1})"] * 2
+        # each pair's P(pounding | IM, gap): the fraction of records whose critical gap of that
+        # pair (runs.csv) exceeds the gap
+        crit = r.runs[f"pair{p}_critical_gap"]
+        for im, gap, pp in zip(q["p_pounding"]["im"], q["p_pounding"]["gap"], q["p_pounding"]["p_pounding"]):
+            assert pp == np.mean(crit[r.runs["im"] == im] > gap)
+        # the critical gap is the largest required separation over the pair's levels
+        req = np.maximum(r.runs[f"pair{p}_level1_required_separation"], r.runs[f"pair{p}_level2_required_separation"])
+        np.testing.assert_array_equal(crit, req)
+        # the target: ⌊0.4 · 3⌋ = 1 record may pound: the second largest critical gap at 0.2 g
+        t = q["target_gap"]
+        assert t["pair"] == p and t["records"] == 3
+        assert t["empirical"] == sorted(crit[r.runs["im"] == 0.2])[-2]
+        # with contact, pounding of the pair is an impact of the pair (runs.csv)
+        f = next(f for f in q["fits"] if f["model"] == "with")
+        for j, im in enumerate((0.05, 0.2)):
+            assert f["exceedances"][j] == int(np.sum(r.runs[f"pair{p}_impacts"][r.runs["im"] == im] > 0))
+    # the row pounds when some pair pounds (with contact: some pair has an impact)
+    row = next(f for f in r.fits if f["limit_state"] == "pounding" and f["model"] == "with")
+    for j, im in enumerate((0.05, 0.2)):
+        at = r.runs["im"] == im
+        assert row["exceedances"][j] == int(np.sum((r.runs["pair1_impacts"][at] > 0) | (r.runs["pair2_impacts"][at] > 0)))

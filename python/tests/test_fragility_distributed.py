@@ -95,3 +95,23 @@ def test_fragility_plan_pickles_and_refuses_a_bad_task(tmp_path: Path, examples:
     # the rows of every task, in any order, make the tables of pounding.fragility
     rows = [r for t in reversed(range(len(plan))) for r in again.run_task(t)]
     _same(pounding.FragilityResult(dict(plan.assemble(rows))), pounding.fragility(p, jobs=1))
+
+
+def test_dask_fragility_of_a_row_equals_pounding_fragility(tmp_path: Path, examples: Path) -> None:
+    # the Dask path is generic: a row's journal rows (per pair and per structure) travel too
+    distributed = need("dask.distributed")
+    import pounding.distributed as pd_dask
+
+    base = (examples / "fragility-row-frames.toml").read_text().replace("duration = 20.0", "duration = 6.0")
+    base = base.replace('file = "records/', f'file = "{examples}/records/')
+    (tmp_path / "base.toml").write_text(base)
+    study = tmp_path / "row.toml"
+    study.write_text(STUDY.format(records=examples / "records", method="stripes = [0.1, 0.3]"))
+    expected = pounding.fragility(study, jobs=2)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        got = pd_dask.fragility(client, study)
+    _same(got, expected)
+    assert [q["between"] for q in got.pairs] == [["A4", "B8"], ["B8", "C5"]]
+    assert set(got.p_pounding["pair"]) == {1.0, 2.0}

@@ -83,9 +83,34 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
             }
         })
         .collect();
+    let row = s.scenario.is_row();
     let mut panels = Vec::new();
     for l in 0..n_ls {
         let ls = &s.limit_states[l];
+        let row_title = row.then(|| {
+            // (a row has many panels: its titles short, "with / without")
+            let fit = |m: usize| {
+                run.curves
+                    .iter()
+                    .find(|c| c.limit_state == l && c.model == m)
+                    .and_then(|c| c.fit.as_ref().ok())
+            };
+            let pair = |f: &dyn Fn(&crate::study::fragility::LognormalFit) -> String| {
+                [0, 1]
+                    .map(|m| fit(m).map_or("–".to_string(), f))
+                    .join(" / ")
+            };
+            if fit(0).is_none() && fit(1).is_none() {
+                ls.name.clone()
+            } else {
+                format!(
+                    "{}: θ = {}, β = {}",
+                    ls.name,
+                    pair(&|f| format!("{:.3}", f.theta)),
+                    pair(&|f| format!("{:.2}", f.beta))
+                )
+            }
+        });
         let mut fits = Vec::new();
         for d in data.iter().filter(|d| d.ls == l) {
             let c = run
@@ -99,7 +124,9 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
                 ));
             }
         }
-        let title = if fits.is_empty() {
+        let title = if let Some(t) = row_title {
+            t
+        } else if fits.is_empty() {
             ls.name.clone()
         } else {
             format!("{} ({})", ls.name, fits.join("; "))
@@ -137,7 +164,19 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
     let cols = if n_ls <= 1 { 1 } else { 2 };
     let rows = n_ls.div_ceil(cols);
     let x_label = format!("{} [{}]", s.measure.label(), s.units.key());
-    let subtitle = if s.ida.is_some() {
+    let subtitle = if row {
+        format!(
+            "{} records{}; θ, β: with / without pounding (solid / dashed); points: fractions \
+             (filled: with); bands: {:.0} % bootstrap",
+            s.record_names.len(),
+            if s.ida.is_some() {
+                " (IDA)".to_string()
+            } else {
+                format!(" × {} stripes", stripes.len())
+            },
+            100.0 * s.confidence
+        )
+    } else if s.ida.is_some() {
         format!(
             "IDA of {} records; points: the fraction of records whose capacity is at most IM; \
              lines: lognormal of the capacities; bands: {:.0} % bootstrap over records",
@@ -167,10 +206,13 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
     write_curves(&fig, &dir.join("fragility"))
 }
 
-/// `p-pounding.png/.svg` in `dir`.
+/// `p-pounding.png/.svg` in `dir` (of a row: a panel per pair, [`row_pounding_figure`]).
 pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let s = &run.study;
-    let t = &run.pounding;
+    if s.scenario.is_row() {
+        return row_pounding_figure(run, dir);
+    }
+    let t = &run.pounding[0];
     let gaps_mm: Vec<f64> = t.gaps.iter().map(|g| 1e3 * g).collect();
     let labels: Vec<String> =
         t.im.iter()
@@ -192,7 +234,7 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     let target_x;
     let target_y;
     let target_label;
-    if let Some(g) = &run.target_gap {
+    if let Some(g) = run.target_gap.first() {
         target_x = vec![0.0, 1e3 * g.empirical, 1e3 * g.empirical];
         target_y = vec![g.probability, g.probability, 0.0];
         target_label = format!(
@@ -237,6 +279,114 @@ pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, P
     write_xy(&fig, &dir.join("p-pounding"))
 }
 
+/// `p-pounding.png/.svg` of a row: one panel per adjacent pair, P(pounding) of that pair
+/// against its gap (one curve per intensity), and the gap for the target probability.
+fn row_pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    let s = &run.study;
+    let names: Vec<&str> = s.scenario.structures.iter().map(|x| x.name()).collect();
+    struct Panel {
+        title: String,
+        gaps_mm: Vec<f64>,
+        target: Option<(Vec<f64>, Vec<f64>)>,
+    }
+    let data: Vec<Panel> = run
+        .pounding
+        .iter()
+        .enumerate()
+        .map(|(p, t)| {
+            let g = run.target_gap.get(p);
+            Panel {
+                title: format!(
+                    "pair {}: {} – {}{}",
+                    p + 1,
+                    names[p],
+                    names[p + 1],
+                    g.map_or(String::new(), |g| format!(
+                        " (P = {:.0} % at {} = {} {}: gap {:.0} mm)",
+                        100.0 * g.probability,
+                        s.measure.short(),
+                        tidy(g.im),
+                        s.units.key(),
+                        1e3 * g.empirical
+                    ))
+                ),
+                gaps_mm: t.gaps.iter().map(|g| 1e3 * g).collect(),
+                target: g.map(|g| {
+                    (
+                        vec![0.0, 1e3 * g.empirical, 1e3 * g.empirical],
+                        vec![g.probability, g.probability, 0.0],
+                    )
+                }),
+            }
+        })
+        .collect();
+    let labels: Vec<String> = run.pounding[0]
+        .im
+        .iter()
+        .map(|x| format!("{} = {} {}", s.measure.short(), tidy(*x), s.units.key()))
+        .collect();
+    let panels: Vec<CurvePanel> = data
+        .iter()
+        .zip(&run.pounding)
+        .map(|(d, t)| {
+            let mut curves: Vec<BandCurve> =
+                t.p.iter()
+                    .zip(&labels)
+                    .enumerate()
+                    .map(|(j, (p, l))| BandCurve {
+                        label: l,
+                        x: &d.gaps_mm,
+                        y: p,
+                        band: (&[], &[]),
+                        // (seven colours, in turn)
+                        color: record_color(j),
+                        style: LineStyle::Solid,
+                    })
+                    .collect();
+            if let Some((x, y)) = &d.target {
+                curves.push(BandCurve {
+                    label: "",
+                    x,
+                    y,
+                    band: (&[], &[]),
+                    color: PALETTE_BLACK,
+                    style: LineStyle::Dashed,
+                });
+            }
+            CurvePanel {
+                title: d.title.clone(),
+                curves,
+                markers: Vec::new(),
+            }
+        })
+        .collect();
+    let n = panels.len();
+    let cols = if n <= 1 { 1 } else { 2 };
+    let rows = n.div_ceil(cols);
+    let subtitle = format!(
+        "{}; from the runs without contact ({}); black: the gap for the target probability",
+        s.measure.label(),
+        match s.gap_mode {
+            crate::input::fragility::GapMode::Uniform => "one gap at every level of the pair",
+            crate::input::fragility::GapMode::Scaled => {
+                "the pair's gaps scaled; the gap at its highest level"
+            }
+        }
+    );
+    let fig = CurveFigure {
+        title: "P(pounding | IM, gap) per pair",
+        subtitle: &subtitle,
+        x_label: "gap [mm]",
+        y_label: "P(pounding)",
+        y_range: (0.0, 1.0),
+        panels,
+        columns: cols,
+        width: if cols == 1 { 1100 } else { 1600 },
+        height: 170 + 430 * rows as u32,
+    };
+    write_curves(&fig, &dir.join("p-pounding"))
+}
+
 /// An intensity for a legend: at most six decimals, no trailing zeros (0.06, not
 /// 0.060000000000000005 from the hunt's sums).
 fn tidy(x: f64) -> String {
@@ -277,7 +427,7 @@ fn short_name(i: usize, file: &str) -> String {
 pub fn ida_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let s = &run.study;
     let u = s.units.factor();
-    let gaps: Vec<f64> = s.scenario.contact.levels.iter().map(|l| l.gap).collect();
+    let gaps = crate::study::fragility::scenario_gaps(s);
     let nr = s.record_names.len();
     let names: Vec<String> = s
         .record_names

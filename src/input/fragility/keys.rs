@@ -9,7 +9,7 @@ use toml::Spanned;
 
 use super::{
     G, GapMode, IdaSettings, ImUnits, IntensityMeasure, LimitKind, LimitState, PoundingTarget,
-    StudyError, top_gap,
+    StudyError, pair_top_gaps,
 };
 use crate::input::scenario::{Location, Scenario};
 
@@ -40,6 +40,7 @@ pub(super) struct RawLimit {
     kind: Option<Spanned<String>>,
     value: Option<Spanned<f64>>,
     structure: Option<Spanned<i64>>,
+    pair: Option<Spanned<i64>>,
     units: Option<Spanned<String>>,
 }
 
@@ -202,11 +203,21 @@ pub(super) fn suite_in_study(
     Ok((sc, names))
 }
 
-fn structure_index(here: &Here, v: &Spanned<i64>, key: &str) -> Result<usize, StudyError> {
-    match *v.get_ref() {
-        1 => Ok(0),
-        2 => Ok(1),
-        _ => Err(here.invalid(v, key, "must be 1 or 2")),
+/// A 1-based `structure = N` of a scenario of `n` structures, 0-based.
+fn structure_index(
+    here: &Here,
+    v: &Spanned<i64>,
+    key: &str,
+    n: usize,
+) -> Result<usize, StudyError> {
+    match usize::try_from(*v.get_ref()) {
+        Ok(i) if (1..=n).contains(&i) => Ok(i - 1),
+        _ if n == 2 => Err(here.invalid(v, key, "must be 1 or 2")),
+        _ => Err(here.invalid(
+            v,
+            key,
+            &format!("must be in 1..={n}: a structure of the row, in row order"),
+        )),
     }
 }
 
@@ -266,11 +277,14 @@ pub(super) fn intensity_measure(
             let s = r.structure.as_ref().ok_or_else(|| {
                 here.missing(
                     "intensity.structure",
-                    "1 or 2: whose first-mode period T1 Sa is taken at",
+                    &format!(
+                        "1 to {}: whose first-mode period T1 Sa is taken at",
+                        scenario.structures.len()
+                    ),
                     near,
                 )
             })?;
-            let i = structure_index(here, s, "intensity.structure")?;
+            let i = structure_index(here, s, "intensity.structure", scenario.structures.len())?;
             let period = scenario.structures[i]
                 .modal()
                 .periods()
@@ -338,14 +352,20 @@ pub(super) fn intensity_measure(
     Ok((measure, units))
 }
 
+/// `[[limit_state]]` number `i` (0-based): for a pair, the one limit state; for a row (more
+/// than two structures) a limit state that names no structure or pair stands for the row's
+/// (any structure, any pair: the larger demand) and is followed by one per structure (a
+/// structure's kind: each that it applies to) or per pair (`pounding`, `contact_force`).
 pub(super) fn limit_state(
     here: &Here,
     i: usize,
     raw: &Spanned<RawLimit>,
     scenario: &Scenario,
-) -> Result<LimitState, StudyError> {
+) -> Result<Vec<LimitState>, StudyError> {
     let r = raw.get_ref();
     let near = Some(raw.span().start);
+    let n = scenario.structures.len();
+    let row = scenario.is_row();
     let key = |k: &str| format!("limit_state[{}].{k}", i + 1);
     let k = r.kind.as_ref().ok_or_else(|| {
         here.missing(
@@ -370,11 +390,55 @@ pub(super) fn limit_state(
             ));
         }
     };
+    let of_pair = matches!(kind, LimitKind::Pounding | LimitKind::ContactForce);
+    // a pair's limit state names a pair, a structure's a structure: the other key would be
+    // ambiguous (which of a middle building's two pairs?), so it is refused
+    if let (true, Some(st)) = (of_pair, &r.structure) {
+        return Err(here.invalid(
+            st,
+            &key("structure"),
+            &if row {
+                format!(
+                    "not used with this kind: it is a pair's (a structure of a row has up to two \
+                     neighbours); give `pair` = 1 to {} (structures P and P + 1), or neither \
+                     for every pair and the row",
+                    n - 1
+                )
+            } else {
+                "not used with this kind: it concerns both structures".to_string()
+            },
+        ));
+    }
+    if let (false, Some(p)) = (of_pair, &r.pair) {
+        return Err(here.invalid(
+            p,
+            &key("pair"),
+            "not used with this kind: it is a structure's; give `structure` (1-based, row \
+             order), or neither for every structure",
+        ));
+    }
     let structure = r
         .structure
         .as_ref()
-        .map(|s| structure_index(here, s, &key("structure")))
+        .map(|s| structure_index(here, s, &key("structure"), n))
         .transpose()?;
+    let pair = match &r.pair {
+        None => None,
+        Some(p) => match usize::try_from(*p.get_ref()) {
+            Ok(x) if (1..n).contains(&x) => Some(x - 1),
+            _ => {
+                return Err(here.invalid(
+                    p,
+                    &key("pair"),
+                    &format!(
+                        "must be in 1..={}: the adjacent pair of structures P and P + 1, in row \
+                         order",
+                        n - 1
+                    ),
+                ));
+            }
+        },
+    };
     let (unit_factor, unit) = match (&r.units, kind) {
         (None, LimitKind::ContactForce) => (1.0, "N"),
         (None, LimitKind::FloorAcceleration) => (1.0, "m/s2"),
@@ -393,13 +457,6 @@ pub(super) fn limit_state(
             ));
         }
     };
-    if let (LimitKind::Pounding | LimitKind::ContactForce, Some(st)) = (kind, &r.structure) {
-        return Err(here.invalid(
-            st,
-            &key("structure"),
-            "not used with this kind: it concerns both structures",
-        ));
-    }
     let value = if kind == LimitKind::Pounding {
         if let Some(v) = &r.value {
             return Err(here.invalid(
@@ -442,10 +499,10 @@ pub(super) fn limit_state(
         }
         x * unit_factor
     };
+    let yielding: Vec<usize> = (0..n)
+        .filter(|&s| scenario.structures[s].hysteresis().is_some())
+        .collect();
     if kind == LimitKind::Ductility {
-        let yielding: Vec<usize> = (0..2)
-            .filter(|&s| scenario.structures[s].hysteresis().is_some())
-            .collect();
         let ok = match structure {
             Some(s) => yielding.contains(&s),
             None => !yielding.is_empty(),
@@ -459,26 +516,50 @@ pub(super) fn limit_state(
                         "structure {} has no yielding storeys (a ductility needs `hysteresis`)",
                         s + 1
                     ),
-                    None => "neither structure has yielding storeys (a ductility needs \
+                    None if n == 2 => "neither structure has yielding storeys (a ductility \
+                                       needs `hysteresis`)"
+                        .to_string(),
+                    None => "no structure of the row has yielding storeys (a ductility needs \
                              `hysteresis`)"
                         .to_string(),
                 },
             ));
         }
     }
-    // the name as the user wrote the threshold: `ductility>4(2)`, `floor_acceleration>1g(1)`
-    let who = structure.map_or(String::new(), |s| format!("({})", s + 1));
+    // the name as the user wrote the threshold: `ductility>4(2)`, `floor_acceleration>1g(1)`,
+    // a pair's `pounding(1-2)` (structures 1 and 2)
     let given = format!("{}", value / unit_factor);
-    let name = match kind {
-        LimitKind::Pounding => "pounding".to_string(),
-        _ => format!("{}>{given}{unit}{who}", kind.key()),
+    let make = |structure: Option<usize>, pair: Option<usize>| {
+        let who = match (structure, pair) {
+            (Some(s), _) => format!("({})", s + 1),
+            (None, Some(p)) => format!("({}-{})", p + 1, p + 2),
+            (None, None) => String::new(),
+        };
+        let name = match kind {
+            LimitKind::Pounding => format!("pounding{who}"),
+            _ => format!("{}>{given}{unit}{who}", kind.key()),
+        };
+        LimitState {
+            kind,
+            value,
+            structure,
+            pair,
+            name,
+        }
     };
-    Ok(LimitState {
-        kind,
-        value,
-        structure,
-        name,
-    })
+    let mut out = vec![make(structure, pair)];
+    if row && structure.is_none() && pair.is_none() {
+        if of_pair {
+            out.extend((0..n - 1).map(|p| make(None, Some(p))));
+        } else {
+            out.extend(
+                (0..n)
+                    .filter(|s| kind != LimitKind::Ductility || yielding.contains(s))
+                    .map(|s| make(Some(s), None)),
+            );
+        }
+    }
+    Ok(out)
 }
 
 pub(super) fn gap_axis(
@@ -491,12 +572,12 @@ pub(super) fn gap_axis(
     let Some(g) = raw else {
         // 0 to twice the scenario's gap (at the highest level in "scaled" mode, else the
         // largest), 41 values
+        // (of a row: the largest over its pairs)
         let g0 = match mode {
-            GapMode::Scaled => top_gap(scenario),
+            GapMode::Scaled => pair_top_gaps(scenario).into_iter().fold(0.0, f64::max),
             GapMode::Uniform => scenario
-                .contact
-                .levels
-                .iter()
+                .contacts()
+                .flat_map(|c| &c.levels)
                 .map(|l| l.gap)
                 .fold(0.0, f64::max),
         };

@@ -9,7 +9,7 @@
 //!
 //! [intensity]
 //! measure = "sa"                             # "pga" | "sa" (Sa(T1), 5 %) | "sa_avg"
-//! structure = 2                              # sa: T1 of structure 1 or 2
+//! structure = 2                              # sa: T1 of structure 1 or 2 (a row: 1 to N)
 //! periods = [0.2, 2.0]                       # sa_avg: the period range, s
 //! count = 10                                 # sa_avg: periods, log-spaced (default 10)
 //! units = "g"                                # "g" (default) or "m/s2": of stripes, target, outputs
@@ -17,7 +17,8 @@
 //! [[limit_state]]
 //! kind = "pounding"                          # | "contact_force" | "ductility" | "drift_ratio"
 //! value = 4.0                                #   | "floor_acceleration": the threshold
-//! structure = 2                              # optional: 1 or 2 (default: either structure)
+//! structure = 2                              # optional: 1 or 2 (a row: 1 to N; default: each)
+//! # pair = 1                                 # pounding, contact_force of a row: structures 1–2
 //!
 //! [fragility]
 //! stripes = [0.1, 0.2, 0.4, 0.6, 0.8]        # IM levels, in `intensity.units`; or
@@ -103,7 +104,7 @@ pub enum IntensityMeasure {
     Pga,
     /// 5 %-damped pseudo-spectral acceleration at the first-mode period of a structure.
     Sa {
-        /// 0 or 1.
+        /// 0-based, row order.
         structure: usize,
         /// Its first-mode period T₁, s.
         period: f64,
@@ -214,9 +215,14 @@ pub struct LimitState {
     pub kind: LimitKind,
     /// The threshold, SI (N, –, –, m/s²); 0 for `pounding`.
     pub value: f64,
-    /// 0 or 1; `None`: either structure (the larger demand).
+    /// The structure (0-based, row order) of a structure's limit state (ductility, drift,
+    /// floor acceleration); `None`: every structure (the larger demand).
     pub structure: Option<usize>,
-    /// Its name in the tables: `ductility>4(2)` …
+    /// The adjacent pair (0-based: structures `pair` and `pair + 1`) of a pair's limit state
+    /// (pounding, contact force); `None`: every pair (any pounds; the larger force).
+    pub pair: Option<usize>,
+    /// Its name in the tables: `ductility>4(2)` (structure 2), `pounding(1-2)` (the pair of
+    /// structures 1 and 2) …
     pub name: String,
 }
 
@@ -403,7 +409,10 @@ impl FragilityStudy {
             .iter()
             .enumerate()
             .map(|(i, l)| limit_state(&here, i, l, &scenario))
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .flatten()
+            .collect();
         let fr = raw
             .fragility
             .as_ref()
@@ -459,11 +468,15 @@ impl FragilityStudy {
                 }
             },
         };
-        if gap_mode == GapMode::Scaled && top_gap(&scenario) <= 0.0 {
+        if gap_mode == GapMode::Scaled && pair_top_gaps(&scenario).iter().any(|g| *g <= 0.0) {
             return Err(here.invalid(
                 f.gap_mode.as_ref().expect("given"),
                 "fragility.gap_mode",
-                "\"scaled\" needs a positive gap at the scenario's highest contact level",
+                if scenario.is_row() {
+                    "\"scaled\" needs a positive gap at every pair's highest contact level"
+                } else {
+                    "\"scaled\" needs a positive gap at the scenario's highest contact level"
+                },
             ));
         }
         let gaps = gap_axis(&here, f.gaps.as_ref(), &scenario, gap_mode)?;
@@ -541,7 +554,35 @@ impl FragilityStudy {
     }
 }
 
-/// The gap at the scenario's highest contact level, m.
+/// Each adjacent pair's gaps (m), per level in the order of its contact table (one pair for
+/// a pair of structures).
+pub fn pair_gaps(scenario: &Scenario) -> Vec<Vec<f64>> {
+    scenario
+        .contacts()
+        .map(|c| c.levels.iter().map(|l| l.gap).collect())
+        .collect()
+}
+
+/// Each adjacent pair's gap at its highest contact level, m (the axis of `gap_mode =
+/// "scaled"`; for a pair, [`top_gap`]).
+pub fn pair_top_gaps(scenario: &Scenario) -> Vec<f64> {
+    scenario
+        .contacts()
+        .map(|c| {
+            let h = c
+                .levels
+                .iter()
+                .map(|l| l.height)
+                .fold(f64::NEG_INFINITY, f64::max);
+            c.levels
+                .iter()
+                .find(|l| l.height == h)
+                .map_or(0.0, |l| l.gap)
+        })
+        .collect()
+}
+
+/// The gap at the scenario's highest contact level (of its first pair), m.
 pub fn top_gap(scenario: &Scenario) -> f64 {
     let h = scenario.main_height();
     scenario

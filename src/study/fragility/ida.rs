@@ -53,7 +53,7 @@ impl Capacity {
 }
 
 /// The (limit state, model) pairs that apply to the study: `exceeds` is `Some`.
-pub fn pairs(study: &FragilityStudy, run: &RunOutcome, gaps: &[f64]) -> Vec<(usize, usize)> {
+pub fn pairs(study: &FragilityStudy, run: &RunOutcome, gaps: &[Vec<f64>]) -> Vec<(usize, usize)> {
     let mut v = Vec::new();
     for (l, ls) in study.limit_states.iter().enumerate() {
         for m in 0..2 {
@@ -69,7 +69,7 @@ pub fn pairs(study: &FragilityStudy, run: &RunOutcome, gaps: &[f64]) -> Vec<(usi
 pub fn bracket(
     study: &FragilityStudy,
     runs: &[RunOutcome],
-    gaps: &[f64],
+    gaps: &[Vec<f64>],
     l: usize,
     m: usize,
 ) -> Capacity {
@@ -91,13 +91,7 @@ pub fn trace<E>(
     settings: &IdaSettings,
     mut run_at: impl FnMut(usize, f64) -> Result<RunOutcome, E>,
 ) -> Result<Vec<RunOutcome>, E> {
-    let gaps: Vec<f64> = study
-        .scenario
-        .contact
-        .levels
-        .iter()
-        .map(|l| l.gap)
-        .collect();
+    let gaps = super::scenario_gaps(study);
     let target = study.target.map_or(0.0, |t| t.im);
     let n = settings.max_runs;
     let mut runs: Vec<RunOutcome> = Vec::new();

@@ -43,8 +43,13 @@ pub fn identity(study: &FragilityStudy) -> u64 {
     hash.finish()
 }
 
-/// The journal format's version.
+/// The journal format's version of a pair's study.
 pub const VERSION: u32 = 1;
+
+/// The journal format's version of a row's study (more than two structures: its columns per
+/// pair and per structure, [`header`]), so that a journal of one kind is never read as the
+/// other's.
+pub const VERSION_ROW: u32 = 2;
 
 const MAGIC: &str = "# pounding fragility journal v";
 
@@ -56,20 +61,83 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The journal's header line (`levels` contact levels).
-pub fn header(levels: usize) -> String {
-    let mut h = String::from("key,record,run,im,factor");
-    for k in 1..=levels {
-        h.push_str(&format!(",level{k}_required_separation"));
-    }
-    h.push_str(",impacts,peak_force");
-    for what in ["ductility", "drift_ratio", "floor_acceleration"] {
-        for i in 1..=2 {
-            h.push_str(&format!(",{what}_{i},{what}_no_contact_{i}"));
+/// The layout of a study's runs: each pair's number of contact levels and the number of
+/// structures; `row` for more than two structures (the columns named per pair).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Shape {
+    /// Contact levels of each adjacent pair, row order.
+    pub levels: Vec<usize>,
+    /// Structures.
+    pub structures: usize,
+    /// A row of more than two structures.
+    pub row: bool,
+}
+
+impl Shape {
+    /// The layout of `study`'s runs.
+    pub fn of(study: &FragilityStudy) -> Shape {
+        Shape {
+            levels: study.scenario.contacts().map(|c| c.levels.len()).collect(),
+            structures: study.scenario.structures.len(),
+            row: study.scenario.is_row(),
         }
     }
-    h.push_str(",converged,warnings");
-    h
+
+    /// The journal version of this layout.
+    pub fn version(&self) -> u32 {
+        if self.row { VERSION_ROW } else { VERSION }
+    }
+
+    /// The columns of the required separations: `level{k}_required_separation` of a pair,
+    /// `pair{p}_level{k}_required_separation` of a row.
+    pub fn level_columns(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        for (p, n) in self.levels.iter().enumerate() {
+            for k in 1..=*n {
+                v.push(if self.row {
+                    format!("pair{}_level{k}_required_separation", p + 1)
+                } else {
+                    format!("level{k}_required_separation")
+                });
+            }
+        }
+        v
+    }
+
+    /// Each pair's prefix of its columns: `` of a pair, `pair{p}_` of a row.
+    pub fn pair_prefix(&self, p: usize) -> String {
+        if self.row {
+            format!("pair{}_", p + 1)
+        } else {
+            String::new()
+        }
+    }
+
+    /// The columns per structure i (1-based): `ductility_i`, `ductility_no_contact_i`, then
+    /// the same of the drift ratio and the floor acceleration.
+    pub fn structure_columns(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        for what in ["ductility", "drift_ratio", "floor_acceleration"] {
+            for i in 1..=self.structures {
+                v.push(format!("{what}_{i}"));
+                v.push(format!("{what}_no_contact_{i}"));
+            }
+        }
+        v
+    }
+}
+
+/// The journal's header line.
+pub fn header(shape: &Shape) -> String {
+    let mut h = vec!["key,record,run,im,factor".to_string()];
+    h.extend(shape.level_columns());
+    for p in 0..shape.levels.len() {
+        let pre = shape.pair_prefix(p);
+        h.push(format!("{pre}impacts,{pre}peak_force"));
+    }
+    h.extend(shape.structure_columns());
+    h.push("converged,warnings".into());
+    h.join(",")
 }
 
 /// A run as a journal row under `key`.
@@ -81,12 +149,14 @@ pub fn row(key: usize, o: &RunOutcome) -> String {
         num(o.im),
         num(o.factor),
     ];
-    f.extend(o.required.iter().map(|x| num(*x)));
-    f.push(o.impacts.to_string());
-    f.push(num(o.peak_force));
-    for i in 0..2 {
-        for m in 0..2 {
-            f.push(o.ductility[i][m].map_or(String::new(), num));
+    f.extend(o.required.iter().flatten().map(|x| num(*x)));
+    for (n, p) in o.impacts.iter().zip(&o.peak_force) {
+        f.push(n.to_string());
+        f.push(num(*p));
+    }
+    for d in &o.ductility {
+        for x in d {
+            f.push(x.map_or(String::new(), num));
         }
     }
     for v in [&o.drift_ratio, &o.floor_acceleration] {
@@ -109,10 +179,12 @@ pub fn row(key: usize, o: &RunOutcome) -> String {
     f.iter().map(|x| csv_field(x)).collect::<Vec<_>>().join(",")
 }
 
-/// A journal row read back: its key and run, `None` if damaged (`levels` contact levels).
-pub fn parse_row(line: &str, levels: usize) -> Option<(usize, RunOutcome)> {
+/// A journal row read back: its key and run, `None` if damaged.
+pub fn parse_row(line: &str, shape: &Shape) -> Option<(usize, RunOutcome)> {
     let f = parse_csv_line(line)?;
-    if f.len() != 5 + levels + 2 + 12 + 2 {
+    let levels: usize = shape.levels.iter().sum();
+    let (np, ns) = (shape.levels.len(), shape.structures);
+    if f.len() != 5 + levels + 2 * np + 6 * ns + 2 {
         return None;
     }
     let n = |s: &str| s.parse::<f64>().ok();
@@ -123,21 +195,28 @@ pub fn parse_row(line: &str, levels: usize) -> Option<(usize, RunOutcome)> {
     let stripe: usize = next().parse().ok()?;
     let im = n(next())?;
     let factor = n(next())?;
-    let mut required = Vec::with_capacity(levels);
-    for _ in 0..levels {
-        required.push(n(next())?);
+    let mut required = Vec::with_capacity(np);
+    for &k in &shape.levels {
+        let mut v = Vec::with_capacity(k);
+        for _ in 0..k {
+            v.push(n(next())?);
+        }
+        required.push(v);
     }
-    let impacts: usize = next().parse().ok()?;
-    let peak_force = n(next())?;
-    let mut ductility = [[None; 2]; 2];
+    let (mut impacts, mut peak_force) = (Vec::new(), Vec::new());
+    for _ in 0..np {
+        impacts.push(next().parse().ok()?);
+        peak_force.push(n(next())?);
+    }
+    let mut ductility = vec![[None; 2]; ns];
     for d in ductility.iter_mut() {
         for x in d.iter_mut() {
             let s = next();
             *x = if s.is_empty() { None } else { Some(n(s)?) };
         }
     }
-    let mut two = || -> Option<[[f64; 2]; 2]> {
-        let mut v = [[0.0; 2]; 2];
+    let mut per = || -> Option<Vec<[f64; 2]>> {
+        let mut v = vec![[0.0; 2]; ns];
         for r in v.iter_mut() {
             for x in r.iter_mut() {
                 *x = n(next())?;
@@ -145,8 +224,8 @@ pub fn parse_row(line: &str, levels: usize) -> Option<(usize, RunOutcome)> {
         }
         Some(v)
     };
-    let drift_ratio = two()?;
-    let floor_acceleration = two()?;
+    let drift_ratio = per()?;
+    let floor_acceleration = per()?;
     let converged = match next() {
         "true" => Some(true),
         "false" => Some(false),
@@ -246,21 +325,22 @@ fn open_file(
     shard: Shard,
     compute: bool,
 ) -> Result<JournalStore, FragilityError> {
-    let levels = study.scenario.contact.levels.len();
+    let shape = Shape::of(study);
     let total = keys(study);
     let check = |body: &str| {
-        parse_row(body, levels)
+        parse_row(body, &shape)
             .filter(|(k, _)| *k < total && shard.contains(super::key_task(study, *k)))
             .map(|(k, _)| (k, false))
     };
     let kind = JournalKind {
         magic: MAGIC,
-        version: VERSION,
+        version: shape.version(),
         ident: format!(
-            "{MAGIC}{VERSION}; identity={:016x}; shard={shard}; keys={total}",
+            "{MAGIC}{}; identity={:016x}; shard={shard}; keys={total}",
+            shape.version(),
             identity(study)
         ),
-        header: header(levels),
+        header: header(&shape),
         command: "pounding fragility",
         inputs: "the study file, its base scenario, its records or --shard",
         version_note: "its rows differ",
@@ -270,7 +350,7 @@ fn open_file(
     let runs = journal
         .rows
         .iter()
-        .filter_map(|(_, (line, _))| parse_row(line, levels))
+        .filter_map(|(_, (line, _))| parse_row(line, &shape))
         .collect();
     Ok(JournalStore {
         dropped: journal.dropped,
@@ -398,10 +478,10 @@ pub fn assemble_rows(
     study: &FragilityStudy,
     rows: &[String],
 ) -> Result<super::FragilityRun, FragilityError> {
-    let levels = study.scenario.contact.levels.len();
+    let shape = Shape::of(study);
     let mut runs = BTreeMap::new();
     for (i, r) in rows.iter().enumerate() {
-        let (k, o) = parse_row(r, levels).ok_or_else(|| {
+        let (k, o) = parse_row(r, &shape).ok_or_else(|| {
             SweepError::Merge(format!("row {} is not a run of this study: {r}", i + 1))
         })?;
         runs.insert(k, o);

@@ -28,7 +28,9 @@ pub mod write;
 
 use rayon::prelude::*;
 
-use crate::analysis::simulate::{Report, simulate_checked};
+use crate::analysis::simulate::{
+    Report, RowReport, StructureReport, simulate_checked, simulate_row_checked,
+};
 use crate::input::fragility::{FragilityStudy, LimitKind, LimitState};
 use crate::input::scenario::ScenarioError;
 use crate::integrate::SolveError;
@@ -91,8 +93,8 @@ pub enum FragilityError {
 /// With contact (index 0) or without (1).
 pub const MODELS: [&str; 2] = ["with", "without"];
 
-/// What the limit states need from one run (SI units). `[s][m]`: structure s (0, 1), model
-/// m (0 with contact, 1 without).
+/// What the limit states need from one run (SI units). Per pair (row order; one for a pair of
+/// structures) and per structure (row order) `[m]`: model m (0 with contact, 1 without).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunOutcome {
     /// 0-based record.
@@ -103,74 +105,123 @@ pub struct RunOutcome {
     pub im: f64,
     /// The factor on the record.
     pub factor: f64,
-    /// The time-history required separation at each contact level (run without contact), m.
-    pub required: Vec<f64>,
-    /// Contact episodes over all levels (run with contact).
-    pub impacts: usize,
-    /// Peak contact force over all levels, N.
-    pub peak_force: f64,
-    /// Peak storey ductility demand (`None`: no yielding storeys).
-    pub ductility: [[Option<f64>; 2]; 2],
-    /// Peak storey drift ratio over the floors (drift / storey height).
-    pub drift_ratio: [[f64; 2]; 2],
-    /// Peak absolute floor acceleration over the floors, m/s².
-    pub floor_acceleration: [[f64; 2]; 2],
+    /// Per pair, the time-history required separation at each of its contact levels (run
+    /// without contact), m.
+    pub required: Vec<Vec<f64>>,
+    /// Per pair, contact episodes over its levels (run with contact).
+    pub impacts: Vec<usize>,
+    /// Per pair, the peak contact force over its levels, N.
+    pub peak_force: Vec<f64>,
+    /// Per structure, the peak storey ductility demand (`None`: no yielding storeys).
+    pub ductility: Vec<[Option<f64>; 2]>,
+    /// Per structure, the peak storey drift ratio over the floors (drift / storey height).
+    pub drift_ratio: Vec<[f64; 2]>,
+    /// Per structure, the peak absolute floor acceleration over the floors, m/s².
+    pub floor_acceleration: Vec<[f64; 2]>,
     /// The self-check (`None`: not checked).
     pub converged: Option<bool>,
     /// The run's warnings.
     pub warnings: Vec<String>,
 }
 
+/// Per structure [with, without]: peak storey drift ratio and peak floor acceleration.
+fn structure_peaks(s: &StructureReport) -> ([Option<f64>; 2], [f64; 2], [f64; 2]) {
+    let drift = [0, 1].map(|m| {
+        s.peak_drift_ratios()
+            .iter()
+            .map(|d| d[m] / 100.0)
+            .fold(0.0, f64::max)
+    });
+    let acc = [0, 1].map(|m| {
+        s.floors
+            .iter()
+            .map(|f| {
+                if m == 0 {
+                    f.peak_acceleration
+                } else {
+                    f.peak_acceleration_no_contact
+                }
+            })
+            .fold(0.0, f64::max)
+    });
+    ([s.peak_ductility, s.peak_ductility_no_contact], drift, acc)
+}
+
 impl RunOutcome {
-    /// The numbers of `report`.
+    /// The numbers of a pair's `report`.
     pub fn of(report: &Report, record: usize, stripe: usize, im: f64, factor: f64) -> RunOutcome {
-        let s = &report.structures;
-        let per = |f: &dyn Fn(usize, usize) -> f64| [0, 1].map(|i| [0, 1].map(|m| f(i, m)));
+        let (ductility, drift_ratio, floor_acceleration) = per_structure(report.structures.iter());
         RunOutcome {
             record,
             stripe,
             im,
             factor,
-            required: report.levels.iter().map(|l| l.required_gap).collect(),
-            impacts: report.contact.impacts,
-            peak_force: report.contact.peak_force,
-            ductility: [0, 1].map(|i| [s[i].peak_ductility, s[i].peak_ductility_no_contact]),
-            drift_ratio: per(&|i, m| {
-                s[i].peak_drift_ratios()
-                    .iter()
-                    .map(|d| d[m] / 100.0)
-                    .fold(0.0, f64::max)
-            }),
-            floor_acceleration: per(&|i, m| {
-                s[i].floors
-                    .iter()
-                    .map(|f| {
-                        if m == 0 {
-                            f.peak_acceleration
-                        } else {
-                            f.peak_acceleration_no_contact
-                        }
-                    })
-                    .fold(0.0, f64::max)
-            }),
+            required: vec![report.levels.iter().map(|l| l.required_gap).collect()],
+            impacts: vec![report.contact.impacts],
+            peak_force: vec![report.contact.peak_force],
+            ductility,
+            drift_ratio,
+            floor_acceleration,
             converged: report.accuracy.converged,
             warnings: report.warnings.clone(),
         }
     }
 
+    /// The numbers of a row's `report` (per pair and per structure).
+    pub fn of_row(
+        report: &RowReport,
+        record: usize,
+        stripe: usize,
+        im: f64,
+        factor: f64,
+    ) -> RunOutcome {
+        let (ductility, drift_ratio, floor_acceleration) = per_structure(report.structures.iter());
+        let p = &report.pairs;
+        RunOutcome {
+            record,
+            stripe,
+            im,
+            factor,
+            required: p
+                .iter()
+                .map(|p| p.levels.iter().map(|l| l.required_gap).collect())
+                .collect(),
+            impacts: p.iter().map(|p| p.contact.impacts).collect(),
+            peak_force: p.iter().map(|p| p.contact.peak_force).collect(),
+            ductility,
+            drift_ratio,
+            floor_acceleration,
+            converged: report.accuracy.converged,
+            warnings: report.warnings.clone(),
+        }
+    }
+
+    /// The pairs `ls` looks at: its pair, or every pair.
+    fn pairs_of(&self, ls: &LimitState) -> std::ops::Range<usize> {
+        match ls.pair {
+            Some(p) => p..p + 1,
+            None => 0..self.impacts.len(),
+        }
+    }
+
+    /// The structures `ls` looks at: its structure, or every structure.
+    fn structures_of(&self, ls: &LimitState) -> std::ops::Range<usize> {
+        match ls.structure {
+            Some(s) => s..s + 1,
+            None => 0..self.drift_ratio.len(),
+        }
+    }
+
     /// The demand `ls` compares with its threshold, in model `m` (SI; for `pounding` the
-    /// largest ratio of required separation to gap over the levels, pounding beyond 1, from
-    /// the run without contact only); `None` where it does not apply.
-    pub fn demand(&self, ls: &LimitState, m: usize, gaps: &[f64]) -> Option<f64> {
-        let pick = |v: [[f64; 2]; 2]| match ls.structure {
-            Some(s) => v[s][m],
-            None => v[0][m].max(v[1][m]),
-        };
+    /// largest ratio of required separation to gap over the levels of its pairs, pounding
+    /// beyond 1, from the run without contact only; `gaps` per pair and level, m); `None`
+    /// where it does not apply.
+    pub fn demand(&self, ls: &LimitState, m: usize, gaps: &[Vec<f64>]) -> Option<f64> {
+        let most = |v: &[[f64; 2]]| self.structures_of(ls).map(|s| v[s][m]).fold(0.0, f64::max);
         match ls.kind {
             LimitKind::Pounding => (m == 1).then(|| {
-                self.required
-                    .iter()
-                    .zip(gaps)
+                self.pairs_of(ls)
+                    .flat_map(|p| self.required[p].iter().zip(&gaps[p]))
                     .map(|(r, g)| {
                         if *g > 0.0 {
                             r / g
@@ -182,51 +233,67 @@ impl RunOutcome {
                     })
                     .fold(0.0, f64::max)
             }),
-            LimitKind::ContactForce => (m == 0).then_some(self.peak_force),
+            LimitKind::ContactForce => (m == 0).then(|| {
+                self.pairs_of(ls)
+                    .map(|p| self.peak_force[p])
+                    .fold(0.0, f64::max)
+            }),
             LimitKind::Ductility => {
-                let v: Vec<f64> = match ls.structure {
-                    Some(s) => self.ductility[s][m].into_iter().collect(),
-                    None => (0..2).filter_map(|s| self.ductility[s][m]).collect(),
-                };
+                let v: Vec<f64> = self
+                    .structures_of(ls)
+                    .filter_map(|s| self.ductility[s][m])
+                    .collect();
                 (!v.is_empty()).then(|| v.iter().copied().fold(0.0, f64::max))
             }
-            LimitKind::DriftRatio => Some(pick(self.drift_ratio)),
-            LimitKind::FloorAcceleration => Some(pick(self.floor_acceleration)),
+            LimitKind::DriftRatio => Some(most(&self.drift_ratio)),
+            LimitKind::FloorAcceleration => Some(most(&self.floor_acceleration)),
         }
     }
 
     /// Whether the run exceeds `ls` in model `m` (0 with contact, 1 without), with the
-    /// scenario's gaps `gaps` (m, per level); `None` where the limit state does not apply
-    /// (a contact force without contact, a ductility of an elastic structure).
-    pub fn exceeds(&self, ls: &LimitState, m: usize, gaps: &[f64]) -> Option<bool> {
-        let over = |v: [[f64; 2]; 2]| {
-            let d = match ls.structure {
-                Some(s) => v[s][m],
-                None => v[0][m].max(v[1][m]),
-            };
-            d > ls.value
-        };
+    /// scenario's gaps `gaps` (m, per pair and level); `None` where the limit state does not
+    /// apply (a contact force without contact, a ductility of an elastic structure).
+    pub fn exceeds(&self, ls: &LimitState, m: usize, gaps: &[Vec<f64>]) -> Option<bool> {
+        let over = |v: &[[f64; 2]]| self.structures_of(ls).any(|s| v[s][m] > ls.value);
         match ls.kind {
             // with contact: the run has an impact; without: the relative displacement passes
             // the gap at some level (the same event: before the first impact the two runs are
-            // one, tested)
+            // one, tested); of a row, at any of its pairs (a pair's: that pair's)
             LimitKind::Pounding => Some(if m == 0 {
-                self.impacts > 0
+                self.pairs_of(ls).any(|p| self.impacts[p] > 0)
             } else {
-                self.required.iter().zip(gaps).any(|(r, g)| r > g)
+                self.pairs_of(ls)
+                    .any(|p| self.required[p].iter().zip(&gaps[p]).any(|(r, g)| r > g))
             }),
-            LimitKind::ContactForce => (m == 0).then_some(self.peak_force > ls.value),
+            LimitKind::ContactForce => {
+                (m == 0).then(|| self.pairs_of(ls).any(|p| self.peak_force[p] > ls.value))
+            }
             LimitKind::Ductility => {
-                let pick: Vec<f64> = match ls.structure {
-                    Some(s) => self.ductility[s][m].into_iter().collect(),
-                    None => (0..2).filter_map(|s| self.ductility[s][m]).collect(),
-                };
+                let pick: Vec<f64> = self
+                    .structures_of(ls)
+                    .filter_map(|s| self.ductility[s][m])
+                    .collect();
                 (!pick.is_empty()).then(|| pick.iter().any(|d| *d > ls.value))
             }
-            LimitKind::DriftRatio => Some(over(self.drift_ratio)),
-            LimitKind::FloorAcceleration => Some(over(self.floor_acceleration)),
+            LimitKind::DriftRatio => Some(over(&self.drift_ratio)),
+            LimitKind::FloorAcceleration => Some(over(&self.floor_acceleration)),
         }
     }
+}
+
+/// Per structure: ductility, drift ratio and floor acceleration, [with, without].
+#[allow(clippy::type_complexity)]
+fn per_structure<'a>(
+    structures: impl Iterator<Item = &'a StructureReport>,
+) -> (Vec<[Option<f64>; 2]>, Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let mut out = (Vec::new(), Vec::new(), Vec::new());
+    for s in structures {
+        let (d, r, a) = structure_peaks(s);
+        out.0.push(d);
+        out.1.push(r);
+        out.2.push(a);
+    }
+    out
 }
 
 /// The counts and fit of one limit state in one model.
@@ -264,10 +331,12 @@ pub struct FragilityRun {
     /// One per limit state and model where it applies.
     pub curves: Vec<Curve>,
     /// P(pounding) from the runs without contact (IDA: at the hunt's intensities that every
-    /// record ran).
-    pub pounding: PoundingTable,
-    /// The gap for the target probability, when asked.
-    pub target_gap: Option<GapForTarget>,
+    /// record ran), per adjacent pair in row order (one for a pair of structures): each
+    /// pair's own gap against its own required separations.
+    pub pounding: Vec<PoundingTable>,
+    /// The gap for the target probability, when asked: per pair (empty when not asked, or in
+    /// an IDA when a record did not reach the target intensity).
+    pub target_gap: Vec<GapForTarget>,
     /// The IMs (study units) at which the fitted curves and bands are drawn.
     pub band_im: Vec<f64>,
 }
@@ -405,13 +474,20 @@ fn run_one(
     let suite = sc.suite.as_ref().expect("a checked study has a suite");
     let f = x / record_im[r];
     let member = suite.member_scenario(sc, r, f)?;
-    let report = simulate_checked(&member, study.check).map_err(|e| FragilityError::Solve {
+    let failed = |e| FragilityError::Solve {
         index: r + 1,
         file: study.record_names[r].clone(),
         stripe: k + 1,
         source: Box::new(e),
-    })?;
-    let o = RunOutcome::of(&report, r, k, x, f);
+    };
+    // (a row through the row's driver, with its self-check; a pair through the pair's)
+    let o = if member.is_row() {
+        let report = simulate_row_checked(&member, study.check).map_err(failed)?;
+        RunOutcome::of_row(&report, r, k, x, f)
+    } else {
+        let report = simulate_checked(&member, study.check).map_err(failed)?;
+        RunOutcome::of(&report, r, k, x, f)
+    };
     store.put(key, &o)?;
     Ok(o)
 }
@@ -530,17 +606,28 @@ pub fn assemble(
             });
         }
     }
-    let critical: Vec<Vec<f64>> = (0..ns)
-        .map(|j| {
-            (0..nr)
-                .map(|r| critical_of(&study, &outcomes[r * ns + j], &gaps))
+    // per pair: critical[p][stripe][record]
+    let critical: Vec<Vec<Vec<f64>>> = (0..gaps.len())
+        .map(|p| {
+            (0..ns)
+                .map(|j| {
+                    (0..nr)
+                        .map(|r| critical_of(&study, &outcomes[r * ns + j], p))
+                        .collect()
+                })
                 .collect()
         })
         .collect();
-    let pounding = PoundingTable::new(&stripes, &study.gaps, &critical);
-    let target_gap = study
-        .target
-        .map(|t| pounding::gap_for_target(&critical[t.stripe], t.probability, stripes[t.stripe]));
+    let pounding = critical
+        .iter()
+        .map(|c| PoundingTable::new(&stripes, &study.gaps, c))
+        .collect();
+    let target_gap = study.target.map_or_else(Vec::new, |t| {
+        critical
+            .iter()
+            .map(|c| pounding::gap_for_target(&c[t.stripe], t.probability, stripes[t.stripe]))
+            .collect()
+    });
     FragilityRun {
         study,
         record_im,
@@ -552,20 +639,17 @@ pub fn assemble(
     }
 }
 
-fn scenario_gaps(study: &FragilityStudy) -> Vec<f64> {
-    study
-        .scenario
-        .contact
-        .levels
-        .iter()
-        .map(|l| l.gap)
-        .collect()
+/// The scenario's gaps, m, per pair and level.
+pub fn scenario_gaps(study: &FragilityStudy) -> Vec<Vec<f64>> {
+    crate::input::fragility::pair_gaps(&study.scenario)
 }
 
-/// A run's critical gap (m) in the study's gap mode.
-pub fn critical_of(study: &FragilityStudy, o: &RunOutcome, gaps: &[f64]) -> f64 {
-    let top = crate::input::fragility::top_gap(&study.scenario);
-    pounding::critical_gap(&o.required, gaps, top, study.gap_mode)
+/// A run's critical gap (m) of pair `p` (0-based; 0 of a pair of structures) in the study's
+/// gap mode: from the pair's own levels, gaps and (`scaled`) its gap at its highest level.
+pub fn critical_of(study: &FragilityStudy, o: &RunOutcome, p: usize) -> f64 {
+    let gaps = crate::input::fragility::pair_gaps(&study.scenario);
+    let top = crate::input::fragility::pair_top_gaps(&study.scenario);
+    pounding::critical_gap(&o.required[p], &gaps[p], top[p], study.gap_mode)
 }
 
 /// 121 log-spaced intensities from half of `lo` to 1.5 × `hi`.
@@ -651,30 +735,42 @@ fn assemble_ida(
     }
     // P(pounding) at the hunt's intensities every record ran (the same for all records)
     let levels = common_hunt(&outcomes, nr);
-    let critical: Vec<Vec<f64>> = (0..levels.len())
-        .map(|j| {
-            by_record
-                .iter()
-                .map(|runs| critical_of(&study, &runs[j], &gaps))
-                .collect()
+    let levels_u: Vec<f64> = levels.iter().map(|x| x / u).collect();
+    let pounding = (0..gaps.len())
+        .map(|p| {
+            let critical: Vec<Vec<f64>> = (0..levels.len())
+                .map(|j| {
+                    by_record
+                        .iter()
+                        .map(|runs| critical_of(&study, &runs[j], p))
+                        .collect()
+                })
+                .collect();
+            PoundingTable::new(&levels_u, &study.gaps, &critical)
         })
         .collect();
-    let levels_u: Vec<f64> = levels.iter().map(|x| x / u).collect();
-    let pounding = PoundingTable::new(&levels_u, &study.gaps, &critical);
     // the target: each record's critical gap at the target intensity, linear between its runs
-    let target_gap = study.target.and_then(|t| {
-        let at: Option<Vec<f64>> = by_record
-            .iter()
-            .map(|runs| {
-                let pts: Vec<(f64, f64)> = runs
-                    .iter()
-                    .map(|o| (o.im, critical_of(&study, o, &gaps)))
-                    .collect();
-                ida::critical_gap_at(&pts, t.im)
-            })
-            .collect();
-        at.map(|c| pounding::gap_for_target(&c, t.probability, t.im / u))
-    });
+    // (per pair; none when a record's runs did not reach it)
+    let target_gap = study
+        .target
+        .and_then(|t| {
+            (0..gaps.len())
+                .map(|p| {
+                    let at: Option<Vec<f64>> = by_record
+                        .iter()
+                        .map(|runs| {
+                            let pts: Vec<(f64, f64)> = runs
+                                .iter()
+                                .map(|o| (o.im, critical_of(&study, o, p)))
+                                .collect();
+                            ida::critical_gap_at(&pts, t.im)
+                        })
+                        .collect();
+                    at.map(|c| pounding::gap_for_target(&c, t.probability, t.im / u))
+                })
+                .collect::<Option<Vec<_>>>()
+        })
+        .unwrap_or_default();
     FragilityRun {
         study,
         record_im,

@@ -179,54 +179,73 @@ pub fn report(run: &FragilityRun) -> String {
         "  model: with = the run with contact, without = the run without; for `pounding`, \
          without = the relative displacement passes the gap at some level"
     );
-    // P(pounding) at a few gaps
-    let t = &run.pounding;
-    let picks: Vec<usize> = {
-        let n = t.gaps.len();
-        let mut v: Vec<usize> = (0..5).map(|k| k * (n - 1) / 4).collect();
-        v.dedup();
-        v
-    };
-    let _ = writeln!(o);
-    let _ = writeln!(
-        o,
-        "  P(pounding | IM, gap) from the runs without contact{} ({} gap at every level{}):",
-        if s.ida.is_some() {
-            " at the hunt's intensities that every record ran"
-        } else {
-            ""
-        },
-        match s.gap_mode {
-            crate::input::fragility::GapMode::Uniform => "the same",
-            crate::input::fragility::GapMode::Scaled => "the scenario's gaps scaled; the",
-        },
-        match s.gap_mode {
-            crate::input::fragility::GapMode::Uniform => "",
-            crate::input::fragility::GapMode::Scaled => " at the highest level",
-        }
-    );
-    let mut head = format!("  {:>12}", format!("IM [{u}]"));
-    for &k in &picks {
-        let _ = write!(head, " {:>12}", format!("{:.0} mm", 1e3 * t.gaps[k]));
-    }
-    let _ = writeln!(o, "{head}");
-    for (j, x) in t.im.iter().enumerate() {
-        let mut line = if s.ida.is_some() {
-            format!("  {x:>12.4}")
-        } else {
-            format!("  {x:>12}")
+    // P(pounding) at a few gaps, per pair (a pair of structures: its one table)
+    let row = s.scenario.is_row();
+    let names: Vec<&str> = s.scenario.structures.iter().map(|x| x.name()).collect();
+    for (p, t) in run.pounding.iter().enumerate() {
+        let picks: Vec<usize> = {
+            let n = t.gaps.len();
+            let mut v: Vec<usize> = (0..5).map(|k| k * (n - 1) / 4).collect();
+            v.dedup();
+            v
         };
-        for &k in &picks {
-            let _ = write!(line, " {:>12.2}", t.p[j][k]);
-        }
-        let _ = writeln!(o, "{line}");
-    }
-    if let Some(g) = &run.target_gap {
         let _ = writeln!(o);
         let _ = writeln!(
             o,
-            "  gap for P(pounding) ≤ {:.0} % at IM = {} {u}: {:.1} mm ({} of {} records pound \
+            "  P(pounding | IM, gap){} from the runs without contact{} ({} gap at every level{}):",
+            if row {
+                format!(" of pair {} ({}–{})", p + 1, names[p], names[p + 1])
+            } else {
+                String::new()
+            },
+            if s.ida.is_some() {
+                " at the hunt's intensities that every record ran"
+            } else {
+                ""
+            },
+            match (s.gap_mode, row) {
+                (crate::input::fragility::GapMode::Uniform, _) => "the same",
+                (crate::input::fragility::GapMode::Scaled, false) => {
+                    "the scenario's gaps scaled; the"
+                }
+                (crate::input::fragility::GapMode::Scaled, true) => "the pair's gaps scaled; the",
+            },
+            match (s.gap_mode, row) {
+                (crate::input::fragility::GapMode::Uniform, false) => "",
+                (crate::input::fragility::GapMode::Uniform, true) => " of the pair",
+                (crate::input::fragility::GapMode::Scaled, _) => " at the highest level",
+            }
+        );
+        let mut head = format!("  {:>12}", format!("IM [{u}]"));
+        for &k in &picks {
+            let _ = write!(head, " {:>12}", format!("{:.0} mm", 1e3 * t.gaps[k]));
+        }
+        let _ = writeln!(o, "{head}");
+        for (j, x) in t.im.iter().enumerate() {
+            let mut line = if s.ida.is_some() {
+                format!("  {x:>12.4}")
+            } else {
+                format!("  {x:>12}")
+            };
+            for &k in &picks {
+                let _ = write!(line, " {:>12.2}", t.p[j][k]);
+            }
+            let _ = writeln!(o, "{line}");
+        }
+    }
+    if !run.target_gap.is_empty() {
+        let _ = writeln!(o);
+    }
+    for (p, g) in run.target_gap.iter().enumerate() {
+        let _ = writeln!(
+            o,
+            "  gap{} for P(pounding) ≤ {:.0} % at IM = {} {u}: {:.1} mm ({} of {} records pound \
              at it; the records' critical gaps ranked){}",
+            if row {
+                format!(" of pair {} ({}–{})", p + 1, names[p], names[p + 1])
+            } else {
+                String::new()
+            },
             100.0 * g.probability,
             g.im,
             1e3 * g.empirical,
@@ -241,7 +260,7 @@ pub fn report(run: &FragilityRun) -> String {
             }
         );
     }
-    if let (Some(t), None) = (&s.target, &run.target_gap) {
+    if let (Some(t), true) = (&s.target, run.target_gap.is_empty()) {
         let _ = writeln!(
             o,
             "  gap for P(pounding) ≤ {:.0} % at IM = {} {u}: not known — a record's runs did not \

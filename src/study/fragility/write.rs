@@ -19,6 +19,13 @@
 //! - `fit.json`: the study (measure, units, stripes, records), per limit state and model the
 //!   fit (`theta` in IM units, `beta`, `theta_interval`, `beta_interval`, …), the gap for the
 //!   target probability.
+//!
+//! A row of buildings (more than two structures; a pair's files are unchanged): per pair
+//! `p_pounding.csv` rows (a first column `pair`, 1-based), `runs.csv` columns
+//! `pair{p}_critical_gap`, `pair{p}_level{k}_required_separation`, `pair{p}_impacts`,
+//! `pair{p}_peak_force` and the structures' for i = 1 … N; `fit.json` with `structures`,
+//! `pairs`, `pair` in every fit and `target_gap` a list (one per pair, with `pair` and
+//! `between`).
 
 use std::path::{Path, PathBuf};
 
@@ -74,40 +81,59 @@ pub fn fragility_csv(run: &FragilityRun) -> String {
     out
 }
 
-/// `p_pounding.csv`.
+/// `p_pounding.csv` (of a row: `pair` first, each pair's rows in row order).
 pub fn p_pounding_csv(run: &FragilityRun) -> String {
-    let t = &run.pounding;
-    let mut out = String::from("im,gap,p_pounding\n");
-    for (j, x) in t.im.iter().enumerate() {
-        for (k, g) in t.gaps.iter().enumerate() {
-            num(&mut out, *x);
-            out.push(',');
-            num(&mut out, *g);
-            out.push(',');
-            num(&mut out, t.p[j][k]);
-            out.push('\n');
-        }
+    let row = run.study.scenario.is_row();
+    let mut out = String::from(if row {
+        "pair,im,gap,p_pounding\n"
+    } else {
+        "im,gap,p_pounding\n"
+    });
+    for (p, t) in run.pounding.iter().enumerate() {
+        p_pounding_rows(&mut out, t, row.then_some(p));
     }
     out
 }
 
-/// `runs.csv` (stripes) or `ida.csv` (IDA: `run` for `stripe`, rows by record and IM).
+fn p_pounding_rows(out: &mut String, t: &pounding::PoundingTable, pair: Option<usize>) {
+    for (j, x) in t.im.iter().enumerate() {
+        for (k, g) in t.gaps.iter().enumerate() {
+            if let Some(p) = pair {
+                out.push_str(&format!("{},", p + 1));
+            }
+            num(out, *x);
+            out.push(',');
+            num(out, *g);
+            out.push(',');
+            num(out, t.p[j][k]);
+            out.push('\n');
+        }
+    }
+}
+
+/// `runs.csv` (stripes) or `ida.csv` (IDA: `run` for `stripe`, rows by record and IM). Of a
+/// row: `pair{p}_critical_gap` for every pair, then `pair{p}_level{k}_required_separation`,
+/// `pair{p}_impacts`, `pair{p}_peak_force`, and the structures' columns for i = 1 … N.
 pub fn runs_csv(run: &FragilityRun) -> String {
-    let levels = run.study.scenario.contact.levels.len();
+    let shape = super::journal::Shape::of(&run.study);
     let ida = run.study.ida.is_some();
     let mut out = String::from(if ida {
-        "record,file,run,im,factor,record_im,critical_gap"
+        "record,file,run,im,factor,record_im"
     } else {
-        "record,file,stripe,im,factor,record_im,critical_gap"
+        "record,file,stripe,im,factor,record_im"
     });
-    for k in 1..=levels {
-        out.push_str(&format!(",level{k}_required_separation"));
+    for p in 0..shape.levels.len() {
+        out.push_str(&format!(",{}critical_gap", shape.pair_prefix(p)));
     }
-    out.push_str(",impacts,peak_force");
-    for what in ["ductility", "drift_ratio", "floor_acceleration"] {
-        for i in 1..=2 {
-            out.push_str(&format!(",{what}_{i},{what}_no_contact_{i}"));
-        }
+    for c in shape.level_columns() {
+        out.push_str(&format!(",{c}"));
+    }
+    for p in 0..shape.levels.len() {
+        let pre = shape.pair_prefix(p);
+        out.push_str(&format!(",{pre}impacts,{pre}peak_force"));
+    }
+    for c in shape.structure_columns() {
+        out.push_str(&format!(",{c}"));
     }
     out.push_str(",converged\n");
     let u = run.study.units.factor();
@@ -115,15 +141,6 @@ pub fn runs_csv(run: &FragilityRun) -> String {
     if ida {
         order.sort_by(|a, b| a.record.cmp(&b.record).then(a.im.total_cmp(&b.im)));
     }
-    let gaps: Vec<f64> = run
-        .study
-        .scenario
-        .contact
-        .levels
-        .iter()
-        .map(|l| l.gap)
-        .collect();
-    let top = crate::input::fragility::top_gap(&run.study.scenario);
     for o in order {
         out.push_str(&format!(
             "{},{},{},",
@@ -143,22 +160,23 @@ pub fn runs_csv(run: &FragilityRun) -> String {
         num(&mut out, o.factor);
         out.push(',');
         num(&mut out, run.record_im[o.record] / u);
-        out.push(',');
-        num(
-            &mut out,
-            pounding::critical_gap(&o.required, &gaps, top, run.study.gap_mode),
-        );
-        for r in &o.required {
+        for p in 0..o.required.len() {
+            out.push(',');
+            num(&mut out, super::critical_of(&run.study, o, p));
+        }
+        for r in o.required.iter().flatten() {
             out.push(',');
             num(&mut out, *r);
         }
-        out.push_str(&format!(",{},", o.impacts));
-        num(&mut out, o.peak_force);
-        for i in 0..2 {
-            for m in 0..2 {
+        for (n, f) in o.impacts.iter().zip(&o.peak_force) {
+            out.push_str(&format!(",{n},"));
+            num(&mut out, *f);
+        }
+        for d in &o.ductility {
+            for x in d {
                 out.push(',');
-                if let Some(d) = o.ductility[i][m] {
-                    num(&mut out, d);
+                if let Some(d) = x {
+                    num(&mut out, *d);
                 }
             }
         }
@@ -228,6 +246,7 @@ pub fn fit_json(run: &FragilityRun) -> Value {
         }
     };
     let u = s.units.factor();
+    let row = s.scenario.is_row();
     let fits: Vec<Value> = run
         .curves
         .iter()
@@ -242,6 +261,9 @@ pub fn fit_json(run: &FragilityRun) -> Value {
                 "runs": c.runs,
                 "exceedances": c.exceedances,
             });
+            if row {
+                v["pair"] = json!(ls.pair.map(|p| p + 1));
+            }
             if let Some(caps) = &c.capacities {
                 v["capacities"] = caps
                     .iter()
@@ -277,7 +299,28 @@ pub fn fit_json(run: &FragilityRun) -> Value {
             v
         })
         .collect();
-    json!({
+    let names: Vec<&str> = s.scenario.structures.iter().map(|x| x.name()).collect();
+    // a pair's: its one gap (or null); a row's: one per pair, with the pair
+    let target_gap = if row {
+        json!(
+            run.target_gap
+                .iter()
+                .enumerate()
+                .map(|(p, g)| {
+                    let mut v = json!({ "pair": p + 1, "between": [names[p], names[p + 1]] });
+                    if let (Value::Object(o), Ok(Value::Object(g))) =
+                        (&mut v, serde_json::to_value(g))
+                    {
+                        o.extend(g);
+                    }
+                    v
+                })
+                .collect::<Vec<_>>()
+        )
+    } else {
+        json!(run.target_gap.first())
+    };
+    let mut out = json!({
         "title": s.title,
         "scenario": s.scenario_file,
         "measure": measure,
@@ -299,9 +342,16 @@ pub fn fit_json(run: &FragilityRun) -> Value {
             "multi-stripe; lognormal by maximum likelihood on the stripe counts (Baker 2015), percentile bootstrap over records"
         },
         "fits": fits,
-        "target_gap": run.target_gap,
+        "target_gap": target_gap,
         "notes": s.notes,
-    })
+    });
+    if row {
+        out["structures"] = json!(names);
+        out["pairs"] = (0..names.len() - 1)
+            .map(|p| json!({ "pair": p + 1, "between": [names[p], names[p + 1]] }))
+            .collect();
+    }
+    out
 }
 
 /// `fit.json`'s text (pretty-printed, a final newline).
