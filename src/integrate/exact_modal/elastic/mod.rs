@@ -257,6 +257,12 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// Dense output of a step (its interior nodes' modal states, level states, tallies).
     dense_q: Vec<f64>,
     dense_v: Vec<f64>,
+    /// The accepted contact step's per-mode scratch: the particular solutions at its end and
+    /// interior nodes, and the end state (swapped with `q`, `v` once the tallies are taken).
+    pend: Vec<(f64, f64)>,
+    pmid: Vec<[(f64, f64); 3]>,
+    q1s: Vec<f64>,
+    v1s: Vec<f64>,
     dense_states: Vec<LevelState>,
     dense_tally: Tally,
     /// Located stereomechanical impacts in the current grid step (see [`ZENO`]).
@@ -424,6 +430,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             kextra,
             dense_q: vec![0.0; 3 * n],
             dense_v: vec![0.0; 3 * n],
+            pend: vec![(0.0, 0.0); n],
+            pmid: vec![[(0.0, 0.0); 3]; n],
+            q1s: vec![0.0; n],
+            v1s: vec![0.0; n],
             dense_states: vec![LevelState::default(); nl],
             dense_tally: Tally {
                 impulse: vec![0.0; nl],
