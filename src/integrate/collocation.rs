@@ -279,9 +279,9 @@ pub(super) struct Table {
     pub h: f64,
     /// Modes.
     n: usize,
-    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], at
-    /// `[(node·L + k)·n + j]`: the free flight's δ, δ̇ at the nodes are two dot products per
-    /// node and level.
+    /// `c_kj·(p11, p21, p12, p22)` of `P(θh)` at every node of [`NODES`], at
+    /// `[(node·L + k)·n + j]` (the columns in pairs: (η, η̇) from η₀, then from η̇₀): the free
+    /// flight's δ, δ̇ at the nodes are two dot products per node and level.
     pub cprop: Vec<[f64; 4]>,
     /// Per mode, see [`ModeStep`].
     pub modes: Vec<ModeStep>,
@@ -357,7 +357,7 @@ impl Table {
             for (i, p) in props.iter().enumerate() {
                 for k in holding.clone() {
                     let c = sys.coupling(k)[j];
-                    self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                    self.cprop[(i * nl + k) * n + j] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
                 }
             }
             let mut mono = [[(0.0, 0.0); 5]; 6];
@@ -587,8 +587,8 @@ fn solve_one<const S: usize>(
     let (dfree, nodal, force) = (&dfree[..m], &mut nodal[..m], &mut force[..S]);
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
-        let mut jac = [[0.0; MAX]; MAX];
         let mut rhs = [0.0; MAX];
+        let mut slopes = [(0.0, 0.0); MAX];
         let mut scale: f64 = 0.0;
         for p in 0..m {
             let row = &w[p * S..(p + 1) * S];
@@ -602,11 +602,8 @@ fn solve_one<const S: usize>(
             let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
             let f = force[p + 1];
             rhs[p] = phi - f;
+            slopes[p] = (kd, kv);
             scale = scale.max(phi.abs()).max(f.abs());
-            for q in 0..m {
-                jac[p][q] = kd * row[q + 1].0 + kv * row[q + 1].1;
-            }
-            jac[p][p] += 1.0;
         }
         let residual = rhs[..m].iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if !residual.is_finite() {
@@ -614,6 +611,16 @@ fn solve_one<const S: usize>(
         }
         if residual <= tol * scale || residual <= 1e-300 {
             return Ok(iter);
+        }
+        // the Jacobian (only when an update follows: most solves end on the residual test)
+        let mut jac = [[0.0; MAX]; MAX];
+        for p in 0..m {
+            let row = &w[p * S..(p + 1) * S];
+            let (kd, kv) = slopes[p];
+            for q in 0..m {
+                jac[p][q] = kd * row[q + 1].0 + kv * row[q + 1].1;
+            }
+            jac[p][p] += 1.0;
         }
         // elimination with partial pivoting
         for col in 0..m {
@@ -626,8 +633,10 @@ fn solve_one<const S: usize>(
             if jac[piv][col] == 0.0 || !jac[piv][col].is_finite() {
                 return Err(NoConvergence);
             }
-            jac.swap(col, piv);
-            rhs.swap(col, piv);
+            if piv != col {
+                jac.swap(col, piv);
+                rhs.swap(col, piv);
+            }
             let inv = 1.0 / jac[col][col];
             for r in col + 1..m {
                 let f = jac[r][col] * inv;

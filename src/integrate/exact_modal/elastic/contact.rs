@@ -144,13 +144,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
                     y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
                 }
+                let (gk, dfree) = (&self.gk[..nl], &mut self.dfree[..6 * nl]);
                 for i in 0..6 {
                     let (sh, ch) = tab.rot[i];
                     let (sn, cn) = (tr0.s * ch + tr0.c * sh, tr0.c * ch - tr0.s * sh);
-                    for k in 0..nl {
-                        let (gre, gim) = self.gk[k];
-                        self.dfree[k * 6 + i] =
-                            (-(sn * gre + cn * gim), -big * (cn * gre - sn * gim));
+                    for (&(gre, gim), df) in gk.iter().zip(dfree.chunks_exact_mut(6)) {
+                        df[i] = (-(sn * gre + cn * gim), -big * (cn * gre - sn * gim));
                     }
                 }
             }
@@ -229,11 +228,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
             let r = sys.coupling_modes(k);
+            let rows: [&[[f64; 4]]; 6] =
+                std::array::from_fn(|i| &cprop[(i * nl + k) * n + r.start..(i * nl + k) * n + r.end]);
             let mut acc = [(0.0, 0.0); 6];
-            for j in r {
-                let (x, y) = (x0s[j], y0s[j]);
-                for (i, s) in acc.iter_mut().enumerate() {
-                    let [a, b, c, e] = cprop[(i * nl + k) * n + j];
+            for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
+                for (s, row) in acc.iter_mut().zip(&rows) {
+                    let [a, c, b, e] = row[jj];
                     s.0 += a * x + b * y;
                     s.1 += c * x + e * y;
                 }
