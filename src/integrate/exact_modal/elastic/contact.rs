@@ -228,8 +228,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
             let r = sys.coupling_modes(k);
-            let rows: [&[[f64; 4]]; 6] =
-                std::array::from_fn(|i| &cprop[(i * nl + k) * n + r.start..(i * nl + k) * n + r.end]);
+            let rows: [&[[f64; 4]]; 6] = std::array::from_fn(|i| {
+                &cprop[(i * nl + k) * n + r.start..(i * nl + k) * n + r.end]
+            });
             let mut acc = [(0.0, 0.0); 6];
             for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
                 for (s, row) in acc.iter_mut().zip(&rows) {
@@ -626,7 +627,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
             pend[j] = particular_at(gm, piece, harmonic, pcoef, j, h, &trs[4]);
             if dense {
                 pmid[j] = std::array::from_fn(|i| {
-                    particular_at(gm, piece, harmonic, pcoef, j, THETA8[i + 1] * h, &trs[i + 1])
+                    particular_at(
+                        gm,
+                        piece,
+                        harmonic,
+                        pcoef,
+                        j,
+                        THETA8[i + 1] * h,
+                        &trs[i + 1],
+                    )
                 });
             }
         }
@@ -757,7 +766,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
         }
         // (harmonic motion: the change of energy from the harmonic sums, below)
-        let harmonic_sums = matches!(piece, Piece::Harmonic) && self.htally.is_some() && self.big.is_some();
+        let harmonic_sums =
+            matches!(piece, Piece::Harmonic) && self.htally.is_some() && self.big.is_some();
         if !harmonic_sums {
             for j in 0..n {
                 let (q0, v0, q1, v1) = (q0s[j], v0s[j], q1s[j], v1s[j]);
