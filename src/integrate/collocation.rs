@@ -299,11 +299,11 @@ pub(super) struct Table {
     pub h: f64,
     /// Modes.
     n: usize,
-    /// `c_kj·(p11, p12, p21, p22)` of `P(θh)` at every node of [`NODES`], level by level
-    /// over the level's pair's modes only (`System::coupling_modes`; c_kj = 0 elsewhere):
-    /// level k's block starts at `cstart[k]`, node i's row of it at `i·n_k` (see
-    /// [`Table::cprop_at`]). The free flight's δ, δ̇ at the nodes are two dot products per
-    /// node and level.
+    /// `c_kj·(p11, p21, p12, p22)` of `P(θh)` at every node of [`NODES`] (the columns in
+    /// pairs: (η, η̇) from η₀, then from η̇₀), level by level over the level's pair's modes
+    /// only (`System::coupling_modes`; c_kj = 0 elsewhere): level k's block starts at
+    /// `cstart[k]`, node i's row of it at `i·n_k` (see [`Table::cprop_at`]). The free
+    /// flight's δ, δ̇ at the nodes are two dot products per node and level.
     cprop: Vec<[f64; 4]>,
     /// Where each level's block of `cprop` starts (L + 1 entries).
     cstart: Vec<usize>,
@@ -393,7 +393,7 @@ impl Table {
                 let modes = sys.coupling_modes(k);
                 let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
                 for (i, p) in props.iter().enumerate() {
-                    self.cprop[at + i * w] = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                    self.cprop[at + i * w] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
                 }
             }
             let mut mono = [[(0.0, 0.0); 5]; 6];
@@ -660,8 +660,8 @@ fn solve_one<const S: usize>(
     let (dfree, nodal, force) = (&dfree[..m], &mut nodal[..m], &mut force[..S]);
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
-        let mut jac = [[0.0; MAX]; MAX];
         let mut rhs = [0.0; MAX];
+        let mut slopes = [(0.0, 0.0); MAX];
         let mut scale: f64 = 0.0;
         for p in 0..m {
             let row = &w[p * S..(p + 1) * S];
@@ -675,11 +675,8 @@ fn solve_one<const S: usize>(
             let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
             let f = force[p + 1];
             rhs[p] = phi - f;
+            slopes[p] = (kd, kv);
             scale = scale.max(phi.abs()).max(f.abs());
-            for q in 0..m {
-                jac[p][q] = kd * row[q + 1].0 + kv * row[q + 1].1;
-            }
-            jac[p][p] += 1.0;
         }
         let residual = rhs[..m].iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if !residual.is_finite() {
@@ -687,6 +684,16 @@ fn solve_one<const S: usize>(
         }
         if residual <= tol * scale || residual <= 1e-300 {
             return Ok(iter);
+        }
+        // the Jacobian (only when an update follows: most solves end on the residual test)
+        let mut jac = [[0.0; MAX]; MAX];
+        for p in 0..m {
+            let row = &w[p * S..(p + 1) * S];
+            let (kd, kv) = slopes[p];
+            for q in 0..m {
+                jac[p][q] = kd * row[q + 1].0 + kv * row[q + 1].1;
+            }
+            jac[p][p] += 1.0;
         }
         // elimination with partial pivoting
         for col in 0..m {
@@ -699,8 +706,10 @@ fn solve_one<const S: usize>(
             if jac[piv][col] == 0.0 || !jac[piv][col].is_finite() {
                 return Err(NoConvergence);
             }
-            jac.swap(col, piv);
-            rhs.swap(col, piv);
+            if piv != col {
+                jac.swap(col, piv);
+                rhs.swap(col, piv);
+            }
             let inv = 1.0 / jac[col][col];
             for r in col + 1..m {
                 let f = jac[r][col] * inv;
@@ -1041,7 +1050,7 @@ mod tests {
                         NODES[i] * 0.013,
                     );
                     let c = sys.coupling(k)[j];
-                    let want = [c * p.p11, c * p.p12, c * p.p21, c * p.p22];
+                    let want = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
                     if modes.contains(&j) {
                         assert_eq!(cp[j - modes.start], want, "cprop {k} {i} {j}");
                     } else {

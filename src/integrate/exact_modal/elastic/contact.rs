@@ -144,13 +144,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
                     y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
                 }
+                let (gk, dfree) = (&self.gk[..nl], &mut self.dfree[..6 * nl]);
                 for i in 0..6 {
                     let (sh, ch) = tab.rot[i];
                     let (sn, cn) = (tr0.s * ch + tr0.c * sh, tr0.c * ch - tr0.s * sh);
-                    for k in 0..nl {
-                        let (gre, gim) = self.gk[k];
-                        self.dfree[k * 6 + i] =
-                            (-(sn * gre + cn * gim), -big * (cn * gre - sn * gim));
+                    for (&(gre, gim), df) in gk.iter().zip(dfree.chunks_exact_mut(6)) {
+                        df[i] = (-(sn * gre + cn * gim), -big * (cn * gre - sn * gim));
                     }
                 }
             }
@@ -224,34 +223,37 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // the homogeneous parts: Σ_j c_kj P(θh)(x0, y0)
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
         for k in 0..nl {
-            // (over the level's pair's modes only: the row's others have c_kj = 0)
+            // one pass over the modes for all six nodes (each mode's start read once; every
+            // node's sum still runs over the modes in order, so the sums are the same bit
+            // for bit); over the level's pair's modes only: the row's others have c_kj = 0
             let r = sys.coupling_modes(k);
-            let (xs, ys) = (&x0s[r.clone()], &y0s[r]);
-            for i in 0..6 {
-                let cp = tab.cprop_at(sys, k, i);
-                let (mut d, mut dd) = (0.0, 0.0);
-                for ((&[a, b, c, e], &x), &y) in cp.iter().zip(xs).zip(ys) {
-                    d += a * x + b * y;
-                    dd += c * x + e * y;
+            let rows: [&[[f64; 4]]; 6] = std::array::from_fn(|i| tab.cprop_at(sys, k, i));
+            let mut acc = [(0.0, 0.0); 6];
+            for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
+                for (s, row) in acc.iter_mut().zip(&rows) {
+                    let [a, c, b, e] = row[jj];
+                    s.0 += a * x + b * y;
+                    s.1 += c * x + e * y;
                 }
-                self.dfree[k * 6 + i].0 -= d;
-                self.dfree[k * 6 + i].1 -= dd;
             }
-        }
-        for k in 0..nl {
             // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s
             // exactly, so this is the former `s − d` bit for bit)
             let lv = &sys.levels[k];
-            for i in 0..6 {
-                let d = &mut self.dfree[k * 6 + i].0;
-                *d = lv.delta(-*d);
+            let df: &mut [(f64, f64); 6] = (&mut self.dfree[k * 6..k * 6 + 6])
+                .try_into()
+                .expect("six nodes");
+            for (x, s) in df.iter_mut().zip(acc) {
+                x.0 = lv.delta(-(x.0 - s.0));
+                x.1 -= s.1;
             }
-            for (p, &node) in NODES8.iter().enumerate() {
-                self.d8free[k * 4 + p] = self.dfree[k * 6 + node];
-            }
-            for (p, &node) in NODES6.iter().enumerate() {
-                self.d6free[k * 3 + p] = self.dfree[k * 6 + node];
-            }
+            let d8: &mut [(f64, f64); 4] = (&mut self.d8free[k * 4..k * 4 + 4])
+                .try_into()
+                .expect("four nodes");
+            *d8 = NODES8.map(|node| df[node]);
+            let d6: &mut [(f64, f64); 3] = (&mut self.d6free[k * 3..k * 3 + 3])
+                .try_into()
+                .expect("three nodes");
+            *d6 = NODES6.map(|node| df[node]);
         }
         // the propagated scheme: start forces, a first guess from the last step's quartic
         let bases = collocation::bases();
@@ -611,21 +613,40 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let harmonic = gm.harmonic_plain();
         let mut sums = StateSums::default();
         let (mut input, mut d_energy) = (0.0, 0.0);
-        let proj = &mut self.proj;
-        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
         let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
         let modes = &tab.modes[..n];
+        // the particular solutions at the end (and at the interior nodes for dense output),
+        // in a loop of their own: the piece's kind is the same for every mode
+        let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
+        for j in 0..n {
+            let pcoef = &self.pcoef[j];
+            pend[j] = particular_at(gm, piece, harmonic, pcoef, j, h, &trs[4]);
+            if dense {
+                pmid[j] = std::array::from_fn(|i| {
+                    particular_at(
+                        gm,
+                        piece,
+                        harmonic,
+                        pcoef,
+                        j,
+                        THETA8[i + 1] * h,
+                        &trs[i + 1],
+                    )
+                });
+            }
+        }
+        // the end state (and the dense output's), each level's projections of it
+        let (q1s, v1s) = (&mut self.q1s[..n], &mut self.v1s[..n]);
+        let proj = &mut self.proj;
+        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
         // (a row's levels couple to few modes and levels: see `levels_of_mode`)
         let row = self.sys.structures.len() > 2;
+        let dense_out = (&mut self.dense_q[..3 * n], &mut self.dense_v[..3 * n]);
+        let one = nl == 1;
+        let f1: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
         for j in 0..n {
-            let ms = &modes[j];
-            // the particular solution at the end (and at the interior nodes for dense output)
-            // (a plain fn, not a closure: inlined into this loop)
-            let pcoef = &self.pcoef[j];
-            let part =
-                |p: usize| particular_at(gm, piece, harmonic, pcoef, j, THETA8[p] * h, &trs[p]);
-            let (x0, y0) = (x0s[j], y0s[j]);
+            // mode j's contact load's Lagrange weights g, Σ_k c_kj F_k (one level: c_j·F)
             // (the levels whose coupling can be non-zero at mode j: of a row, its structure's
             // pairs; the others' terms are exact zeros)
             let holding = if row {
@@ -634,14 +655,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 0..nl
             };
             let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
-            let mut g = [0.0; 5];
-            for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
-                for p in 0..5 {
-                    g[p] += c * f[p];
+            let g = if one {
+                let c = cj[0];
+                f1.map(|x| c * x)
+            } else {
+                let mut g = [0.0; 5];
+                for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
+                    for p in 0..5 {
+                        g[p] += c * f[p];
+                    }
                 }
-            }
+                g
+            };
+            let ms = &modes[j];
+            let (x0, y0) = (x0s[j], y0s[j]);
             let (xe, ye) = ms.end.apply(x0, y0);
-            let pe = part(4);
+            let pe = pend[j];
             let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
             for p in 0..5 {
                 q1 += g[p] * ms.end8[p].0;
@@ -650,20 +679,40 @@ impl<'a, O: Observer> Elastic<'a, O> {
             if dense {
                 for i in 0..3 {
                     let (x, y) = ms.mid[i].apply(x0, y0);
-                    let pi = part(i + 1);
+                    let pi = pmid[j][i];
                     let (mut e, mut d) = (x + pi.0, y + pi.1);
                     for p in 0..5 {
                         e += g[p] * ms.mid8[i][p].0;
                         d += g[p] * ms.mid8[i][p].1;
                     }
-                    self.dense_q[i * n + j] = e;
-                    self.dense_v[i * n + j] = d;
+                    dense_out.0[i * n + j] = e;
+                    dense_out.1[i * n + j] = d;
                 }
             }
-            let (q0, v0) = (self.q[j], self.v[j]);
-            match (piece, &self.htally) {
-                (Piece::Harmonic, Some(ht)) => ht.add(&mut sums, j, w2s[j], q1, v1),
-                (Piece::Poly { .. }, _) => {
+            q1s[j] = q1;
+            v1s[j] = v1;
+            for (c, pr) in cj.iter().zip(&mut proj[holding]) {
+                pr.0 += c * q1;
+                pr.1 += c * v1;
+            }
+        }
+        // the tallies, one loop per kind of piece
+        let (q0s, v0s) = (&self.q[..n], &self.v[..n]);
+        let (q1s, v1s) = (&self.q1s[..n], &self.v1s[..n]);
+        match (piece, &self.htally) {
+            (Piece::Harmonic, Some(ht)) => {
+                for j in 0..n {
+                    ht.add(&mut sums, j, w2s[j], q1s[j], v1s[j]);
+                }
+            }
+            (Piece::Poly { .. }, _) => {
+                for j in 0..n {
+                    let holding = if row {
+                        self.sys.levels_of_mode(j)
+                    } else {
+                        0..nl
+                    };
+                    let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
                     let (mut gi, mut gt) = (0.0, 0.0);
                     for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
                         gi += c * mo.0;
@@ -672,24 +721,38 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     input += poly_ground_work(
                         (damp[j], iw2[j]),
                         h,
-                        (q0, v0),
-                        (q1, v1),
+                        (q0s[j], v0s[j]),
+                        (q1s[j], v1s[j]),
                         &self.cpoly[j],
                         gi,
                         gt,
                     );
                 }
-                (Piece::Zero, _) => {}
-                _ => {
-                    // harmonic motion with a mode at undamped resonance: its exact work for
-                    // the contact load's chord (rare; mode_work's own trapezoid at resonance)
-                    let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
+            }
+            (Piece::Zero, _) => {}
+            _ => {
+                // harmonic motion with a mode at undamped resonance: its exact work for the
+                // contact load's chord (rare; mode_work's own trapezoid at resonance)
+                let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
+                for j in 0..n {
+                    let holding = if row {
+                        self.sys.levels_of_mode(j)
+                    } else {
+                        0..nl
+                    };
+                    let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                    let mut g = [0.0; 5];
+                    for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
+                        for p in 0..5 {
+                            g[p] += c * f[p];
+                        }
+                    }
                     input += mode_work(
                         gm,
                         j,
                         h,
-                        (q0, v0),
-                        (q1, v1),
+                        (q0s[j], v0s[j]),
+                        (q1s[j], v1s[j]),
                         None,
                         tm.as_ref(),
                         g[0],
@@ -698,14 +761,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     .input;
                 }
             }
-            d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
-            for (c, pr) in cj.iter().zip(&mut proj[holding]) {
-                pr.0 += c * q1;
-                pr.1 += c * v1;
-            }
-            self.q[j] = q1;
-            self.v[j] = v1;
         }
+        // (harmonic motion: the change of energy from the harmonic sums, below)
+        let harmonic_sums =
+            matches!(piece, Piece::Harmonic) && self.htally.is_some() && self.big.is_some();
+        if !harmonic_sums {
+            for j in 0..n {
+                let (q0, v0, q1, v1) = (q0s[j], v0s[j], q1s[j], v1s[j]);
+                d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
+            }
+        }
+        std::mem::swap(&mut self.q, &mut self.q1s);
+        std::mem::swap(&mut self.v, &mut self.v1s);
         if let (Piece::Harmonic, Some(ht), Some(big)) = (piece, &self.htally, self.big) {
             // the ground's work: the state sums at both ends, and the contact quartic's extra
             let tm =

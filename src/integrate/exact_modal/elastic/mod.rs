@@ -257,6 +257,12 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// Dense output of a step (its interior nodes' modal states, level states, tallies).
     dense_q: Vec<f64>,
     dense_v: Vec<f64>,
+    /// The accepted contact step's per-mode scratch: the particular solutions at its end and
+    /// interior nodes, and the end state (swapped with `q`, `v` once the tallies are taken).
+    pend: Vec<(f64, f64)>,
+    pmid: Vec<[(f64, f64); 3]>,
+    q1s: Vec<f64>,
+    v1s: Vec<f64>,
     dense_states: Vec<LevelState>,
     dense_tally: Tally,
     /// Located stereomechanical impacts in the current grid step (see [`ZENO`]).
@@ -424,6 +430,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             kextra,
             dense_q: vec![0.0; 3 * n],
             dense_v: vec![0.0; 3 * n],
+            pend: vec![(0.0, 0.0); n],
+            pmid: vec![[(0.0, 0.0); 3]; n],
+            q1s: vec![0.0; n],
+            v1s: vec![0.0; n],
             dense_states: vec![LevelState::default(); nl],
             dense_tally: Tally {
                 impulse: vec![0.0; nl],
@@ -807,6 +817,64 @@ mod tests {
         }
         let stats = run(KINK_FLOOR_ULPS).expect("runs with the floor");
         assert!(stats.steps > 0);
+    }
+
+    /// A contact trial's free flight to the collocation nodes (one pass over the modes with
+    /// six node sums, the coupled propagators stored in column pairs) is every mode's exact
+    /// free motion evaluated on its own: its propagator applied to the homogeneous start plus
+    /// the harmonic particular solution at the node, projected on the level. Tolerance: both
+    /// are the same closed form summed over 3 modes of ~0.1 m and ~1 m/s, so they agree to
+    /// round-off (~1e-16 of those); 1e-13 m and 1e-12 m/s catch any exchanged coefficient
+    /// (p12 for p21: errors of the order of the motion itself).
+    #[test]
+    fn a_trials_free_flight_to_the_nodes_is_each_modes_exact_motion() {
+        let sys = system("law = \"hertz\"\nstiffness = 2.808e10", 3);
+        let steps = trace(&sys, 1e-8, 1e-3, 1.0);
+        let tr = &steps[steps.len() / 2];
+        let settings = SolverSettings::new(Method::ExactModal, 1e-3, 10.0);
+        let mut quiet = Quiet;
+        let mut r = Elastic::new(
+            &sys,
+            &settings,
+            &mut quiet,
+            None,
+            tr.t,
+            tr.q0.clone(),
+            tr.v0.clone(),
+            Some(&tr.onset),
+        );
+        let (piece, _, _) = r.piece();
+        assert!(matches!(piece, Piece::Harmonic));
+        let h = 3e-3;
+        r.trial(None, h, &piece).expect("converges");
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let c = sys.coupling(0);
+        let tr0 = r.gm.trig(tr.t);
+        for (i, &x) in NODES.iter().enumerate() {
+            let tau = x * h;
+            let tr1 = r.gm.trig(tr.t + tau);
+            let (mut cq, mut cv) = (0.0, 0.0);
+            for j in 0..sys.len() {
+                let (e0, d0) = r.gm.particular(j, &piece, &[0.0; 3], 0.0, &tr0);
+                let (e1, d1) = r.gm.particular(j, &piece, &[0.0; 3], tau, &tr1);
+                let (a, b) = propagator(omega[j], damp[j], tau).apply(tr.q0[j] - e0, tr.v0[j] - d0);
+                cq += c[j] * (a + e1);
+                cv += c[j] * (b + d1);
+            }
+            let want = sys.levels[0].penetration(cq, cv);
+            let got = r.dfree[i];
+            assert!(
+                (got.0 - want.0).abs() < 1e-13 && (got.1 - want.1).abs() < 1e-12,
+                "node {i}: {got:?} vs {want:?}"
+            );
+        }
+        // (the two schemes' nodes are those of the six)
+        for (p, &node) in NODES8.iter().enumerate() {
+            assert_eq!(r.d8free[p], r.dfree[node]);
+        }
+        for (p, &node) in NODES6.iter().enumerate() {
+            assert_eq!(r.d6free[p], r.dfree[node]);
+        }
     }
 
     #[test]
