@@ -516,10 +516,15 @@ impl FloorRecorder {
             let abs = &mut st.abs_now[..ns];
             let (mut below, mut below_rate, mut below_prev, mut below_prev_rate) =
                 (0.0, 0.0, 0.0, 0.0);
+            // (every per-station slice cut to the stations once: no bounds check per station)
+            let (u, ud, ua) = (&u[..ns], &ud[..ns], &ua[..ns]);
+            let (vf, vfd, yields) = (&vf[..ns], &vfd[..ns], &st.yields[..ns]);
+            let (before, prev) = (&st.before[..ns], &mut st.prev[..ns]);
+            let (peaks, prev_force) = (&mut st.peaks[..ns], &mut st.prev_force[..ns]);
             for f in 0..ns {
                 let (u, ud) = (u[f], ud[f]);
-                let (up, udp) = st.before[f];
-                let p = &mut st.peaks[f];
+                let (up, udp) = before[f];
+                let p = &mut peaks[f];
                 let (d, dd, dp, ddp) = (
                     u - below,
                     ud - below_rate,
@@ -539,7 +544,7 @@ impl FloorRecorder {
                 }
                 // the storey force, refined between observations: a yielding storey's
                 // Bouc–Wen V (C¹ in time) from this drift and its z, or the modal rows' V
-                let force = match st.yields[f] {
+                let force = match yields[f] {
                     Some(k) => {
                         let law = &system.hysteresis.storeys()[k];
                         let z = s.z.get(k).copied().unwrap_or(0.0);
@@ -550,12 +555,12 @@ impl FloorRecorder {
                 if let Some((v1, vd1)) = force {
                     raise(&mut p.shear, v1.abs());
                     if let Some(h) = h {
-                        let (v0, vd0) = st.prev_force[f];
+                        let (v0, vd0) = prev_force[f];
                         refine(&mut p.shear, v0, vd0, v1, vd1, h);
                     }
-                    st.prev_force[f] = (v1, vd1);
+                    prev_force[f] = (v1, vd1);
                 }
-                st.prev[f] = (u, ud);
+                prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
             }
             // the equilibrium of what is above (storey force and damping forces)

@@ -71,14 +71,20 @@ pub struct Recorder<'s> {
     last_energy: [f64; 6],
     /// End of the run, s.
     end: f64,
-    /// Responses over the structures' heights (`None`: not tracked).
+    /// Responses over the structures' heights (`None`: not tracked, or not built yet).
     floors: Option<FloorRecorder>,
+    /// The tracked heights' pairs while the floor recorder is still to be built, at the first
+    /// observation (its stations' tables cost ~0.1 M instructions per structure: nothing for
+    /// a run [`Recorder::without_floors`]); `None` once built or switched off.
+    floors_pending: Option<Vec<usize>>,
     /// The values of the floor rows that go to the sink (`None`: all; see
     /// [`Recorder::with_floor_stations`]), and a scratch row for them.
     floor_keep: Option<Vec<usize>>,
     floor_row: Vec<f64>,
     /// Yielding storeys (`None`: none).
     storeys: Option<StoreyTracker>,
+    /// ω² of every mode of the system, 1/s².
+    w2: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -193,10 +199,12 @@ impl<'s> Recorder<'s> {
             steps: 0,
             last_energy: [0.0; 6],
             end: duration,
-            floors: Some(FloorRecorder::for_row(system, heights, pairs, interval)),
+            floors: None,
+            floors_pending: Some(pairs.to_vec()),
             floor_keep: None,
             floor_row: Vec::new(),
             storeys: StoreyTracker::new(system, interval, duration),
+            w2: system.omega().iter().map(|w| w * w).collect(),
         }
     }
 
@@ -204,7 +212,22 @@ impl<'s> Recorder<'s> {
     /// for runs that need only the contact-height numbers.
     pub fn without_floors(mut self) -> Recorder<'s> {
         self.floors = None;
+        self.floors_pending = None;
         self
+    }
+
+    /// Build the floor recorder if it is still pending (see `floors_pending`).
+    #[cold]
+    fn build_floors(&mut self, system: &System) {
+        if let Some(pairs) = self.floors_pending.take() {
+            let heights: Vec<f64> = self.levels.iter().map(|l| l.height).collect();
+            self.floors = Some(FloorRecorder::for_row(
+                system,
+                &heights,
+                &pairs,
+                self.interval,
+            ));
+        }
     }
 
     /// Send to the sink the floor history of the stations `stations` keeps (the peaks over
@@ -215,6 +238,7 @@ impl<'s> Recorder<'s> {
         heights: &[f64],
         stations: crate::recording::stations::FloorStations,
     ) -> Recorder<'s> {
+        self.build_floors(system);
         if let Some(f) = &self.floors {
             self.floor_keep = stations.selection(system, f, heights);
             self.floor_row = Vec::with_capacity(self.floor_keep.as_ref().map_or(0, Vec::len));
@@ -392,15 +416,28 @@ const HERMITE_REACH: f64 = 4.0 / 27.0;
 /// bound does not beat a running maximum cannot raise it: no root solve needed.
 #[inline(always)]
 fn hermite_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
-    y0.max(y1) + HERMITE_REACH * h * (d0.max(0.0) - d1.min(0.0))
+    big(y0, y1) + HERMITE_REACH * h * (big(d0, 0.0) - small(d1, 0.0))
+}
+
+/// `a.max(b)` as a plain comparison for finite values (`f64::max`'s NaN handling costs
+/// instructions; a bound is only compared, so a zero's sign does not matter).
+#[inline(always)]
+fn big(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// `a.min(b)` as [`big`] is `max`.
+#[inline(always)]
+fn small(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
 }
 
 /// An upper bound of the interpolant's absolute value (see [`hermite_bound`], for y and −y).
 #[inline(always)]
 fn hermite_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
-    let up = d0.max(0.0) - d1.min(0.0);
-    let down = d1.max(0.0) - d0.min(0.0);
-    y0.abs().max(y1.abs()) + HERMITE_REACH * h * up.max(down)
+    let up = big(d0, 0.0) - small(d1, 0.0);
+    let down = big(d1, 0.0) - small(d0, 0.0);
+    big(y0.abs(), y1.abs()) + HERMITE_REACH * h * big(up, down)
 }
 
 /// A sink that passes on the floor rows' values at `keep` only.
@@ -423,21 +460,75 @@ impl HistorySink for Picked<'_, '_> {
     }
 }
 
-/// `(φ·η, φ·η̇)` in one pass.
+/// Below this many modes a sum runs in one chain (as it always did); from it on in four
+/// lanes, which the compiler turns into vector operations.
+const LANES_FROM: usize = 8;
+
+/// `(φ·η, φ·η̇)` in one pass (from [`LANES_FROM`] modes on in four lanes: the same products
+/// added in another order, so the values move by round-off only).
 #[inline(always)]
 fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
     let n = phi.len().min(q.len()).min(v.len());
     let (phi, q, v) = (&phi[..n], &q[..n], &v[..n]);
-    let (mut w, mut wd) = (0.0, 0.0);
-    for j in 0..n {
-        w += phi[j] * q[j];
-        wd += phi[j] * v[j];
+    if n < LANES_FROM {
+        let (mut w, mut wd) = (0.0, 0.0);
+        for j in 0..n {
+            w += phi[j] * q[j];
+            wd += phi[j] * v[j];
+        }
+        return (w, wd);
     }
-    (w, wd)
+    let (mut w, mut wd) = ([0.0; 4], [0.0; 4]);
+    let (cp, cq, cv) = (phi.chunks_exact(4), q.chunks_exact(4), v.chunks_exact(4));
+    let (rp, rq, rv) = (cp.remainder(), cq.remainder(), cv.remainder());
+    for ((p, q), v) in cp.zip(cq).zip(cv) {
+        for l in 0..4 {
+            w[l] += p[l] * q[l];
+            wd[l] += p[l] * v[l];
+        }
+    }
+    for (l, ((p, q), v)) in rp.iter().zip(rq).zip(rv).enumerate() {
+        w[l] += p * q;
+        wd[l] += p * v;
+    }
+    (
+        (w[0] + w[1]) + (w[2] + w[3]),
+        (wd[0] + wd[1]) + (wd[2] + wd[3]),
+    )
+}
+
+/// The modal energy `Σ ½(η̇² + ω²η²)` (J; `w2`: ω² of every mode), as
+/// [`System::modal_energy`] forms it, in four lanes from [`LANES_FROM`] modes on.
+#[inline]
+fn modal_energy(w2: &[f64], q: &[f64], v: &[f64]) -> f64 {
+    let n = w2.len().min(q.len()).min(v.len());
+    let (w2, q, v) = (&w2[..n], &q[..n], &v[..n]);
+    if n < LANES_FROM {
+        let mut e = 0.0;
+        for j in 0..n {
+            e += 0.5 * (v[j] * v[j] + w2[j] * q[j] * q[j]);
+        }
+        return e;
+    }
+    let mut e = [0.0; 4];
+    let (cw, cq, cv) = (w2.chunks_exact(4), q.chunks_exact(4), v.chunks_exact(4));
+    let (rw, rq, rv) = (cw.remainder(), cq.remainder(), cv.remainder());
+    for ((w, q), v) in cw.zip(cq).zip(cv) {
+        for l in 0..4 {
+            e[l] += 0.5 * (v[l] * v[l] + w[l] * q[l] * q[l]);
+        }
+    }
+    for (l, ((w, q), v)) in rw.iter().zip(rq).zip(rv).enumerate() {
+        e[l] += 0.5 * (v * v + w * q * q);
+    }
+    (e[0] + e[1]) + (e[2] + e[3])
 }
 
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
+        if self.floors_pending.is_some() {
+            self.build_floors(system);
+        }
         if let Some(f) = &mut self.floors {
             match (&self.floor_keep, self.sink.as_deref_mut()) {
                 (Some(keep), Some(sink)) => {
@@ -607,7 +698,7 @@ impl Observer for Recorder<'_> {
         // start, at every observation that gave a history sample (for the peak energy, the
         // balance's scale) and at the end (the balance itself is formed in `finish`)
         if sampled || self.prev.is_none() || s.t >= self.end * (1.0 - 1e-12) {
-            let modal = system.modal_energy(s.q, s.v);
+            let modal = modal_energy(&self.w2, s.q, s.v);
             let stored = system.contact_energy(s.levels);
             if self.prev.is_none() {
                 self.modal_initial = modal;
@@ -752,6 +843,26 @@ mod tests {
         let force = k * expected.powf(1.5);
         assert!(close(i.peak_force, force), "{} vs {force}", i.peak_force);
         assert!(close(r.levels[0].peak_force, force));
+    }
+
+    /// The projections and the modal energy, in one chain below [`LANES_FROM`] modes and in
+    /// four lanes from it on (every remainder length), against the closed forms of integer
+    /// sums, exact in floating point at these sizes: with φ_j = j, η_j = 1, η̇_j = j,
+    /// `φ·η = n(n+1)/2`, `φ·η̇ = n(n+1)(2n+1)/6`; with ω² = 1, `Σ ½(η̇² + ω²η²) = ½(Σ j² + n)`.
+    #[test]
+    fn lane_sums_against_closed_forms() {
+        for n in 0..=23usize {
+            let phi: Vec<f64> = (1..=n).map(|j| j as f64).collect();
+            let ones = vec![1.0; n];
+            let nf = n as f64;
+            let squares = nf * (nf + 1.0) * (2.0 * nf + 1.0) / 6.0;
+            assert_eq!(
+                project(&phi, &ones, &phi),
+                (nf * (nf + 1.0) / 2.0, squares),
+                "{n} modes"
+            );
+            assert_eq!(modal_energy(&ones, &ones, &phi), 0.5 * (squares + nf));
+        }
     }
 
     /// Memory does not grow with the duration: over a run of 2·10⁶ samples (2000 s at 1 ms)

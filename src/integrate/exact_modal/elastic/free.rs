@@ -14,7 +14,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// cached, freshly computed into the scratch slot): returns `Some(index)` or `None` for
     /// the scratch slot.
     pub(super) fn free_index(&mut self, h: f64, keep: bool) -> Option<usize> {
+        // (a length is cached at most once: the last hit is the same entry the scan finds)
+        if self.free.get(self.free_hit).is_some_and(|e| e.h == h) {
+            return Some(self.free_hit);
+        }
         if let Some(i) = self.free.iter().position(|e| e.h == h) {
+            self.free_hit = i;
             return Some(i);
         }
         if !keep {
@@ -351,7 +356,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
         let (piece, start, seg_end) = self.piece();
         let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
-        let i = ((self.t - start) / hh + 1e-9).floor() + 1.0;
+        let x = (self.t - start) / hh;
+        let i = floor(x + 1e-9) + 1.0;
         let mut target = if i >= steps { seg_end } else { start + i * hh };
         if target - self.t <= 1e-12 * hh && target < seg_end {
             target = if i + 1.0 >= steps {
@@ -362,7 +368,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         let h = target - self.t;
         // a grid step keeps its data (its length recurs); a one-off length does not
-        let on_grid = ((self.t - start) / hh - ((self.t - start) / hh).round()).abs() < 1e-9;
+        let on_grid = (x - round(x)).abs() < 1e-9;
         if self.since_sync == 0 || !on_grid {
             self.trig_now = self.exact_trig(self.t);
         }
@@ -459,6 +465,71 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 t: self.t,
                 contact_omega_dt: self.max_contact_w2h2.sqrt(),
             })
+        }
+    }
+}
+
+/// `x.floor()` without a call into the maths library (the baseline x86-64 target has no
+/// rounding instruction): a truncation for 0 ≤ x < 2⁵², where it is the floor exactly.
+#[inline(always)]
+fn floor(x: f64) -> f64 {
+    if (0.0..4.503_599_627_370_496e15).contains(&x) {
+        x as u64 as f64
+    } else {
+        x.floor()
+    }
+}
+
+/// `x.round()` (half away from zero) as [`floor`] does it: for 0 ≤ x < 2⁵², the floor of
+/// x + ½ — equal to the round but where x + ½ rounds up to the next integer (x just below a
+/// half), which the grid test of `free_segment` cannot tell apart: both are ½ away from x.
+#[inline(always)]
+fn round(x: f64) -> f64 {
+    if (0.0..4.503_599_627_370_496e15).contains(&x) {
+        (x + 0.5) as u64 as f64
+    } else {
+        x.round()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{floor, round};
+
+    /// The call-free floor and round equal the standard library's for every value the grid
+    /// test meets (grid indices 0…10⁶ and their neighbours by an ulp and by 1e-9, halves and
+    /// just below them) and outside the fast range (negative, ≥ 2⁵², infinite); the grid
+    /// test's one departure, x just below a half, is ½ away from both candidates.
+    #[test]
+    fn floor_and_round_without_calls() {
+        let mut xs = vec![
+            -2.5,
+            -1.0,
+            -0.3,
+            4.6e15,
+            1e300,
+            f64::INFINITY,
+            0.5,
+            1.5,
+            2.5,
+        ];
+        for i in (0..1_000_000u64)
+            .step_by(997)
+            .chain([0, 1, 2, 3, 2000, 8000])
+        {
+            let x = i as f64;
+            xs.extend([x, x.next_up(), x.next_down().max(0.0), x + 1e-9, x - 1e-9]);
+            xs.extend([x + 0.5, (x + 0.5).next_down(), (x + 0.5).next_up()]);
+        }
+        for x in xs {
+            assert_eq!(floor(x), x.floor(), "floor {x:e}");
+            let (r, want) = (round(x), x.round());
+            if r != want {
+                assert_eq!(x, 0.5f64.next_down() + x.floor(), "round {x:e}");
+                assert!(
+                    ((x - r).abs() - 0.5).abs() < 1e-12 && ((x - want).abs() - 0.5).abs() < 1e-12
+                );
+            }
         }
     }
 }

@@ -168,6 +168,8 @@ pub(super) struct Elastic<'a, O: Observer> {
     // --- free flight
     free: Vec<FreeData>,
     free_next: usize,
+    /// The cache entry found last (checked first: a run of grid steps hits it every time).
+    free_hit: usize,
     scratch_free: Option<FreeData>,
     qb: Vec<f64>,
     vb: Vec<f64>,
@@ -354,6 +356,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             stats: Stats::default(),
             free: Vec::with_capacity(FREE_CACHE),
             free_next: 0,
+            free_hit: 0,
             scratch_free: None,
             qb: vec![0.0; n],
             vb: vec![0.0; n],
