@@ -349,10 +349,13 @@ impl RowWriter {
             }
         }
         let summary = self.dir.join("summary.json");
-        let json = row_summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| OutputError::Encode {
-            path: summary.clone(),
-            message,
-        })?;
+        let json =
+            row_summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| {
+                OutputError::Encode {
+                    path: summary.clone(),
+                    message,
+                }
+            })?;
         write_atomic(&summary, json.as_bytes())?;
         written.push(summary);
         self.created_dir = false;

@@ -313,7 +313,11 @@ pub fn members(scenario: &Scenario) -> Result<Members, SuiteError> {
 
 /// Each record's scenario of `scenarios` run by `simulate`, in parallel; the first failure
 /// names its record (1-based) and file.
-fn run_members<R, F>(suite: &Suite, scenarios: &[Scenario], simulate: F) -> Result<Vec<R>, SuiteError>
+fn run_members<R, F>(
+    suite: &Suite,
+    scenarios: &[Scenario],
+    simulate: F,
+) -> Result<Vec<R>, SuiteError>
 where
     R: Send,
     F: Fn(&Scenario) -> Result<R, SolveError> + Sync,

@@ -37,7 +37,10 @@ impl Headline {
     pub fn of_row(report: &RowReport, pga: f64) -> Headline {
         let mut v: Vec<(String, f64)> = vec![("pga".into(), pga)];
         for (s, i) in report.structures.iter().zip(1..) {
-            v.push((format!("structure{i}_peak_displacement"), s.peak_displacement));
+            v.push((
+                format!("structure{i}_peak_displacement"),
+                s.peak_displacement,
+            ));
             v.push((
                 format!("structure{i}_peak_displacement_no_contact"),
                 s.peak_displacement_no_contact,

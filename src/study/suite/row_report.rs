@@ -28,10 +28,7 @@ pub fn text(run: &RowSuiteRun, title: &str, name: &str) -> String {
     let n = run.records.len();
     let _ = writeln!(o, "{title}");
     let _ = writeln!(o, "  scenario: {name}");
-    let structures = run
-        .records
-        .first()
-        .map_or(0, |r| r.report.structures.len());
+    let structures = run.records.first().map_or(0, |r| r.report.structures.len());
     let _ = write!(
         o,
         "  a row of {structures} buildings; {}",
@@ -84,7 +81,11 @@ pub fn text(run: &RowSuiteRun, title: &str, name: &str) -> String {
          (with / without pounding)"
     );
     let names: Vec<&str> = run.records.first().map_or(Vec::new(), |r| {
-        r.report.structures.iter().map(|s| s.name.as_str()).collect()
+        r.report
+            .structures
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect()
     });
     let nw = names
         .iter()
@@ -100,7 +101,10 @@ pub fn text(run: &RowSuiteRun, title: &str, name: &str) -> String {
     for (i, s) in names.iter().enumerate() {
         let mut line = format!("  {s:<nw$}");
         let with = stat(run, &format!("structure{}_peak_displacement", i + 1));
-        let without = stat(run, &format!("structure{}_peak_displacement_no_contact", i + 1));
+        let without = stat(
+            run,
+            &format!("structure{}_peak_displacement_no_contact", i + 1),
+        );
         for (_, f) in STATS {
             let cell = format!(
                 "{} / {}",

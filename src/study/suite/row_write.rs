@@ -34,11 +34,14 @@ pub fn record_dir(i: usize, n: usize) -> String {
 
 /// `suite.csv` of a row: a header, then one row per record in the scenario's order.
 pub fn row_suite_csv(run: &RowSuiteRun) -> String {
-    records_csv(
-        run.records
-            .iter()
-            .map(|r| (r.file.as_str(), r.component.as_deref(), r.factor, &r.headline)),
-    )
+    records_csv(run.records.iter().map(|r| {
+        (
+            r.file.as_str(),
+            r.component.as_deref(),
+            r.factor,
+            &r.headline,
+        )
+    }))
 }
 
 /// The `suite` section of a row's summary.json: a pair suite's keys (`records`, `scaling`,

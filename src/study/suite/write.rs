@@ -46,11 +46,14 @@ fn number(out: &mut String, x: f64) {
 
 /// `suite.csv`: a header, then one row per record in the scenario's order.
 pub fn suite_csv(run: &SuiteRun) -> String {
-    records_csv(
-        run.records
-            .iter()
-            .map(|r| (r.file.as_str(), r.component.as_deref(), r.factor, &r.headline)),
-    )
+    records_csv(run.records.iter().map(|r| {
+        (
+            r.file.as_str(),
+            r.component.as_deref(),
+            r.factor,
+            &r.headline,
+        )
+    }))
 }
 
 /// The table of the records (file, component, factor, headline numbers), a pair's or a
@@ -108,11 +111,15 @@ struct ScalingSection<'a> {
 
 /// The `suite` section of summary.json.
 pub fn section(run: &SuiteRun) -> Value {
-    let records = record_entries(
-        run.records
-            .iter()
-            .map(|r| (r.file.as_str(), r.component.as_deref(), r.factor, &r.headline, r.report.warnings.as_slice())),
-    );
+    let records = record_entries(run.records.iter().map(|r| {
+        (
+            r.file.as_str(),
+            r.component.as_deref(),
+            r.factor,
+            &r.headline,
+            r.report.warnings.as_slice(),
+        )
+    }));
     json!({
         "records": records,
         "scaling": scaling_section(run.rule, run.scaling.as_ref(), run.records.iter().map(|r| r.factor).collect()),
@@ -124,7 +131,13 @@ pub fn section(run: &SuiteRun) -> Value {
 }
 
 /// One record's entry of the section (`suite.records`), a pair's or a row's.
-type RecordEntry<'a> = (&'a str, Option<&'a str>, f64, &'a super::Headline, &'a [String]);
+type RecordEntry<'a> = (
+    &'a str,
+    Option<&'a str>,
+    f64,
+    &'a super::Headline,
+    &'a [String],
+);
 
 /// `suite.records`: per record its file, component, factor, headline numbers, `converged` and
 /// `warnings`.
