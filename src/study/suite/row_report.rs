@@ -14,8 +14,11 @@ fn mm(x: f64) -> String {
     format!("{:.1}", x * 1e3)
 }
 
+/// One statistic of [`Statistics`].
+type Statistic = fn(&Statistics) -> f64;
+
 /// (label, statistic) of the report's statistics lines.
-const STATS: [(&str, fn(&Statistics) -> f64); 4] = [
+const STATS: [(&str, Statistic); 4] = [
     ("mean", |s| s.mean),
     ("median", |s| s.median),
     ("84th percentile", |s| s.p84),
