@@ -507,6 +507,22 @@ fn bundled_examples_run_without_warnings() {
         if pounding::analysis::simulate::require_time_history(&sc).is_err() {
             continue;
         }
+        // a suite of records on a row: every record's run of the row, self-checked
+        if sc.is_row() && sc.suite.is_some() {
+            let run = pounding::study::suite::row::run_row(&sc, true)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            for r in &run.records {
+                assert!(
+                    r.report.warnings.is_empty(),
+                    "{}: {:?}",
+                    r.file,
+                    r.report.warnings
+                );
+                assert_eq!(r.report.accuracy.converged, Some(true), "{}", r.file);
+            }
+            ran += 1;
+            continue;
+        }
         // a row of buildings (issue 29): its warnings, none expected of the bundled row
         if sc.is_row() {
             let r = pounding::analysis::simulate::simulate_row(&sc)

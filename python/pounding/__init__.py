@@ -185,6 +185,19 @@ class RowResult:
     - ``floors``: dict of floors.csv's columns (``t``, ``w_<name>_<h>``, ``a_<name>_<h>``, then
       the same with ``_free``);
     - ``warnings``: list of the run's warnings.
+
+    For a suite of records on the row (``[ground_motion] kind = "suite"``) the tables and the
+    top level of ``summary`` are the representative record's run of the row (as ``pounding
+    run`` writes them), and, as for a pair's suite,
+
+    - ``suite``: dict, summary.json's ``suite`` section (``records``, ``scaling``,
+      ``statistics``, ``design`` with ``pairs`` — per pair and level the design value, the gap,
+      the verdict — ``governing_pair``, ``governing_level``, ``representative``,
+      ``record_dirs``), ``None`` for one record;
+    - ``records``: list of dicts, one per record (file, component, factor, the numbers per
+      structure ``structure{i}_…`` and per pair ``pair{p}_…``);
+    - ``statistics``: dict, per such number its ``mean``, ``median``, ``p84``, ``min``, ``max``
+      and ``design`` value across the records.
     """
 
     __slots__ = ("_out", "_cache")
@@ -252,10 +265,28 @@ class RowResult:
         """The run's warnings."""
         return self._out.warnings
 
+    @property
+    def suite(self) -> dict[str, Any] | None:
+        """A suite's section of summary.json, or None for one record."""
+        return self.summary.get("suite")
+
+    @property
+    def records(self) -> list[dict[str, Any]]:
+        """A suite's records with their numbers per structure and pair (empty for one record)."""
+        s = self.suite
+        return [] if s is None else s["records"]
+
+    @property
+    def statistics(self) -> dict[str, Any]:
+        """A suite's statistics across its records (empty for one record)."""
+        s = self.suite
+        return {} if s is None else s["statistics"]
+
     def summary_text(self) -> str:
         """The summary ``pounding run`` prints for a row: every structure's peaks with and
         without pounding, every pair's impacts and required separation, the row's verdict, the
-        energy balance and the self-check."""
+        energy balance and the self-check (for a suite of records, the suite's report per
+        pair)."""
         return self._out.summary_text()
 
     def to_pandas(self) -> dict[str, Any]:

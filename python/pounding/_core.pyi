@@ -111,7 +111,9 @@ class RowOutput:
     def summary_json(self) -> str:
         """summary.json's text of a row."""
     def summary_text(self) -> str:
-        """The summary `pounding run` prints for a row."""
+        """The summary `pounding run` prints for a row (for a suite of records, its report)."""
+    def suite_csv(self) -> str | None:
+        """suite.csv's text for a suite of records on the row (None for one record)."""
     def history(self) -> dict[str, npt.NDArray[np.float64]]:
         """history.csv's columns."""
     def structures(self) -> dict[str, dict[str, npt.NDArray[np.float64]]]:

@@ -24,19 +24,40 @@ pub(crate) struct PyRowOutput {
     name: String,
     report: RowReport,
     capture: RunCapture,
+    /// A suite of records on the row: every record's run (the fields above are the
+    /// representative record's, the top level of summary.json).
+    suite: Option<Arc<pounding::study::suite::row::RowSuiteRun>>,
 }
 
 #[pymethods]
 impl PyRowOutput {
     /// summary.json's text (exactly the file `pounding run` writes for a row).
     fn summary_json(&self) -> PyResult<String> {
-        pounding::output::row::row_summary_json(&self.scenario, &self.report)
+        let section = self
+            .suite
+            .as_deref()
+            .map(pounding::study::suite::row_write::row_section);
+        pounding::output::row::row_summary_json_with(&self.scenario, &self.report, section.as_ref())
             .map_err(OutputError::new_err)
+    }
+
+    /// suite.csv's text for a suite of records on the row (`None` for one record).
+    fn suite_csv(&self) -> Option<String> {
+        self.suite
+            .as_deref()
+            .map(pounding::study::suite::row_write::row_suite_csv)
     }
 
     /// The summary `pounding run` prints for a row.
     fn summary_text(&self) -> PyResult<String> {
         no_panic(|| {
+            if let Some(run) = self.suite.as_deref() {
+                return Ok(pounding::study::suite::row_report::text(
+                    run,
+                    &self.scenario.title,
+                    &self.name,
+                ));
+            }
             Ok(pounding::output::text::row_summary(
                 &self.scenario,
                 &self.name,
@@ -111,6 +132,17 @@ impl PyRowOutput {
     fn save(&self, py: Python<'_>, dir: PathBuf, plots: bool) -> PyResult<Vec<PathBuf>> {
         py.detach(|| {
             no_panic(|| {
+                if let Some(run) = self.suite.as_deref() {
+                    use pounding::figures::suite::{row_suite_pictures, row_suite_record_pictures};
+                    let draw = plots.then(|| row_suite_pictures(run));
+                    return pounding::study::suite::row_write::write_row_suite(
+                        &dir,
+                        run,
+                        draw,
+                        |i| plots.then(|| row_suite_record_pictures(run, i)),
+                    )
+                    .map_err(|e| OutputError::new_err(e.to_string()));
+                }
                 let draw = plots
                     .then(|| pounding::figures::row::row_pictures(&self.scenario, &self.report));
                 pounding::output::row::write_row(
@@ -140,6 +172,23 @@ pub(crate) fn run_row(
     let name = scenario.get().origin.clone();
     py.detach(|| {
         no_panic(|| {
+            if sc.suite.is_some() {
+                // every record through the row's driver; the representative's run is the top
+                use pounding::study::suite::SuiteError as E;
+                let run =
+                    pounding::study::suite::row::run_row(&sc, check).map_err(|e| match e {
+                        E::Solve { .. } => SolveError::new_err(e.to_string()),
+                        _ => ScenarioError::new_err(e.to_string()),
+                    })?;
+                let rep = &run.records[run.representative];
+                return Ok(PyRowOutput {
+                    scenario: Arc::new(rep.scenario.clone()),
+                    name,
+                    report: rep.report.clone(),
+                    capture: rep.capture.clone(),
+                    suite: Some(Arc::new(run)),
+                });
+            }
             pounding::analysis::simulate::require_time_history(&sc)
                 .map_err(|e| SolveError::new_err(e.to_string()))?;
             pounding::output::budget::check_run(&sc, max_output_size)
@@ -153,6 +202,7 @@ pub(crate) fn run_row(
                 name,
                 report,
                 capture,
+                suite: None,
             })
         })
     })

@@ -6,6 +6,8 @@ from __future__ import annotations
 import statistics
 from pathlib import Path
 
+import pytest
+
 import pounding
 
 
@@ -110,3 +112,37 @@ def test_dask_sweep_over_a_suite(examples: Path) -> None:
     assert list(table) == list(local)
     for k in local:
         np.testing.assert_array_equal(table[k], local[k], err_msg=k)
+
+
+def test_row_suite_run_gives_per_pair_results(examples: Path, tmp_path: Path, cli) -> None:
+    """A suite of records on a row of buildings (examples/suite-row.toml): a RowResult with the
+    suite's records, statistics and per-pair design values (EN 1998-1 with 3 records: the
+    largest per pair and level, computed here), the row's verdict at the least margin, and
+    the command line's files byte for byte."""
+    sc = pounding.Scenario.from_file(examples / "suite-row.toml")
+    r = pounding.run(sc, check=False)
+    assert isinstance(r, pounding.RowResult)
+    assert r.suite is not None and len(r.records) == 3
+    design = r.suite["design"]
+    assert design["statistic"] == "max"
+    least = None
+    for pair in design["pairs"]:
+        p = pair["pair"]
+        for level in pair["levels"]:
+            key = f"pair{p}_level{level['level']}_required_separation"
+            values = [rec[key] for rec in r.records]
+            assert level["required"] == max(values)
+            assert r.statistics[key]["mean"] == pytest.approx(statistics.fmean(values), rel=1e-12)
+            margin = level["gap"] - max(values)
+            if least is None or margin < least[0]:
+                least = (margin, p, level["level"])
+    assert (design["governing_pair"], design["governing_level"]) == least[1:]
+    # the top level is the representative record's run of the row, with every pair
+    assert len(r.summary["pairs"]) == 2 and len(r.summary["structures"]) == 3
+    written = r.save(tmp_path / "py", plots=False)
+    assert Path(written[-1]).name == "summary.json"
+    out = cli("run", examples / "suite-row.toml", "--out", tmp_path / "cli", "--no-check", "--no-plot")
+    assert out.returncode == 0, out.stderr
+    for f in ("summary.json", "suite.csv", "history.csv", "records/01/summary.json"):
+        assert (tmp_path / "py" / f).read_text() == (tmp_path / "cli" / f).read_text(), f
+    assert out.stdout.startswith(r.summary_text() + "\nwrote ")

@@ -216,3 +216,42 @@ pub fn suite_pictures(run: &SuiteRun) -> Box<crate::output::run::DrawPictures<'_
         Ok(files)
     })
 }
+
+/// Every picture of a suite run on a row of buildings, drawn into the directory given: the
+/// representative record's row pictures ([`crate::figures::row::row_pictures`]) and
+/// `suite-spectra` (with a scaling rule). No `suite-records` for a row yet (one left by an
+/// earlier run is removed); each record's own row pictures are drawn in its folder by
+/// [`row_suite_record_pictures`].
+pub fn row_suite_pictures(
+    run: &crate::study::suite::row::RowSuiteRun,
+) -> Box<crate::output::run::DrawPictures<'_>> {
+    Box::new(move |dir: &Path| {
+        let rep = &run.records[run.representative];
+        let mut files = crate::figures::row::row_pictures(&rep.scenario, &rep.report)(dir)?;
+        match &run.scaling {
+            Some(s) => {
+                files.extend(
+                    scaling_figure(s, &dir.join("suite-spectra")).map_err(|e| e.to_string())?,
+                );
+            }
+            None => {
+                for ext in ["png", "svg"] {
+                    let _ = std::fs::remove_file(dir.join(format!("suite-spectra.{ext}")));
+                }
+            }
+        }
+        for ext in ["png", "svg"] {
+            let _ = std::fs::remove_file(dir.join(format!("suite-records.{ext}")));
+        }
+        Ok(files)
+    })
+}
+
+/// The row pictures of record `i` (0-based) of a row's suite run, for its own folder.
+pub fn row_suite_record_pictures(
+    run: &crate::study::suite::row::RowSuiteRun,
+    i: usize,
+) -> Box<crate::output::run::DrawPictures<'_>> {
+    let r = &run.records[i];
+    crate::figures::row::row_pictures(&r.scenario, &r.report)
+}

@@ -56,6 +56,9 @@ fn run_suite(
     if !quiet && std::io::stderr().is_terminal() {
         eprintln!("{}", suite::report::progress_line(sc, !no_check));
     }
+    if sc.is_row() {
+        return run_row_suite(sc, name, out, no_plot, no_check, quiet);
+    }
     let run = suite::run(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
     let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
     let written = suite::write::write(out, &run, draw)?;
@@ -64,6 +67,42 @@ fn run_suite(
         println!("\nwrote {}", list_paths(&written));
     }
     for w in suite::report::warnings(sc, &run) {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// `pounding run` on a suite of records on a row of buildings: every record through the row's
+/// driver (in parallel), each record's run in its folder, the representative's at the top
+/// level (summary.json last), the report per pair printed.
+fn run_row_suite(
+    sc: &Scenario,
+    name: &str,
+    out: &Path,
+    no_plot: bool,
+    no_check: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    let run = suite::row::run_row(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
+    let draw = (!no_plot).then(|| pounding::figures::suite::row_suite_pictures(&run));
+    let written = suite::row_write::write_row_suite(out, &run, draw, |i| {
+        (!no_plot).then(|| pounding::figures::suite::row_suite_record_pictures(&run, i))
+    })?;
+    if !quiet {
+        print!("{}", suite::row_report::text(&run, &sc.title, name));
+        // (each record's folder once, not its every file)
+        let top: Vec<_> = written
+            .iter()
+            .filter(|p| !p.starts_with(out.join(suite::row_write::RECORDS_DIR)))
+            .cloned()
+            .collect();
+        println!(
+            "\nwrote {}, and each record's run in {}",
+            list_paths(&top),
+            out.join(suite::row_write::RECORDS_DIR).display()
+        );
+    }
+    for w in suite::row_report::warnings(sc, &run) {
         eprintln!("warning: {w}");
     }
     Ok(())

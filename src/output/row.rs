@@ -31,10 +31,23 @@ struct RowSummary<'a> {
     report: &'a RowReport,
     solver: super::run::SolverInfo,
     defaults_applied: &'a [String],
+    /// A suite's own section ([`RowWriter::with_suite`]); absent for one record.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    suite: Option<&'a serde_json::Value>,
 }
 
 /// A row's summary as JSON text.
 pub fn row_summary_json(scenario: &Scenario, report: &RowReport) -> Result<String, String> {
+    row_summary_json_with(scenario, report, None)
+}
+
+/// [`row_summary_json`] with a suite's section `suite` last (the other keys are then the run
+/// of the suite's representative record, `scenario`).
+pub fn row_summary_json_with(
+    scenario: &Scenario,
+    report: &RowReport,
+    suite: Option<&serde_json::Value>,
+) -> Result<String, String> {
     let s = RowSummary {
         report,
         solver: super::run::SolverInfo::new(
@@ -43,6 +56,7 @@ pub fn row_summary_json(scenario: &Scenario, report: &RowReport) -> Result<Strin
             (&report.energy, &report.energy_no_contact),
         ),
         defaults_applied: &scenario.defaults_applied,
+        suite,
     };
     serde_json::to_string_pretty(&s).map_err(|e| e.to_string())
 }
@@ -167,6 +181,8 @@ pub struct RowWriter {
     error: Option<OutputError>,
     created_dir: bool,
     floors: Option<crate::output::floors_csv::FloorsCsv>,
+    /// A suite's section of summary.json ([`RowWriter::with_suite`]).
+    suite: Option<serde_json::Value>,
 }
 
 impl std::fmt::Debug for RowWriter {
@@ -239,7 +255,15 @@ impl RowWriter {
             error: None,
             created_dir,
             floors: Some(floors),
+            suite: None,
         })
+    }
+
+    /// Add `section` as the key `suite` of summary.json (a suite of records on a row, written
+    /// by the suite driver of the study layer).
+    pub fn with_suite(mut self, section: serde_json::Value) -> RowWriter {
+        self.suite = Some(section);
+        self
     }
 
     fn fail(&mut self, source: std::io::Error) {
@@ -325,10 +349,13 @@ impl RowWriter {
             }
         }
         let summary = self.dir.join("summary.json");
-        let json = row_summary_json(scenario, report).map_err(|message| OutputError::Encode {
-            path: summary.clone(),
-            message,
-        })?;
+        let json =
+            row_summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| {
+                OutputError::Encode {
+                    path: summary.clone(),
+                    message,
+                }
+            })?;
         write_atomic(&summary, json.as_bytes())?;
         written.push(summary);
         self.created_dir = false;

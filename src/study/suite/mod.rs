@@ -9,6 +9,9 @@
 //! The files are written by [`write`]; the pictures by `crate::figures::suite`.
 
 pub mod report;
+pub mod row;
+pub mod row_report;
+pub mod row_write;
 pub mod statistics;
 pub mod write;
 
@@ -38,6 +41,12 @@ pub enum SuiteError {
     /// A record's scenario could not be formed.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
+    /// A suite on a row of buildings taken where only a pair's suite is run (a sweep's case).
+    #[error(
+        "the scenario is a row of {0} structures: its suite of records is run by `pounding run` \
+         (or `pounding.run` in Python); a sweep over a suite on a row is not supported yet"
+    )]
+    Row(usize),
     /// A record's run failed.
     #[error("record {index} ({file}): {source}")]
     Solve {
@@ -260,12 +269,26 @@ pub fn run_headline(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteE
     })
 }
 
-/// The suite scaled by its rule, each record's scenario run by `simulate` (in parallel), the
-/// statistics and the verdict: the one pipeline of [`run`] and [`run_headline`].
-fn run_with<F>(scenario: &Scenario, simulate: F) -> Result<SuiteRun, SuiteError>
-where
-    F: Fn(&Scenario) -> Result<(Report, RunCapture), SolveError> + Sync,
-{
+/// The records of a suite, each as a scenario of its own: what every driver of a suite runs
+/// (a pair's [`run`], a row's [`row::run_row`], and a fragility study's suite on a row).
+#[derive(Debug, Clone)]
+pub struct Members {
+    /// The scaling by the rule (`None` for rule = "none").
+    pub scaling: Option<ScaledSuite>,
+    /// The factor on each record, in the scenario's order (the rule's, or the user's).
+    pub factors: Vec<f64>,
+    /// Each record's scenario ([`Suite::member_scenario`]): the suite's scenario — a pair or a
+    /// row of buildings, every structure and contact unchanged — with that record scaled by its
+    /// factor as its ground motion and the solver's defaults of that record alone.
+    pub scenarios: Vec<Scenario>,
+}
+
+/// The suite of `scenario` scaled by its rule over the first-mode periods of all its structures
+/// (a pair's two, or every building of a row: the period range defaults to 0.2 × the shortest
+/// to 2 × the longest) and each record's scenario ([`Members`]). Shared by the suite drivers
+/// of a pair and of a row, and by fragility on a row (a row suite member's scenario is the row
+/// with that record, as for a pair).
+pub fn members(scenario: &Scenario) -> Result<Members, SuiteError> {
     let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
     let scaling = scale(scenario, suite)?;
     let factors: Vec<f64> = match &scaling {
@@ -281,7 +304,25 @@ where
         .enumerate()
         .map(|(i, &f)| suite.member_scenario(scenario, i, f))
         .collect::<Result<_, _>>()?;
-    let runs: Vec<(Report, RunCapture)> = scenarios
+    Ok(Members {
+        scaling,
+        factors,
+        scenarios,
+    })
+}
+
+/// Each record's scenario of `scenarios` run by `simulate`, in parallel; the first failure
+/// names its record (1-based) and file.
+fn run_members<R, F>(
+    suite: &Suite,
+    scenarios: &[Scenario],
+    simulate: F,
+) -> Result<Vec<R>, SuiteError>
+where
+    R: Send,
+    F: Fn(&Scenario) -> Result<R, SolveError> + Sync,
+{
+    scenarios
         .par_iter()
         .enumerate()
         .map(|(i, sc)| {
@@ -291,7 +332,46 @@ where
                 source: Box::new(source),
             })
         })
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+/// Every headline number across the records' `headlines` (named as the first record's), with
+/// the design value by `statistic`.
+fn named_statistics<'a>(
+    headlines: impl Iterator<Item = &'a Headline> + Clone,
+    statistic: DesignStatistic,
+) -> NamedStatistics {
+    let Some(first) = headlines.clone().next() else {
+        return NamedStatistics(Vec::new());
+    };
+    NamedStatistics(
+        first
+            .values
+            .iter()
+            .map(|(name, _)| {
+                let v: Vec<f64> = headlines.clone().filter_map(|h| h.get(name)).collect();
+                (name.clone(), Statistics::of(&v, statistic))
+            })
+            .collect(),
+    )
+}
+
+/// The suite scaled by its rule, each record's scenario run by `simulate` (in parallel), the
+/// statistics and the verdict: the one pipeline of [`run`] and [`run_headline`].
+fn run_with<F>(scenario: &Scenario, simulate: F) -> Result<SuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<(Report, RunCapture), SolveError> + Sync,
+{
+    let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
+    if scenario.is_row() {
+        return Err(SuiteError::Row(scenario.structures.len()));
+    }
+    let Members {
+        scaling,
+        factors,
+        scenarios,
+    } = members(scenario)?;
+    let runs = run_members(suite, &scenarios, simulate)?;
     let records: Vec<RecordRun> = runs
         .into_iter()
         .zip(scenarios)
@@ -312,20 +392,7 @@ where
         .collect();
     let n = records.len();
     let (statistic, basis) = DesignStatistic::for_rule(suite.scaling.rule, n);
-    let statistics = NamedStatistics(
-        records[0]
-            .headline
-            .values
-            .iter()
-            .map(|(name, _)| {
-                let v: Vec<f64> = records
-                    .iter()
-                    .filter_map(|r| r.headline.get(name))
-                    .collect();
-                (name.clone(), Statistics::of(&v, statistic))
-            })
-            .collect(),
-    );
+    let statistics = named_statistics(records.iter().map(|r| &r.headline), statistic);
     let design = design(scenario, &records, statistic, basis);
     let k = design.governing_level - 1;
     let representative = (0..n)
@@ -352,17 +419,40 @@ pub fn design(
     statistic: DesignStatistic,
     basis: &'static str,
 ) -> Design {
-    let levels: Vec<LevelDesign> = scenario
-        .contact
-        .levels
+    let (levels, governing_level) = level_designs(
+        &scenario.contact.levels,
+        |k| {
+            records
+                .iter()
+                .map(|r| r.report.levels[k].required_gap)
+                .collect()
+        },
+        statistic,
+    );
+    Design {
+        statistic,
+        basis,
+        records: records.len(),
+        sufficient: levels.iter().all(|l| l.sufficient),
+        insufficient_levels: levels.iter().filter(|l| !l.sufficient).count(),
+        governing_level,
+        levels,
+    }
+}
+
+/// The design value at each of one contact's `levels` of the records' required separations
+/// there (`required(k)`: one value per record at level k, 0-based), and the level of least
+/// margin (1-based; the first of equal margins): a pair's levels, or one pair's of a row.
+pub(crate) fn level_designs(
+    levels: &[crate::model::system::ContactLevel],
+    required: impl Fn(usize) -> Vec<f64>,
+    statistic: DesignStatistic,
+) -> (Vec<LevelDesign>, usize) {
+    let levels: Vec<LevelDesign> = levels
         .iter()
         .enumerate()
         .map(|(k, lv)| {
-            let v: Vec<f64> = records
-                .iter()
-                .map(|r| r.report.levels[k].required_gap)
-                .collect();
-            let statistics = Statistics::of(&v, statistic);
+            let statistics = Statistics::of(&required(k), statistic);
             let required = statistics.design;
             LevelDesign {
                 level: k + 1,
@@ -382,13 +472,5 @@ pub fn design(
             _ => Some(l),
         })
         .map_or(1, |l| l.level);
-    Design {
-        statistic,
-        basis,
-        records: records.len(),
-        sufficient: levels.iter().all(|l| l.sufficient),
-        insufficient_levels: levels.iter().filter(|l| !l.sufficient).count(),
-        governing_level: governing,
-        levels,
-    }
+    (levels, governing)
 }

@@ -16,41 +16,7 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
     let n = run.records.len();
     let _ = writeln!(o, "{title}");
     let _ = writeln!(o, "  scenario: {name}");
-    match &run.scaling {
-        Some(s) => {
-            let _ = writeln!(
-                o,
-                "  suite of {n} records scaled by {} to {}",
-                s.rule_name, s.target_description
-            );
-            let _ = writeln!(
-                o,
-                "  period range {:.3}–{:.3} s (first-mode periods {}); lowest mean/target {:.3} \
-                 at T = {:.3} s (≥ {} required){}",
-                s.range.lo,
-                s.range.hi,
-                s.first_mode_periods
-                    .iter()
-                    .map(|t| format!("{t:.3}"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                s.min_ratio,
-                s.min_ratio_period,
-                s.required_ratio,
-                s.pga_check.map_or(String::new(), |p| format!(
-                    "; mean PGA {:.3} g ≥ a_g·S {:.3} g",
-                    p.mean_pga / STANDARD_GRAVITY,
-                    p.required / STANDARD_GRAVITY
-                ))
-            );
-        }
-        None => {
-            let _ = writeln!(
-                o,
-                "  suite of {n} records at their own factors (rule \"none\")"
-            );
-        }
-    }
+    o.push_str(&scaling_lines(run.scaling.as_ref(), n));
     let levels = &run.design.levels;
     let _ = writeln!(
         o,
@@ -192,6 +158,51 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
     o
 }
 
+/// The lines on the scaling of a suite of `n` records (`None`: rule "none"), each starting
+/// with two spaces and ending with a newline.
+pub(crate) fn scaling_lines(
+    scaling: Option<&crate::analysis::record_spectrum::ScaledSuite>,
+    n: usize,
+) -> String {
+    let mut o = String::new();
+    match scaling {
+        Some(s) => {
+            let _ = writeln!(
+                o,
+                "  suite of {n} records scaled by {} to {}",
+                s.rule_name, s.target_description
+            );
+            let _ = writeln!(
+                o,
+                "  period range {:.3}–{:.3} s (first-mode periods {}); lowest mean/target {:.3} \
+                 at T = {:.3} s (≥ {} required){}",
+                s.range.lo,
+                s.range.hi,
+                s.first_mode_periods
+                    .iter()
+                    .map(|t| format!("{t:.3}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                s.min_ratio,
+                s.min_ratio_period,
+                s.required_ratio,
+                s.pga_check.map_or(String::new(), |p| format!(
+                    "; mean PGA {:.3} g ≥ a_g·S {:.3} g",
+                    p.mean_pga / STANDARD_GRAVITY,
+                    p.required / STANDARD_GRAVITY
+                ))
+            );
+        }
+        None => {
+            let _ = writeln!(
+                o,
+                "  suite of {n} records at their own factors (rule \"none\")"
+            );
+        }
+    }
+    o
+}
+
 /// The line `pounding run` shows on a terminal before it runs the suite of `sc` (`check`: with
 /// the self-check).
 pub fn progress_line(sc: &crate::input::scenario::Scenario, check: bool) -> String {
@@ -205,13 +216,27 @@ pub fn progress_line(sc: &crate::input::scenario::Scenario, check: bool) -> Stri
 /// The warnings of a suite's run: the scenario's own (`sc`'s) once, then each warning a
 /// record's run adds, named with the first record that gave it.
 pub fn warnings(sc: &crate::input::scenario::Scenario, run: &SuiteRun) -> Vec<String> {
+    merge_warnings(
+        sc,
+        run.records
+            .iter()
+            .map(|r| (r.file.as_str(), r.report.warnings.as_slice())),
+    )
+}
+
+/// The scenario's warnings once, then each record's (file, warnings) new ones, named with the
+/// first record that gave it.
+pub(crate) fn merge_warnings<'a>(
+    sc: &crate::input::scenario::Scenario,
+    records: impl Iterator<Item = (&'a str, &'a [String])>,
+) -> Vec<String> {
     let mut seen: std::collections::BTreeSet<&str> =
         sc.warnings.iter().map(String::as_str).collect();
     let mut out = sc.warnings.clone();
-    for r in &run.records {
-        for w in &r.report.warnings {
+    for (file, warnings) in records {
+        for w in warnings {
             if seen.insert(w) {
-                out.push(format!("{w} (record {})", r.file));
+                out.push(format!("{w} (record {file})"));
             }
         }
     }

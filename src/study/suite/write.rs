@@ -46,28 +46,43 @@ fn number(out: &mut String, x: f64) {
 
 /// `suite.csv`: a header, then one row per record in the scenario's order.
 pub fn suite_csv(run: &SuiteRun) -> String {
+    records_csv(run.records.iter().map(|r| {
+        (
+            r.file.as_str(),
+            r.component.as_deref(),
+            r.factor,
+            &r.headline,
+        )
+    }))
+}
+
+/// The table of the records (file, component, factor, headline numbers), a pair's or a
+/// row's: `record,file,component,factor,` the headline's names, `converged`.
+pub(crate) fn records_csv<'a>(
+    rows: impl Iterator<Item = (&'a str, Option<&'a str>, f64, &'a super::Headline)> + Clone,
+) -> String {
     let mut out = String::from("record,file,component,factor");
-    if let Some(r) = run.records.first() {
-        for (name, _) in &r.headline.values {
+    if let Some((_, _, _, h)) = rows.clone().next() {
+        for (name, _) in &h.values {
             out.push(',');
             out.push_str(name);
         }
     }
     out.push_str(",converged\n");
-    for (i, r) in run.records.iter().enumerate() {
+    for (i, (file, component, factor, h)) in rows.enumerate() {
         out.push_str(&format!(
             "{},{},{},",
             i + 1,
-            csv_text(&r.file),
-            csv_text(r.component.as_deref().unwrap_or(""))
+            csv_text(file),
+            csv_text(component.unwrap_or(""))
         ));
-        number(&mut out, r.factor);
-        for (_, x) in &r.headline.values {
+        number(&mut out, factor);
+        for (_, x) in &h.values {
             out.push(',');
             number(&mut out, *x);
         }
         out.push(',');
-        out.push_str(match r.headline.converged {
+        out.push_str(match h.converged {
             Some(true) => "true",
             Some(false) => "false",
             None => "unchecked",
@@ -96,25 +111,60 @@ struct ScalingSection<'a> {
 
 /// The `suite` section of summary.json.
 pub fn section(run: &SuiteRun) -> Value {
-    let records: Vec<Value> = run
-        .records
-        .iter()
-        .map(|r| {
-            let mut m = serde_json::Map::new();
-            m.insert("file".into(), json!(r.file));
-            m.insert("component".into(), json!(r.component));
-            m.insert("factor".into(), json!(r.factor));
-            for (k, x) in &r.headline.values {
-                m.insert(k.clone(), json!(x));
-            }
-            m.insert("converged".into(), json!(r.headline.converged));
-            m.insert("warnings".into(), json!(r.report.warnings));
-            Value::Object(m)
-        })
-        .collect();
-    let s = run.scaling.as_ref();
+    let records = record_entries(run.records.iter().map(|r| {
+        (
+            r.file.as_str(),
+            r.component.as_deref(),
+            r.factor,
+            &r.headline,
+            r.report.warnings.as_slice(),
+        )
+    }));
+    json!({
+        "records": records,
+        "scaling": scaling_section(run.rule, run.scaling.as_ref(), run.records.iter().map(|r| r.factor).collect()),
+        "statistics": run.statistics,
+        "design": run.design,
+        "representative": run.representative + 1,
+        "representative_file": run.records[run.representative].file,
+    })
+}
+
+/// One record's entry of the section (`suite.records`), a pair's or a row's.
+type RecordEntry<'a> = (
+    &'a str,
+    Option<&'a str>,
+    f64,
+    &'a super::Headline,
+    &'a [String],
+);
+
+/// `suite.records`: per record its file, component, factor, headline numbers, `converged` and
+/// `warnings`.
+pub(crate) fn record_entries<'a>(rows: impl Iterator<Item = RecordEntry<'a>>) -> Vec<Value> {
+    rows.map(|(file, component, factor, h, warnings)| {
+        let mut m = serde_json::Map::new();
+        m.insert("file".into(), json!(file));
+        m.insert("component".into(), json!(component));
+        m.insert("factor".into(), json!(factor));
+        for (k, x) in &h.values {
+            m.insert(k.clone(), json!(x));
+        }
+        m.insert("converged".into(), json!(h.converged));
+        m.insert("warnings".into(), json!(warnings));
+        Value::Object(m)
+    })
+    .collect()
+}
+
+/// `suite.scaling`: the rule, its clause, target and period ranges, the factors.
+pub(crate) fn scaling_section(
+    rule: crate::input::scenario::suite::SuiteRule,
+    s: Option<&crate::analysis::record_spectrum::ScaledSuite>,
+    factors: Vec<f64>,
+) -> Value {
     let scaling = ScalingSection {
-        rule: run.rule.key(),
+        rule: rule.key(),
         clause: s.map(|s| s.rule_name),
         target: s.map(|s| s.target_description.as_str()),
         period_range: s.map(|s| [s.range.lo, s.range.hi]),
@@ -125,17 +175,10 @@ pub fn section(run: &SuiteRun) -> Value {
         min_ratio_period: s.map(|s| s.min_ratio_period),
         pga_check: s.and_then(|s| s.pga_check),
         governs: s.map(|s| s.governs.as_str()),
-        factors: run.records.iter().map(|r| r.factor).collect(),
+        factors,
         notes: s.map_or(&[], |s| s.notes.as_slice()),
     };
-    json!({
-        "records": records,
-        "scaling": scaling,
-        "statistics": run.statistics,
-        "design": run.design,
-        "representative": run.representative + 1,
-        "representative_file": run.records[run.representative].file,
-    })
+    json!(scaling)
 }
 
 /// Write a suite run into `dir`: `suite.csv`, then the representative record's run as

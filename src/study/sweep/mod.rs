@@ -335,6 +335,19 @@ impl Sweep {
         if kind == RowKind::Single && structures > 2 {
             kind = RowKind::Row { structures };
         }
+        // a suite on a row of buildings: `pounding run` runs it; its sweep rows are not built
+        if matches!(kind, RowKind::Suite { .. }) && structures > 2 {
+            return Err(ctx.invalid(
+                None,
+                "scenario",
+                format!(
+                    "the base scenario {base_name} is a suite of records on a row of \
+                     {structures} structures: a sweep over a suite on a row is not supported \
+                     yet; run the suite with `pounding run`, or sweep the row under one record \
+                     (kind = \"record\")"
+                ),
+            ));
+        }
 
         let list = raw.axis.as_ref().ok_or_else(|| {
             ctx.invalid(

@@ -1,0 +1,276 @@
+//! A suite of records on a row of buildings (issue 29): the suite scaled by its code's rule as
+//! a pair's ([`super::members`]: the period range from every building's first-mode period, 0.2
+//! × the shortest to 2 × the longest), every record run with and without contact through the
+//! row's driver ([`simulate_row_streaming`], self-checked), in parallel; then per record the
+//! headline numbers of every structure and every pair ([`Headline::of_row`]), across the
+//! records their statistics, and **per pair and per contact level of that pair** the code's
+//! design value of the required separation against the level's gap — the verdict per pair
+//! (its governing level) and for the row (the pair and level of least margin).
+//!
+//! The design value at a level is the pair suite's ([`super::level_designs`]): the statistic
+//! of the rule ([`DesignStatistic::for_rule`]) over the records' time-history required
+//! separations at that level of that pair (`RowReport::pairs[p].levels[k].required_gap`, from
+//! the row's run without contact, which is each pair's own: without contact a row is
+//! uncoupled).
+
+use serde::Serialize;
+
+use super::{
+    DesignStatistic, Headline, LevelDesign, Members, NamedStatistics, SuiteError, level_designs,
+    members, named_statistics, run_members,
+};
+use crate::analysis::record_spectrum::ScaledSuite;
+use crate::analysis::simulate::{RowReport, RunCapture, simulate_row_streaming};
+use crate::input::scenario::Scenario;
+use crate::input::scenario::suite::SuiteRule;
+
+impl Headline {
+    /// The numbers of a row's `report` for a record of PGA `pga` (m/s², as run), named as a
+    /// row's sweep columns are ([`crate::study::sweep::row_columns`]): `pga`; for every
+    /// structure i (1-based, row order) `structure{i}_peak_displacement` and
+    /// `structure{i}_peak_displacement_no_contact` (m, at its highest contact level); for every
+    /// pair p (structures p and p + 1) `pair{p}_impacts`, `pair{p}_peak_force` (N),
+    /// `pair{p}_max_penetration` (m), `pair{p}_contact_time` (s), `pair{p}_sep_time_history`
+    /// (m, the time-history required separation at its highest level), and per level k of the
+    /// pair `pair{p}_level{k}_required_separation` (m), `pair{p}_level{k}_peak_force` (N),
+    /// `pair{p}_level{k}_impacts`; last `check_max_change` (the row's self-check).
+    pub fn of_row(report: &RowReport, pga: f64) -> Headline {
+        let mut v: Vec<(String, f64)> = vec![("pga".into(), pga)];
+        for (s, i) in report.structures.iter().zip(1..) {
+            v.push((
+                format!("structure{i}_peak_displacement"),
+                s.peak_displacement,
+            ));
+            v.push((
+                format!("structure{i}_peak_displacement_no_contact"),
+                s.peak_displacement_no_contact,
+            ));
+        }
+        for (pr, p) in report.pairs.iter().zip(1..) {
+            let c = &pr.contact;
+            v.push((format!("pair{p}_impacts"), c.impacts as f64));
+            v.push((format!("pair{p}_peak_force"), c.peak_force));
+            v.push((format!("pair{p}_max_penetration"), c.max_penetration));
+            v.push((format!("pair{p}_contact_time"), c.contact_time));
+            v.push((
+                format!("pair{p}_sep_time_history"),
+                pr.separation.time_history,
+            ));
+            for (l, k) in pr.levels.iter().zip(1..) {
+                v.push((
+                    format!("pair{p}_level{k}_required_separation"),
+                    l.required_gap,
+                ));
+                v.push((format!("pair{p}_level{k}_peak_force"), l.peak_force));
+                v.push((format!("pair{p}_level{k}_impacts"), l.impacts as f64));
+            }
+        }
+        v.push((
+            "check_max_change".into(),
+            report.accuracy.max_change.unwrap_or(f64::NAN),
+        ));
+        Headline {
+            values: v,
+            converged: report.accuracy.converged,
+        }
+    }
+}
+
+/// One record's run of a row.
+#[derive(Debug, Clone)]
+pub struct RowRecordRun {
+    /// The file as the scenario names it.
+    pub file: String,
+    /// The component read.
+    pub component: Option<String>,
+    /// The factor applied (the rule's, or the user's with rule = "none").
+    pub factor: f64,
+    /// The record's own scenario (the row with the record scaled as its ground motion).
+    pub scenario: Scenario,
+    /// Its run.
+    pub report: RowReport,
+    /// Its history samples (to write its run's files).
+    pub capture: RunCapture,
+    /// Its headline numbers ([`Headline::of_row`]).
+    pub headline: Headline,
+}
+
+/// The design values of one adjacent pair of the row.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairDesign {
+    /// The pair, 1-based: structures `pair` and `pair + 1` in row order.
+    pub pair: usize,
+    /// The two structures' names, left then right.
+    pub between: [String; 2],
+    /// Every level of the pair (1-based within the pair's `[[contact]]` table), as a pair
+    /// suite's `design.levels`.
+    pub levels: Vec<LevelDesign>,
+    /// The pair's gap suffices at every one of its levels.
+    pub sufficient: bool,
+    /// The pair's level of least margin (1-based within the pair).
+    pub governing_level: usize,
+    /// How many of the pair's levels are too narrow.
+    pub insufficient_levels: usize,
+}
+
+/// The answer of a row's suite: every pair's design values and the row's verdict.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RowDesign {
+    /// The statistic taken: `mean` or `max`.
+    pub statistic: DesignStatistic,
+    /// Why (the clause).
+    pub basis: &'static str,
+    /// Number of records.
+    pub records: usize,
+    /// Every adjacent pair, in row order.
+    pub pairs: Vec<PairDesign>,
+    /// Every pair's gap suffices at every level.
+    pub sufficient: bool,
+    /// The pair (1-based) whose governing level has the least margin of the row (the first of
+    /// equal margins): what governs the row.
+    pub governing_pair: usize,
+    /// That pair's governing level (1-based within the pair).
+    pub governing_level: usize,
+    /// The pairs (1-based) with a level too narrow.
+    pub insufficient_pairs: Vec<usize>,
+}
+
+impl RowDesign {
+    /// The level that governs the row (of [`RowDesign::governing_pair`]).
+    pub fn governing(&self) -> &LevelDesign {
+        &self.pairs[self.governing_pair - 1].levels[self.governing_level - 1]
+    }
+}
+
+/// A suite run on a row of buildings.
+#[derive(Debug, Clone)]
+pub struct RowSuiteRun {
+    /// The rule.
+    pub rule: SuiteRule,
+    /// The scaling by the rule (`None` for rule = "none").
+    pub scaling: Option<ScaledSuite>,
+    /// Every record, in the scenario's order.
+    pub records: Vec<RowRecordRun>,
+    /// Every headline number across the records.
+    pub statistics: NamedStatistics,
+    /// The design values per pair and level, and the verdicts.
+    pub design: RowDesign,
+    /// The record whose run the top level of the output directory describes (summary.json's
+    /// keys but `suite`, history.csv, …): the largest required separation at the row's
+    /// governing pair and level (0-based; the first of equal values).
+    pub representative: usize,
+}
+
+/// Scale the suite of the row `scenario`, run every record through the row's driver
+/// (self-checked with `check`) in parallel, keeping each record's history
+/// ([`RowRecordRun::capture`]), and form the statistics and the verdicts.
+pub fn run_row(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
+    let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
+    let Members {
+        scaling,
+        factors,
+        scenarios,
+    } = members(scenario)?;
+    let runs = run_members(suite, &scenarios, |sc| {
+        let mut capture = RunCapture::new();
+        simulate_row_streaming(sc, check, &mut capture).map(|r| (r, capture))
+    })?;
+    let records: Vec<RowRecordRun> = runs
+        .into_iter()
+        .zip(scenarios)
+        .enumerate()
+        .map(|(i, ((report, capture), sc))| {
+            let m = &suite.records[i];
+            RowRecordRun {
+                file: m.file.clone(),
+                component: m.component.clone(),
+                factor: factors[i],
+                headline: Headline::of_row(&report, sc.ground_motion.pga()),
+                scenario: sc,
+                report,
+                capture,
+            }
+        })
+        .collect();
+    let n = records.len();
+    let (statistic, basis) = DesignStatistic::for_rule(suite.scaling.rule, n);
+    let statistics = named_statistics(records.iter().map(|r| &r.headline), statistic);
+    let design = row_design(scenario, &records, statistic, basis);
+    let (p, k) = (design.governing_pair - 1, design.governing_level - 1);
+    let representative = (0..n)
+        .max_by(|&a, &b| {
+            let g = |i: usize| records[i].report.pairs[p].levels[k].required_gap;
+            // the first of equal values
+            g(a).total_cmp(&g(b)).then(b.cmp(&a))
+        })
+        .unwrap_or(0);
+    Ok(RowSuiteRun {
+        rule: suite.scaling.rule,
+        scaling,
+        records,
+        statistics,
+        design,
+        representative,
+    })
+}
+
+/// The design value of the required separation at every level of every pair of the row
+/// `scenario` from the records' runs, each pair's verdict and the row's: the pair whose
+/// governing level has the least margin gap − design value.
+pub fn row_design(
+    scenario: &Scenario,
+    records: &[RowRecordRun],
+    statistic: DesignStatistic,
+    basis: &'static str,
+) -> RowDesign {
+    let names: Vec<&str> = scenario.structures.iter().map(|s| s.name()).collect();
+    let pairs: Vec<PairDesign> = scenario
+        .contacts()
+        .enumerate()
+        .map(|(p, contact)| {
+            let (levels, governing_level) = level_designs(
+                &contact.levels,
+                |k| {
+                    records
+                        .iter()
+                        .map(|r| r.report.pairs[p].levels[k].required_gap)
+                        .collect()
+                },
+                statistic,
+            );
+            PairDesign {
+                pair: p + 1,
+                between: [names[p].to_string(), names[p + 1].to_string()],
+                sufficient: levels.iter().all(|l| l.sufficient),
+                insufficient_levels: levels.iter().filter(|l| !l.sufficient).count(),
+                governing_level,
+                levels,
+            }
+        })
+        .collect();
+    // the least margin over the pairs' governing levels, the first pair of equal margins
+    let governing = pairs
+        .iter()
+        .fold(None::<&PairDesign>, |m, q| {
+            let margin = |d: &PairDesign| d.levels[d.governing_level - 1].margin;
+            match m {
+                Some(m) if margin(m) <= margin(q) => Some(m),
+                _ => Some(q),
+            }
+        })
+        .map_or((1, 1), |q| (q.pair, q.governing_level));
+    RowDesign {
+        statistic,
+        basis,
+        records: records.len(),
+        sufficient: pairs.iter().all(|q| q.sufficient),
+        insufficient_pairs: pairs
+            .iter()
+            .filter(|q| !q.sufficient)
+            .map(|q| q.pair)
+            .collect(),
+        governing_pair: governing.0,
+        governing_level: governing.1,
+        pairs,
+    }
+}
