@@ -26,6 +26,7 @@ use plotters::coord::Shift;
 use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
 
+mod canvas;
 pub mod curves;
 pub mod heatmap;
 pub mod lines;
@@ -163,7 +164,9 @@ fn write_both<R: Render + Sync>(
         // encoder tries all five row filters on every row, which cost more than the drawing)
         let mut rgb = vec![0u8; 3 * w as usize * h as usize];
         guard(|| {
-            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            let canvas = canvas::Canvas::new(&mut rgb, (w, h))
+                .ok_or_else(|| PlotError::Draw("bitmap buffer of the wrong size".into()))?;
+            let root = canvas.into_drawing_area();
             r.render(&root, true)?;
             root.present().map_err(draw_err)
         })?;

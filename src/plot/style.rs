@@ -21,10 +21,10 @@ use super::PlotError;
 pub use crate::numerics::format::fmt_num;
 
 /// The embedded font (DejaVu Sans, Bitstream Vera / DejaVu licence, freely redistributable).
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+pub(super) static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Font family name under which the embedded font is registered with plotters.
-const FONT: &str = "sans-serif";
+pub(super) const FONT: &str = "sans-serif";
 
 /// Registers the embedded font once; later calls return the cached outcome.
 pub(super) fn ensure_font() -> Result<(), PlotError> {
