@@ -32,6 +32,7 @@ pub mod heatmap;
 pub mod lines;
 pub mod profile;
 pub mod style;
+mod svg;
 pub mod xy;
 
 pub use heatmap::{Heatmap, write_heatmap};
@@ -153,7 +154,7 @@ fn write_both<R: Render + Sync>(
     let svg_text = || -> Result<String, PlotError> {
         let mut text = String::new();
         guard(|| {
-            let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
+            let root = svg::Svg::new(&mut text, (w, h)).into_drawing_area();
             r.render(&root, false)?;
             root.present().map_err(draw_err)
         })?;
