@@ -59,76 +59,61 @@ impl<'a> Canvas<'a> {
     /// RGB bitmap does: opaque from 255/256 up, else each channel moved towards the colour by
     /// `⌊256·alpha⌋/256` of the difference, rounded towards the old value.
     #[inline]
-    fn blend(&mut self, x: usize, y: usize, rgb: (u8, u8, u8), alpha: f64) {
-        let i = 3 * (y * self.w as usize + x);
+    fn blend(&mut self, x: usize, y: usize, rgb: [u8; 3], alpha: f64) {
+        self.blend_at(3 * (y * self.w as usize + x), rgb, weight(alpha));
+    }
+
+    /// Paints the pixel at byte offset `i` with `rgb` at weight `a` of 256 ([`weight`]).
+    #[inline]
+    fn blend_at(&mut self, i: usize, rgb: [u8; 3], a: u32) {
         let Some(px) = self.buf.get_mut(i..i + 3) else {
             return;
         };
-        let new = [rgb.0, rgb.1, rgb.2];
-        if alpha >= 1.0 - 1.0 / 256.0 {
-            px.copy_from_slice(&new);
-        } else if alpha > 0.0 {
-            // (truncation is the floor here: 0 < alpha < 1; `floor` is a libm call)
-            let a = (alpha * 256.0) as u64;
-            for (old, new) in px.iter_mut().zip(new) {
+        if a >= 256 {
+            px.copy_from_slice(&rgb);
+        } else if a > 0 {
+            for (old, new) in px.iter_mut().zip(rgb) {
                 if new > *old {
-                    *old += (u64::from(new - *old) * a / 256) as u8;
+                    *old += (u32::from(new - *old) * a / 256) as u8;
                 } else {
-                    *old -= (u64::from(*old - new) * a / 256) as u8;
+                    *old -= (u32::from(*old - new) * a / 256) as u8;
                 }
             }
         }
     }
 
-    /// Paints, in pixel column `x` (`column`) or row `x` (else), the interval `[lo, hi]` of
-    /// that column (row) with pixel `k` covering `[k − ½, k + ½]`: the pixels inside it
-    /// opaque, the one at each end by the fraction of it the interval covers.
-    fn span(&mut self, column: bool, x: i64, lo: f64, hi: f64, rgb: (u8, u8, u8)) {
-        let (along, across) = if column {
-            (self.h as i64, self.w as i64)
-        } else {
-            (self.w as i64, self.h as i64)
-        };
-        if !(0..across).contains(&x) || !(lo <= hi) {
+    /// Paints the pixels `k` of a line of pixels (a column: byte offsets `base + 3·w·k`; a row:
+    /// `base + 3·k`; `0 ≤ k < n`) over `[lo, hi]` of it, pixel `k` covering `[k − ½, k + ½]`:
+    /// the pixels inside opaque, the one at each end by the fraction of it that is covered.
+    fn span(&mut self, (base, stride, n): (usize, usize, i64), lo: f64, hi: f64, rgb: [u8; 3]) {
+        if !(lo <= hi) {
             return;
         }
         // the end pixels (clamped before the conversion: a span far off the canvas stays off)
-        let pixel = |v: f64| floor((v + 0.5).clamp(-1.0, along as f64));
+        let pixel = |v: f64| floor((v + 0.5).clamp(-1.0, n as f64));
         let (first, last) = (pixel(lo), pixel(hi));
-        let put = |s: &mut Self, k: i64, alpha: f64| {
-            if (0..along).contains(&k) {
-                let (px, py) = if column { (x, k) } else { (k, x) };
-                s.blend(px as usize, py as usize, rgb, alpha);
+        let mut put = |k: i64, alpha: f64| {
+            if (0..n).contains(&k) {
+                self.blend_at(base + k as usize * stride, rgb, weight(alpha));
             }
         };
         if first == last {
-            put(self, first, hi - lo);
+            put(first, hi - lo);
             return;
         }
-        put(self, first, first as f64 + 0.5 - lo);
-        put(self, last, hi - (last as f64 - 0.5));
-        let (a, b) = ((first + 1).max(0), (last - 1).min(along - 1));
-        if a > b {
-            return;
-        }
-        let colour = [rgb.0, rgb.1, rgb.2];
-        let w = self.w as usize;
-        if column {
-            for k in a..=b {
-                let i = 3 * (k as usize * w + x as usize);
-                self.buf[i..i + 3].copy_from_slice(&colour);
-            }
-        } else {
-            let row = 3 * (x as usize * w);
-            let run = &mut self.buf[row + 3 * a as usize..row + 3 * b as usize + 3];
-            for px in run.chunks_exact_mut(3) {
-                px.copy_from_slice(&colour);
+        put(first, first as f64 + 0.5 - lo);
+        put(last, hi - (last as f64 - 0.5));
+        let (a, b) = ((first + 1).max(0), (last - 1).min(n - 1));
+        for k in a..=b {
+            let i = base + k as usize * stride;
+            if let Some(px) = self.buf.get_mut(i..i + 3) {
+                px.copy_from_slice(&rgb);
             }
         }
     }
 
     /// A straight segment `a`–`b` of width `width` pixels (see the module's documentation).
-    fn segment(&mut self, a: BackendCoord, b: BackendCoord, width: f64, rgb: (u8, u8, u8)) {
+    fn segment(&mut self, a: BackendCoord, b: BackendCoord, width: f64, rgb: [u8; 3]) {
         let (dx, dy) = (
             (i64::from(b.0) - i64::from(a.0)) as f64,
             (i64::from(b.1) - i64::from(a.1)) as f64,
@@ -137,7 +122,7 @@ impl<'a> Canvas<'a> {
         if len == 0.0 {
             return;
         }
-        // scan along the longer extent; `run` the major coordinate, `rise` the minor one
+        // scan along the longer extent: `run` is (major, minor) coordinate of a point
         let column = dx.abs() >= dy.abs();
         let run = |p: BackendCoord| if column { p } else { (p.1, p.0) };
         let (p, q) = if run(a).0 <= run(b).0 {
@@ -147,12 +132,34 @@ impl<'a> Canvas<'a> {
         };
         let slope = (f64::from(q.1) - f64::from(p.1)) / (f64::from(q.0) - f64::from(p.0));
         let half = 0.5 * (width + WIDEN) * len / if column { dx.abs() } else { dy.abs() };
-        let limit = if column { self.w } else { self.h } as i64;
-        let (first, last) = (i64::from(p.0).max(0), i64::from(q.0).min(limit - 1));
+        let (w, h) = (self.w as usize, self.h as usize);
+        // (major extent, minor extent, bytes between pixels along the minor axis)
+        let (major, minor, stride) = if column { (w, h, 3 * w) } else { (h, w, 3) };
+        let (first, last) = (i64::from(p.0).max(0), i64::from(q.0).min(major as i64 - 1));
         for x in first..=last {
             let c = f64::from(p.1) + (x - i64::from(p.0)) as f64 * slope;
-            self.span(column, x, c - half, c + half, rgb);
+            // where pixel (major x, minor 0) starts
+            let base = if column {
+                3 * x as usize
+            } else {
+                3 * w * x as usize
+            };
+            self.span((base, stride, minor as i64), c - half, c + half, rgb);
         }
+    }
+}
+
+/// The weight of opacity `alpha` out of 256 as plotters' RGB bitmap applies it: 256 (opaque)
+/// from 255/256 up, else `⌊256·alpha⌋` (0 for `alpha ≤ 0`).
+#[inline]
+fn weight(alpha: f64) -> u32 {
+    if alpha >= 1.0 - 1.0 / 256.0 {
+        256
+    } else if alpha > 0.0 {
+        // (truncation is the floor here: 0 < alpha < 1; `floor` is a libm call)
+        (alpha * 256.0) as u32
+    } else {
+        0
     }
 }
 
@@ -173,7 +180,8 @@ impl DrawingBackend for Canvas<'_> {
 
     fn draw_pixel(&mut self, point: BackendCoord, color: BackendColor) -> DrawResult {
         if point.0 >= 0 && point.1 >= 0 && (point.0 as u32) < self.w && (point.1 as u32) < self.h {
-            self.blend(point.0 as usize, point.1 as usize, color.rgb, color.alpha);
+            let rgb = [color.rgb.0, color.rgb.1, color.rgb.2];
+            self.blend(point.0 as usize, point.1 as usize, rgb, color.alpha);
         }
         Ok(())
     }
@@ -216,7 +224,7 @@ impl DrawingBackend for Canvas<'_> {
         };
         for b in path {
             if b != a {
-                self.segment(a, b, width, color.rgb);
+                self.segment(a, b, width, [color.rgb.0, color.rgb.1, color.rgb.2]);
                 a = b;
             }
         }
@@ -272,6 +280,8 @@ impl DrawingBackend for Canvas<'_> {
         };
         let trans = style.transform();
         let size = style.size();
+        let rgb = [color.rgb.0, color.rgb.1, color.rgb.2];
+        let opaque = color.alpha == 1.0;
         let scaled = font.as_scaled(size as f32);
         let mut cache = glyph_cache().lock().unwrap_or_else(|e| e.into_inner());
         if cache.len() > MAX_CACHED_GLYPHS {
@@ -296,8 +306,14 @@ impl DrawingBackend for Canvas<'_> {
                     let (x, y) = trans.transform(x as i32 + gx, y as i32 + gy);
                     let (x, y) = (pos.0 + x, pos.1 + y);
                     if x >= 0 && y >= 0 && (x as u32) < self.w && (y as u32) < self.h {
-                        let alpha = color.alpha * f64::from(cover);
-                        self.blend(x as usize, y as usize, color.rgb, alpha);
+                        // (opaque text: the weight of the coverage alone, kept with the glyph)
+                        let a = if opaque {
+                            cover.1
+                        } else {
+                            weight(color.alpha * f64::from(cover.0))
+                        };
+                        let i = 3 * (y as usize * self.w as usize + x as usize);
+                        self.blend_at(i, rgb, a);
                     }
                 }
             }
@@ -323,8 +339,9 @@ struct Glyph {
     /// Top of the glyph's pixel box relative to the baseline (`None`: no outline, e.g. a
     /// space).
     top: Option<f32>,
-    /// The covered pixels of its box: `(x, y, coverage)`, coverage in (0, 1].
-    cover: Box<[(u32, u32, f32)]>,
+    /// The covered pixels of its box: `(x, y, (coverage, its weight out of 256))`, coverage
+    /// in (0, 1].
+    cover: Box<[(u32, u32, (f32, u32))]>,
 }
 
 impl Glyph {
@@ -336,7 +353,7 @@ impl Glyph {
             // (uncovered pixels are left out: plotters draws them at opacity 0, a no-op)
             q.draw(|x, y, a| {
                 if a > 0.0 {
-                    cover.push((x, y, a));
+                    cover.push((x, y, (a, weight(f64::from(a)))));
                 }
             });
             q.px_bounds().min.y
@@ -371,4 +388,178 @@ fn embedded_font() -> Option<&'static FontRef<'static>> {
 fn floor(v: f64) -> i64 {
     let t = v as i64;
     t - i64::from((t as f64) > v)
+}
+
+#[cfg(test)]
+mod tests {
+    use plotters::style::FontTransform;
+    use plotters::style::text_anchor::Pos;
+
+    use super::super::style::{ensure_font, font};
+    use super::*;
+
+    const W: u32 = 300;
+    const H: u32 = 200;
+
+    fn white() -> Vec<u8> {
+        vec![255u8; 3 * W as usize * H as usize]
+    }
+
+    /// Darkness of pixel `(x, y)` of a black drawing on white, 0 (white) … 1 (black).
+    fn ink(buf: &[u8], x: i64, y: i64) -> f64 {
+        if !(0..W as i64).contains(&x) || !(0..H as i64).contains(&y) {
+            return 0.0;
+        }
+        1.0 - f64::from(buf[3 * (y as usize * W as usize + x as usize)]) / 255.0
+    }
+
+    /// Text drawn from the glyph cache has exactly the pixels plotters' own bitmap backend
+    /// gives it: every anchor, both sizes of the figures, rotated (the y-axis labels),
+    /// translucent, cut by the picture's edge, and each text drawn twice (the second time
+    /// from the cache, onto the first).
+    #[test]
+    fn cached_text_is_plotters_text_pixel_for_pixel() {
+        ensure_font().unwrap();
+        let texts = [
+            "Peak storey drift ratio",
+            "−0.05 ±1e-4 [m/s²]",
+            "Tg = 0.65 s, AV",
+        ];
+        let (mut ours, mut theirs) = (white(), white());
+        for round in 0..2 {
+            let mut canvas = Canvas::new(&mut ours, (W, H)).unwrap();
+            let mut plain = BitMapBackend::with_buffer(&mut theirs, (W, H));
+            for (i, text) in texts.iter().enumerate() {
+                for (j, (h, v)) in [
+                    (HPos::Left, VPos::Top),
+                    (HPos::Center, VPos::Center),
+                    (HPos::Right, VPos::Bottom),
+                ]
+                .into_iter()
+                .enumerate()
+                {
+                    for (k, transform) in [
+                        FontTransform::None,
+                        FontTransform::Rotate270,
+                        FontTransform::Rotate90,
+                    ]
+                    .into_iter()
+                    .enumerate()
+                    {
+                        let size = [16.0, 26.0, 19.0][(i + j + round) % 3];
+                        let color = if k == 2 { RED.mix(0.4) } else { BLACK.mix(1.0) };
+                        let style = font(size)
+                            .transform(transform)
+                            .color(&color)
+                            .pos(Pos::new(h, v));
+                        // (some texts run off the left, right or bottom edge)
+                        let at = (40 * j as i32 + 100 * k as i32 - 30, 60 * i as i32 + 20);
+                        canvas.draw_text(text, &style, at).unwrap();
+                        plain.draw_text(text, &style, at).unwrap();
+                    }
+                }
+            }
+        }
+        assert!(ours.iter().any(|&v| v < 128), "no text drawn");
+        assert!(
+            ours == theirs,
+            "the cached glyphs differ from plotters' text"
+        );
+    }
+
+    /// A straight 2-pixel line is drawn where its formula puts it: in every pixel column
+    /// of a shallow line (and every row of a steep one) the ink's centroid lies on the
+    /// line `y = y0 + (x − x0)·dy/dx` and its total is the line's width across that column,
+    /// `(2 + ½)·L/|dx|` (the 2-pixel stroke is drawn ½ pixel wider, with the ink of plotters'
+    /// lines). Tolerances: each partly covered pixel is quantised to 1/256 of its colour and
+    /// 1/255 of white, ≤ 2/255 per pixel, two such pixels per column (0.02 on the total); the
+    /// centroid counts a partly covered end pixel's ink at the pixel's centre, not at the
+    /// centre of its covered part, which moves it by at most `c(1 − c)/2 ≤ 1/8` pixel-ink
+    /// per end over a total of ≥ 2.5 (0.05), plus the quantisation (0.06 in all).
+    #[test]
+    fn a_straight_line_lies_where_its_formula_puts_it() {
+        for (a, b) in [((20, 30), (220, 130)), ((40, 190), (90, 10))] {
+            let mut buf = white();
+            let mut canvas = Canvas::new(&mut buf, (W, H)).unwrap();
+            let style = ShapeStyle::from(&BLACK).stroke_width(2);
+            canvas.draw_path([a, b], &style).unwrap();
+            let (dx, dy) = (f64::from(b.0 - a.0), f64::from(b.1 - a.1));
+            let len = dx.hypot(dy);
+            let column = dx.abs() >= dy.abs();
+            let (major, across) = if column { (dx.abs(), W) } else { (dy.abs(), H) };
+            let width = 2.5 * len / major;
+            let (p, q) = if column { (a.0, b.0) } else { (a.1, b.1) };
+            for m in p.min(q) + 1..p.max(q) {
+                let centre = if column {
+                    f64::from(a.1) + f64::from(m - a.0) * dy / dx
+                } else {
+                    f64::from(a.0) + f64::from(m - a.1) * dx / dy
+                };
+                let pix = |k: i64| {
+                    if column {
+                        ink(&buf, i64::from(m), k)
+                    } else {
+                        ink(&buf, k, i64::from(m))
+                    }
+                };
+                let total: f64 = (0..i64::from(across)).map(pix).sum();
+                let moment: f64 = (0..i64::from(across)).map(|k| k as f64 * pix(k)).sum();
+                assert!(
+                    (total - width).abs() < 0.02,
+                    "{m}: ink {total}, width {width}"
+                );
+                assert!(
+                    (moment / total - centre).abs() < 0.06,
+                    "{m}: centroid {} for a line at {centre}",
+                    moment / total
+                );
+            }
+        }
+    }
+
+    /// A spike (an impact's force: up and straight down again) ends at its peak: no ink above
+    /// the peak's pixel row (plotters' mitred thick polylines drew a spike far above it), and
+    /// the peak's own row is inked; the joins leave no gap (every row between the base and
+    /// the peak holds ink on both flanks).
+    #[test]
+    fn a_spike_is_drawn_to_its_peak_and_no_higher() {
+        let mut buf = white();
+        let mut canvas = Canvas::new(&mut buf, (W, H)).unwrap();
+        let style = ShapeStyle::from(&BLACK).stroke_width(2);
+        let spike = [(50, 180), (100, 180), (103, 20), (106, 180), (200, 180)];
+        canvas.draw_path(spike, &style).unwrap();
+        let row_ink = |y: i64| (0..i64::from(W)).map(|x| ink(&buf, x, y)).sum::<f64>();
+        assert_eq!(row_ink(19), 0.0);
+        assert!(row_ink(20) > 1.0, "the peak row holds {}", row_ink(20));
+        for y in 21..180 {
+            // each flank at this row: x from the formula of its segment
+            for (x0, x1) in [(100.0, 103.0), (106.0, 103.0)] {
+                let x = x0 + (x1 - x0) * (180.0 - y as f64) / 160.0;
+                let near: f64 = (-2..=2).map(|d| ink(&buf, x.round() as i64 + d, y)).sum();
+                assert!(near > 1.5, "row {y}: {near} ink near the flank at {x}");
+            }
+        }
+    }
+
+    /// The thick-line fast path keeps to the canvas: lines far outside it, through it from
+    /// far away, degenerate ones and a zero-length path draw nothing outside and do not panic.
+    #[test]
+    fn lines_far_off_the_canvas_are_clipped() {
+        let mut buf = white();
+        let mut canvas = Canvas::new(&mut buf, (W, H)).unwrap();
+        let style = ShapeStyle::from(&BLACK).stroke_width(3);
+        for path in [
+            vec![(-100_000, -5), (100_000, 7)],
+            vec![(i32::MIN / 2, i32::MIN / 2), (i32::MAX / 2, i32::MAX / 2)],
+            vec![(10, 10), (10, 10)],
+            vec![(5, 5)],
+            vec![],
+            vec![(-50, 100), (-10, 400)],
+        ] {
+            canvas.draw_path(path, &style).unwrap();
+        }
+        // the first line crosses the whole width near y = 1
+        assert!((0..i64::from(W)).all(|x| ink(&buf, x, 1) > 0.5));
+        assert!(Canvas::new(&mut [0u8; 10], (2, 2)).is_none());
+    }
 }
