@@ -86,7 +86,8 @@ impl<'a> Canvas<'a> {
     /// `base + 3·k`; `0 ≤ k < n`) over `[lo, hi]` of it, pixel `k` covering `[k − ½, k + ½]`:
     /// the pixels inside opaque, the one at each end by the fraction of it that is covered.
     fn span(&mut self, (base, stride, n): (usize, usize, i64), lo: f64, hi: f64, rgb: [u8; 3]) {
-        if !(lo <= hi) {
+        // (NaN ends: nothing to draw)
+        if lo.partial_cmp(&hi).is_none_or(|o| o.is_gt()) {
             return;
         }
         // the end pixels (clamped before the conversion: a span far off the canvas stays off)
@@ -339,10 +340,12 @@ struct Glyph {
     /// Top of the glyph's pixel box relative to the baseline (`None`: no outline, e.g. a
     /// space).
     top: Option<f32>,
-    /// The covered pixels of its box: `(x, y, (coverage, its weight out of 256))`, coverage
-    /// in (0, 1].
-    cover: Box<[(u32, u32, (f32, u32))]>,
+    /// The covered pixels of its box.
+    cover: Box<[Covered]>,
 }
+
+/// A pixel of a glyph's box: `(x, y, (coverage, its weight out of 256))`, coverage in (0, 1].
+type Covered = (u32, u32, (f32, u32));
 
 impl Glyph {
     fn rasterise<F: Font>(font: &impl ScaleFont<F>, c: char) -> Glyph {
