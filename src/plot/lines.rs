@@ -434,8 +434,8 @@ fn simplify(pts: &[(i32, i32)]) -> Vec<(i32, i32)> {
 /// chord that replaces them (Douglas–Peucker), between points where x or y turns back, which
 /// are all kept — so every peak and trough is drawn exactly where it is, and a stretch between
 /// them moves by less than `tol` (half a pixel: the same pixels up to the rasteriser's
-/// rounding). Each segment of a 2-pixel line is a filled polygon, ~7 000 instructions: a
-/// smooth history of 2 000 samples needs a few hundred.
+/// rounding). A smooth history of 2 000 samples needs a few hundred segments, and each
+/// segment has a fixed cost besides its pixels.
 fn thin(pts: &[(i32, i32)], tol: f64) -> Vec<(i32, i32)> {
     let n = pts.len();
     if n < 3 {

@@ -7,9 +7,11 @@
 //! - [`xy`]: one panel over a linear or logarithmic x axis with shaded bands ([`XyFigure`]);
 //! - [`style`]: the font, palette, number labels and the colour scales ([`ColorScale`]).
 //!
-//! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, each atomically (rendered
-//! into a temporary file in the target directory, then renamed onto the final name), so a reader
-//! never sees a half-written file. Text uses an embedded DejaVu Sans font (see
+//! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, on two backends of our own
+//! behind plotters' drawing API: `canvas` (the PNG's RGB bitmap: thick lines drawn as spans,
+//! each glyph rasterised once) and `svg` (plotters' SVG markup written straight into the
+//! document). Each is written atomically (rendered into a temporary file in the target
+//! directory, then renamed onto the final name), so a reader never sees a half-written file. Text uses an embedded DejaVu Sans font (see
 //! `assets/DejaVuSans-LICENSE.txt`): no system fonts or fontconfig are needed.
 //!
 //! The functions never panic on data: non-finite values are skipped (lines break at them,
@@ -102,9 +104,9 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> PlotError + '_ {
 
 /// Something that draws itself on any plotters backend.
 trait Render {
-    /// Draws on `root`. `bitmap`: draw thick lines segment by segment (plotters' thick bitmap
-    /// polylines use unlimited miter joins, which would shoot spikes above sharp peaks — a
-    /// contact force drawn higher than it is).
+    /// Draws on `root`. `bitmap`: `root` is the PNG's `canvas::Canvas` (lines may be thinned
+    /// to what its pixels show; it draws thick polylines segment by segment, without the miter
+    /// spikes plotters' bitmap would draw above sharp peaks).
     fn render<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
