@@ -302,3 +302,84 @@ fn drift_ratio_is_the_drift_over_the_storey_height() {
         }
     }
 }
+
+/// A figure's PNG has the curve where the formula puts it: a straight line `y = 2t − 3` over
+/// `t` ∈ [0, 10] s drawn as a time history (the x axis spans the data exactly, the y axis
+/// the data's range padded by 6 % on each side, so [−4.2, 18.2]). The plotting area is found
+/// from its frame (the columns and rows of the frame colour, rgb(40, 40, 40), that run through
+/// most of the picture); in every pixel column inside it the centroid of the line's ink lies
+/// within 1.5 pixels of `bottom − (y(t) − y_lo)/(y_hi − y_lo)·(bottom − top)`, `t` from the
+/// column by the same linear map. The 1.5 pixels: the points are rounded to whole pixels
+/// (½), the bitmap's line is thinned to the points off a chord by more than ½ pixel (½), and
+/// plotters maps values onto the area's half-open pixel range, so the frame and the map may
+/// differ by up to a pixel at one end (½ on average). The drawing itself puts the line's
+/// centre within a twentieth of a pixel of its end points' line (`src/plot/canvas.rs`).
+#[test]
+fn a_straight_line_is_drawn_where_its_formula_puts_it() {
+    use pounding::plot::{AxisScale, Figure, LineStyle, Panel, Series, write_figure};
+    let t: Vec<f64> = (0..=200).map(|i| i as f64 * 0.05).collect();
+    let y: Vec<f64> = t.iter().map(|t| 2.0 * t - 3.0).collect();
+    let fig = Figure {
+        title: "A straight line",
+        subtitle: "",
+        x_label: "t [s]",
+        panels: vec![Panel {
+            title: "y = 2t − 3",
+            y_label: "y [m]",
+            series: vec![Series {
+                label: "",
+                x: &t,
+                y: &y,
+                style: LineStyle::Solid,
+                color: Some(0), // blue
+            }],
+            y_scale: AxisScale::Linear,
+        }],
+        legend_once: false,
+        width: 900,
+        height: 600,
+    };
+    let dir = std::env::temp_dir().join(format!("pounding-line-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    write_figure(&fig, &dir.join("line")).unwrap();
+    let img = image::open(dir.join("line.png")).unwrap().to_rgb8();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let (w, h) = img.dimensions();
+    let frame = |x: u32, y: u32| img.get_pixel(x, y).0 == [40, 40, 40];
+    let cols: Vec<u32> = (0..w)
+        .filter(|&x| (0..h).filter(|&y| frame(x, y)).count() > h as usize / 2)
+        .collect();
+    let rows: Vec<u32> = (0..h)
+        .filter(|&y| (0..w).filter(|&x| frame(x, y)).count() > w as usize / 2)
+        .collect();
+    let (left, right) = (cols[0], *cols.last().unwrap());
+    let (top, bottom) = (rows[0], *rows.last().unwrap());
+    assert!(
+        right > left + 500 && bottom > top + 300,
+        "frame {left}..{right} × {top}..{bottom}"
+    );
+    let (y_lo, y_hi) = (-3.0 - 0.06 * 20.0, 17.0 + 0.06 * 20.0);
+    // the line's ink: it is blue, rgb(0, 114, 178), on white or grey (r = g = b) grid lines,
+    // so blue minus red is 178 × its opacity whatever lies beneath
+    let ink = |x: u32, yy: u32| {
+        let p = img.get_pixel(x, yy).0;
+        f64::from(i32::from(p[2]) - i32::from(p[0])).max(0.0) / 178.0
+    };
+    for x in left + 3..right - 2 {
+        let tt = 10.0 * f64::from(x - left) / f64::from(right - left);
+        let expected =
+            f64::from(bottom) - (2.0 * tt - 3.0 - y_lo) / (y_hi - y_lo) * f64::from(bottom - top);
+        let (mut total, mut moment) = (0.0, 0.0);
+        for yy in top + 2..bottom - 1 {
+            let d = ink(x, yy);
+            total += d;
+            moment += d * f64::from(yy);
+        }
+        assert!(total > 1.0, "column {x}: no line");
+        let centroid = moment / total;
+        assert!(
+            (centroid - expected).abs() <= 1.5,
+            "column {x}: the line at {centroid}, the formula at {expected}"
+        );
+    }
+}

@@ -347,9 +347,11 @@ fn color(k: usize) -> RGBColor {
 
 /// Draws a line through pixel points (absolute coordinates on `root`), solid or dashed.
 ///
-/// Bitmaps get one path per segment: plotters draws a thick bitmap polyline with unlimited
-/// miter joins, which would shoot spikes above sharp peaks (an impact drawn higher than its
-/// force). Dashes are cut along the whole line, so the pattern runs on over short segments.
+/// On a bitmap the line is first thinned to the points that change what is drawn ([`thin`]);
+/// the bitmap draws a thick polyline segment by segment, without miter joins, which would
+/// shoot spikes above sharp peaks (an impact drawn higher than its force; see
+/// `super::canvas`). Dashes are cut along the whole line, so the pattern runs on over short
+/// segments.
 fn draw_line<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     pts: &[(i32, i32)],
@@ -373,15 +375,8 @@ fn draw_line<DB: DrawingBackend>(
         LineStyle::Dashed => dashes(pts, 9.0, 5.0),
     };
     for piece in pieces {
-        if bitmap {
-            for s in piece.windows(2).filter(|s| s[0] != s[1]) {
-                root.draw(&PathElement::new([s[0], s[1]], stroke))
-                    .map_err(draw_err)?;
-            }
-        } else {
-            root.draw(&PathElement::new(piece, stroke))
-                .map_err(draw_err)?;
-        }
+        root.draw(&PathElement::new(piece, stroke))
+            .map_err(draw_err)?;
     }
     Ok(())
 }
@@ -439,8 +434,8 @@ fn simplify(pts: &[(i32, i32)]) -> Vec<(i32, i32)> {
 /// chord that replaces them (Douglas–Peucker), between points where x or y turns back, which
 /// are all kept — so every peak and trough is drawn exactly where it is, and a stretch between
 /// them moves by less than `tol` (half a pixel: the same pixels up to the rasteriser's
-/// rounding). Each segment of a 2-pixel line is a filled polygon, ~7 000 instructions: a
-/// smooth history of 2 000 samples needs a few hundred.
+/// rounding). A smooth history of 2 000 samples needs a few hundred segments, and each
+/// segment has a fixed cost besides its pixels.
 fn thin(pts: &[(i32, i32)], tol: f64) -> Vec<(i32, i32)> {
     let n = pts.len();
     if n < 3 {

@@ -7,9 +7,11 @@
 //! - [`xy`]: one panel over a linear or logarithmic x axis with shaded bands ([`XyFigure`]);
 //! - [`style`]: the font, palette, number labels and the colour scales ([`ColorScale`]).
 //!
-//! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, each atomically (rendered
-//! into a temporary file in the target directory, then renamed onto the final name), so a reader
-//! never sees a half-written file. Text uses an embedded DejaVu Sans font (see
+//! Every picture is written twice, as `<stem>.png` and `<stem>.svg`, on two backends of our own
+//! behind plotters' drawing API: `canvas` (the PNG's RGB bitmap: thick lines drawn as spans,
+//! each glyph rasterised once) and `svg` (plotters' SVG markup written straight into the
+//! document). Each is written atomically (rendered into a temporary file in the target
+//! directory, then renamed onto the final name), so a reader never sees a half-written file. Text uses an embedded DejaVu Sans font (see
 //! `assets/DejaVuSans-LICENSE.txt`): no system fonts or fontconfig are needed.
 //!
 //! The functions never panic on data: non-finite values are skipped (lines break at them,
@@ -26,11 +28,13 @@ use plotters::coord::Shift;
 use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
 
+mod canvas;
 pub mod curves;
 pub mod heatmap;
 pub mod lines;
 pub mod profile;
 pub mod style;
+mod svg;
 pub mod xy;
 
 pub use heatmap::{Heatmap, write_heatmap};
@@ -100,9 +104,9 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> PlotError + '_ {
 
 /// Something that draws itself on any plotters backend.
 trait Render {
-    /// Draws on `root`. `bitmap`: draw thick lines segment by segment (plotters' thick bitmap
-    /// polylines use unlimited miter joins, which would shoot spikes above sharp peaks — a
-    /// contact force drawn higher than it is).
+    /// Draws on `root`. `bitmap`: `root` is the PNG's `canvas::Canvas` (lines may be thinned
+    /// to what its pixels show; it draws thick polylines segment by segment, without the miter
+    /// spikes plotters' bitmap would draw above sharp peaks).
     fn render<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -152,7 +156,7 @@ fn write_both<R: Render + Sync>(
     let svg_text = || -> Result<String, PlotError> {
         let mut text = String::new();
         guard(|| {
-            let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
+            let root = svg::Svg::new(&mut text, (w, h)).into_drawing_area();
             r.render(&root, false)?;
             root.present().map_err(draw_err)
         })?;
@@ -163,7 +167,9 @@ fn write_both<R: Render + Sync>(
         // encoder tries all five row filters on every row, which cost more than the drawing)
         let mut rgb = vec![0u8; 3 * w as usize * h as usize];
         guard(|| {
-            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            let canvas = canvas::Canvas::new(&mut rgb, (w, h))
+                .ok_or_else(|| PlotError::Draw("bitmap buffer of the wrong size".into()))?;
+            let root = canvas.into_drawing_area();
             r.render(&root, true)?;
             root.present().map_err(draw_err)
         })?;

@@ -21,10 +21,10 @@ use super::PlotError;
 pub use crate::numerics::format::fmt_num;
 
 /// The embedded font (DejaVu Sans, Bitstream Vera / DejaVu licence, freely redistributable).
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+pub(super) static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Font family name under which the embedded font is registered with plotters.
-const FONT: &str = "sans-serif";
+pub(super) const FONT: &str = "sans-serif";
 
 /// Registers the embedded font once; later calls return the cached outcome.
 pub(super) fn ensure_font() -> Result<(), PlotError> {
@@ -287,7 +287,7 @@ impl Ranged for Ticked {
     fn map(&self, v: &f64, limit: (i32, i32)) -> i32 {
         let frac = ((*v - self.lo) / (self.hi - self.lo)).clamp(-1.0, 2.0);
         let frac = if frac.is_finite() { frac } else { 0.5 };
-        limit.0 + ((limit.1 - limit.0) as f64 * frac).round() as i32
+        limit.0 + round((limit.1 - limit.0) as f64 * frac)
     }
 
     fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
@@ -301,6 +301,16 @@ impl Ranged for Ticked {
     fn range(&self) -> std::ops::Range<f64> {
         self.lo..self.hi
     }
+}
+
+/// `v.round() as i32` for `|v| < 2³¹` (`f64::round` is a libm call on the baseline x86-64
+/// target, and every point of every line is mapped): the truncation, moved one away from zero
+/// when the part cut off is a half or more (that part, `v − trunc(v)`, is exact).
+#[inline]
+pub(super) fn round(v: f64) -> i32 {
+    let t = v as i32;
+    let cut = v - f64::from(t);
+    t + i32::from(cut >= 0.5) - i32::from(cut <= -0.5)
 }
 
 #[cfg(test)]
@@ -328,5 +338,23 @@ mod tests {
             ["0.2", "0.3", "0.4", "0.5", "0.6", "0.7", "0.8", "0.9", "1"]
         );
         assert_eq!(grid_ticks(&[0.2, 0.5, 0.8], 10), [0.2, 0.5, 0.8]);
+    }
+
+    /// [`round`] is `f64::round` (half away from zero) wherever a pixel can be: every
+    /// quarter and near-half from −20 000 to 20 000 and the halves' neighbours in `f64`.
+    #[test]
+    fn rounding_is_the_standard_libraries() {
+        for i in -80_000..=80_000 {
+            let v = f64::from(i) * 0.25;
+            for w in [
+                v,
+                v.next_up(),
+                v.next_down(),
+                v + 0.4999999999,
+                v - 0.4999999999,
+            ] {
+                assert_eq!(round(w), w.round() as i32, "{w}");
+            }
+        }
     }
 }
