@@ -10,6 +10,9 @@
 //! Durations are shortened (3–5 s instead of the scenarios' 20 s) to keep CI time down: OpenSees
 //! takes ~0.35 ms per step here; the full 20 s agreement is measured in the README.
 
+mod common;
+use common::{model_json, opensees_python};
+
 use std::path::Path;
 use std::process::Command;
 
@@ -18,34 +21,13 @@ use pounding::integrate::{Method, SolverSettings};
 use pounding::model::building::{EngineerModes, FloorDamping, Floors, ShearBuilding};
 use pounding::model::structure::{FloorKind, FloorStructure, Structure};
 use pounding::opensees::compare::{
-    CrosscheckOptions, crosscheck, probe, python, run_script, with_duration, with_modes,
+    CrosscheckOptions, crosscheck, run_script, with_duration, with_modes,
 };
 use pounding::opensees::results::OpenSeesResults;
 use pounding::opensees::{ExportOptions, Only, hertz_curve, script};
 
 fn scenario(name: &str) -> Scenario {
     Scenario::from_file(Path::new(&format!("examples/{name}"))).expect("bundled scenario")
-}
-
-/// The interpreter with openseespy, or `None` (skip) — a failure under CI.
-fn opensees_python() -> Option<String> {
-    let py = python();
-    match probe(&py) {
-        Ok(_) => Some(py),
-        Err(e) => {
-            let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-            assert!(!ci, "CI must have openseespy (see .ci/run): {e}");
-            eprintln!("skipping an OpenSees test: {e}");
-            None
-        }
-    }
-}
-
-/// The `MODEL` JSON of an exported script.
-fn model_json(script: &str) -> serde_json::Value {
-    let start = script.find("MODEL = json.loads(r'''").expect("MODEL") + 23;
-    let end = script[start..].find("''')").expect("end of MODEL") + start;
-    serde_json::from_str(&script[start..end]).expect("MODEL is JSON")
 }
 
 /// Run `script` with OpenSees (extra arguments after it).

@@ -12,36 +12,15 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{ROW_HARMONIC, row_building, row_contact, row_scenario};
+use common::{ROW_HARMONIC, model_json, opensees_python, row_building, row_contact, row_scenario};
 use pounding::input::scenario::Scenario;
 use pounding::model::building::{EngineerModes, FloorDamping, Floors};
 use pounding::model::structure::{FloorKind, FloorStructure, Structure};
-use pounding::opensees::compare::{CrosscheckOptions, probe, python, run_script};
+use pounding::opensees::compare::{CrosscheckOptions, run_script};
 use pounding::opensees::results::{OpenSeesResults, OsStructure};
 use pounding::opensees::row::{any_script, row_script};
 use pounding::opensees::row_compare::{RowOpenSeesResults, crosscheck_row, run_row_script};
 use pounding::opensees::{DRIVER, ExportOptions, script};
-
-/// The interpreter with openseespy, or `None` (skip) — a failure under CI.
-fn opensees_python() -> Option<String> {
-    let py = python();
-    match probe(&py) {
-        Ok(_) => Some(py),
-        Err(e) => {
-            let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-            assert!(!ci, "CI must have openseespy (see .ci/run): {e}");
-            eprintln!("skipping an OpenSees test: {e}");
-            None
-        }
-    }
-}
-
-/// The `MODEL` JSON of an exported script.
-fn model_json(script: &str) -> serde_json::Value {
-    let start = script.find("MODEL = json.loads(r'''").expect("MODEL") + 23;
-    let end = script[start..].find("''')").expect("end of MODEL") + start;
-    serde_json::from_str(&script[start..end]).expect("MODEL is JSON")
-}
 
 fn run_pair(py: &str, script: &str) -> OpenSeesResults {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -313,3 +313,25 @@ pub fn row_contact(a: &str, b: &str, h: f64, gap: f64) -> String {
 
 /// A harmonic ground motion of 0.35 g at 0.8 s.
 pub const ROW_HARMONIC: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n";
+
+/// The interpreter with openseespy for the OpenSees tests (`$POUNDING_PYTHON`, else
+/// `python3`), or `None` (skip) — a failure under CI.
+pub fn opensees_python() -> Option<String> {
+    let py = pounding::opensees::compare::python();
+    match pounding::opensees::compare::probe(&py) {
+        Ok(_) => Some(py),
+        Err(e) => {
+            let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
+            assert!(!ci, "CI must have openseespy (see .ci/run): {e}");
+            eprintln!("skipping an OpenSees test: {e}");
+            None
+        }
+    }
+}
+
+/// The `MODEL` JSON of an exported OpenSeesPy script.
+pub fn model_json(script: &str) -> serde_json::Value {
+    let start = script.find("MODEL = json.loads(r'''").expect("MODEL") + 23;
+    let end = script[start..].find("''')").expect("end of MODEL") + start;
+    serde_json::from_str(&script[start..end]).expect("MODEL is JSON")
+}
