@@ -28,20 +28,11 @@ pub fn text(run: &SuiteRun, title: &str, name: &str) -> String {
             .join(", ")
     );
     let _ = writeln!(o);
-    let width = run
-        .records
-        .iter()
-        .map(|r| r.file.chars().count())
-        .max()
-        .unwrap_or(4)
-        .clamp(4, 48);
-    let cw = run
-        .records
-        .iter()
-        .map(|r| r.component.as_deref().map_or(1, |c| c.chars().count()))
-        .max()
-        .unwrap_or(1)
-        .clamp(5, 24);
+    let (width, cw) = record_widths(
+        run.records
+            .iter()
+            .map(|r| (r.file.as_str(), r.component.as_deref())),
+    );
     let mut head = format!(
         "  {:>3}  {:<width$}  {:<cw$}  {:>7}  {:>6}",
         "#", "file", "comp.", "factor", "PGA g"
@@ -241,4 +232,20 @@ pub(crate) fn merge_warnings<'a>(
         }
     }
     out
+}
+
+/// The widths of the record table's file and component columns (characters), each within
+/// its bounds: `(file, component)` of every record.
+pub(super) fn record_widths<'a>(
+    records: impl Iterator<Item = (&'a str, Option<&'a str>)>,
+) -> (usize, usize) {
+    let (mut file, mut component) = (None, None);
+    for (f, c) in records {
+        file = file.max(Some(f.chars().count()));
+        component = component.max(Some(c.map_or(1, |c| c.chars().count())));
+    }
+    (
+        file.unwrap_or(4).clamp(4, 48),
+        component.unwrap_or(1).clamp(5, 24),
+    )
 }

@@ -37,20 +37,11 @@ pub fn text(run: &RowSuiteRun, title: &str, name: &str) -> String {
         "  a row of {structures} buildings; {}",
         super::report::scaling_lines(run.scaling.as_ref(), n).trim_start()
     );
-    let width = run
-        .records
-        .iter()
-        .map(|r| r.file.chars().count())
-        .max()
-        .unwrap_or(4)
-        .clamp(4, 48);
-    let cw = run
-        .records
-        .iter()
-        .map(|r| r.component.as_deref().map_or(1, |c| c.chars().count()))
-        .max()
-        .unwrap_or(1)
-        .clamp(5, 24);
+    let (width, cw) = super::report::record_widths(
+        run.records
+            .iter()
+            .map(|r| (r.file.as_str(), r.component.as_deref())),
+    );
     // the records
     let _ = writeln!(o);
     let _ = writeln!(
