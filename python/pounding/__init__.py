@@ -50,7 +50,70 @@ __version__: str = _core.__version__
 PathLike = Union[str, "os.PathLike[str]"]
 
 
-class RunResult:
+class _RunFiles:
+    """What a pair's and a row's run have alike: the files ``pounding run --out DIR`` writes, as
+    Python objects computed once, on first access (see :class:`RunResult`,
+    :class:`RowResult`)."""
+
+    __slots__ = ("_out", "_cache")
+
+    def __init__(self, out: Any) -> None:
+        self._out = out
+        self._cache: dict[str, Any] = {}
+
+    def _get(self, name: str, make: Any) -> Any:
+        if name not in self._cache:
+            self._cache[name] = make()
+        return self._cache[name]
+
+    @property
+    def summary(self) -> dict[str, Any]:
+        """summary.json's content (the same text ``pounding run`` writes, parsed)."""
+        return self._get("summary", lambda: json.loads(self._out.summary_json()))
+
+    @property
+    def summary_json(self) -> str:
+        """summary.json's text, byte for byte."""
+        return self._out.summary_json()
+
+    @property
+    def history(self) -> dict[str, Any]:
+        """history.csv's columns: dict of 1-D float64 NumPy arrays (s, m, N)."""
+        return self._get("history", self._out.history)
+
+    @property
+    def floors(self) -> dict[str, Any]:
+        """floors.csv's columns: dict of 1-D float64 NumPy arrays (m, m/s²)."""
+        return self._get("floors", self._out.floors)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The run's warnings."""
+        return self._out.warnings
+
+    @property
+    def suite(self) -> dict[str, Any] | None:
+        """A suite's section of summary.json, or None for one record."""
+        return self.summary.get("suite")
+
+    @property
+    def statistics(self) -> dict[str, Any]:
+        """A suite's statistics across its records (empty for one record)."""
+        s = self.suite
+        return {} if s is None else s["statistics"]
+
+    def to_pandas(self) -> dict[str, Any]:
+        """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
+        import pandas as pd  # optional dependency
+
+        return {
+            "history": pd.DataFrame(self.history),
+            "impacts": pd.DataFrame(self.impacts),
+            "floors": pd.DataFrame(self.floors),
+        }
+
+
+class RunResult(_RunFiles):
     """The outcome of :func:`run`: what ``pounding run --out DIR`` writes, as Python objects.
 
     Attributes are computed from the run once, on first access:
@@ -76,31 +139,7 @@ class RunResult:
       ``max`` and ``design`` value across the records.
     """
 
-    __slots__ = ("_out", "_cache")
-
-    def __init__(self, out: _core.RunOutput) -> None:
-        self._out = out
-        self._cache: dict[str, Any] = {}
-
-    def _get(self, name: str, make: Any) -> Any:
-        if name not in self._cache:
-            self._cache[name] = make()
-        return self._cache[name]
-
-    @property
-    def summary(self) -> dict[str, Any]:
-        """summary.json's content (the same text ``pounding run`` writes, parsed)."""
-        return self._get("summary", lambda: json.loads(self._out.summary_json()))
-
-    @property
-    def summary_json(self) -> str:
-        """summary.json's text, byte for byte."""
-        return self._out.summary_json()
-
-    @property
-    def history(self) -> dict[str, Any]:
-        """history.csv's columns: dict of 1-D float64 NumPy arrays (s, m, N)."""
-        return self._get("history", self._out.history)
+    __slots__ = ()
 
     @property
     def impacts(self) -> dict[str, Any]:
@@ -108,47 +147,16 @@ class RunResult:
         return self._get("impacts", self._out.impacts)
 
     @property
-    def floors(self) -> dict[str, Any]:
-        """floors.csv's columns: dict of 1-D float64 NumPy arrays (m, m/s²)."""
-        return self._get("floors", self._out.floors)
-
-    @property
-    def warnings(self) -> list[str]:
-        """The run's warnings."""
-        return self._out.warnings
-
-    @property
-    def suite(self) -> dict[str, Any] | None:
-        """A suite's section of summary.json, or None for one record."""
-        return self.summary.get("suite")
-
-    @property
     def records(self) -> list[dict[str, Any]]:
         """A suite's records with their headline numbers (empty for one record)."""
         s = self.suite
         return [] if s is None else s["records"]
-
-    @property
-    def statistics(self) -> dict[str, Any]:
-        """A suite's statistics across its records (empty for one record)."""
-        s = self.suite
-        return {} if s is None else s["statistics"]
 
     def summary_text(self) -> str:
         """The summary ``pounding run`` prints on screen, the same text (for a suite of records,
         the suite's report): the peaks with and without pounding, the impacts, the required
         separation, the energy balance and the self-check."""
         return self._out.summary_text()
-
-    def to_pandas(self) -> dict[str, Any]:
-        """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
-        import pandas as pd  # optional dependency
-
-        return {
-            "history": pd.DataFrame(self.history),
-            "impacts": pd.DataFrame(self.impacts),
-            "floors": pd.DataFrame(self.floors),
-        }
 
     def save(self, dir: PathLike, plots: bool = True) -> list[str]:
         """Write the files ``pounding run --out DIR`` writes (history.csv, impacts.csv,
@@ -164,7 +172,7 @@ class RunResult:
         )
 
 
-class RowResult:
+class RowResult(_RunFiles):
     """The outcome of :func:`run` on a row of buildings (more than two ``[[structure]]``
     tables, README "Rows of buildings"): what ``pounding run --out DIR`` writes for a row, as
     Python objects (computed once, on first access):
@@ -200,31 +208,7 @@ class RowResult:
       and ``design`` value across the records.
     """
 
-    __slots__ = ("_out", "_cache")
-
-    def __init__(self, out: _core.RowOutput) -> None:
-        self._out = out
-        self._cache: dict[str, Any] = {}
-
-    def _get(self, name: str, make: Any) -> Any:
-        if name not in self._cache:
-            self._cache[name] = make()
-        return self._cache[name]
-
-    @property
-    def summary(self) -> dict[str, Any]:
-        """summary.json's content (the same text ``pounding run`` writes, parsed)."""
-        return self._get("summary", lambda: json.loads(self._out.summary_json()))
-
-    @property
-    def summary_json(self) -> str:
-        """summary.json's text, byte for byte."""
-        return self._out.summary_json()
-
-    @property
-    def history(self) -> dict[str, Any]:
-        """history.csv's columns: dict of 1-D float64 NumPy arrays (s, m, N)."""
-        return self._get("history", self._out.history)
+    __slots__ = ()
 
     @property
     def structures(self) -> dict[str, dict[str, Any]]:
@@ -256,31 +240,10 @@ class RowResult:
         return self._get("impacts", self._out.impacts)
 
     @property
-    def floors(self) -> dict[str, Any]:
-        """floors.csv's columns: dict of 1-D float64 NumPy arrays (m, m/s²)."""
-        return self._get("floors", self._out.floors)
-
-    @property
-    def warnings(self) -> list[str]:
-        """The run's warnings."""
-        return self._out.warnings
-
-    @property
-    def suite(self) -> dict[str, Any] | None:
-        """A suite's section of summary.json, or None for one record."""
-        return self.summary.get("suite")
-
-    @property
     def records(self) -> list[dict[str, Any]]:
         """A suite's records with their numbers per structure and pair (empty for one record)."""
         s = self.suite
         return [] if s is None else s["records"]
-
-    @property
-    def statistics(self) -> dict[str, Any]:
-        """A suite's statistics across its records (empty for one record)."""
-        s = self.suite
-        return {} if s is None else s["statistics"]
 
     def summary_text(self) -> str:
         """The summary ``pounding run`` prints for a row: every structure's peaks with and
@@ -288,16 +251,6 @@ class RowResult:
         energy balance and the self-check (for a suite of records, the suite's report per
         pair)."""
         return self._out.summary_text()
-
-    def to_pandas(self) -> dict[str, Any]:
-        """The tables as pandas DataFrames: ``{"history", "impacts", "floors"}`` (needs pandas)."""
-        import pandas as pd  # optional dependency
-
-        return {
-            "history": pd.DataFrame(self.history),
-            "impacts": pd.DataFrame(self.impacts),
-            "floors": pd.DataFrame(self.floors),
-        }
 
     def save(self, dir: PathLike, plots: bool = True) -> list[str]:
         """Write the files ``pounding run --out DIR`` writes for a row (history.csv,
