@@ -377,8 +377,11 @@ class Model:
         return {"seconds": seconds, "steps": steps, "fallbacks": fallbacks}
 
 
-def main():
-    p = argparse.ArgumentParser(description="OpenSeesPy model of a pounding scenario (written by `pounding export opensees`)")
+def run_cases(model_class, description):
+    """Parse the command line, run the case with contact and the one without on
+    `model_class` (the pair's Model or a row's), and return the arguments, the result so far
+    and the models run."""
+    p = argparse.ArgumentParser(description=description)
     p.add_argument("--json", help="also write the results to this file")
     p.add_argument("--only", choices=["contact", "free"], default=MODEL.get("only"),
                    help="run only the case with contact or only the one without")
@@ -397,13 +400,19 @@ def main():
     for case in ("contact", "free"):
         if a.only is not None and a.only != case:
             continue
-        mdl = Model(ops, MODEL, a.dt, a.duration, case == "contact")
+        mdl = model_class(ops, MODEL, a.dt, a.duration, case == "contact")
         try:
             result["runs"][case] = mdl.run()
         except StepFailed as e:
             print(json.dumps({"error": str(e), "case": case}), file=sys.stderr)
             sys.exit(3)
         records[case] = mdl
+    return a, result, records
+
+
+def main():
+    a, result, records = run_cases(
+        Model, "OpenSeesPy model of a pounding scenario (written by `pounding export opensees`)")
     c, f = records.get("contact"), records.get("free")
     main_level = max(range(len(MODEL["levels"])), key=lambda j: MODEL["levels"][j]["height"])
 

@@ -80,32 +80,7 @@ class RowModel(Model):
 
 
 def row_main():
-    p = argparse.ArgumentParser(description="OpenSeesPy model of a row of buildings (written by `pounding export opensees`)")
-    p.add_argument("--json", help="also write the results to this file")
-    p.add_argument("--only", choices=["contact", "free"], default=MODEL.get("only"),
-                   help="run only the case with contact or only the one without")
-    p.add_argument("--dt", type=float, default=MODEL["dt"], help="analysis step, s")
-    p.add_argument("--duration", type=float, default=MODEL["duration"], help="simulated time, s")
-    p.add_argument("--log", default=os.devnull,
-                   help="OpenSees' own messages go here (default: discarded)")
-    a = p.parse_args()
-    ops = import_opensees()
-    ops.logFile(a.log, "-noEcho")
-    result = {"title": MODEL["title"], "opensees": ops.version(), "dt": a.dt,
-              "duration": a.duration, "elements": [st.get("elements", len(st["node_heights"]) - 1)
-                                                   for st in MODEL["structures"]],
-              "runs": {}}
-    records = {}
-    for case in ("contact", "free"):
-        if a.only is not None and a.only != case:
-            continue
-        mdl = RowModel(ops, MODEL, a.dt, a.duration, case == "contact")
-        try:
-            result["runs"][case] = mdl.run()
-        except StepFailed as e:
-            print(json.dumps({"error": str(e), "case": case}), file=sys.stderr)
-            sys.exit(3)
-        records[case] = mdl
+    a, result, records = run_cases(RowModel, "OpenSeesPy model of a row of buildings (written by `pounding export opensees`)")
     c, f = records.get("contact"), records.get("free")
     lvs = MODEL["levels"]
 
