@@ -86,6 +86,17 @@ impl<'a> Svg<'a> {
     }
 
     /// The opacity as Rust displays an `f64` (`1`, `0.18`).
+    /// A shape's paint: filled in `color` without an outline, or outlined in it and empty.
+    fn paint_attrs(&mut self, color: BackendColor, fill: bool) {
+        if fill {
+            self.color_attr("fill", color);
+            self.str_attr("stroke", "none");
+        } else {
+            self.str_attr("fill", "none");
+            self.color_attr("stroke", color);
+        }
+    }
+
     fn opacity_attr(&mut self, c: BackendColor) {
         self.attr("opacity");
         if c.alpha == 1.0 {
@@ -206,13 +217,7 @@ impl DrawingBackend for Svg<'_> {
         self.int_attr("width", bottom_right.0 - upper_left.0);
         self.int_attr("height", bottom_right.1 - upper_left.1);
         self.opacity_attr(color);
-        if fill {
-            self.color_attr("fill", color);
-            self.str_attr("stroke", "none");
-        } else {
-            self.str_attr("fill", "none");
-            self.color_attr("stroke", color);
-        }
+        self.paint_attrs(color, fill);
         self.close();
         Ok(())
     }
@@ -269,13 +274,7 @@ impl DrawingBackend for Svg<'_> {
         self.int_attr("cy", center.1);
         self.int_attr("r", radius);
         self.opacity_attr(color);
-        if fill {
-            self.color_attr("fill", color);
-            self.str_attr("stroke", "none");
-        } else {
-            self.str_attr("fill", "none");
-            self.color_attr("stroke", color);
-        }
+        self.paint_attrs(color, fill);
         self.int_attr("stroke-width", style.stroke_width());
         self.close();
         Ok(())
