@@ -322,10 +322,6 @@ impl HistorySink for RowPhaseSink<'_> {
     }
 
     fn floor_row(&mut self, t: f64, values: &[f64]) {
-        match self.phase {
-            Phase::WithContact => self.sink.contact_floor_row(t, values),
-            Phase::WithoutContact => self.sink.free_floor_row(t, values),
-            Phase::CheckWithContact | Phase::CheckWithoutContact => {}
-        }
+        self.phase.floor_row(self.sink, t, values);
     }
 }

@@ -28,6 +28,16 @@ impl Phase {
             Phase::CheckWithoutContact => "self-check, without pounding",
         }
     }
+
+    /// A floor history sample of this phase to `sink` (a pair's or a row's: the same files);
+    /// the self-check's samples are not written.
+    pub(super) fn floor_row(self, sink: &mut dyn RunSink, t: f64, values: &[f64]) {
+        match self {
+            Phase::WithContact => sink.contact_floor_row(t, values),
+            Phase::WithoutContact => sink.free_floor_row(t, values),
+            Phase::CheckWithContact | Phase::CheckWithoutContact => {}
+        }
+    }
 }
 
 /// What a run streams out while it goes, so that nothing of it needs to be held in memory:
@@ -266,10 +276,6 @@ impl HistorySink for PhaseSink<'_> {
     }
 
     fn floor_row(&mut self, t: f64, values: &[f64]) {
-        match self.phase {
-            Phase::WithContact => self.sink.contact_floor_row(t, values),
-            Phase::WithoutContact => self.sink.free_floor_row(t, values),
-            Phase::CheckWithContact | Phase::CheckWithoutContact => {}
-        }
+        self.phase.floor_row(self.sink, t, values);
     }
 }
