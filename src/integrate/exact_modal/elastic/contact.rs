@@ -112,8 +112,23 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// One trial of a contact step of length h from the current state (`k`: its quantised
-    /// index): the free flight to the nodes, both collocations, the estimate.
+    /// index): the free flight to the nodes, both collocations, the estimate. A pair with one
+    /// contact level takes its own path (`single`), the same arithmetic on stack arrays.
+    #[inline]
     pub(super) fn trial(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        if self.single_level() {
+            return self.trial_one(k, h, piece);
+        }
+        self.trial_general(k, h, piece)
+    }
+
+    /// [`Self::trial`] for any number of contact levels.
+    pub(super) fn trial_general(
         &mut self,
         k: Option<usize>,
         h: f64,
