@@ -11,6 +11,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use super::contact::SYNC_CONTACT;
 use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
@@ -173,6 +174,266 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         Ok(Trial { err, h, k })
     }
+
+    /// [`Elastic::accept_general`] for one contact level of a pair ([`Self::single_level`]):
+    /// the same commit (end state, dense output, tallies, the law's work, level state) with the
+    /// same arithmetic, the per-mode loops split per kind of ground motion and the level loops
+    /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
+    pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        debug_assert!(self.single_level());
+        let harmonic_piece = match (piece, &self.htally, self.gm.harmonic_plain().is_some()) {
+            (Piece::Harmonic, Some(_), true) => true,
+            (Piece::Poly { .. }, _, _) | (Piece::Zero, _, _) => false,
+            _ => return self.accept_general(piece, trial, t_end),
+        };
+        let n = self.n;
+        let h = trial.h;
+        let bases = collocation::bases();
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
+        let tab: &Table = match trial.k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
+        let start = self
+            .trace
+            .is_some()
+            .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
+        // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
+        let trs: [Trig; 5] = std::array::from_fn(|p| {
+            if p == 0 {
+                tr0
+            } else if self.big.is_some() {
+                let (sh, ch) = tab.rot[NODES8[p - 1]];
+                Trig {
+                    t: t0 + THETA8[p] * h,
+                    s: tr0.s * ch + tr0.c * sh,
+                    c: tr0.c * ch - tr0.s * sh,
+                }
+            } else {
+                self.gm.trig(t0 + THETA8[p] * h)
+            }
+        });
+        let f: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
+        // dense output where the nodal forces peak inside the step
+        let inner = f[1].max(f[2]).max(f[3]);
+        let dense = inner > 0.0 && inner > f[0].max(f[4]);
+        // the contact quartic's integral and first moment
+        let moment = {
+            let (mut a, mut b) = (0.0, 0.0);
+            for p in 0..5 {
+                a += WEIGHTS8[p] * f[p];
+                b += bases.first[p] * f[p];
+            }
+            (h * a, h * h * b)
+        };
+        self.moments[0] = moment;
+        let gm = &self.gm;
+        let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
+        let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
+        let modes = &tab.modes[..n];
+        let cs = &self.cpl_t[..n];
+        // the particular solutions at the end (and at the interior nodes for dense output)
+        let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
+        match gm.harmonic_plain() {
+            Some((big, g_re, g_im)) if harmonic_piece => {
+                let at = |j: usize, tr: &Trig| {
+                    let (gr, gi) = (g_re[j], g_im[j]);
+                    (gr * tr.s + gi * tr.c, big * (gr * tr.c - gi * tr.s))
+                };
+                for j in 0..n {
+                    pend[j] = at(j, &trs[4]);
+                }
+                if dense {
+                    for j in 0..n {
+                        pmid[j] = std::array::from_fn(|i| at(j, &trs[i + 1]));
+                    }
+                }
+            }
+            harmonic => {
+                for j in 0..n {
+                    let pcoef = &self.pcoef[j];
+                    pend[j] = particular_at(gm, piece, harmonic, pcoef, j, h, &trs[4]);
+                    if dense {
+                        pmid[j] = std::array::from_fn(|i| {
+                            let tau = THETA8[i + 1] * h;
+                            particular_at(gm, piece, harmonic, pcoef, j, tau, &trs[i + 1])
+                        });
+                    }
+                }
+            }
+        }
+        // the end state (and the dense output's), the level's projections of it
+        let (q1s, v1s) = (&mut self.q1s[..n], &mut self.v1s[..n]);
+        let (dq, dv) = (&mut self.dense_q[..3 * n], &mut self.dense_v[..3 * n]);
+        let mut proj = (0.0, 0.0);
+        for j in 0..n {
+            let c = cs[j];
+            let g = f.map(|x| c * x);
+            let ms = &modes[j];
+            let (x0, y0) = (x0s[j], y0s[j]);
+            let (xe, ye) = ms.end.apply(x0, y0);
+            let pe = pend[j];
+            let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
+            for p in 0..5 {
+                q1 += g[p] * ms.end8[p].0;
+                v1 += g[p] * ms.end8[p].1;
+            }
+            if dense {
+                for i in 0..3 {
+                    let (x, y) = ms.mid[i].apply(x0, y0);
+                    let pi = pmid[j][i];
+                    let (mut e, mut d) = (x + pi.0, y + pi.1);
+                    for p in 0..5 {
+                        e += g[p] * ms.mid8[i][p].0;
+                        d += g[p] * ms.mid8[i][p].1;
+                    }
+                    dq[i * n + j] = e;
+                    dv[i * n + j] = d;
+                }
+            }
+            q1s[j] = q1;
+            v1s[j] = v1;
+            proj.0 += c * q1;
+            proj.1 += c * v1;
+        }
+        self.proj[0] = proj;
+        // the tallies, per kind of piece
+        let mut sums = StateSums::default();
+        let (mut input, mut d_energy) = (0.0, 0.0);
+        let (q0s, v0s) = (&self.q[..n], &self.v[..n]);
+        let (q1s, v1s) = (&self.q1s[..n], &self.v1s[..n]);
+        match (piece, &self.htally) {
+            (Piece::Harmonic, Some(ht)) => {
+                for j in 0..n {
+                    ht.add(&mut sums, j, w2s[j], q1s[j], v1s[j]);
+                }
+            }
+            (Piece::Poly { .. }, _) => {
+                for j in 0..n {
+                    let c = cs[j];
+                    let (mut gi, mut gt) = (0.0, 0.0);
+                    gi += c * moment.0;
+                    gt += c * moment.1;
+                    input += poly_ground_work(
+                        (damp[j], iw2[j]),
+                        h,
+                        (q0s[j], v0s[j]),
+                        (q1s[j], v1s[j]),
+                        &self.cpoly[j],
+                        gi,
+                        gt,
+                    );
+                }
+            }
+            _ => {}
+        }
+        let harmonic_sums = harmonic_piece && self.big.is_some();
+        if !harmonic_sums {
+            for j in 0..n {
+                let (q0, v0, q1, v1) = (q0s[j], v0s[j], q1s[j], v1s[j]);
+                d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
+            }
+        }
+        std::mem::swap(&mut self.q, &mut self.q1s);
+        std::mem::swap(&mut self.v, &mut self.v1s);
+        if let (true, Some(ht), Some(big)) = (harmonic_sums, &self.htally, self.big) {
+            // the ground's work: the state sums at both ends, and the contact quartic's extra
+            let tm =
+                TrigMoments::from_ends(big, h, (tr0.s, tr0.c), (trs[4].s, trs[4].c), tab.rot[3]);
+            input = ht.input(&tm, &self.sums, &sums);
+            let (k4, k5) = self.kextra[0];
+            for p in 0..5 {
+                let (a, b) = tab.hmom[p];
+                let (sp, cp) = (tr0.s * a + tr0.c * b, tr0.c * a - tr0.s * b);
+                input += f[p] * (k4 * sp + k5 * cp);
+            }
+            d_energy = sums.energy - self.sums.energy;
+        }
+        self.sums = sums;
+        self.psums_ok = false;
+        // the contact load's work on the modes (Lobatto, 5 nodes), and the work into the
+        // contact with the law along the motion (the 7-point rule)
+        let st0 = self.states[0];
+        let nodal8: [(f64, f64); 4] = std::array::from_fn(|i| self.nodal8[i]);
+        let mut pw = WEIGHTS8[0] * f[0] * st0.delta_dot;
+        for p in 1..5 {
+            pw += WEIGHTS8[p] * f[p] * nodal8[p - 1].1;
+        }
+        let modal = 0.0 - h * pw;
+        let sys = self.sys;
+        let lv = &sys.levels[0];
+        let onset = self.onset[0];
+        let power = |(d, dd): (f64, f64)| lv.force.force(d, dd, episode_v0(onset, dd)) * dd;
+        let w7 = &bases.seven;
+        let mut lw = w7[0] * f[0] * st0.delta_dot;
+        for (i, node) in [(1, 0), (3, 1), (5, 2), (6, 3)] {
+            lw += w7[i] * power(nodal8[node]);
+        }
+        for (i, slot) in [(2, 0), (4, 1)] {
+            let (mut d, mut dd) = self.dfree[slot];
+            let w86 = &tab.w86[slot * 5..slot * 5 + 5];
+            for p in 0..5 {
+                let (a, b) = w86[p];
+                d -= a * f[p];
+                dd -= b * f[p];
+            }
+            lw += w7[i] * power((d, dd));
+        }
+        let law = 0.0 + h * lw;
+        let damping = input + modal - d_energy;
+        self.energy += d_energy;
+        if dense {
+            self.observe_dense(h, t0, (input, damping, law));
+        }
+        self.tally.input += input;
+        self.tally.damping += damping;
+        self.tally.contact += law;
+        self.tally.impulse[0] += moment.0;
+        self.last_f8[..5].copy_from_slice(&f);
+        self.t = t_end;
+        self.prev_states[0] = st0;
+        let (cq, cv) = proj;
+        self.set_state(0, cq, cv);
+        update_onsets(&mut self.onset, &self.prev_states, &self.states, h);
+        let st = self.states[0];
+        if self.onset[0] == 0.0 && Self::at_onset(&st) {
+            self.onset[0] = st.delta_dot;
+        }
+        if st.delta > 0.0 {
+            let kt = lv.force.tangent_stiffness(st.delta);
+            self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[0] * h * h);
+        }
+        self.last_h = if self.in_contact() { h } else { 0.0 };
+        self.stats.steps += 1;
+        // sin, cos at the end from the step's rotation, evaluated directly every SYNC_CONTACT
+        // steps and where the end was snapped to a span's end
+        self.contact_sync += 1;
+        if self.big.is_some() && self.contact_sync < SYNC_CONTACT && t_end == t0 + h {
+            self.trig_memo = Trig { t: t_end, ..trs[4] };
+        } else {
+            self.contact_sync = 0;
+        }
+        self.trig_now = self.exact_trig(self.t);
+        self.since_sync = 1;
+        if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
+            trace.push(StepTrace {
+                t: t0,
+                h,
+                q0,
+                v0,
+                onset,
+                q1: self.q.clone(),
+                v1: self.v.clone(),
+                err: trial.err,
+                kink: self.kink,
+                z0: Vec::new(),
+                z1: Vec::new(),
+                companion: vec![self.nodal6[2]],
+            });
+        }
+        self.observe();
+    }
 }
 
 #[cfg(test)]
@@ -217,70 +478,80 @@ mod tests {
         trace
     }
 
-    /// What a trial leaves: the estimate, the forces and nodal states of both schemes, the
-    /// free flight to the six nodes.
-    type Left = (
-        f64,
-        Vec<f64>,
-        Vec<f64>,
-        Vec<(f64, f64)>,
-        Vec<(f64, f64)>,
-        Vec<(f64, f64)>,
-    );
-
-    /// One trial of length h from `tr`'s start state, by the one-level path or the general
-    /// one, after a first step of length h (so that the first guess comes from a previous
-    /// step's quartic, as inside an impact).
-    fn trial(sys: &System, tr: &StepTrace, h: f64, single: bool) -> Left {
-        let settings = SolverSettings::new(Method::ExactModal, 1e-3, 10.0);
-        let mut quiet = Quiet;
-        let mut r = Elastic::new(
-            sys,
-            &settings,
-            &mut quiet,
-            None,
-            tr.t,
-            tr.q0.clone(),
-            tr.v0.clone(),
-            Some(&tr.onset),
-        );
-        let mut last = None;
-        for _ in 0..2 {
-            let (piece, _, _) = r.piece();
-            let t = if single {
-                r.trial_one(None, h, &piece)
-            } else {
-                r.trial_general(None, h, &piece)
-            }
-            .expect("converges");
-            if last.is_none() {
-                let t_end = r.t + h;
-                r.accept(&piece, t, t_end);
-            }
-            last = Some(t);
+    /// Every observation, as its `Debug` text (which tells every bit of an f64 apart).
+    #[derive(Default)]
+    struct Seen(Vec<String>);
+    impl Observer for Seen {
+        fn observe(&mut self, _: &System, v: &StepView) {
+            self.0.push(format!(
+                "{} {:?} {:?} {:?} {:?}",
+                v.t, v.q, v.v, v.levels, v.tally
+            ));
         }
-        (
-            last.expect("trial").err,
-            r.f8.clone(),
-            r.f6.clone(),
-            r.nodal8.clone(),
-            r.nodal6.clone(),
-            r.dfree.clone(),
-        )
     }
 
-    /// The one-level trial equals the general path's on the same state, under harmonic motion
-    /// and a record (their particular solutions take different branches), on the elastic and
-    /// the damped laws, at steps from inside an impact and at its onset: the same arithmetic in
-    /// the same order, so equal bit for bit (compared to 0 ulp; the general path is itself
-    /// tested against closed forms and an independent integration in `elastic::tests`).
+    /// Three contact steps of length h from `tr`'s start state, trial and acceptance each by
+    /// the one-level path or the general one (the second and third start from a previous
+    /// step's quartic, as inside an impact): everything a trial leaves (estimate, both
+    /// schemes' forces and nodal states, the free flight to the nodes) and an acceptance
+    /// leaves (state, level state, onset speed, tallies, energy, the next first guess, every
+    /// observation, dense ones included), as `Debug` text.
+    fn steps_from(sys: &System, tr: &StepTrace, h: f64, single: bool) -> Vec<String> {
+        let settings = SolverSettings::new(Method::ExactModal, 1e-3, 10.0);
+        let mut seen = Seen::default();
+        let mut out = Vec::new();
+        {
+            let mut r = Elastic::new(
+                sys,
+                &settings,
+                &mut seen,
+                None,
+                tr.t,
+                tr.q0.clone(),
+                tr.v0.clone(),
+                Some(&tr.onset),
+            );
+            for _ in 0..3 {
+                let (piece, _, _) = r.piece();
+                let t = if single {
+                    r.trial_one(None, h, &piece)
+                } else {
+                    r.trial_general(None, h, &piece)
+                }
+                .expect("converges");
+                out.push(format!(
+                    "{:?} {:?} {:?} {:?} {:?} {:?}",
+                    t.err, r.f8, r.f6, r.nodal8, r.nodal6, r.dfree
+                ));
+                let t_end = r.t + h;
+                if single {
+                    r.accept_one(&piece, t, t_end);
+                } else {
+                    r.accept_general(&piece, t, t_end);
+                }
+                out.push(format!(
+                    "{} {:?} {:?} {:?} {:?} {:?} {:?} {:?} {:?}",
+                    r.t, r.q, r.v, r.states, r.onset, r.tally, r.energy, r.last_f8, r.last_h
+                ));
+            }
+        }
+        out.extend(seen.0);
+        out
+    }
+
+    /// The one-level contact step equals the general path's on the same state, under harmonic
+    /// motion and a record (their particular solutions take different branches), on the
+    /// elastic and the damped laws, from states inside impacts, at their onsets and releases:
+    /// the same arithmetic in the same order, so equal bit for bit (every f64 compared by its
+    /// shortest round-trip text: 0 ulp; the general path is itself tested against closed forms
+    /// and an independent integration in `elastic::tests`).
     #[test]
-    fn the_one_level_trial_equals_the_general_one() {
+    fn the_one_level_step_equals_the_general_one() {
         // (the bundled Loma Prieta record scaled to 1 g: its strong motion pounds within 8 s)
         let record = "kind = \"record\"\nfile = \"records/RSN753_LOMAP_CLS000.AT2\"\n\
                       scale_to_pga = 1.0";
         let harmonic = "kind = \"harmonic\"\npga = 0.5\nperiod = 0.8";
-        let mut compared = 0;
+        let (mut compared, mut dense) = (0, 0);
         for (ground, duration) in [(harmonic, 1.0), (record, 8.0)] {
             for law in [
                 "law = \"hertz\"\nstiffness = 2.808e10",
@@ -291,15 +562,18 @@ mod tests {
                 let trace = steps(&sys, duration);
                 assert!(trace.len() > 20, "{law} / {ground}: contact steps");
                 for tr in trace.iter().step_by(7) {
-                    let h = tr.h;
-                    let a = trial(&sys, tr, h, true);
-                    let b = trial(&sys, tr, h, false);
-                    assert_eq!(a.0.to_bits(), b.0.to_bits(), "estimate at t = {}", tr.t);
+                    let a = steps_from(&sys, tr, tr.h, true);
+                    let b = steps_from(&sys, tr, tr.h, false);
+                    // (six entries for three steps, one observation each, three more for each
+                    // step observed densely: the force peaks inside it)
+                    assert!(a.len() >= 9, "three steps and their observations");
+                    dense += a.len() - 9;
                     assert_eq!(a, b, "{law} / {ground} at t = {}", tr.t);
                     compared += 1;
                 }
             }
         }
-        assert!(compared > 50, "{compared} trials compared");
+        assert!(compared > 50, "{compared} states compared");
+        assert!(dense > 0, "dense output compared");
     }
 }
