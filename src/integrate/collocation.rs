@@ -477,6 +477,13 @@ impl Table {
         let at = self.cstart[k] + i * w;
         &self.cprop[at..at + w]
     }
+
+    /// The coupled propagators of a pair's single contact level (`n` modes, all coupled):
+    /// node i's row at `[i·n..(i + 1)·n]`, as [`Table::cprop_at`] gives them one by one.
+    #[inline]
+    pub(super) fn cprop_single(&self, n: usize) -> &[[f64; 4]] {
+        &self.cprop[..6 * n]
+    }
 }
 
 /// `(∫₀¹ x^m cos ax dx, ∫₀¹ x^m sin ax dx)` for m = 0..4: a series for |a| < 2, else the
@@ -735,6 +742,21 @@ fn solve_one<const S: usize>(
         last = change;
     }
     Err(NoConvergence)
+}
+
+/// [`solve`] for a pair's single contact level, called directly (no dispatch on the number of
+/// levels): the one-level contact step's (`exact_modal::elastic::single`).
+#[inline]
+pub(super) fn solve_single<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    solve_one::<S>(sys, w, dfree, onset, force, nodal, tol)
 }
 
 /// The Newton update of [`solve`]: `J·x = rhs` in place (rhs becomes x), with the Jacobian

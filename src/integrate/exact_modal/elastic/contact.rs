@@ -112,8 +112,23 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// One trial of a contact step of length h from the current state (`k`: its quantised
-    /// index): the free flight to the nodes, both collocations, the estimate.
+    /// index): the free flight to the nodes, both collocations, the estimate. A pair with one
+    /// contact level takes its own path (`single`), the same arithmetic on stack arrays.
+    #[inline]
     pub(super) fn trial(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        if self.single_level() {
+            return self.trial_one(k, h, piece);
+        }
+        self.trial_general(k, h, piece)
+    }
+
+    /// [`Self::trial`] for any number of contact levels.
+    pub(super) fn trial_general(
         &mut self,
         k: Option<usize>,
         h: f64,
@@ -562,8 +577,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// modal energy balance; the work into the contacts with the law itself along the computed
     /// motion at the companion's Lobatto nodes, so that the energy balance measures the
     /// collocation's residual (the law against the force quartic between the nodes).
+    ///
+    /// A pair with one contact level takes its own path (`single`), the same arithmetic.
     #[inline(never)]
     pub(super) fn accept(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        if self.single_level() {
+            return self.accept_one(piece, trial, t_end);
+        }
+        self.accept_general(piece, trial, t_end)
+    }
+
+    /// [`Self::accept`] for any number of contact levels.
+    #[inline(never)]
+    pub(super) fn accept_general(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         let (n, nl) = (self.n, self.nl);
         let h = trial.h;
         let bases = collocation::bases();
@@ -896,7 +922,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
 }
 
 /// Contact steps between direct evaluations of sin Ωt, cos Ωt (rotations in between).
-const SYNC_CONTACT: u32 = 16;
+pub(super) const SYNC_CONTACT: u32 = 16;
 
 /// Where a recorded motion's contact steps stand on the piece's dyadic grid: grid step `base`
 /// (of the piece's grid steps hh, from its start `start`) and the [`DyadicWalk`] inside it at

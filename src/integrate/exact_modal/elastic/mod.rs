@@ -37,6 +37,7 @@ mod contact;
 mod free;
 mod kernel;
 mod onset;
+mod single;
 
 use super::super::collocation::{
     self, NODES, NODES6, NODES8, Newton, NoConvergence, THETA8, Table, WEIGHTS8,
