@@ -5,8 +5,8 @@
 
 mod common;
 use common::{
-    ROW_HARMONIC as HARMONIC, row_building as building, row_contact as contact,
-    row_scenario as scenario,
+    ROW_HARMONIC as HARMONIC, row_both_pounding, row_building as building, row_contact as contact,
+    row_flexible_end, row_scenario as scenario,
 };
 
 use std::path::Path;
@@ -27,12 +27,8 @@ const CODES: &str = "[separation]\nasce7 = { cd = 5.5, ie = 1.0, r = 8, boundary
 
 fn row_abc(gap_bc: f64) -> String {
     format!(
-        "{}{}{}{}{}{HARMONIC}{SOLVER}{CODES}",
-        building("A", 4, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 3, 1.0e8),
-        contact("A", "B", 14.0, 0.01),
-        contact("B", "C", 10.5, gap_bc),
+        "{}{HARMONIC}{SOLVER}{CODES}",
+        row_flexible_end(0.01, gap_bc),
     )
 }
 
@@ -92,12 +88,8 @@ fn a_rows_separation_is_each_pairs_separation() {
 fn a_rows_spectral_separation_is_each_pairs() {
     let spectrum = "[ground_motion]\nkind = \"spectrum\"\nspectrum = \"asce7\"\nsds = 1.0\nsd1 = 0.6\ntl = 8.0\n";
     let row = scenario(&format!(
-        "{}{}{}{}{}{spectrum}{CODES}",
-        building("A", 4, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 3, 1.0e8),
-        contact("A", "B", 14.0, 0.01),
-        contact("B", "C", 10.5, 0.02),
+        "{}{spectrum}{CODES}",
+        row_flexible_end(0.01, 0.02),
     ));
     let r = row_gap_report(&row, None, None).expect("row report");
     let bc = scenario(&format!(
@@ -427,12 +419,8 @@ fn a_rows_convergence_is_the_pairs_where_the_second_gap_never_closes() {
 #[test]
 fn a_rows_sweep_is_self_checked() {
     let base = format!(
-        "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"rk4\"\ndt = 0.001\nduration = 5.0\n",
-        building("A", 3, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 4, 2.2e8),
-        contact("A", "B", 10.5, 0.004),
-        contact("B", "C", 14.0, 0.006),
+        "{}{HARMONIC}[solver]\nmethod = \"rk4\"\ndt = 0.001\nduration = 5.0\n",
+        row_both_pounding(),
     );
     let sw = sweep(
         &base,

@@ -4,8 +4,7 @@
 
 mod common;
 use common::{
-    ROW_HARMONIC as HARMONIC, row_building as building, row_contact as contact,
-    row_scenario as scenario,
+    ROW_HARMONIC as HARMONIC, row_both_pounding, row_flexible_end, row_scenario as scenario,
 };
 
 use std::path::{Path, PathBuf};
@@ -66,12 +65,8 @@ fn write_row_run(dir: &Path, sc: &Scenario) -> pounding::analysis::simulate::Row
 #[test]
 fn history_csv_of_a_row_whose_second_gap_never_closes_is_the_pairs() {
     let row = scenario(&format!(
-        "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n",
-        building("A", 4, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 3, 1.0e8),
-        contact("A", "B", 14.0, 0.01),
-        contact("B", "C", 10.5, 10.0),
+        "{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n",
+        row_flexible_end(0.01, 10.0),
     ));
     let pair = row.pair(0);
     let (dr, dp) = (tmp("row3"), tmp("pair"));
@@ -153,13 +148,9 @@ fn history_csv_of_a_row_whose_second_gap_never_closes_is_the_pairs() {
 #[test]
 fn force_columns_integrate_to_the_impulses_of_each_pair() {
     let row = scenario(&format!(
-        "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 5.0\n\
+        "{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 5.0\n\
          output_interval = 1e-4\n",
-        building("A", 3, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 4, 2.2e8),
-        contact("A", "B", 10.5, 0.004),
-        contact("B", "C", 14.0, 0.006),
+        row_both_pounding(),
     ));
     let d = tmp("impulse");
     let r = write_row_run(&d, &row);
@@ -224,13 +215,9 @@ fn force_columns_integrate_to_the_impulses_of_each_pair() {
 #[test]
 fn a_long_row_history_is_streamed_and_bounded_in_memory() {
     let row = scenario(&format!(
-        "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 3.0\n\
+        "{}{HARMONIC}[solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 3.0\n\
          output_interval = 1e-4\n",
-        building("A", 3, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 4, 2.2e8),
-        contact("A", "B", 10.5, 0.004),
-        contact("B", "C", 14.0, 0.006),
+        row_both_pounding(),
     ));
     let n = sample_count(row.output_interval, row.solver.duration) as usize;
     assert!(n > MAX_KEPT_SAMPLES);
@@ -276,12 +263,8 @@ fn a_long_row_history_is_streamed_and_bounded_in_memory() {
 fn the_self_check_flags_an_under_resolved_row() {
     let text = |dt: f64| {
         format!(
-            "{}{}{}{}{}{HARMONIC}[solver]\nmethod = \"rk4\"\ndt = {dt}\nduration = 5.0\n",
-            building("A", 3, 3.0e8),
-            building("B", 5, 1.6e8),
-            building("C", 4, 2.2e8),
-            contact("A", "B", 10.5, 0.004),
-            contact("B", "C", 14.0, 0.006),
+            "{}{HARMONIC}[solver]\nmethod = \"rk4\"\ndt = {dt}\nduration = 5.0\n",
+            row_both_pounding(),
         )
     };
     let coarse = scenario(&text(0.006));
@@ -344,12 +327,8 @@ fn pounding_run_writes_a_rows_files() {
     std::fs::write(
         &file,
         format!(
-            "title = \"three\"\n{}{}{}{}{}{HARMONIC}[solver]\nduration = 3.0\n",
-            building("A", 3, 3.0e8),
-            building("B", 5, 1.6e8),
-            building("C", 4, 2.2e8),
-            contact("A", "B", 10.5, 0.004),
-            contact("B", "C", 14.0, 0.006),
+            "title = \"three\"\n{}{HARMONIC}[solver]\nduration = 3.0\n",
+            row_both_pounding(),
         ),
     )
     .unwrap();

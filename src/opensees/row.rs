@@ -14,9 +14,9 @@
 use serde::Serialize;
 
 use super::{
-    BOUC_WEN_MAPPING, DRIVER, ExportError, ExportGround, ExportLevel, ExportOptions,
-    ExportStructure, NEWTON_TOLERANCE, Only, TESTED_OPENSEESPY, checked_duration, contact_material,
-    damping_notes, export_ground, export_structure, mapping_text, one_line, structure_line,
+    DRIVER, ExportError, ExportGround, ExportLevel, ExportOptions, ExportStructure,
+    NEWTON_TOLERANCE, Only, ScriptParts, checked_duration, export_ground, export_levels,
+    export_structure, exported_by, mapping_text, one_line, script_text,
 };
 use crate::input::scenario::Scenario;
 
@@ -26,6 +26,13 @@ pub const ROW_DRIVER: &str = include_str!("row_driver.py");
 /// How the pair's driver ends: its `main()` call, which a row's script leaves out (the row
 /// driver's `row_main()` runs instead).
 pub const PAIR_MAIN_CALL: &str = "\nif __name__ == \"__main__\":\n    main()\n";
+
+/// What a row's script says it prints.
+const ROW_PRINTS: &str = "# prints JSON with the headline numbers of a row's summary.json: per structure its peaks\n\
+     # (at its highest contact level with either neighbour, at the contact heights and every\n\
+     # floor, every storey's peak drift and storey force, a yielding storey's residual drift\n\
+     # and hysteretic energy), per adjacent pair (`pairs`, row order) its levels' peak force,\n\
+     # penetration, impacts and contact time and its required separation.\n#\n";
 
 /// The pair's driver without its final `main()` call: its functions and `Model` class, which
 /// the row driver extends.
@@ -117,21 +124,11 @@ pub fn row_model(scenario: &Scenario, opts: &ExportOptions) -> Result<RowExportM
         }
         structures.push(export_structure(s, &heights, opts.elements)?);
     }
-    let system = scenario.system();
-    let mut levels = Vec::with_capacity(system.levels.len());
-    for lv in &system.levels {
-        let material =
-            contact_material(&contacts[lv.pair].law, &lv.force, lv.gap, lv.effective_mass)
-                .map_err(|e| in_pair(scenario, lv.pair, e))?;
-        levels.push(RowLevel {
-            pair: lv.pair,
-            level: ExportLevel {
-                height: lv.height,
-                gap: lv.gap,
-                material,
-            },
-        });
-    }
+    let levels = export_levels(scenario)
+        .map_err(|(p, e)| in_pair(scenario, p, e))?
+        .into_iter()
+        .map(|(pair, level)| RowLevel { pair, level })
+        .collect();
     let pairs = (0..n - 1)
         .map(|p| ExportPair {
             index: p,
@@ -142,7 +139,7 @@ pub fn row_model(scenario: &Scenario, opts: &ExportOptions) -> Result<RowExportM
     let ground = export_ground(scenario, &structures);
     Ok(RowExportModel {
         title: scenario.title.clone(),
-        source: format!("pounding {}", env!("CARGO_PKG_VERSION")),
+        source: exported_by(),
         dt: opts.dt,
         duration,
         tolerance: NEWTON_TOLERANCE,
@@ -163,61 +160,38 @@ pub fn row_script(
     source: &str,
 ) -> Result<String, ExportError> {
     let m = row_model(scenario, opts)?;
-    let json = serde_json::to_string(&m)
-        .map_err(|e| ExportError::Option(format!("could not serialise the model: {e}")))?;
-    let body = pair_driver_body();
-    let mut out = String::with_capacity(json.len() + body.len() + ROW_DRIVER.len() + 8192);
-    out.push_str("#!/usr/bin/env python3\n");
-    out.push_str(&format!(
-        "# OpenSeesPy model of the pounding row \"{}\" ({}): {} structures, {} adjacent pairs,\n",
-        one_line(&scenario.title),
-        one_line(source),
-        m.structures.len(),
-        m.pairs.len()
-    ));
-    out.push_str(&format!(
-        "# written by `pounding export opensees` ({}). Needs openseespy (tested with {}):\n",
-        m.source, TESTED_OPENSEESPY
-    ));
-    out.push_str(&format!(
-        "#   pip install openseespy=={TESTED_OPENSEESPY}\n#   python3 model.py [--json out.json] [--only contact|free] [--dt DT] [--duration T]\n"
-    ));
-    out.push_str(
-        "# prints JSON with the headline numbers of a row's summary.json: per structure its peaks\n\
-         # (at its highest contact level with either neighbour, at the contact heights and every\n\
-         # floor, every storey's peak drift and storey force, a yielding storey's residual drift\n\
-         # and hysteretic energy), per adjacent pair (`pairs`, row order) its levels' peak force,\n\
-         # penetration, impacts and contact time and its required separation.\n#\n",
-    );
-    out.push_str(&format!(
-        "# OpenSees step dt = {} s over {} s; Newmark average acceleration, Newton.\n",
-        m.dt, m.duration
-    ));
-    for (s, st) in m.structures.iter().enumerate() {
-        out.push_str(&structure_line(s, st));
-    }
-    for (p, c) in scenario.contacts().enumerate() {
-        out.push_str(&format!(
-            "# contact[{}] \"{}\"–\"{}\" `{}`: {}\n",
-            p + 1,
-            one_line(&m.pairs[p].between[0]),
-            one_line(&m.pairs[p].between[1]),
-            c.law.name(),
-            mapping_text(&c.law)
-        ));
-    }
-    for n in damping_notes(scenario) {
-        out.push_str(&format!("# damping: {}\n", one_line(&n)));
-    }
-    if m.structures.iter().any(|s| s.bouc_wen.is_some()) {
-        out.push_str(&format!("# yielding {BOUC_WEN_MAPPING}\n"));
-    }
-    out.push_str("import json\n\nMODEL = json.loads(r'''");
-    out.push_str(&json);
-    out.push_str("''')\n\n");
-    out.push_str(body);
-    out.push_str(ROW_DRIVER);
-    Ok(out)
+    let contacts = scenario
+        .contacts()
+        .zip(&m.pairs)
+        .enumerate()
+        .map(|(p, (c, pair))| {
+            format!(
+                "# contact[{}] \"{}\"–\"{}\" `{}`: {}\n",
+                p + 1,
+                one_line(&pair.between[0]),
+                one_line(&pair.between[1]),
+                c.law.name(),
+                mapping_text(&c.law)
+            )
+        })
+        .collect();
+    let parts = ScriptParts {
+        what: format!(
+            "row \"{}\" ({}): {} structures, {} adjacent pairs",
+            one_line(&scenario.title),
+            one_line(source),
+            m.structures.len(),
+            m.pairs.len()
+        ),
+        prints: ROW_PRINTS,
+        source: &m.source,
+        dt: m.dt,
+        duration: m.duration,
+        structures: &m.structures,
+        contacts,
+        drivers: &[pair_driver_body(), ROW_DRIVER],
+    };
+    script_text(scenario, &m, parts)
 }
 
 /// The script of `scenario`, a pair's ([`super::script`], unchanged) or a row's

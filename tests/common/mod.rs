@@ -4,7 +4,9 @@
 //! - running the `pounding` binary ([`pounding`]), a scenario from TOML text
 //!   ([`scenario_named`], [`run_named`]);
 //! - rows of buildings from TOML pieces ([`row_scenario`], [`row_building`], [`row_contact`],
-//!   [`ROW_HARMONIC`]): used by `tests/row_outputs.rs` and `tests/row_doors.rs`;
+//!   [`ROW_HARMONIC`]) and the rows of three that several test files share
+//!   ([`row_flexible_end`], [`row_both_pounding`]): used by the `tests/row*.rs` files,
+//!   `tests/fragility_row.rs` and `tests/opensees_row.rs`;
 //! - an integration of buildings in physical coordinates, `M ü + C u̇ + K u = −M 1 a_g + F`, by
 //!   RK4 at a small fixed step: the independent reference of the floor-response tests (it
 //!   shares nothing with the program but the equations of motion). Used by
@@ -309,6 +311,37 @@ pub fn row_contact(a: &str, b: &str, h: f64, gap: f64) -> String {
         "[[contact]]\nbetween = [\"{a}\", \"{b}\"]\nlaw = \"hertz\"\nstiffness = 2.0e10\n\
          height = {h}\ngap = {gap}\n"
     )
+}
+
+/// The row of three whose last building is the most flexible: A (4 storeys, storey stiffness
+/// 3e8 N/m), B (5, 1.6e8), C (3, 1e8), every mode kept; A–B at 14 m with gap `gap_ab`, B–C at
+/// 10.5 m with gap `gap_bc` (m), Hertz 2e10 (structures and contacts only: a test adds its
+/// ground motion and solver). With a gap B–C that never closes it is the pair A–B to the last
+/// digit: exact-modal's tolerance on δ̇ scales with the largest first-mode ω of the system's
+/// structures, which the more flexible C does not change.
+pub fn row_flexible_end(gap_ab: f64, gap_bc: f64) -> String {
+    [
+        row_building("A", 4, 3.0e8),
+        row_building("B", 5, 1.6e8),
+        row_building("C", 3, 1.0e8),
+        row_contact("A", "B", 14.0, gap_ab),
+        row_contact("B", "C", 10.5, gap_bc),
+    ]
+    .concat()
+}
+
+/// The row of three with both gaps small, so that under [`ROW_HARMONIC`] both pairs pound: A (3
+/// storeys, storey stiffness 3e8 N/m), B (5, 1.6e8), C (4, 2.2e8), every mode kept; A–B at
+/// 10.5 m with a 4 mm gap, B–C at 14 m with 6 mm, Hertz 2e10 (structures and contacts only).
+pub fn row_both_pounding() -> String {
+    [
+        row_building("A", 3, 3.0e8),
+        row_building("B", 5, 1.6e8),
+        row_building("C", 4, 2.2e8),
+        row_contact("A", "B", 10.5, 0.004),
+        row_contact("B", "C", 14.0, 0.006),
+    ]
+    .concat()
 }
 
 /// A harmonic ground motion of 0.35 g at 0.8 s.
