@@ -51,19 +51,65 @@ fn raise(peak: &mut f64, x: f64) {
     }
 }
 
-/// Refine `peak` on the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`, only
-/// where it could beat the peak: the interpolant lies within (4/27)·h·(|ẏ₀| + |ẏ₁|) of the
-/// larger end value (its slope basis functions are at most 4/27 in size).
+/// An upper bound of |y(θ)| over the cubic Hermite interpolant y of (y0, d0), (y1, d1) over a
+/// step `h` (module [`crate::numerics::hermite`]): its value weights h00, h01 are ≥ 0 and sum
+/// to 1, so they give at most the larger |end value|; its slope weights θ(1−θ)² and θ²(1−θ)
+/// are at most 4/27 (at θ = 1/3 and 2/3: the roots of their derivatives), so the slope terms
+/// add at most (4/27)·h·(|d0| + |d1|). The same expression, evaluated in the same order, is
+/// the test of [`refine`] and of the stations' skip in [`FloorRecorder::observe`]: a station
+/// whose bounds do not exceed its peaks is one where `refine` and `raise` change nothing.
 #[inline(always)]
-pub(crate) fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
+pub(crate) fn reach(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
     // (a plain comparison, not f64::max: one instruction, and the values are finite)
     let ends = if y0.abs() > y1.abs() {
         y0.abs()
     } else {
         y1.abs()
     };
-    if ends + HERMITE_REACH * h * (d0.abs() + d1.abs()) > *peak {
+    ends + HERMITE_REACH * h * (d0.abs() + d1.abs())
+}
+
+/// Refine `peak` on the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`, only
+/// where it could beat the peak ([`reach`]).
+#[inline(always)]
+pub(crate) fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
+    if reach(y0, d0, y1, d1, h) > *peak {
         raise(peak, hermite_abs_max(y0, d0, y1, d1, h));
+    }
+}
+
+/// The full update of one station's peaks at an observation at time `t` (`h` since the
+/// previous one): displacement and drift (`ends`: (y, ẏ) at the previous observation and at
+/// this one, of the displacement then of the drift) raised to this observation's values and
+/// refined between the observations, the absolute acceleration `a`, and the storey force
+/// `force` (V, V̇; `None`: formed at the end from the drift, storey springs) with its value at
+/// the previous observation in `prev_force`, which becomes this one's.
+#[inline(never)]
+fn update_station(
+    p: &mut FloorPeaks,
+    prev_force: &mut (f64, f64),
+    (t, h): (f64, Option<f64>),
+    [(up, udp), (u, ud), (dp, ddp), (d, dd)]: [(f64, f64); 4],
+    a: f64,
+    force: Option<(f64, f64)>,
+) {
+    raise(&mut p.displacement, u.abs());
+    raise(&mut p.drift, d.abs());
+    if let Some(h) = h {
+        refine(&mut p.displacement, up, udp, u, ud, h);
+        refine(&mut p.drift, dp, ddp, d, dd, h);
+    }
+    if a.abs() > p.acceleration {
+        p.acceleration = a.abs();
+        p.acceleration_time = t;
+    }
+    if let Some((v1, vd1)) = force {
+        raise(&mut p.shear, v1.abs());
+        if let Some(h) = h {
+            let (v0, vd0) = *prev_force;
+            refine(&mut p.shear, v0, vd0, v1, vd1, h);
+        }
+        *prev_force = (v1, vd1);
     }
 }
 
@@ -345,6 +391,9 @@ pub struct FloorRecorder {
     /// Modal accelerations at the current observation (scratch).
     accel: Vec<f64>,
     last_t: Option<f64>,
+    /// Every station takes the full update at every observation (tests: the skip changes
+    /// nothing).
+    full: bool,
 }
 
 impl FloorRecorder {
@@ -394,6 +443,7 @@ impl FloorRecorder {
             row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
             last_t: None,
+            full: false,
         }
     }
 
@@ -455,6 +505,7 @@ impl FloorRecorder {
                 }
             }
         }
+        let full = self.full;
         for st in &mut self.stations {
             let nm = st.modes;
             let ns = st.heights.len();
@@ -521,44 +572,65 @@ impl FloorRecorder {
             let (vf, vfd, yields) = (&vf[..ns], &vfd[..ns], &st.yields[..ns]);
             let (before, prev) = (&st.before[..ns], &mut st.prev[..ns]);
             let (peaks, prev_force) = (&mut st.peaks[..ns], &mut st.prev_force[..ns]);
+            // Most observations change no station's peak: a first, lean pass tests each
+            // station's bounds ([`reach`]: the very test `refine` makes, and ≥ the end values
+            // `raise` compares) and the acceleration against its peaks, and only a station
+            // that can change a peak (or yields: its force needs its law) takes the full
+            // update, out of line. The peaks are exactly those of the full update at every
+            // station (the skipped updates are no-ops).
+            let has_rows = rows.is_some();
             for f in 0..ns {
                 let (u, ud) = (u[f], ud[f]);
                 let (up, udp) = before[f];
-                let p = &mut peaks[f];
                 let (d, dd, dp, ddp) = (
                     u - below,
                     ud - below_rate,
                     up - below_prev,
                     udp - below_prev_rate,
                 );
-                raise(&mut p.displacement, u.abs());
-                raise(&mut p.drift, d.abs());
-                if let Some(h) = h {
-                    refine(&mut p.displacement, up, udp, u, ud, h);
-                    refine(&mut p.drift, dp, ddp, d, dd, h);
-                }
-                abs[f] = ua[f] + ag;
-                if abs[f].abs() > p.acceleration {
-                    p.acceleration = abs[f].abs();
-                    p.acceleration_time = s.t;
-                }
-                // the storey force, refined between observations: a yielding storey's
-                // Bouc–Wen V (C¹ in time) from this drift and its z, or the modal rows' V
-                let force = match yields[f] {
-                    Some(k) => {
-                        let law = &system.hysteresis.storeys()[k];
-                        let z = s.z.get(k).copied().unwrap_or(0.0);
-                        Some((law.force(d, z), law.force_rate(dd, z)))
-                    }
-                    None => rows.map(|_| (vf[f], vfd[f])),
-                };
-                if let Some((v1, vd1)) = force {
-                    raise(&mut p.shear, v1.abs());
-                    if let Some(h) = h {
-                        let (v0, vd0) = prev_force[f];
-                        refine(&mut p.shear, v0, vd0, v1, vd1, h);
-                    }
-                    prev_force[f] = (v1, vd1);
+                let a = ua[f] + ag;
+                abs[f] = a;
+                let p = &peaks[f];
+                // (`|` not `||`: every test is cheap, and branch-free is cheaper)
+                let need = full
+                    | yields[f].is_some()
+                    | (a.abs() > p.acceleration)
+                    | match h {
+                        Some(h) => {
+                            (reach(up, udp, u, ud, h) > p.displacement)
+                                | (reach(dp, ddp, d, dd, h) > p.drift)
+                                | (has_rows && {
+                                    let (v0, vd0) = prev_force[f];
+                                    reach(v0, vd0, vf[f], vfd[f], h) > p.shear
+                                })
+                        }
+                        None => {
+                            (u.abs() > p.displacement)
+                                | (d.abs() > p.drift)
+                                | (has_rows && vf[f].abs() > p.shear)
+                        }
+                    };
+                if need {
+                    // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
+                    // this drift and its z, or the modal rows' V
+                    let force = match yields[f] {
+                        Some(k) => {
+                            let law = &system.hysteresis.storeys()[k];
+                            let z = s.z.get(k).copied().unwrap_or(0.0);
+                            Some((law.force(d, z), law.force_rate(dd, z)))
+                        }
+                        None => rows.map(|_| (vf[f], vfd[f])),
+                    };
+                    update_station(
+                        &mut peaks[f],
+                        &mut prev_force[f],
+                        (s.t, h),
+                        [(up, udp), (u, ud), (dp, ddp), (d, dd)],
+                        a,
+                        force,
+                    );
+                } else if has_rows {
+                    prev_force[f] = (vf[f], vfd[f]);
                 }
                 prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
@@ -690,6 +762,100 @@ mod tests {
         .modal()
         .expect("building")
         .truncated(modes)
+    }
+
+    /// The bound of the stations' skip ([`reach`]) against the largest |y| of the cubic
+    /// Hermite interpolant over [0, h], computed in the test from its own closed form: the
+    /// cubic `y(θ) = y0 + m0 θ + (3Δ − 2m0 − m1) θ² + (m0 + m1 − 2Δ) θ³` (Δ = y1 − y0,
+    /// m = h·d: the power form of the basis), at 2 001 points and at the roots of its
+    /// derivative (a quadratic solved here), for random data over many orders of magnitude.
+    #[test]
+    fn the_skip_bound_holds_for_every_hermite_cubic() {
+        use proptest::prelude::*;
+        let mag = || (-6.0f64..2.0, -1.0f64..1.0).prop_map(|(e, s)| s * 10f64.powf(e));
+        let data = (mag(), mag(), mag(), mag(), -4.0f64..0.0)
+            .prop_map(|(y0, d0, y1, d1, e)| (y0, d0 * 1e2, y1, d1 * 1e2, 10f64.powf(e)));
+        proptest!(ProptestConfig::with_cases(4000), |((y0, d0, y1, d1, h) in data)| {
+            let (m0, m1, dy) = (h * d0, h * d1, y1 - y0);
+            let (c2, c3) = (3.0 * dy - 2.0 * m0 - m1, m0 + m1 - 2.0 * dy);
+            let y = |t: f64| y0 + t * (m0 + t * (c2 + t * c3));
+            let mut top = y0.abs().max(y1.abs());
+            for i in 0..=2000 {
+                top = top.max(y(i as f64 / 2000.0).abs());
+            }
+            // y' = m0 + 2c2 θ + 3c3 θ²: its roots in [0, 1]
+            let (a, b, c) = (3.0 * c3, 2.0 * c2, m0);
+            let disc = b * b - 4.0 * a * c;
+            if a != 0.0 && disc >= 0.0 {
+                for r in [(-b + disc.sqrt()) / (2.0 * a), (-b - disc.sqrt()) / (2.0 * a)] {
+                    if (0.0..=1.0).contains(&r) {
+                        top = top.max(y(r).abs());
+                    }
+                }
+            }
+            let bound = reach(y0, d0, y1, d1, h);
+            // (the power form rounds differently from the bound's terms: a few ulps of the
+            // largest term, |y| + |m0| + |c2| + |c3|, are allowed)
+            let scale = y0.abs() + m0.abs() + c2.abs() + c3.abs();
+            prop_assert!(
+                top <= bound + 1e-14 * scale,
+                "max |y| {top:e} above the bound {bound:e}"
+            );
+        });
+    }
+
+    /// The stations' skip changes no peak: two floor recorders observe the same runs, one
+    /// with the skip and one with the full update of every station at every observation
+    /// ([`FloorRecorder::full`]), and their peaks are equal to the last bit — two cantilevers
+    /// pounding under a harmonic motion, and two shear buildings (storey springs) under it
+    /// too, with `exact-modal` (contact sub-steps and free steps) and `rk4`.
+    #[test]
+    fn the_skip_changes_no_peak() {
+        use crate::integrate::{InitialState, Method, Observer, SolverSettings, integrate};
+        use crate::model::contact::ContactLaw;
+        use crate::model::ground_motion::{GroundMotion, Harmonic};
+        use crate::model::structure::{Cantilever, Damping, Stiffness};
+        use crate::model::system::ContactLevel;
+        struct Both(FloorRecorder, FloorRecorder);
+        impl Observer for Both {
+            fn observe(&mut self, system: &System, s: &StepView) {
+                self.0.observe(system, s, None);
+                self.1.observe(system, s, None);
+            }
+        }
+        let cantilever = |period: f64| {
+            Cantilever {
+                name: "c".into(),
+                length: 10.0,
+                mass: 2.0e6,
+                stiffness: Stiffness::Period(period),
+                modes: 3,
+                damping: Damping::Modal(vec![0.05]),
+            }
+            .modal()
+        };
+        let law = ContactLaw::Hertz { stiffness: 2.8e10 };
+        let ground = GroundMotion::Harmonic(Harmonic::from_pga_g(0.5, 0.5));
+        let level = |height: f64| ContactLevel { height, gap: 0.01 };
+        let pairs = [
+            ([cantilever(0.4), cantilever(0.7)], 10.0),
+            ([shear_building(4), shear_building(2)], 12.0),
+        ];
+        for ([a, b], height) in pairs {
+            let sys = System::new([a, b], &law, &[level(height)], ground.clone());
+            for (method, dt) in [(Method::ExactModal, 0.01), (Method::Rk4, 0.001)] {
+                let mut both = Both(
+                    FloorRecorder::new(&sys, &[height], 0.01),
+                    FloorRecorder::new(&sys, &[height], 0.01),
+                );
+                both.1.full = true;
+                let settings = SolverSettings::new(method, dt, 6.0);
+                integrate(&sys, &settings, &InitialState::default(), &mut both).unwrap();
+                let (skip, full) = (both.0.finish(), both.1.finish());
+                assert!(skip[0][0].displacement > 0.0, "the run moved");
+                assert_eq!(skip, full, "{method:?}, pair at {height} m");
+            }
+        }
     }
 
     /// A shear building's modes, all of them or the first two, are recognised as storey
