@@ -1,10 +1,13 @@
-//! The audit against an independent integration: the Kelvin law, whose force jumps at the
-//! onset of contact (to c·δ̇₀), under a real record with a `dt` that does not divide the
-//! record's. Reference: the paper's two 3-mode cantilevers integrated in the test from the
-//! formulas of docs/model.md §2.3–2.4 (modes, participation by quadrature) and the README's
-//! Kelvin law (ξ found here by bisection on the clamped impact's own rebound), by classical RK4
-//! at 10 µs with every switch of the force (δ = 0, k δ + c δ̇ = 0) located by bisection of the
-//! step, so that no step straddles the jump — nothing from the program's integrators.
+//! The audit against independent integrations of two cantilevers, written here from the
+//! formulas of docs/model.md §2.3–2.4 (modes, participation and section integrals by Simpson
+//! quadrature) and classical RK4 at a small step — nothing from the program's integrators:
+//!
+//! - the Kelvin law, whose force jumps at the onset of contact (to c·δ̇₀), under a real record
+//!   with a `dt` that does not divide the record's (the README's Kelvin law, ξ found here by
+//!   bisection on the clamped impact's own rebound; every switch of the force, δ = 0 and
+//!   k δ + c δ̇ = 0, located by bisection of the step, so that no step straddles the jump);
+//! - 40 modes on a Hertz contact 1000× the paper's: the section shear (docs/model.md §2.6c)
+//!   after each impact, when the high modes ring between the observations.
 
 use std::path::Path;
 
@@ -80,6 +83,16 @@ fn shape(lam: f64, xi: f64) -> f64 {
         + lam.sin() * (e(-lam * (1.0 - xi)) - e(-lam * (1.0 + xi))))
         / d;
     ch_sh - (lam * xi).cos() + s * (lam * xi).sin()
+}
+
+/// Simpson's rule for ∫_a^b f with `n` (even) panels.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    let h = (b - a) / n as f64;
+    let mut s = f(a) + f(b);
+    for i in 1..n {
+        s += if i % 2 == 1 { 4.0 } else { 2.0 } * f(a + i as f64 * h);
+    }
+    s * h / 3.0
 }
 
 /// Roots of cos λ + 1/cosh λ = 0 near (2n−1)π/2, by bisection.
@@ -158,20 +171,7 @@ fn reference() -> Reference {
         for n in 0..3 {
             om[s][n] = w1 * (lam[n] / lam[0]).powi(2);
             phi[s][n] = shape(lam[n], 1.0) * nrm;
-            let np = 2000;
-            let hq = 1.0 / np as f64;
-            let mut integ = 0.0;
-            for i in 0..=np {
-                let wgt = if i == 0 || i == np {
-                    1.0
-                } else if i % 2 == 1 {
-                    4.0
-                } else {
-                    2.0
-                };
-                integ += wgt * shape(lam[n], i as f64 * hq);
-            }
-            part[s][n] = m * integ * hq / 3.0 * L * nrm;
+            part[s][n] = m * L * nrm * simpson(|x| shape(lam[n], x), 0.0, 1.0, 2000);
         }
     }
     let inv_mstar: f64 = (0..2)
@@ -322,5 +322,155 @@ fn kelvin_onsets_under_a_record_match_an_independent_integration() {
             "{method}: the self-check must run and pass on a case it integrates within 0.5 %: {:?}",
             r.accuracy.failure
         );
+    }
+}
+
+/// Two 40-mode cantilevers (the paper's masses and periods, ζ = 0.01) on a Hertz contact at the
+/// top, k_h = 2.808e13 N/m^1.5 (1000× the paper's), gap 12.7 mm, harmonic 0.5 g at 0.65 s, 2 s:
+/// structure 2's peak section shear at 1, 2 and 4 m (docs/model.md §2.6c, `V(x) = m Σ ω_n² η_n
+/// ∫_x^L φ_n`), the peak contact force and both peak displacements, from RK4 at 1 µs.
+fn forty_modes_reference() -> ([f64; 3], f64, [f64; 2]) {
+    const N: usize = 40;
+    const X: [f64; 3] = [1.0, 2.0, 4.0];
+    let (kh, gap, pga, tg, dur): (f64, f64, f64, f64, f64) = (2.808e13, 0.0127, 0.5 * G, 0.65, 2.0);
+    let lam = roots(N);
+    let m = M / L;
+    let nrm = 1.0 / (m * L).sqrt();
+    let mut om = [[0.0; N]; 2];
+    let mut phi = [[0.0; N]; 2];
+    let mut part = [[0.0; N]; 2];
+    for s in 0..2 {
+        let w1 = 2.0 * std::f64::consts::PI / PERIODS[s];
+        for n in 0..N {
+            om[s][n] = w1 * (lam[n] / lam[0]).powi(2);
+            phi[s][n] = shape(lam[n], 1.0) * nrm;
+            part[s][n] = m * L * nrm * simpson(|x| shape(lam[n], x), 0.0, 1.0, 4000);
+        }
+    }
+    // V(x) = Σ_n row_n η_n of structure 2, row_n = m ω_n² ∫_x^L φ_n
+    let rows: Vec<[f64; N]> = X
+        .iter()
+        .map(|&x| {
+            std::array::from_fn(|n| {
+                m * om[1][n].powi(2) * L * nrm * simpson(|xi| shape(lam[n], xi), x / L, 1.0, 4000)
+            })
+        })
+        .collect();
+    let wg = 2.0 * std::f64::consts::PI / tg;
+    // y = [η₁ (N), η₂ (N), η̇₁ (N), η̇₂ (N)]
+    let rhs = |t: f64, y: &[f64], out: &mut [f64]| {
+        let ag = -pga * (wg * t).sin();
+        let mut d = -gap;
+        for n in 0..N {
+            d += phi[0][n] * y[n] - phi[1][n] * y[N + n];
+        }
+        let f = if d > 0.0 { kh * d * d.sqrt() } else { 0.0 };
+        for s in 0..2 {
+            let sign = if s == 0 { -1.0 } else { 1.0 };
+            for n in 0..N {
+                let j = N * s + n;
+                out[j] = y[2 * N + j];
+                out[2 * N + j] = -om[s][n] * om[s][n] * y[j]
+                    - 2.0 * 0.01 * om[s][n] * y[2 * N + j]
+                    - part[s][n] * ag
+                    + sign * phi[s][n] * f;
+            }
+        }
+        f
+    };
+    let h = 1e-6;
+    let steps = (dur / h).round() as usize;
+    let mut y = vec![0.0; 4 * N];
+    let (mut k1, mut k2, mut k3, mut k4) = (
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+    );
+    let mut tmp = vec![0.0; 4 * N];
+    let (mut shear, mut force, mut peak) = ([0.0f64; 3], 0.0f64, [0.0f64; 2]);
+    for i in 0..steps {
+        let t = i as f64 * h;
+        force = force.max(rhs(t, &y, &mut k1));
+        for j in 0..4 * N {
+            tmp[j] = y[j] + 0.5 * h * k1[j];
+        }
+        rhs(t + 0.5 * h, &tmp, &mut k2);
+        for j in 0..4 * N {
+            tmp[j] = y[j] + 0.5 * h * k2[j];
+        }
+        rhs(t + 0.5 * h, &tmp, &mut k3);
+        for j in 0..4 * N {
+            tmp[j] = y[j] + h * k3[j];
+        }
+        rhs(t + h, &tmp, &mut k4);
+        for j in 0..4 * N {
+            y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        }
+        for (v, row) in shear.iter_mut().zip(&rows) {
+            let s: f64 = (0..N).map(|n| row[n] * y[N + n]).sum();
+            *v = v.max(s.abs());
+        }
+        for s in 0..2 {
+            let w: f64 = (0..N).map(|n| phi[s][n] * y[N * s + n]).sum();
+            peak[s] = peak[s].max(w.abs());
+        }
+    }
+    (shear, force, peak)
+}
+
+/// A cantilever's section shear is dominated by its highest modes (weighted by ω_n²), which a
+/// stiff impact sets ringing for a few ms after each release (mode 40: ω = 65 000 rad/s, a
+/// period of 0.1 ms). The peaks are taken at the observations and refined on the cubic Hermite
+/// of (V, V̇) between them, which cannot follow that ringing over the default 1 ms grid: at the
+/// default, `exact-modal` reports structure 2's peak storey force at 1 m 4.1 % low, at 2 m
+/// 1.4 % high and at 4 m 3.7 % low, `adaptive` −3.4 %, −4.4 %, +1.0 % (the two methods 6 %
+/// apart at 2 m), while the peaks of displacement and force agree within 1e-5 and the self-check
+/// (which compares neither the floors nor the observation grid) says converged. At dt = 2e-5 s
+/// the program gives the reference to 2e-4.
+#[test]
+#[ignore = "defect in src/recording/** (another helper's files): peaks of a cantilever's section \
+            shear miss the high modes' ringing between observations after stiff impacts; see the \
+            doc comment and the audit report"]
+fn section_shear_peaks_of_forty_modes_after_stiff_impacts() {
+    let (shear, force, peak) = forty_modes_reference();
+    // Tolerances: RK4 at 1 µs has ω₄₀h = 0.065 (error (ωh)⁴/120 per step ≈ 1e-7) and samples the
+    // ringing of mode 40 every 1/96 of its period (a sampled peak within (π/96)²/2 ≈ 5e-4 of the
+    // true one, less for the sum of modes); 0.5 % is the issue's bar.
+    for method in ["exact-modal", "adaptive"] {
+        let text = format!(
+            "[[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 40\ndamping_ratio = 0.01\n\
+             [[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 40\ndamping_ratio = 0.01\n\
+             [contact]\nlaw = \"hertz\"\nstiffness = 2.808e13\ngap = 0.0127\n\
+             [ground_motion]\nkind = \"harmonic\"\npga = 0.5\nperiod = 0.65\n\
+             [solver]\nmethod = \"{method}\"\nduration = 2.0\n",
+            PERIODS[0], PERIODS[1]
+        );
+        let s = Scenario::from_toml(&text, "forty.toml", Path::new(".")).expect("valid");
+        let r = simulate(&s).expect("runs");
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+        assert!(
+            rel(r.contact.peak_force, force) < 5e-3,
+            "{method}: peak force"
+        );
+        for i in 0..2 {
+            assert!(
+                rel(r.structures[i].peak_displacement, peak[i]) < 5e-3,
+                "{method}: peak {i}"
+            );
+        }
+        for (x, v) in [1.0, 2.0, 4.0].iter().zip(shear) {
+            let f = r.structures[1]
+                .floors
+                .iter()
+                .find(|f| (f.height - x).abs() < 1e-9)
+                .expect("a station every tenth of the height");
+            assert!(
+                rel(f.peak_shear, v) < 5e-3,
+                "{method}: peak section shear of structure 2 at {x} m: {} against {v} ({:.2e})",
+                f.peak_shear,
+                rel(f.peak_shear, v)
+            );
+        }
     }
 }
