@@ -54,6 +54,7 @@ use super::{
     InitialState, Integrator, Method, Observer, SolveError, SolverSettings, Stats, StepTrace,
     StepView, Tally, update_onsets,
 };
+use crate::model::contact::ContactForce;
 use crate::model::ground_motion::GroundMotion;
 use crate::model::system::{LevelState, System, episode_v0};
 use crate::numerics::hermite::{hermite_crossing, hermite_max};
@@ -538,11 +539,12 @@ fn locate_event(
     let d_at = |w: &Work| lv.delta(dot(sys.coupling(k), &w.qn));
     let (mut a, mut fa) = (0.0, start[k].delta);
     let (mut b, mut fb) = (h, w.dnode[k * 4 + 3].0);
-    // An onset is located from outside (δ in [−EVENT_TOL, 0]): a law whose force jumps at δ = 0⁺
-    // (Kelvin's c·δ̇) would otherwise put that jump at the end node of the located step, whose
+    // Kelvin's onset is located from outside (δ in [−EVENT_TOL, 0]): its force jumps at δ = 0⁺
+    // (to c·δ̇), a jump that would otherwise sit at the end node of the located step, whose
     // cubic force then cannot meet a tight tolerance at any length (`rtol` 1e-12 stopped with
-    // "the tolerance cannot be met" at a Kelvin onset); the next step starts from the right limit.
-    let into = fa < 0.0;
+    // "the tolerance cannot be met" at a Kelvin onset); the next step starts from the right
+    // limit. The other laws' forces vanish at δ = 0⁺ and keep the two-sided search.
+    let into = fa < 0.0 && matches!(lv.force, ContactForce::Kelvin { .. });
     let mut s = (theta * h).clamp(1e-9 * h, h);
     let mut side = 0;
     let mut last = None;
