@@ -54,6 +54,7 @@ use super::{
     InitialState, Integrator, Method, Observer, SolveError, SolverSettings, Stats, StepTrace,
     StepView, Tally, update_onsets,
 };
+use crate::model::contact::ContactForce;
 use crate::model::ground_motion::GroundMotion;
 use crate::model::system::{LevelState, System, episode_v0};
 use crate::numerics::hermite::{hermite_crossing, hermite_max};
@@ -538,16 +539,24 @@ fn locate_event(
     let d_at = |w: &Work| lv.delta(dot(sys.coupling(k), &w.qn));
     let (mut a, mut fa) = (0.0, start[k].delta);
     let (mut b, mut fb) = (h, w.dnode[k * 4 + 3].0);
+    // Kelvin's onset is located from outside (δ in [−EVENT_TOL, 0]): its force jumps at δ = 0⁺
+    // (to c·δ̇), a jump that would otherwise sit at the end node of the located step, whose
+    // cubic force then cannot meet a tight tolerance at any length (`rtol` 1e-12 stopped with
+    // "the tolerance cannot be met" at a Kelvin onset); the next step starts from the right
+    // limit. The other laws' forces vanish at δ = 0⁺ and keep the two-sided search.
+    let into = fa < 0.0 && matches!(lv.force, ContactForce::Kelvin { .. });
     let mut s = (theta * h).clamp(1e-9 * h, h);
     let mut side = 0;
     let mut last = None;
+    let mut last_fs = fa;
     for _ in 0..40 {
         scratch.fill(sys, s);
         let tr = step(sys, gm, scratch, w, onset, start, t, piece, imp);
         stats.evaluations += 1;
         let fs = d_at(w);
         last = Some((tr, s));
-        if fs.abs() <= EVENT_TOL || (b - a) <= 1e-15 * (t + h) {
+        last_fs = fs;
+        if (fs.abs() <= EVENT_TOL && !(into && fs > 0.0)) || (b - a) <= 1e-15 * (t + h) {
             break;
         }
         if (fs > 0.0) == (fa > 0.0) {
@@ -573,6 +582,13 @@ fn locate_event(
         if !(s > a && s < b) {
             s = 0.5 * (a + b);
         }
+    }
+    if into && last_fs > 0.0 && a > 0.0 {
+        // the search ended inside: redo the step to the bracket's outer end (δ ≤ 0 there)
+        scratch.fill(sys, a);
+        let tr = step(sys, gm, scratch, w, onset, start, t, piece, imp);
+        stats.evaluations += 1;
+        last = Some((tr, a));
     }
     last.unwrap_or((
         Trial {

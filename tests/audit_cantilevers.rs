@@ -1,0 +1,595 @@
+//! The audit against independent integrations of two cantilevers, written here from the
+//! formulas of docs/model.md §2.3–2.4 (modes, participation and section integrals by Simpson
+//! quadrature) and classical RK4 at a small step — nothing from the program's integrators:
+//!
+//! - the Kelvin law, whose force jumps at the onset of contact (to c·δ̇₀), under a real record
+//!   with a `dt` that does not divide the record's (the README's Kelvin law, ξ found here by
+//!   bisection on the clamped impact's own rebound; every switch of the force, δ = 0 and
+//!   k δ + c δ̇ = 0, located by bisection of the step, so that no step straddles the jump);
+//! - 40 modes on a Hertz contact 1000× the paper's: the section shear (docs/model.md §2.6c)
+//!   after each impact, when the high modes ring between the observations.
+
+use std::path::Path;
+
+use pounding::analysis::simulate::{Report, simulate, simulate_checked};
+use pounding::input::scenario::Scenario;
+
+const M: f64 = 2.273e6;
+const L: f64 = 10.0;
+const K: f64 = 5e9;
+const E: f64 = 0.5;
+const GAP: f64 = 0.01;
+const PGA_G: f64 = 0.4;
+const DURATION: f64 = 6.5;
+const G: f64 = 9.80665;
+const PERIODS: [f64; 2] = [0.4203, 0.6004285714285714];
+
+/// The Kelvin case (k = `K`, e = `E`) under Loma Prieta at `PGA_G`, with a step that does not
+/// divide the record's.
+fn scenario(solver: &str) -> Scenario {
+    scenario_with(
+        &format!("law = \"kelvin\"\nstiffness = {K}\nrestitution = {E}"),
+        &format!(
+            "kind = \"record\"\nfile = \"records/RSN753_LOMAP_CLS000.AT2\"\nscale_to_pga = {PGA_G}"
+        ),
+        &format!("dt = 0.0037\n{solver}"),
+    )
+}
+
+/// The paper's two 3-mode cantilevers with `contact` (law keys; the gap is `GAP`), `ground`
+/// (the [ground_motion] keys) and `solver` (besides the duration).
+fn scenario_with(contact: &str, ground: &str, solver: &str) -> Scenario {
+    let text = format!(
+        "[[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 3\ndamping_ratio = 0.01\n\
+         [[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 3\ndamping_ratio = 0.01\n\
+         [contact]\n{contact}\ngap = {GAP}\n[ground_motion]\n{ground}\n\
+         [solver]\nduration = {DURATION}\n{solver}\n",
+        PERIODS[0], PERIODS[1]
+    );
+    Scenario::from_toml(&text, "audit.toml", Path::new("examples")).expect("valid scenario")
+}
+
+/// The record as read from the PEER file (g), scaled to PGA_G, in m/s², and its step.
+fn record() -> (f64, Vec<f64>) {
+    let text = std::fs::read_to_string("examples/records/RSN753_LOMAP_CLS000.AT2").unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let head = lines[3];
+    let npts: usize = head
+        .split("NPTS=")
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let dt: f64 = head
+        .split("DT=")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let mut a: Vec<f64> = lines[4..]
+        .iter()
+        .flat_map(|l| l.split_whitespace().map(|x| x.parse::<f64>().unwrap()))
+        .take(npts)
+        .collect();
+    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for x in a.iter_mut() {
+        *x *= PGA_G * G / peak;
+    }
+    (dt, a)
+}
+
+/// Cantilever mode shape φ·√(mL) at ξ = x/L (docs/model.md §2.3, decaying exponentials).
+fn shape(lam: f64, xi: f64) -> f64 {
+    let e = f64::exp;
+    let d = 1.0 + e(-2.0 * lam) + 2.0 * lam.cos() * e(-lam);
+    let s = (1.0 - e(-2.0 * lam) - 2.0 * lam.sin() * e(-lam)) / d;
+    let ch_sh = (e(-lam * xi)
+        + e(-lam * (2.0 - xi))
+        + lam.cos() * (e(-lam * (1.0 - xi)) + e(-lam * (1.0 + xi)))
+        + lam.sin() * (e(-lam * (1.0 - xi)) - e(-lam * (1.0 + xi))))
+        / d;
+    ch_sh - (lam * xi).cos() + s * (lam * xi).sin()
+}
+
+/// Simpson's rule for ∫_a^b f with `n` (even) panels.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    let h = (b - a) / n as f64;
+    let mut s = f(a) + f(b);
+    for i in 1..n {
+        s += if i % 2 == 1 { 4.0 } else { 2.0 } * f(a + i as f64 * h);
+    }
+    s * h / 3.0
+}
+
+/// Roots of cos λ + 1/cosh λ = 0 near (2n−1)π/2, by bisection.
+fn roots(n: usize) -> Vec<f64> {
+    (1..=n)
+        .map(|k| {
+            let f = |x: f64| x.cos() + 1.0 / x.cosh();
+            let c = (2 * k - 1) as f64 * std::f64::consts::FRAC_PI_2;
+            let (mut a, mut b) = (c - 0.5, c + 0.5);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if (f(a) > 0.0) == (f(m) > 0.0) {
+                    a = m
+                } else {
+                    b = m
+                }
+            }
+            0.5 * (a + b)
+        })
+        .collect()
+}
+
+/// ξ of Kelvin's dashpot for which the clamped impact (force max(0, kδ + cδ̇)) rebounds at e:
+/// the unit oscillator ẍ = −(x + 2ξẋ) from x = 0, ẋ = 1 until x + 2ξẋ = 0, by RK4 at 1e-5,
+/// bisected on ξ (README, Contact laws: "we choose ξ so that the clamped impact rebounds at e").
+fn kelvin_xi(e: f64) -> f64 {
+    let rebound = |xi: f64| {
+        let (mut x, mut v) = (0.0f64, 1.0f64);
+        let h = 1e-5;
+        let f = |x: f64, v: f64| (v, -(x + 2.0 * xi * v));
+        loop {
+            let k1 = f(x, v);
+            let k2 = f(x + 0.5 * h * k1.0, v + 0.5 * h * k1.1);
+            let k3 = f(x + 0.5 * h * k2.0, v + 0.5 * h * k2.1);
+            let k4 = f(x + h * k3.0, v + h * k3.1);
+            let (xn, vn) = (
+                x + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0),
+                v + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1),
+            );
+            let (g0, g1) = (x + 2.0 * xi * v, xn + 2.0 * xi * vn);
+            if g1 <= 0.0 {
+                // linear interpolation of the release inside the step (error O(h²))
+                let s = g0 / (g0 - g1);
+                return -(v + s * (vn - v));
+            }
+            (x, v) = (xn, vn);
+        }
+    };
+    let (mut a, mut b) = (1e-6, 0.9999);
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if rebound(m) > e { a = m } else { b = m }
+    }
+    0.5 * (a + b)
+}
+
+struct Reference {
+    peak: [f64; 2],
+    peak_force: f64,
+    impacts: usize,
+}
+
+/// A contact law as the README states it (Contact laws).
+#[derive(Clone, Copy)]
+enum Law {
+    /// `max(0, kδ + cδ̇)`, k = `K`, restitution `E`.
+    Kelvin,
+    /// `max(0, k_h δ^{3/2}(1 + χ δ̇/v₀))`, v₀ = δ̇ at the onset, χ = 3(1 − e²)/4.
+    HertzDamp { kh: f64, e: f64 },
+    /// `k_h δ^{3/2} + c δ̇` approaching, `k_h δ^{3/2}` separating, c = 2ξ√(m* k_h √δ).
+    Jankowski { kh: f64, e: f64 },
+}
+
+/// The ground: the record scaled to `PGA_G` (linear between samples, zero after), or harmonic
+/// `a_g = −PGA·g sin(2πt/T_g)` (docs/model.md §2.8).
+#[derive(Clone, Copy)]
+enum Ground {
+    Record,
+    Harmonic { pga_g: f64, tg: f64 },
+}
+
+/// The independent integration: modal equations of both cantilevers (docs/model.md §2.4), the
+/// law's force acting in its mode (in contact or not; for Jankowski, approaching or not), the
+/// mode frozen over a step and its switches located by bisecting the step.
+fn reference() -> Reference {
+    reference_with(Law::Kelvin, Ground::Record)
+}
+
+fn reference_with(law: Law, ground: Ground) -> Reference {
+    let lam = roots(3);
+    let m = M / L;
+    let nrm = 1.0 / (m * L).sqrt();
+    // per structure: ω, 2ζω, φ(L), participation m·∫φ (Simpson, 2000 panels)
+    let mut om = [[0.0; 3]; 2];
+    let mut phi = [[0.0; 3]; 2];
+    let mut part = [[0.0; 3]; 2];
+    for s in 0..2 {
+        let w1 = 2.0 * std::f64::consts::PI / PERIODS[s];
+        for n in 0..3 {
+            om[s][n] = w1 * (lam[n] / lam[0]).powi(2);
+            phi[s][n] = shape(lam[n], 1.0) * nrm;
+            part[s][n] = m * L * nrm * simpson(|x| shape(lam[n], x), 0.0, 1.0, 2000);
+        }
+    }
+    let inv_mstar: f64 = (0..2)
+        .map(|s| phi[s].iter().map(|p| p * p).sum::<f64>())
+        .sum();
+    let mstar = 1.0 / inv_mstar;
+    let c = match law {
+        Law::Kelvin => 2.0 * kelvin_xi(E) * (K * mstar).sqrt(),
+        _ => 0.0,
+    };
+    let (rdt, rec) = record();
+    let ag = |t: f64| {
+        if let Ground::Harmonic { pga_g, tg } = ground {
+            return -pga_g * G * (2.0 * std::f64::consts::PI * t / tg).sin();
+        }
+        let x = t / rdt;
+        let i = x.floor() as usize;
+        if i + 1 >= rec.len() {
+            return 0.0;
+        }
+        rec[i] + (x - i as f64) * (rec[i + 1] - rec[i])
+    };
+    // y = [q(6), v(6)]; δ = w1(L) − w2(L) − gap
+    let delta = |y: &[f64; 12]| {
+        let (mut d, mut dd) = (-GAP, 0.0);
+        for n in 0..3 {
+            d += phi[0][n] * y[n] - phi[1][n] * y[3 + n];
+            dd += phi[0][n] * y[6 + n] - phi[1][n] * y[9 + n];
+        }
+        (d, dd)
+    };
+    // the force in mode (on, approaching) with the episode's v₀
+    let force = |d: f64, dd: f64, mode: (bool, bool), v0: f64| {
+        if !mode.0 {
+            return 0.0;
+        }
+        let x = d.max(0.0);
+        match law {
+            Law::Kelvin => K * d + c * dd,
+            Law::HertzDamp { kh, e } => kh * x.powf(1.5) * (1.0 + 0.75 * (1.0 - e * e) * dd / v0),
+            Law::Jankowski { kh, e } => {
+                let xi = 9.0 * 5f64.sqrt() * (1.0 - e * e)
+                    / (2.0 * e * (e * (9.0 * std::f64::consts::PI - 16.0) + 16.0));
+                let damp = if mode.1 {
+                    2.0 * xi * (mstar * kh * x.sqrt()).sqrt() * dd
+                } else {
+                    0.0
+                };
+                kh * x.powf(1.5) + damp
+            }
+        }
+    };
+    let rhs = |t: f64, y: &[f64; 12], on: (bool, bool), v0: f64| {
+        let (d, dd) = delta(y);
+        let f = force(d, dd, on, v0);
+        let a = ag(t);
+        let mut out = [0.0; 12];
+        for s in 0..2 {
+            let sign = if s == 0 { -1.0 } else { 1.0 };
+            for n in 0..3 {
+                let j = 3 * s + n;
+                out[j] = y[6 + j];
+                out[6 + j] =
+                    -om[s][n] * om[s][n] * y[j] - 2.0 * 0.01 * om[s][n] * y[6 + j] - part[s][n] * a
+                        + sign * phi[s][n] * f;
+            }
+        }
+        out
+    };
+    let rk4 = |t: f64, y: &[f64; 12], h: f64, on: (bool, bool), v0: f64| {
+        let add = |y: &[f64; 12], k: &[f64; 12], s: f64| std::array::from_fn(|i| y[i] + s * k[i]);
+        let k1 = rhs(t, y, on, v0);
+        let k2 = rhs(t + 0.5 * h, &add(y, &k1, 0.5 * h), on, v0);
+        let k3 = rhs(t + 0.5 * h, &add(y, &k2, 0.5 * h), on, v0);
+        let k4 = rhs(t + h, &add(y, &k3, h), on, v0);
+        let out: [f64; 12] =
+            std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+        out
+    };
+    // the mode the state asks for: in contact (δ > 0 and, for the clamped laws, a positive
+    // force; v₀ is the onset's, or δ̇ itself when the contact would start here), approaching
+    let wants = |y: &[f64; 12], on: (bool, bool), v0: f64| {
+        let (d, dd) = delta(y);
+        let v0 = if on.0 { v0 } else { dd };
+        let inside = d > 0.0
+            && match law {
+                Law::Kelvin => K * d + c * dd > 0.0,
+                Law::HertzDamp { e, .. } => 1.0 + 0.75 * (1.0 - e * e) * dd / v0 > 0.0,
+                Law::Jankowski { .. } => true,
+            };
+        (inside, matches!(law, Law::Jankowski { .. }) && dd > 0.0)
+    };
+    let mut y = [0.0; 12];
+    let (mut t, mut on, mut v0) = (0.0, (false, false), 0.0);
+    // 10 µs divides the record's 5 ms, so that no step straddles a kink of the interpolated record
+    let h = match ground {
+        Ground::Record => rdt / 500.0,
+        Ground::Harmonic { .. } => 1e-5,
+    };
+    let mut r = Reference {
+        peak: [0.0; 2],
+        peak_force: 0.0,
+        impacts: 0,
+    };
+    let mut in_episode = false;
+    while t < DURATION - 1e-12 {
+        let hs = h.min(DURATION - t);
+        let mut yn = rk4(t, &y, hs, on, v0);
+        let mut taken = hs;
+        if wants(&yn, on, v0) != on {
+            // the force switches inside the step: bisect the step length to just past it
+            let (mut a, mut b) = (0.0, hs);
+            for _ in 0..60 {
+                let mid = 0.5 * (a + b);
+                if wants(&rk4(t, &y, mid, on, v0), on, v0) != on {
+                    b = mid
+                } else {
+                    a = mid
+                }
+            }
+            taken = b;
+            yn = rk4(t, &y, b, on, v0);
+            let next = wants(&yn, on, v0);
+            if next.0 && !on.0 {
+                v0 = delta(&yn).1;
+            }
+            on = next;
+        }
+        t += taken;
+        y = yn;
+        let (d, dd) = delta(&y);
+        r.peak_force = r.peak_force.max(force(d, dd, on, v0));
+        // impacts: episodes of positive penetration
+        if d > 0.0 && !in_episode {
+            r.impacts += 1;
+        }
+        in_episode = d > 0.0;
+        for s in 0..2 {
+            let w: f64 = (0..3).map(|n| phi[s][n] * y[3 * s + n]).sum();
+            r.peak[s] = r.peak[s].max(w.abs());
+        }
+    }
+    r
+}
+
+fn assert_near(r: &Report, reference: &Reference, tol: f64, what: &str) {
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    let errs = [
+        rel(r.structures[0].peak_displacement, reference.peak[0]),
+        rel(r.structures[1].peak_displacement, reference.peak[1]),
+        rel(r.contact.peak_force, reference.peak_force),
+    ];
+    assert!(
+        errs.iter().all(|&e| e < tol),
+        "{what}: relative errors of (peak 1, peak 2, peak force) {errs:?} against the independent \
+         integration (tolerance {tol})"
+    );
+    assert_eq!(r.contact.impacts, reference.impacts, "{what}: impacts");
+}
+
+/// `adaptive` at rtol 1e-12 (its self-check's setting at the default 1e-10) used to stop with
+/// "the tolerance cannot be met at t = 6.328049 s": the event search accepted an onset located
+/// just *inside* contact (0 < δ ≤ 1e-12 m), which put Kelvin's jump c·δ̇₀ on the end node of the
+/// located step. The located onset now stays outside (δ ∈ [−1e-12, 0]) and the next step starts
+/// from the law's right limit. Both error-controlled methods at their defaults, and adaptive at
+/// 1e-12, agree with the independent integration.
+#[test]
+fn kelvin_onsets_under_a_record_match_an_independent_integration() {
+    let reference = reference();
+    assert!(
+        reference.impacts >= 10,
+        "the case must pound: {} impacts",
+        reference.impacts
+    );
+    // Tolerances: the reference is RK4 at 10 µs (the fastest mode, ω ≈ 262 rad/s, gives
+    // (ωh)⁴/120 ≈ 5e-12 per step; the Kelvin contact's ω_c ≈ 130 rad/s) with switches located
+    // to 1e-17 s, so its own error is ≪ 1e-6; the peaks are sampled every 10 µs (error ≤
+    // (ω h)²/8 ≈ 1e-9 of a peak). 5e-6 covers the reference; the issue's bar is 0.5 %.
+    let tight = simulate(&scenario("method = \"adaptive\"\nrtol = 1e-12")).expect(
+        "adaptive at rtol 1e-12 runs through Kelvin onsets (it stopped at t = 6.328 s before)",
+    );
+    assert_near(&tight, &reference, 5e-6, "adaptive, rtol 1e-12");
+    for method in ["adaptive", "exact-modal"] {
+        let r = simulate_checked(&scenario(&format!("method = \"{method}\"")), true)
+            .expect("runs at the default tolerance");
+        assert_near(&r, &reference, 5e-3, method);
+        assert!(
+            r.accuracy.is_converged(),
+            "{method}: the self-check must run and pass on a case it integrates within 0.5 %: {:?}",
+            r.accuracy.failure
+        );
+    }
+}
+
+/// Two 40-mode cantilevers (the paper's masses and periods, ζ = 0.01) on a Hertz contact at the
+/// top, k_h = 2.808e13 N/m^1.5 (1000× the paper's), gap 12.7 mm, harmonic 0.5 g at 0.65 s, 2 s:
+/// structure 2's peak section shear at 1, 2 and 4 m (docs/model.md §2.6c, `V(x) = m Σ ω_n² η_n
+/// ∫_x^L φ_n`), the peak contact force and both peak displacements, from RK4 at 1 µs.
+fn forty_modes_reference() -> ([f64; 3], f64, [f64; 2]) {
+    const N: usize = 40;
+    const X: [f64; 3] = [1.0, 2.0, 4.0];
+    let (kh, gap, pga, tg, dur): (f64, f64, f64, f64, f64) = (2.808e13, 0.0127, 0.5 * G, 0.65, 2.0);
+    let lam = roots(N);
+    let m = M / L;
+    let nrm = 1.0 / (m * L).sqrt();
+    let mut om = [[0.0; N]; 2];
+    let mut phi = [[0.0; N]; 2];
+    let mut part = [[0.0; N]; 2];
+    for s in 0..2 {
+        let w1 = 2.0 * std::f64::consts::PI / PERIODS[s];
+        for n in 0..N {
+            om[s][n] = w1 * (lam[n] / lam[0]).powi(2);
+            phi[s][n] = shape(lam[n], 1.0) * nrm;
+            part[s][n] = m * L * nrm * simpson(|x| shape(lam[n], x), 0.0, 1.0, 4000);
+        }
+    }
+    // V(x) = Σ_n row_n η_n of structure 2, row_n = m ω_n² ∫_x^L φ_n
+    let rows: Vec<[f64; N]> = X
+        .iter()
+        .map(|&x| {
+            std::array::from_fn(|n| {
+                m * om[1][n].powi(2) * L * nrm * simpson(|xi| shape(lam[n], xi), x / L, 1.0, 4000)
+            })
+        })
+        .collect();
+    let wg = 2.0 * std::f64::consts::PI / tg;
+    // y = [η₁ (N), η₂ (N), η̇₁ (N), η̇₂ (N)]
+    let rhs = |t: f64, y: &[f64], out: &mut [f64]| {
+        let ag = -pga * (wg * t).sin();
+        let mut d = -gap;
+        for n in 0..N {
+            d += phi[0][n] * y[n] - phi[1][n] * y[N + n];
+        }
+        let f = if d > 0.0 { kh * d * d.sqrt() } else { 0.0 };
+        for s in 0..2 {
+            let sign = if s == 0 { -1.0 } else { 1.0 };
+            for n in 0..N {
+                let j = N * s + n;
+                out[j] = y[2 * N + j];
+                out[2 * N + j] = -om[s][n] * om[s][n] * y[j]
+                    - 2.0 * 0.01 * om[s][n] * y[2 * N + j]
+                    - part[s][n] * ag
+                    + sign * phi[s][n] * f;
+            }
+        }
+        f
+    };
+    let h = 1e-6;
+    let steps = (dur / h).round() as usize;
+    let mut y = vec![0.0; 4 * N];
+    let (mut k1, mut k2, mut k3, mut k4) = (
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+        vec![0.0; 4 * N],
+    );
+    let mut tmp = vec![0.0; 4 * N];
+    let (mut shear, mut force, mut peak) = ([0.0f64; 3], 0.0f64, [0.0f64; 2]);
+    for i in 0..steps {
+        let t = i as f64 * h;
+        force = force.max(rhs(t, &y, &mut k1));
+        for j in 0..4 * N {
+            tmp[j] = y[j] + 0.5 * h * k1[j];
+        }
+        rhs(t + 0.5 * h, &tmp, &mut k2);
+        for j in 0..4 * N {
+            tmp[j] = y[j] + 0.5 * h * k2[j];
+        }
+        rhs(t + 0.5 * h, &tmp, &mut k3);
+        for j in 0..4 * N {
+            tmp[j] = y[j] + h * k3[j];
+        }
+        rhs(t + h, &tmp, &mut k4);
+        for j in 0..4 * N {
+            y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        }
+        for (v, row) in shear.iter_mut().zip(&rows) {
+            let s: f64 = (0..N).map(|n| row[n] * y[N + n]).sum();
+            *v = v.max(s.abs());
+        }
+        for s in 0..2 {
+            let w: f64 = (0..N).map(|n| phi[s][n] * y[N * s + n]).sum();
+            peak[s] = peak[s].max(w.abs());
+        }
+    }
+    (shear, force, peak)
+}
+
+/// A cantilever's section shear is dominated by its highest modes (weighted by ω_n²), which a
+/// stiff impact sets ringing for a few ms after each release (mode 40: ω = 65 000 rad/s, a
+/// period of 0.1 ms). The peaks are taken at the observations and refined on the cubic Hermite
+/// of (V, V̇) between them, which cannot follow that ringing over the default 1 ms grid: at the
+/// default, `exact-modal` reports structure 2's peak storey force at 1 m 4.1 % low, at 2 m
+/// 1.4 % high and at 4 m 3.7 % low, `adaptive` −3.4 %, −4.4 %, +1.0 % (the two methods 6 %
+/// apart at 2 m), while the peaks of displacement and force agree within 1e-5 and the self-check
+/// (which compares neither the floors nor the observation grid) says converged. At dt = 2e-5 s
+/// the program gives the reference to 2e-4.
+#[test]
+#[ignore = "defect in src/recording/** (another helper's files): peaks of a cantilever's section \
+            shear miss the high modes' ringing between observations after stiff impacts; see the \
+            doc comment and the audit report"]
+fn section_shear_peaks_of_forty_modes_after_stiff_impacts() {
+    let (shear, force, peak) = forty_modes_reference();
+    // Tolerances: RK4 at 1 µs has ω₄₀h = 0.065 (error (ωh)⁴/120 per step ≈ 1e-7) and samples the
+    // ringing of mode 40 every 1/96 of its period (a sampled peak within (π/96)²/2 ≈ 5e-4 of the
+    // true one, less for the sum of modes); 0.5 % is the issue's bar.
+    for method in ["exact-modal", "adaptive"] {
+        let text = format!(
+            "[[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 40\ndamping_ratio = 0.01\n\
+             [[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 40\ndamping_ratio = 0.01\n\
+             [contact]\nlaw = \"hertz\"\nstiffness = 2.808e13\ngap = 0.0127\n\
+             [ground_motion]\nkind = \"harmonic\"\npga = 0.5\nperiod = 0.65\n\
+             [solver]\nmethod = \"{method}\"\nduration = 2.0\n",
+            PERIODS[0], PERIODS[1]
+        );
+        let s = Scenario::from_toml(&text, "forty.toml", Path::new(".")).expect("valid");
+        let r = simulate(&s).expect("runs");
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+        assert!(
+            rel(r.contact.peak_force, force) < 5e-3,
+            "{method}: peak force"
+        );
+        for (i, (st, p)) in r.structures.iter().zip(peak).enumerate() {
+            assert!(rel(st.peak_displacement, p) < 5e-3, "{method}: peak {i}");
+        }
+        for (x, v) in [1.0, 2.0, 4.0].iter().zip(shear) {
+            let f = r.structures[1]
+                .floors
+                .iter()
+                .find(|f| (f.height - x).abs() < 1e-9)
+                .expect("a station every tenth of the height");
+            assert!(
+                rel(f.peak_shear, v) < 5e-3,
+                "{method}: peak section shear of structure 2 at {x} m: {} against {v} ({:.2e})",
+                f.peak_shear,
+                rel(f.peak_shear, v)
+            );
+        }
+    }
+}
+
+/// The damped Hertz laws on the paper's cantilevers under its harmonic motion (0.6 g at
+/// 0.65 s, 6.5 s): Lankarani–Nikravesh and Jankowski at k_h = 2.808e10 N/m^1.5, e = 0.65, against
+/// the independent integration (its tolerance as above); both error-controlled methods at their
+/// defaults within the issue's 0.5 %, the same impacts.
+#[test]
+fn damped_hertz_laws_match_an_independent_integration() {
+    let ground = Ground::Harmonic {
+        pga_g: 0.6,
+        tg: 0.65,
+    };
+    let harmonic = "kind = \"harmonic\"\npga = 0.6\nperiod = 0.65";
+    for (law, keys) in [
+        (
+            Law::HertzDamp {
+                kh: 2.808e10,
+                e: 0.65,
+            },
+            "law = \"hertzdamp\"\nstiffness = 2.808e10\nrestitution = 0.65",
+        ),
+        (
+            Law::Jankowski {
+                kh: 2.808e10,
+                e: 0.65,
+            },
+            "law = \"jankowski\"\nstiffness = 2.808e10\nrestitution = 0.65",
+        ),
+    ] {
+        let reference = reference_with(law, ground);
+        assert!(
+            reference.impacts >= 10,
+            "{keys}: {} impacts",
+            reference.impacts
+        );
+        for method in ["exact-modal", "adaptive"] {
+            let r = simulate(&scenario_with(
+                keys,
+                harmonic,
+                &format!("method = \"{method}\""),
+            ))
+            .expect("runs");
+            assert_near(&r, &reference, 5e-3, &format!("{keys}, {method}"));
+        }
+    }
+}
