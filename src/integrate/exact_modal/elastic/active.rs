@@ -73,6 +73,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.set_levels();
         }
         self.act_next = act;
+        if self.act.iter().any(|a| !a) {
+            self.passive_steps += 1;
+        }
     }
 
     /// Clear the levels passive under `act` over [t, t + h] on their exact free flight: a level
@@ -163,7 +166,143 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         if grown {
             self.set_levels();
+            self.edge_redos += 1;
         }
         grown
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::scenario::Scenario;
+
+    /// Every observation: time, modal state, the levels' forces.
+    #[derive(Default)]
+    struct Log(Vec<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>);
+    impl Observer for Log {
+        fn observe(&mut self, _: &System, s: &StepView) {
+            let f = s.levels.iter().map(|l| l.force).collect();
+            self.0.push((s.t, s.q.to_vec(), s.v.to_vec(), f));
+        }
+    }
+
+    /// A row of four shear buildings A–B–C–D under harmonic motion: A–B at 14 m (gap 1 cm),
+    /// B–C at 10.5 m with gap `middle`, C–D at 10.5 m with gap `last`.
+    fn row(middle: f64, last: f64) -> System {
+        let b = |name: &str, n: usize, k: f64| {
+            format!(
+                "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
+                 storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\n\
+                 damping_ratio = 0.05\nmodes = {n}\n"
+            )
+        };
+        let c = |a: &str, bb: &str, h: f64, gap: f64| {
+            format!(
+                "[[contact]]\nbetween = [\"{a}\", \"{bb}\"]\nlaw = \"hertz\"\n\
+                 stiffness = 2.0e10\nheight = {h}\ngap = {gap}\n"
+            )
+        };
+        let text = format!(
+            "{}{}{}{}{}{}{}[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n\
+             [solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n",
+            b("A", 4, 3.0e8),
+            b("B", 5, 1.6e8),
+            b("C", 3, 1.0e8),
+            b("D", 4, 2.4e8),
+            c("A", "B", 14.0, 0.01),
+            c("B", "C", 10.5, middle),
+            c("C", "D", 10.5, last),
+        );
+        Scenario::from_toml(&text, "row.toml", std::path::Path::new("."))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .system()
+    }
+
+    /// The run of `sys`, every contact step over all its structures (`all`) or over the
+    /// active ones: the observations, the impulse per level, the passive steps, the redos.
+    fn run(sys: &System, all: bool) -> (Log, Vec<f64>, usize, usize) {
+        let settings = SolverSettings::new(Method::ExactModal, 0.002, 6.0);
+        let (q0, v0) = InitialState::default().resolved(sys.len());
+        let mut log = Log::default();
+        let mut r = Elastic::new(sys, &settings, &mut log, None, 0.0, q0, v0, None);
+        r.all_active = all;
+        r.drive_here().expect("runs");
+        let out = (r.tally.impulse.clone(), r.passive_steps, r.edge_redos);
+        drop(r);
+        (log, out.0, out.1, out.2)
+    }
+
+    /// A gap for B–C at which it first closes after A–B's first impact, if it can be while A–B
+    /// touches (from the row `make(gap)` with B–C open: the run is the open one's until B–C
+    /// closes).
+    fn late_gap(make: &dyn Fn(f64) -> System) -> f64 {
+        let open = make(10.0);
+        let (log, imp, _, _) = run(&open, true);
+        assert!(imp[0] > 0.0, "A–B pounds: {imp:?}");
+        assert_eq!(imp[1], 0.0);
+        let c = open.coupling(1);
+        let approach = |q: &[f64]| -dot(c, q);
+        let a_max = log
+            .0
+            .iter()
+            .map(|(_, q, _, _)| approach(q))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let first_impact = log
+            .0
+            .iter()
+            .find(|(_, _, _, f)| f[0] != 0.0 || f[2] != 0.0)
+            .map(|x| x.0)
+            .expect("an impact");
+        // (preferably the largest approach while A–B touches, when B–C's first crossing of it
+        // is inside an A–B contact phase — its onset seen inside a contact step — else just
+        // under the largest approach)
+        let first_crossing = |gap: f64| log.0.iter().find(|(_, q, _, _)| approach(q) > gap);
+        let touching = log
+            .0
+            .iter()
+            .filter(|(_, _, _, f)| f[0] != 0.0)
+            .map(|(_, q, _, _)| approach(q))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let gap = match first_crossing(0.999 * touching) {
+            Some((_, _, _, f)) if touching > 0.0 && f[0] != 0.0 => 0.999 * touching,
+            _ => 0.97 * a_max,
+        };
+        let closes = first_crossing(gap).expect("closes").0;
+        eprintln!(
+            "B–C: largest approach {a_max:.5} m, gap {gap:.5} m closes at {closes:.3} s; first impact {first_impact:.3} s"
+        );
+        assert!(a_max > 0.0 && closes > first_impact);
+        gap
+    }
+
+    /// The contact step over the active structures is the all-active step with the products
+    /// by zero forces left out: a row of four where A–B and C–D pound and B–C closes late
+    /// (in the middle of A–B's pounding, [`late_gap`]), and the same row with C–D open (10 m),
+    /// where B–C is at the edge of A–B's steps while C is passive (an onset there inside a
+    /// contact step is seen in the trial, which is redone with C), give every observation — time, every modal coordinate and velocity, every
+    /// level's force — and every level's impulse equal to the last bit to the all-active run,
+    /// while many of their contact steps leave structures passive.
+    #[test]
+    fn the_active_step_is_the_all_active_step_to_the_last_bit() {
+        let four = |gap: f64| row(gap, 0.01);
+        let three = |gap: f64| row(gap, 10.0);
+        for (name, make) in [("four", &four as &dyn Fn(f64) -> System), ("three", &three)] {
+            let sys = make(late_gap(make));
+            let (all, imp_all, passive_all, _) = run(&sys, true);
+            let (act, imp_act, passive, redos) = run(&sys, false);
+            assert_eq!(passive_all, 0);
+            assert!(imp_all[1] > 0.0, "{name}: B–C pounds: {imp_all:?}");
+            eprintln!(
+                "{name}: {} observations; {passive} contact steps with a passive structure, {redos} trials redone",
+                act.0.len()
+            );
+            assert_eq!(all.0.len(), act.0.len(), "{name}");
+            for (x, y) in all.0.iter().zip(&act.0) {
+                assert_eq!(x, y, "{name}: at t = {}", x.0);
+            }
+            assert_eq!(imp_all, imp_act, "{name}");
+            assert!(passive > 100, "{name}: {passive}");
+        }
     }
 }

@@ -302,6 +302,9 @@ pub(super) struct Elastic<'a, O: Observer> {
     p_checked: Vec<bool>,
     passive_safe: f64,
     contact_t_end: f64,
+    /// Contact steps with a passive structure, and trials redone for a level at the edge.
+    passive_steps: usize,
+    edge_redos: usize,
 }
 
 pub(super) fn run<O: Observer>(
@@ -318,6 +321,11 @@ pub(super) fn run<O: Observer>(
 impl<'a, O: Observer> Elastic<'a, O> {
     /// The run from the current state to the end of the duration.
     fn drive(mut self) -> Result<Stats, SolveError> {
+        self.drive_here()
+    }
+
+    /// [`Self::drive`] keeping the integrator (a test reads its counters after the run).
+    fn drive_here(&mut self) -> Result<Stats, SolveError> {
         self.observe();
         while self.t < self.duration {
             let t0 = self.t;
@@ -454,6 +462,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             p_checked: vec![false; nl],
             passive_safe: f64::NEG_INFINITY,
             contact_t_end: f64::NAN,
+            passive_steps: 0,
+            edge_redos: 0,
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
