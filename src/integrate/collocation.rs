@@ -365,12 +365,6 @@ impl Table {
         t
     }
 
-    /// Recompute for step length `h` (the buffers are reused), every structure filled.
-    #[cfg(test)]
-    pub(super) fn fill(&mut self, sys: &System, big: Option<f64>, h: f64) {
-        self.fill_for(sys, big, h, &vec![true; sys.structures.len()]);
-    }
-
     /// Whether the structures `active` marks are all filled (see [`Table::ensure`]).
     #[inline]
     pub(super) fn covers(&self, active: &[bool]) -> bool {

@@ -177,9 +177,11 @@ mod tests {
     use super::*;
     use crate::input::scenario::Scenario;
 
-    /// Every observation: time, modal state, the levels' forces.
+    /// One observation: time, modal displacements and velocities, the levels' forces.
+    type Seen = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
+    /// Every observation.
     #[derive(Default)]
-    struct Log(Vec<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>);
+    struct Log(Vec<Seen>);
     impl Observer for Log {
         fn observe(&mut self, _: &System, s: &StepView) {
             let f = s.levels.iter().map(|l| l.force).collect();
