@@ -328,11 +328,24 @@ pub(super) struct Table {
     /// Harmonic motion: `(∫₀ʰ ℓ_p(τ/h) cos Ωτ dτ, ∫₀ʰ ℓ_p(τ/h) sin Ωτ dτ)` of the 5-node
     /// scheme's Lagrange loads (s), for the ground's exact work under a contact load.
     pub hmom: [(f64, f64); 5],
+    /// Per structure, whether its modes' responses to the Lagrange loads are filled (a row's
+    /// structures out of contact are not: see [`Table::fill_for`]), and which were filled by
+    /// the last fill (scratch).
+    done: Vec<bool>,
+    fresh: Vec<bool>,
 }
 
 impl Table {
-    /// The table of step length `h` for `sys` (Ω of a harmonic motion in `big`).
+    /// The table of step length `h` for `sys` (Ω of a harmonic motion in `big`), every
+    /// structure's modes filled.
+    #[cfg(test)]
     pub(super) fn new(sys: &System, big: Option<f64>, h: f64) -> Table {
+        Table::new_for(sys, big, h, &vec![true; sys.structures.len()])
+    }
+
+    /// The table of step length `h` with the responses to the Lagrange loads of the
+    /// structures `active` marks only (see [`Table::fill_for`]).
+    pub(super) fn new_for(sys: &System, big: Option<f64>, h: f64, active: &[bool]) -> Table {
         let mut t = Table {
             h: f64::NAN,
             n: 0,
@@ -345,19 +358,56 @@ impl Table {
             w86: Vec::new(),
             rot: [(0.0, 1.0); 6],
             hmom: [(0.0, 0.0); 5],
+            done: Vec::new(),
+            fresh: Vec::new(),
         };
-        t.fill(sys, big, h);
+        t.fill_for(sys, big, h, active);
         t
     }
 
-    /// Recompute for step length `h` (the buffers are reused).
-    pub(super) fn fill(&mut self, sys: &System, big: Option<f64>, h: f64) {
+    /// Whether the structures `active` marks are all filled (see [`Table::ensure`]).
+    #[inline]
+    pub(super) fn covers(&self, active: &[bool]) -> bool {
+        active.iter().zip(&self.done).all(|(&a, &d)| d || !a)
+    }
+
+    /// Fill the structures `active` marks that are not filled yet (their responses to the
+    /// Lagrange loads, and the level-table slots that sum over them): a row's contact step
+    /// that grows its set of active structures ([`Table::fill_for`]).
+    pub(super) fn ensure(&mut self, sys: &System, active: &[bool]) {
+        if self.covers(active) {
+            return;
+        }
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let h = self.h;
+        self.fresh.clear();
+        self.fresh
+            .extend(active.iter().zip(&self.done).map(|(&a, &d)| a && !d));
+        for s in 0..sys.structures.len() {
+            if self.fresh[s] {
+                for j in sys.modes_of(s) {
+                    let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                    self.fill_mode(omega[j], damp[j], h, j, &props);
+                }
+                self.done[s] = true;
+            }
+        }
+        self.fill_slots(sys);
+    }
+
+    /// Recompute for step length `h` (the buffers are reused): every mode's propagators to the
+    /// nodes (the free flight to them, and the state of a mode no contact force acts on), and
+    /// the responses to the Lagrange loads of the structures `active` marks only — of a row,
+    /// the structures of the pairs in (or near) contact: a mode of any other structure carries
+    /// no contact force over the step (its responses would multiply zeros), and a level-table
+    /// slot is summed only when every structure it sums over is filled. A pair: both.
+    pub(super) fn fill_for(&mut self, sys: &System, big: Option<f64>, h: f64, active: &[bool]) {
         let (omega, damp) = (sys.omega(), sys.damping_coefficients());
         let n = sys.len();
         let nl = sys.levels.len();
         self.h = h;
         self.n = n;
-        let Bases { l8, l6, .. } = bases();
+        let Bases { l8, .. } = bases();
         if let Some(big) = big {
             self.rot = NODES.map(|x| (big * x * h).sin_cos());
             let moments = trig_moments(big * h);
@@ -385,6 +435,10 @@ impl Table {
         for (t, per) in [(&mut self.w8, 20), (&mut self.w6, 12), (&mut self.w86, 10)] {
             t.resize(slots * per, (0.0, 0.0));
         }
+        self.done.clear();
+        self.done.extend_from_slice(active);
+        self.fresh.clear();
+        self.fresh.extend_from_slice(active);
         for j in 0..n {
             let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
             // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
@@ -396,8 +450,25 @@ impl Table {
                     self.cprop[at + i * w] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
                 }
             }
+            if self.done[sys.structure_of_mode(j).0] {
+                self.fill_mode(omega[j], damp[j], h, j, &props);
+            } else {
+                // (a passive mode: its free flight to the end and the interior nodes only)
+                let ms = &mut self.modes[j];
+                ms.end = props[END];
+                ms.mid = [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]];
+            }
+        }
+        self.fill_slots(sys);
+    }
+
+    /// Mode j's responses to the Lagrange loads (its [`ModeStep`] and Γ_j), from its
+    /// propagators to the nodes.
+    fn fill_mode(&mut self, omega: f64, damp: f64, h: f64, j: usize, props: &[Prop; 6]) {
+        let Bases { l8, l6, .. } = bases();
+        {
             let mut mono = [[(0.0, 0.0); 5]; 6];
-            monomial_responses(omega[j], damp[j], h, &props, &mut mono);
+            monomial_responses(omega, damp, h, props, &mut mono);
             // this mode's responses to the Lagrange loads: the 5-node scheme's at its 4 nodes
             // and at the companion's 2 interior ones, the companion's at its 3
             let lagrange8 = |node: usize| -> [(f64, f64); 5] {
@@ -433,12 +504,24 @@ impl Table {
             g.g6.copy_from_slice(g6.as_flattened());
             g.g86.copy_from_slice(g86.as_flattened());
         }
-        // the level tables, slot by slot over each level's band: the sum over the modes both
-        // levels couple to (c_kj c_lj = 0 on every other mode), in mode order from 0
+    }
+
+    /// The level tables, slot by slot over each level's band: the sum over the modes both
+    /// levels couple to (c_kj c_lj = 0 on every other mode), in mode order from 0 — the slots
+    /// whose structures are all filled and one of them just now (`fresh`).
+    fn fill_slots(&mut self, sys: &System) {
+        let nl = sys.levels.len();
         for k in 0..nl {
             let (ck, mk) = (sys.coupling(k), sys.coupling_modes(k));
+            let pk = sys.levels[k].pair;
             for l in sys.sharing_levels(k) {
                 let (cl, ml) = (sys.coupling(l), sys.coupling_modes(l));
+                // (the structures both pairs hold)
+                let pl = sys.levels[l].pair;
+                let shared = pk.max(pl)..(pk.min(pl) + 2);
+                if !shared.clone().all(|s| self.done[s]) || !shared.clone().any(|s| self.fresh[s]) {
+                    continue;
+                }
                 let mut sum = Gammas::default();
                 for j in mk.start.max(ml.start)..mk.end.min(ml.end) {
                     let w = ck[j] * cl[j];
@@ -561,6 +644,10 @@ pub(super) struct NoConvergence;
 /// tolerance, far below it: an error ΔF of the forces moves the state by the response to ΔF);
 /// the nodal states are then those of the forces before that last, negligible update. Returns
 /// the number of law evaluations.
+///
+/// `levels`: the levels solved for (ascending; a pair: every level). Of a row, the levels
+/// whose two structures are both active in the contact step: every other level's forces are
+/// zero on entry and stay so (their nodal states are left as they are; see [`nodal_states`]).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn solve<const S: usize>(
     sys: &System,
@@ -571,6 +658,7 @@ pub(super) fn solve<const S: usize>(
     nodal: &mut [(f64, f64)],
     scratch: &mut Newton,
     tol: f64,
+    levels: &[usize],
 ) -> Result<usize, NoConvergence> {
     let nl = sys.levels.len();
     if nl == 1 {
@@ -582,6 +670,11 @@ pub(super) fn solve<const S: usize>(
     scratch.slopes.resize(dim, (0.0, 0.0));
     scratch.free.resize(dim, false);
     scratch.quiet.resize(nl, false);
+    if levels.len() < nl {
+        // (the levels not solved for: identity rows with a zero residual, out of the update)
+        scratch.rhs.iter_mut().for_each(|r| *r = 0.0);
+        scratch.free.iter_mut().for_each(|f| *f = true);
+    }
     let w = &w[..sys.band_slots() * m * S];
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
@@ -593,7 +686,7 @@ pub(super) fn solve<const S: usize>(
             *q = force[l * S..(l + 1) * S].iter().all(|&f| f == 0.0);
         }
         let mut scale: f64 = 0.0;
-        for k in 0..nl {
+        for &k in levels {
             let law = &sys.levels[k].force;
             let fk = &force[k * S..(k + 1) * S];
             let band = sys.sharing_levels(k);
@@ -632,7 +725,7 @@ pub(super) fn solve<const S: usize>(
             return Err(NoConvergence);
         }
         let mut change: f64 = 0.0;
-        for k in 0..nl {
+        for &k in levels {
             for p in 0..m {
                 let d = scratch.rhs[k * m + p];
                 force[k * S + p + 1] += d;
@@ -647,6 +740,41 @@ pub(super) fn solve<const S: usize>(
         last = change;
     }
     Err(NoConvergence)
+}
+
+/// The nodal (δ, δ̇) of an S-node scheme at the levels `levels` that are not solved for
+/// (their forces zero), from the solved forces of the others: `δ_kp = dfree[k·(S−1) + p − 1]
+/// − Σ_l Σ_q w[…] F_lq` over the levels sharing a structure with k whose forces are not all
+/// zero — of a row, the levels between a structure in the contact step and one out of it,
+/// whose nodal states tell whether the step reaches them (an onset there).
+pub(super) fn nodal_states<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    force: &[f64],
+    nodal: &mut [(f64, f64)],
+    levels: &[usize],
+) {
+    let m = S - 1;
+    for &k in levels {
+        let band = sys.sharing_levels(k);
+        for p in 0..m {
+            let (mut d, mut dd) = dfree[k * m + p];
+            for l in band.clone() {
+                let fl = &force[l * S..(l + 1) * S];
+                if fl.iter().all(|&f| f == 0.0) {
+                    continue;
+                }
+                let base = (sys.band_slot(k, l) * m + p) * S;
+                let row = &w[base..base + S];
+                for q in 0..S {
+                    d -= row[q].0 * fl[q];
+                    dd -= row[q].1 * fl[q];
+                }
+            }
+            nodal[k * m + p] = (d, dd);
+        }
+    }
 }
 
 /// [`solve`] for a single contact level (the common case): the same iterations on stack
@@ -1258,6 +1386,7 @@ mod tests {
             &mut nodal,
             &mut scratch,
             1e-10,
+            &(0..nl).collect::<Vec<_>>(),
         )
         .expect("converges");
         let fmax = force.iter().fold(0.0f64, |a, f| a.max(f.abs()));

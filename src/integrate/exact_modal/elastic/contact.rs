@@ -91,31 +91,46 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
     }
 
-    /// The table of step length h (`k`: its quantised index, or `None` for a one-off length).
+    /// The table of step length h (`k`: its quantised index, or `None` for a one-off length),
+    /// with the active structures' responses to the contact loads (see [`Table::fill_for`]).
     pub(super) fn table(&mut self, k: Option<usize>, h: f64) -> &Table {
-        match k {
-            Some(k) => {
-                if self.tables[k].is_none() {
-                    self.tables[k] = Some(Box::new(Table::new(self.sys, self.big, h)));
-                }
-                self.tables[k].as_deref().expect("table")
-            }
-            None => {
-                match &mut self.scratch_table {
-                    Some(t) if t.h == h => {}
-                    Some(t) => t.fill(self.sys, self.big, h),
-                    None => self.scratch_table = Some(Box::new(Table::new(self.sys, self.big, h))),
-                }
-                self.scratch_table.as_deref().expect("table")
+        let (sys, big, act) = (self.sys, self.big, &self.act);
+        // (a cached length's table is kept as made: a record's sample intervals are equal to
+        // rounding, and so are their tables)
+        let (slot, keep) = match k {
+            Some(k) => (&mut self.tables[k], true),
+            None => (&mut self.scratch_table, false),
+        };
+        match slot {
+            Some(t) if keep || t.h == h => t.ensure(sys, act),
+            Some(t) => t.fill_for(sys, big, h, act),
+            None => *slot = Some(Box::new(Table::new_for(sys, big, h, act))),
+        }
+        slot.as_deref().expect("table")
+    }
+
+    /// One trial of a contact step of length h from the current state (`k`: its quantised
+    /// index): the free flight to the nodes, both collocations, the estimate. Of a row, a trial
+    /// that reaches a level at the edge of the active structures is redone with that level's
+    /// other structure active ([`Self::promote_edges`]).
+    pub(super) fn trial(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        loop {
+            let trial = self.trial_once(k, h, piece)?;
+            if !self.promote_edges() {
+                return Ok(trial);
             }
         }
     }
 
-    /// One trial of a contact step of length h from the current state (`k`: its quantised
-    /// index): the free flight to the nodes, both collocations, the estimate. A pair with one
-    /// contact level takes its own path (`single`), the same arithmetic on stack arrays.
+    /// One trial without the edges' promotion: a pair with one contact level takes its own
+    /// path (`single`, the same arithmetic on stack arrays), anything else the general one.
     #[inline]
-    pub(super) fn trial(
+    fn trial_once(
         &mut self,
         k: Option<usize>,
         h: f64,
@@ -188,7 +203,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
                         }
                     }
                 }
-                for k in 0..nl {
+                for ki in 0..self.lv_seen.len() {
+                    let k = self.lv_seen[ki];
                     let [a, b, c] = if wide {
                         // (over the level's pair's modes: c_kj = 0 elsewhere)
                         let ck = sys.coupling(k);
@@ -237,7 +253,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // the homogeneous parts: Σ_j c_kj P(θh)(x0, y0)
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
-        for k in 0..nl {
+        for &k in &self.lv_seen {
             // one pass over the modes for all six nodes (each mode's start read once; every
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
@@ -274,7 +290,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let bases = collocation::bases();
         let contiguous = self.last_h > 0.0;
         let ratio = h / self.last_h;
-        for k in 0..nl {
+        for &k in &self.lv_solve {
             let f0 = collocation::start_force(sys, k, &self.states[k], self.onset[k], EVENT_TOL);
             let prev: [f64; 5] = std::array::from_fn(|p| self.last_f8[k * 5 + p]);
             self.f8[k * 5] = f0;
@@ -295,9 +311,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
             &mut self.nodal8,
             &mut self.newton,
             self.newton_tol,
+            &self.lv_solve,
         )?;
         // the companion, from the propagated quartic at its nodes
-        for k in 0..nl {
+        for &k in &self.lv_solve {
             let vals: [f64; 5] = std::array::from_fn(|p| self.f8[k * 5 + p]);
             let at = |i: usize| (0..5).map(|p| bases.at6[i][p] * vals[p]).sum::<f64>();
             self.f6[k * 4] = vals[0];
@@ -314,11 +331,31 @@ impl<'a, O: Observer> Elastic<'a, O> {
             &mut self.nodal6,
             &mut self.newton,
             self.newton_tol,
+            &self.lv_solve,
         )?;
         // the estimate: the two ends' distance on every level's δ and δ̇
         let tol = self.tol;
         let mut err = 0.0f64;
-        for k in 0..nl {
+        if self.row {
+            // (the edge levels' nodal states: their estimate, and whether the step reaches them)
+            collocation::nodal_states::<5>(
+                sys,
+                &tab.w8,
+                &self.d8free,
+                &self.f8,
+                &mut self.nodal8,
+                &self.lv_edge,
+            );
+            collocation::nodal_states::<4>(
+                sys,
+                &tab.w6,
+                &self.d6free,
+                &self.f6,
+                &mut self.nodal6,
+                &self.lv_edge,
+            );
+        }
+        for &k in &self.lv_seen {
             let st = &self.states[k];
             let (a, b) = (self.nodal8[k * 4 + 3], self.nodal6[k * 3 + 2]);
             let w = (st.delta + sys.levels[k].gap).abs();
@@ -359,6 +396,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.t = span_end;
             return Ok(());
         }
+        // (a row: the structures this step carries, see `active`)
+        self.update_active(&piece, span_end);
         // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
         let dyadic = matches!(piece, Piece::Poly { .. });
         let plan = EqualSteps::new(pstart, span_end, self.dt);
@@ -545,6 +584,19 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 let w = &bases.partial[i];
                 let imp: f64 = (0..5).map(|p| w[p] * self.f8[k * 5 + p]).sum();
                 self.dense_tally.impulse[k] = self.tally.impulse[k] + h * imp;
+                let p = self.sys.levels[k].pair;
+                if !(self.act[p] || self.act[p + 1]) {
+                    // (a row's passive level: its free flight at the node, from the modes)
+                    let c = self.sys.coupling(k);
+                    let (q, v) = (&self.dense_q[i * n..(i + 1) * n], &self.dense_v[i * n..]);
+                    let (mut cq, mut cv) = (0.0, 0.0);
+                    for j in self.sys.coupling_modes(k) {
+                        cq += c[j] * q[j];
+                        cv += c[j] * v[j];
+                    }
+                    self.dense_states[k] = self.sys.levels[k].state(cq, cv, self.onset[k]);
+                    continue;
+                }
                 let (delta, delta_dot) = self.nodal8[k * 4 + i];
                 let v0 = episode_v0(self.onset[k], delta_dot);
                 self.dense_states[k] = LevelState {
@@ -681,7 +733,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 0..nl
             };
             let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
-            let g = if one {
+            // (a passive mode of a row: no contact force reaches it, its free flight is exact;
+            // the terms left out are products with zeros)
+            let forced = self.mode_act[j];
+            let g = if !forced {
+                [0.0; 5]
+            } else if one {
                 let c = cj[0];
                 f1.map(|x| c * x)
             } else {
@@ -698,18 +755,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let (xe, ye) = ms.end.apply(x0, y0);
             let pe = pend[j];
             let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
-            for p in 0..5 {
-                q1 += g[p] * ms.end8[p].0;
-                v1 += g[p] * ms.end8[p].1;
+            if forced {
+                for p in 0..5 {
+                    q1 += g[p] * ms.end8[p].0;
+                    v1 += g[p] * ms.end8[p].1;
+                }
             }
             if dense {
                 for i in 0..3 {
                     let (x, y) = ms.mid[i].apply(x0, y0);
                     let pi = pmid[j][i];
                     let (mut e, mut d) = (x + pi.0, y + pi.1);
-                    for p in 0..5 {
-                        e += g[p] * ms.mid8[i][p].0;
-                        d += g[p] * ms.mid8[i][p].1;
+                    if forced {
+                        for p in 0..5 {
+                            e += g[p] * ms.mid8[i][p].0;
+                            d += g[p] * ms.mid8[i][p].1;
+                        }
                     }
                     dense_out.0[i * n + j] = e;
                     dense_out.1[i * n + j] = d;
@@ -821,7 +882,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // whose state is known: the law against the force quartic between the nodes)
         let mut modal = 0.0;
         let mut law = 0.0;
-        for kk in 0..nl {
+        // (a row's passive levels: no force, δ ≤ 0 along the step, no work)
+        for &kk in &self.lv_seen {
             let f = &self.f8[kk * 5..kk * 5 + 5];
             let mut pw = WEIGHTS8[0] * f[0] * self.states[kk].delta_dot;
             for p in 1..5 {
@@ -871,6 +933,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         self.last_f8.copy_from_slice(&self.f8);
         self.t = t_end;
+        self.contact_t_end = t_end;
         self.prev_states.copy_from_slice(&self.states);
         for kk in 0..nl {
             let (cq, cv) = self.proj[kk];
@@ -901,7 +964,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.trig_now = self.exact_trig(self.t);
         self.since_sync = 1;
         if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
-            let companion = (0..nl).map(|kk| self.nodal6[kk * 3 + 2]).collect();
+            // (a row's passive levels: their free flight's end, both schemes')
+            let companion = (0..nl)
+                .map(|kk| {
+                    let p = self.sys.levels[kk].pair;
+                    if self.act[p] || self.act[p + 1] {
+                        self.nodal6[kk * 3 + 2]
+                    } else {
+                        (self.states[kk].delta, self.states[kk].delta_dot)
+                    }
+                })
+                .collect();
             trace.push(StepTrace {
                 t: t0,
                 h,

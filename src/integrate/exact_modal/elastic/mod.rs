@@ -33,6 +33,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+mod active;
 mod contact;
 mod free;
 mod kernel;
@@ -281,6 +282,30 @@ pub(super) struct Elastic<'a, O: Observer> {
     lengths: Vec<f64>,
     /// Contact steps since sin Ωt, cos Ωt were last evaluated directly.
     contact_sync: u32,
+    // --- a row's contact step over the structures in (or near) contact (see `active`)
+    /// A row of more than two structures (a pair's every step is all-active).
+    row: bool,
+    /// Every structure active in every contact step (a test's reference: the all-active step).
+    all_active: bool,
+    /// Per structure, whether it is active in the current contact step (and scratch).
+    act: Vec<bool>,
+    act_next: Vec<bool>,
+    /// Per mode, whether its structure is active.
+    mode_act: Vec<bool>,
+    /// The levels solved for, at the edge of the active structures, and both (ascending).
+    lv_solve: Vec<usize>,
+    lv_edge: Vec<usize>,
+    lv_seen: Vec<usize>,
+    /// Per level, the time until which it is held in the step (its free flight may close).
+    hold: Vec<f64>,
+    /// Per level, whether the last check cleared it passive; until when that check holds; the
+    /// time the last contact step ended (a free step since then voids the check).
+    p_checked: Vec<bool>,
+    passive_safe: f64,
+    contact_t_end: f64,
+    /// Contact steps with a passive structure, and trials redone for a level at the edge.
+    passive_steps: usize,
+    edge_redos: usize,
 }
 
 pub(super) fn run<O: Observer>(
@@ -297,6 +322,11 @@ pub(super) fn run<O: Observer>(
 impl<'a, O: Observer> Elastic<'a, O> {
     /// The run from the current state to the end of the duration.
     fn drive(mut self) -> Result<Stats, SolveError> {
+        self.drive_here()
+    }
+
+    /// [`Self::drive`] keeping the integrator (a test reads its counters after the run).
+    fn drive_here(&mut self) -> Result<Stats, SolveError> {
         self.observe();
         while self.t < self.duration {
             let t0 = self.t;
@@ -421,6 +451,20 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 .map(|k| settings.base_step() * (-(k as f64) / QUANT).exp2())
                 .collect(),
             contact_sync: 0,
+            row: sys.structures.len() > 2,
+            all_active: false,
+            act: vec![true; sys.structures.len()],
+            act_next: Vec::new(),
+            mode_act: vec![true; n],
+            lv_solve: (0..nl).collect(),
+            lv_edge: Vec::new(),
+            lv_seen: (0..nl).collect(),
+            hold: vec![f64::NEG_INFINITY; nl],
+            p_checked: vec![false; nl],
+            passive_safe: f64::NEG_INFINITY,
+            contact_t_end: f64::NAN,
+            passive_steps: 0,
+            edge_redos: 0,
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],

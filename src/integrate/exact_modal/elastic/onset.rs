@@ -159,7 +159,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// of the step: the cubic Hermite root between the nodes on both sides.
     pub(super) fn event_inside(&self, h: f64) -> Option<f64> {
         let mut best: Option<f64> = None;
-        for k in 0..self.nl {
+        // (a row: the levels the step sees; the others' nodal states are not evaluated)
+        for &k in &self.lv_seen {
             let st = &self.states[k];
             let inside = Self::penetrating(st);
             if !inside && Self::at_onset(st) {
@@ -211,7 +212,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let floor = self.kink_floor_ulps * f64::EPSILON * (self.t.abs() + self.dt) / h;
         let (first, last) = (floor.max(1e-9), 1.0 - floor.max(1e-9));
         let mut best: Option<(usize, f64, f64)> = None;
-        for k in 0..self.nl {
+        for &k in &self.lv_seen {
             let st = &self.states[k];
             if !(Self::penetrating(st) || Self::at_onset(st)) {
                 continue;

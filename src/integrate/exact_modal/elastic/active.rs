@@ -1,0 +1,310 @@
+//! A row's contact step over the structures in (or near) contact only (issue 29).
+//!
+//! Of a row of N structures, a contact step carries the **active** structures: both of every
+//! pair that touches, is at an onset, carried a force over the last step, or whose free flight
+//! may close within the current base step. Every level then is one of
+//!
+//! - **solved** (both its structures active): its nodal forces are the collocation's unknowns,
+//!   as every level's are in a pair;
+//! - **edge** (one structure active, one passive): its force is zero and its nodal states are
+//!   evaluated from the solved forces and the free flight (`collocation::nodal_states`), so
+//!   that an onset there is seen inside the step; if the trial reaches it (δ > 0 at a node of
+//!   either scheme), the passive structure joins and the trial is redone
+//!   ([`Elastic::promote_edges`]);
+//! - **passive** (both passive): no force acts on either structure, so their free flight is
+//!   exact; it is cleared once per base step by the free flight's own bound (the cubic Hermite
+//!   of δ and the modes' margin, [`quartic_bound`]) over the next base step, and a level that may
+//!   close joins the step ([`Elastic::update_active`]).
+//!
+//! The passive modes are carried to the step's end by their exact propagator and particular
+//! solution (the same arithmetic as a mode no contact force reaches in the all-active step:
+//! the terms left out are products with zero forces), and the step tables hold the responses
+//! to the contact loads of the active structures' modes only ([`Table::fill_for`]). What is
+//! solved, tabulated and estimated is then that of the structures in contact, not of the row.
+
+use super::*;
+
+impl<'a, O: Observer> Elastic<'a, O> {
+    /// Whether level k is engaged: in contact, at an onset, carrying a force at the step's
+    /// start or over the last step, or held (its free flight may close before `hold[k]`).
+    fn engaged(&self, k: usize) -> bool {
+        let st = &self.states[k];
+        Self::penetrating(st)
+            || Self::at_onset(st)
+            || st.force != 0.0
+            || self.hold[k] > self.t
+            || self.last_f8[k * 5..k * 5 + 5].iter().any(|&f| f != 0.0)
+    }
+
+    /// The active structures at the start of a contact step (a row; a pair: both, always), and
+    /// the passive levels' free flight cleared over the next base step (`piece`, `span_end`:
+    /// the ground's piece and the end of the span the step may not cross).
+    pub(super) fn update_active(&mut self, piece: &Piece, span_end: f64) {
+        if !self.row || self.all_active {
+            return;
+        }
+        let ns = self.sys.structures.len();
+        let mut act = std::mem::take(&mut self.act_next);
+        act.clear();
+        act.resize(ns, false);
+        for k in 0..self.nl {
+            if self.engaged(k) {
+                let p = self.sys.levels[k].pair;
+                act[p] = true;
+                act[p + 1] = true;
+            }
+        }
+        // the passive levels: cleared by the last check while no free step came between and
+        // the time is within what it cleared
+        let fresh_phase = self.t != self.contact_t_end;
+        let expired = self.t >= self.passive_safe || fresh_phase;
+        let unchecked = (0..self.nl).any(|k| {
+            let p = self.sys.levels[k].pair;
+            !act[p] && !act[p + 1] && !self.p_checked[k]
+        });
+        if expired || unchecked {
+            let h = (span_end - self.t).min(self.dt);
+            if h > 0.0 {
+                self.check_passive(piece, h, &mut act);
+            }
+        }
+        if act != self.act {
+            std::mem::swap(&mut self.act, &mut act);
+            self.set_levels();
+        }
+        self.act_next = act;
+        if self.act.iter().any(|a| !a) {
+            self.passive_steps += 1;
+        }
+    }
+
+    /// Clear the levels passive under `act` over [t, t + h] on their exact free flight: a level
+    /// whose bound reaches δ > 0 joins (both its structures active, held until t + h).
+    fn check_passive(&mut self, piece: &Piece, h: f64, act: &mut [bool]) {
+        let fd = self.free_index(h, h == self.dt);
+        let tr0 = self.exact_trig(self.t);
+        self.free_prop(fd, piece, tr0, self.t, h, false, true);
+        let until = self.t + h;
+        for k in 0..self.nl {
+            let p = self.sys.levels[k].pair;
+            let passive = !act[p] && !act[p + 1];
+            self.p_checked[k] = false;
+            if !passive {
+                continue;
+            }
+            let (d0, dd0) = Self::free_start(&self.states[k]);
+            let (d1, dd1) = self.level_at_end(k);
+            if quartic_bound(d0, dd0, d1, dd1, h, self.fmargin[k]) > 0.0 {
+                act[p] = true;
+                act[p + 1] = true;
+                self.hold[k] = until;
+            }
+        }
+        // (a level passive after the joins was cleared above: its structures were passive)
+        for k in 0..self.nl {
+            let p = self.sys.levels[k].pair;
+            self.p_checked[k] = !act[p] && !act[p + 1];
+        }
+        self.passive_safe = until;
+        self.stats.evaluations += 1;
+    }
+
+    /// The levels solved for, at the edge and seen (solved and edge), the active modes, from
+    /// `act`; the forces of the levels no longer solved for are zero (they carried none).
+    pub(super) fn set_levels(&mut self) {
+        let sys = self.sys;
+        self.lv_solve.clear();
+        self.lv_edge.clear();
+        self.lv_seen.clear();
+        for k in 0..self.nl {
+            let p = sys.levels[k].pair;
+            let (a, b) = (self.act[p], self.act[p + 1]);
+            if a && b {
+                self.lv_solve.push(k);
+            } else if a || b {
+                self.lv_edge.push(k);
+            }
+            if a || b {
+                self.lv_seen.push(k);
+            }
+            if !(a && b) {
+                self.f8[k * 5..k * 5 + 5].iter_mut().for_each(|f| *f = 0.0);
+                self.f6[k * 4..k * 4 + 4].iter_mut().for_each(|f| *f = 0.0);
+                self.last_f8[k * 5..k * 5 + 5]
+                    .iter_mut()
+                    .for_each(|f| *f = 0.0);
+            }
+        }
+        for s in 0..sys.structures.len() {
+            let a = self.act[s];
+            self.mode_act[sys.modes_of(s)]
+                .iter_mut()
+                .for_each(|m| *m = a);
+        }
+    }
+
+    /// After a trial: if it reaches a level at the edge of the active structures (δ > 0 at a
+    /// node of either scheme; their nodal states are the trial's), that level's passive
+    /// structure joins the step (true: redo the trial).
+    pub(super) fn promote_edges(&mut self) -> bool {
+        if self.lv_edge.is_empty() {
+            return false;
+        }
+        let sys = self.sys;
+        let mut grown = false;
+        for i in 0..self.lv_edge.len() {
+            let k = self.lv_edge[i];
+            let reached = self.nodal8[k * 4..k * 4 + 4].iter().any(|x| x.0 > 0.0)
+                || self.nodal6[k * 3..k * 3 + 3].iter().any(|x| x.0 > 0.0);
+            if reached {
+                let p = sys.levels[k].pair;
+                self.act[p] = true;
+                self.act[p + 1] = true;
+                self.hold[k] = self.t + self.dt;
+                grown = true;
+            }
+        }
+        if grown {
+            self.set_levels();
+            self.edge_redos += 1;
+        }
+        grown
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::scenario::Scenario;
+
+    /// One observation: time, modal displacements and velocities, the levels' forces.
+    type Seen = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
+    /// Every observation.
+    #[derive(Default)]
+    struct Log(Vec<Seen>);
+    impl Observer for Log {
+        fn observe(&mut self, _: &System, s: &StepView) {
+            let f = s.levels.iter().map(|l| l.force).collect();
+            self.0.push((s.t, s.q.to_vec(), s.v.to_vec(), f));
+        }
+    }
+
+    /// A row of four shear buildings A–B–C–D under harmonic motion: A–B at 14 m (gap 1 cm),
+    /// B–C at 10.5 m with gap `middle`, C–D at 10.5 m with gap `last`.
+    fn row(middle: f64, last: f64) -> System {
+        let b = |name: &str, n: usize, k: f64| {
+            format!(
+                "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
+                 storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\n\
+                 damping_ratio = 0.05\nmodes = {n}\n"
+            )
+        };
+        let c = |a: &str, bb: &str, h: f64, gap: f64| {
+            format!(
+                "[[contact]]\nbetween = [\"{a}\", \"{bb}\"]\nlaw = \"hertz\"\n\
+                 stiffness = 2.0e10\nheight = {h}\ngap = {gap}\n"
+            )
+        };
+        let text = format!(
+            "{}{}{}{}{}{}{}[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n\
+             [solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n",
+            b("A", 4, 3.0e8),
+            b("B", 5, 1.6e8),
+            b("C", 3, 1.0e8),
+            b("D", 4, 2.4e8),
+            c("A", "B", 14.0, 0.01),
+            c("B", "C", 10.5, middle),
+            c("C", "D", 10.5, last),
+        );
+        Scenario::from_toml(&text, "row.toml", std::path::Path::new("."))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .system()
+    }
+
+    /// The run of `sys`, every contact step over all its structures (`all`) or over the
+    /// active ones: the observations, the impulse per level, the passive steps, the redos.
+    fn run(sys: &System, all: bool) -> (Log, Vec<f64>, usize, usize) {
+        let settings = SolverSettings::new(Method::ExactModal, 0.002, 6.0);
+        let (q0, v0) = InitialState::default().resolved(sys.len());
+        let mut log = Log::default();
+        let mut r = Elastic::new(sys, &settings, &mut log, None, 0.0, q0, v0, None);
+        r.all_active = all;
+        r.drive_here().expect("runs");
+        let out = (r.tally.impulse.clone(), r.passive_steps, r.edge_redos);
+        drop(r);
+        (log, out.0, out.1, out.2)
+    }
+
+    /// A gap for B–C at which it first closes after A–B's first impact, if it can be while A–B
+    /// touches (from the row `make(gap)` with B–C open: the run is the open one's until B–C
+    /// closes).
+    fn late_gap(make: &dyn Fn(f64) -> System) -> f64 {
+        let open = make(10.0);
+        let (log, imp, _, _) = run(&open, true);
+        assert!(imp[0] > 0.0, "A–B pounds: {imp:?}");
+        assert_eq!(imp[1], 0.0);
+        let c = open.coupling(1);
+        let approach = |q: &[f64]| -dot(c, q);
+        let a_max = log
+            .0
+            .iter()
+            .map(|(_, q, _, _)| approach(q))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let first_impact = log
+            .0
+            .iter()
+            .find(|(_, _, _, f)| f[0] != 0.0 || f[2] != 0.0)
+            .map(|x| x.0)
+            .expect("an impact");
+        // (preferably the largest approach while A–B touches, when B–C's first crossing of it
+        // is inside an A–B contact phase — its onset seen inside a contact step — else just
+        // under the largest approach)
+        let first_crossing = |gap: f64| log.0.iter().find(|(_, q, _, _)| approach(q) > gap);
+        let touching = log
+            .0
+            .iter()
+            .filter(|(_, _, _, f)| f[0] != 0.0)
+            .map(|(_, q, _, _)| approach(q))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let gap = match first_crossing(0.999 * touching) {
+            Some((_, _, _, f)) if touching > 0.0 && f[0] != 0.0 => 0.999 * touching,
+            _ => 0.97 * a_max,
+        };
+        let closes = first_crossing(gap).expect("closes").0;
+        eprintln!(
+            "B–C: largest approach {a_max:.5} m, gap {gap:.5} m closes at {closes:.3} s; first impact {first_impact:.3} s"
+        );
+        assert!(a_max > 0.0 && closes > first_impact);
+        gap
+    }
+
+    /// The contact step over the active structures is the all-active step with the products
+    /// by zero forces left out: a row of four where A–B and C–D pound and B–C closes late
+    /// (in the middle of A–B's pounding, [`late_gap`]), and the same row with C–D open (10 m),
+    /// where B–C is at the edge of A–B's steps while C is passive (an onset there inside a
+    /// contact step is seen in the trial, which is redone with C), give every observation — time, every modal coordinate and velocity, every
+    /// level's force — and every level's impulse equal to the last bit to the all-active run,
+    /// while many of their contact steps leave structures passive.
+    #[test]
+    fn the_active_step_is_the_all_active_step_to_the_last_bit() {
+        let four = |gap: f64| row(gap, 0.01);
+        let three = |gap: f64| row(gap, 10.0);
+        for (name, make) in [("four", &four as &dyn Fn(f64) -> System), ("three", &three)] {
+            let sys = make(late_gap(make));
+            let (all, imp_all, passive_all, _) = run(&sys, true);
+            let (act, imp_act, passive, redos) = run(&sys, false);
+            assert_eq!(passive_all, 0);
+            assert!(imp_all[1] > 0.0, "{name}: B–C pounds: {imp_all:?}");
+            eprintln!(
+                "{name}: {} observations; {passive} contact steps with a passive structure, {redos} trials redone",
+                act.0.len()
+            );
+            assert_eq!(all.0.len(), act.0.len(), "{name}");
+            for (x, y) in all.0.iter().zip(&act.0) {
+                assert_eq!(x, y, "{name}: at t = {}", x.0);
+            }
+            assert_eq!(imp_all, imp_act, "{name}");
+            assert!(passive > 100, "{name}: {passive}");
+        }
+    }
+}
