@@ -41,10 +41,11 @@ pub enum SuiteError {
     /// A record's scenario could not be formed.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
-    /// A suite on a row of buildings taken where only a pair's suite is run (a sweep's case).
+    /// A suite on a row of buildings given to a pair's suite driver ([`run`],
+    /// [`run_headline`]): a row's suite is run by [`row::run_row`] / [`row::run_row_headline`].
     #[error(
-        "the scenario is a row of {0} structures: its suite of records is run by `pounding run` \
-         (or `pounding.run` in Python); a sweep over a suite on a row is not supported yet"
+        "the scenario is a row of {0} structures: its suite of records is run by the row's \
+         suite driver (study::suite::row::run_row), not the pair's"
     )]
     Row(usize),
     /// A record's run failed.

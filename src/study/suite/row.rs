@@ -20,7 +20,9 @@ use super::{
     members, named_statistics, run_members,
 };
 use crate::analysis::record_spectrum::ScaledSuite;
-use crate::analysis::simulate::{RowReport, RunCapture, simulate_row_streaming};
+use crate::analysis::simulate::{
+    RowReport, RunCapture, simulate_row_checked, simulate_row_streaming,
+};
 use crate::input::scenario::Scenario;
 use crate::input::scenario::suite::SuiteRule;
 
@@ -165,16 +167,36 @@ pub struct RowSuiteRun {
 /// (self-checked with `check`) in parallel, keeping each record's history
 /// ([`RowRecordRun::capture`]), and form the statistics and the verdicts.
 pub fn run_row(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
+    run_row_with(scenario, |sc| {
+        let mut capture = RunCapture::new();
+        simulate_row_streaming(sc, check, &mut capture).map(|r| (r, capture))
+    })
+}
+
+/// [`run_row`] without the histories: every record through [`simulate_row_checked`] (the
+/// driver of a row sweep's cases; the same integrations, so the same numbers, bit for bit),
+/// [`RowRecordRun::capture`] empty. What a case of a sweep over a suite on a row runs
+/// ([`crate::study::sweep`]).
+pub fn run_row_headline(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
+    run_row_with(scenario, |sc| {
+        simulate_row_checked(sc, check).map(|r| (r, RunCapture::new()))
+    })
+}
+
+/// The suite of the row `scenario` scaled by its rule, each record's scenario run by
+/// `simulate` (in parallel), the statistics and the verdicts: the one pipeline of [`run_row`]
+/// and [`run_row_headline`].
+fn run_row_with<F>(scenario: &Scenario, simulate: F) -> Result<RowSuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<(RowReport, RunCapture), crate::integrate::SolveError> + Sync,
+{
     let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
     let Members {
         scaling,
         factors,
         scenarios,
     } = members(scenario)?;
-    let runs = run_members(suite, &scenarios, |sc| {
-        let mut capture = RunCapture::new();
-        simulate_row_streaming(sc, check, &mut capture).map(|r| (r, capture))
-    })?;
+    let runs = run_members(suite, &scenarios, simulate)?;
     let records: Vec<RowRecordRun> = runs
         .into_iter()
         .zip(scenarios)
