@@ -45,6 +45,7 @@ pub mod row_columns;
 pub mod row_suite_rows;
 pub mod run;
 mod shard;
+mod suite_check;
 pub mod suite_rows;
 
 pub use axes::{Axis, AxisValue};

@@ -1,6 +1,6 @@
 //! The results table of a sweep (`results.csv`) and the format of its rows (which the journal
 //! of [`super::journal`] holds, as it finishes them); merging the parts of a sharded sweep is
-//! [`super::merge`]'s (re-exported here).
+//! [`super::merge`]'s.
 //!
 //! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
 //! (`ok` or `failed: reason`), then [`FIELDS`] (docs/model.md §6 meanings, SI units), the last two of
@@ -30,7 +30,6 @@ use std::path::{Path, PathBuf};
 
 pub use crate::numerics::format::fmt_f64;
 
-pub use super::merge::{MergeSummary, merge};
 use super::shard::Shard;
 use super::{Sweep, SweepError};
 use crate::analysis::simulate::Report;
@@ -101,13 +100,17 @@ pub const DUCTILITY_FIELDS: [&str; 4] = [
     "peak_ductility_no_contact_2",
 ];
 
-/// The journal version of `sweep`: its row kind's ([`super::RowKind::journal_version`]: a
-/// suite's, a row's, a suite on a row's), for single runs [`JOURNAL_VERSION_CODES`] with
-/// columns after [`FIELDS`] (codes, floors), else [`JOURNAL_VERSION`].
+/// The journal version of `sweep`: its row kind's (a suite's, a row's, a suite on a row's), for
+/// single runs [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`] (codes, floors), else
+/// [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
+    use super::RowKind;
     match sweep.row_kind() {
-        super::RowKind::Single if !sweep.extra_columns().is_empty() => JOURNAL_VERSION_CODES,
-        kind => kind.journal_version(),
+        RowKind::Single if sweep.extra_columns().is_empty() => JOURNAL_VERSION,
+        RowKind::Single => JOURNAL_VERSION_CODES,
+        RowKind::Suite { .. } => super::suite_rows::JOURNAL_VERSION_SUITE,
+        RowKind::Row { .. } => super::row_columns::JOURNAL_VERSION_ROW,
+        RowKind::RowSuite { .. } => super::row_suite_rows::JOURNAL_VERSION_ROW_SUITE,
     }
 }
 

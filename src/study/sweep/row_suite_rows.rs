@@ -168,7 +168,7 @@ pub fn fields(run: &RowSuiteRun, check: bool) -> Vec<String> {
         }
     }
     let acc = run.records.iter().map(|r| &r.report.accuracy);
-    out.extend(super::suite_rows::worst_check(
+    out.extend(super::suite_check::worst_check(
         acc.map(|a| (a.checked, a.max_change, a.converged)),
         check,
     ));

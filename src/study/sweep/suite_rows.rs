@@ -83,17 +83,6 @@ impl RowKind {
         }
     }
 
-    /// The journal version of this kind's rows (for [`RowKind::Single`], that of rows without
-    /// columns after [`super::results::FIELDS`]; see [`super::results::journal_version`]).
-    pub fn journal_version(&self) -> u32 {
-        match self {
-            RowKind::Single => super::results::JOURNAL_VERSION,
-            RowKind::Suite { .. } => JOURNAL_VERSION_SUITE,
-            RowKind::Row { .. } => super::row_columns::JOURNAL_VERSION_ROW,
-            RowKind::RowSuite { .. } => super::row_suite_rows::JOURNAL_VERSION_ROW_SUITE,
-        }
-    }
-
     /// What a row of this kind holds, in messages ("one run per case", …).
     pub fn describe(&self) -> &'static str {
         match self {
@@ -205,32 +194,11 @@ pub fn fields(run: &SuiteRun, check: bool) -> Vec<String> {
         out.push(l.sufficient.to_string());
     }
     let acc = run.records.iter().map(|r| &r.report.accuracy);
-    out.extend(worst_check(
+    out.extend(super::suite_check::worst_check(
         acc.map(|a| (a.checked, a.max_change, a.converged)),
         check,
     ));
     out
-}
-
-/// The `check_max_change` and `converged` fields of a suite's row from its records'
-/// self-checks `(checked, max_change, converged)` (`check`: whether the records were
-/// self-checked): the largest change over the records (empty if a check run failed), and
-/// `true` only if every record converged; `unchecked` (with an empty change) if any record was
-/// not checked. A pair suite's rows and a row suite's ([`super::row_suite_rows::fields`]).
-pub(super) fn worst_check(
-    mut records: impl Iterator<Item = (bool, Option<f64>, Option<bool>)> + Clone,
-    check: bool,
-) -> [String; 2] {
-    if !check || records.clone().any(|(checked, _, _)| !checked) {
-        return [String::new(), UNCHECKED.to_string()];
-    }
-    let changes: Option<Vec<f64>> = records.clone().map(|(_, c, _)| c).collect();
-    [
-        changes
-            .map(|c| fmt_f64(c.into_iter().fold(0.0, f64::max)))
-            .unwrap_or_default(),
-        records.all(|(_, _, c)| c == Some(true)).to_string(),
-    ]
 }
 
 /// The row kind of a base scenario (as a TOML table) and, for a suite, its record files and
