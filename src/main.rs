@@ -85,7 +85,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Separation(a) => separation(a),
         Command::Sweep(a) => run_sweep(a, q),
         Command::Merge(a) => {
-            let m = sweep::results::merge(&a.out, &a.parts)?;
+            let m = sweep::merge::merge(&a.out, &a.parts)?;
             quiet_or(q, || print!("{}", sweep::report::merge_summary(&m, &a.out)))
         }
         Command::Plot(a) => {

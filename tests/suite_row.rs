@@ -420,8 +420,8 @@ fn a_rows_period_range_covers_every_building() {
 }
 
 /// Bad inputs are refused with the key named: a record's factor with a code's rule, a row
-/// missing a pair's contact (as any row), a pair's suite driver given a row, a sweep over a
-/// row suite.
+/// missing a pair's contact (as any row), a pair's suite driver given a row (a sweep over a
+/// row suite: tests/suite_row_sweep.rs).
 #[test]
 fn bad_row_suites_are_refused_naming_the_key() {
     let (a, b, c) = (
@@ -460,30 +460,6 @@ fn bad_row_suites_are_refused_naming_the_key() {
     let row = parse(&format!("{a}{b}{c}{ab}{bc}{}", ground(&THREE, EC8)));
     let e = suite::run_headline(&row, false).map(|_| ()).unwrap_err();
     assert!(matches!(e, SuiteError::Row(3)), "{e}");
-    // a sweep over a row suite: refused before any case, saying so
-    let dir = tempfile::tempdir().unwrap();
-    let base = dir.path().join("row.toml");
-    std::fs::write(
-        &base,
-        format!(
-            "{a}{b}{c}{ab}{bc}{}",
-            ground(&THREE, EC8).replace("records/", &format!("{}/records/", examples().display()))
-        ),
-    )
-    .unwrap();
-    let sweep = format!(
-        "scenario = \"{}\"\n[[axis]]\nkey = \"contact[1].gap\"\nvalues = [0.01, 0.02]\n",
-        base.display()
-    );
-    let e = pounding::study::sweep::Sweep::from_toml(&sweep, &dir.path().join("s.toml"))
-        .map(|_| ())
-        .unwrap_err()
-        .to_string();
-    assert!(
-        e.contains("scenario") && e.contains("row of 3 structures"),
-        "{e}"
-    );
-    assert!(e.contains("not supported"), "{e}");
 }
 
 /// A pair's suite keeps its contract (README "Record suites"; byte-identical outputs of

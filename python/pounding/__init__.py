@@ -301,7 +301,9 @@ class SweepTable(dict):
     column float64 — the same numbers results.csv holds (an empty field, e.g. of a failed case,
     is NaN; ``impacts`` is float64 for that reason). A sweep over a suite of records has the
     suite's columns instead (README, "Sweeps over a suite of records"): ``statistic``,
-    ``sufficient``, ``levelK_sufficient`` and ``converged`` lists of str, the others float64.
+    ``sufficient``, ``levelK_sufficient`` and ``converged`` lists of str, the others float64;
+    over a suite on a row of buildings, per pair and level (``statistic``, ``sufficient``,
+    ``pairP_sufficient`` and ``converged`` lists of str, the others float64).
     """
 
     def to_pandas(self) -> Any:

@@ -195,14 +195,16 @@ fn suite_field_label(field: &str) -> Option<(String, String, f64)> {
             s("mean / target"),
             1.0,
         ),
-        "records" => (s("Number of records"), s("records"), 1.0),
+        "records" => (s("Number of records"), s("count"), 1.0),
         _ => return None,
     })
 }
 
-/// The labels of a row sweep's columns (`crate::study::sweep::row_columns`): each
-/// structure's `structure{i}_…` and each pair's `pair{p}_…` (pair p: structures p and p + 1),
-/// and the row's governing pair and count of pounding pairs.
+/// The labels of a row sweep's columns (`crate::study::sweep::row_columns`, and those of a
+/// suite on a row, `crate::study::sweep::row_suite_rows`): each structure's `structure{i}_…`
+/// and each pair's `pair{p}_…` (pair p: structures p and p + 1; a suite's
+/// `pair{p}_level{K}_required_separation`), and the row's governing pair and count of
+/// pounding pairs.
 fn row_field_label(field: &str) -> Option<(String, String, f64)> {
     let s = |t: &str| t.to_string();
     let numbered = |prefix: &str| -> Option<(usize, &str)> {
@@ -232,6 +234,17 @@ fn row_field_label(field: &str) -> Option<(String, String, f64)> {
     }
     if let Some((p, what)) = numbered("pair") {
         let pair = format!("Pair {p} (structures {p}–{})", p + 1);
+        // a suite on a row: the design value at each level of the pair
+        if let Some(k) = what
+            .strip_prefix("level")
+            .and_then(|r| r.strip_suffix("_required_separation"))
+        {
+            return Some((
+                format!("{pair}, level {k}: design value of the required separation (suite)"),
+                s("separation [m]"),
+                1.0,
+            ));
+        }
         return Some(match what {
             "impacts" => (format!("{pair}: number of impacts"), s("impacts"), 1.0),
             "peak_force" => (
@@ -771,8 +784,10 @@ mod tests {
     /// and a unit, not its raw column name (the text columns are not drawn).
     #[test]
     fn a_row_sweeps_columns_are_titled_by_structure_and_pair() {
-        for name in row_columns::columns(4) {
-            if row_columns::is_text(&name) {
+        // (a row's columns, then a suite on a row's)
+        let suite_row = crate::study::sweep::row_suite_rows::columns(&[2, 1, 3]);
+        for name in row_columns::columns(4).into_iter().chain(suite_row) {
+            if row_columns::is_text(&name) || name == "statistic" {
                 continue;
             }
             let (title, short, _) = field_label(&name);
@@ -794,6 +809,10 @@ mod tests {
                 );
             }
         }
+        assert_eq!(
+            field_label("pair3_level2_required_separation").0,
+            "Pair 3 (structures 3–4), level 2: design value of the required separation (suite)"
+        );
         // a pair's force is drawn in MN, as a pair sweep's
         assert_eq!(field_label("pair2_peak_force").2, 1e-6);
         // a pair's margin and verdict on a linear colour scale, as the row's

@@ -41,10 +41,11 @@ pub enum SuiteError {
     /// A record's scenario could not be formed.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
-    /// A suite on a row of buildings taken where only a pair's suite is run (a sweep's case).
+    /// A suite on a row of buildings given to a pair's suite driver ([`run`],
+    /// [`run_headline`]): a row's suite is run by [`row::run_row`] / [`row::run_row_headline`].
     #[error(
-        "the scenario is a row of {0} structures: its suite of records is run by `pounding run` \
-         (or `pounding.run` in Python); a sweep over a suite on a row is not supported yet"
+        "the scenario is a row of {0} structures: its suite of records is run by the row's \
+         suite driver (study::suite::row::run_row), not the pair's"
     )]
     Row(usize),
     /// A record's run failed.
@@ -114,9 +115,12 @@ impl Headline {
     }
 }
 
-/// One record's run.
+/// One record's run of a suite: the file, its factor, its own scenario and its run by the
+/// driver of the suite's structures — a pair's [`Report`] ([`RecordRun`]) or a row's
+/// [`crate::analysis::simulate::RowReport`] ([`row::RowRecordRun`]): one pipeline for both
+/// ([`run_records`]).
 #[derive(Debug, Clone)]
-pub struct RecordRun {
+pub struct MemberRun<R> {
     /// The file as the scenario names it.
     pub file: String,
     /// The component read.
@@ -126,11 +130,102 @@ pub struct RecordRun {
     /// The record's own scenario (the record scaled, the solver's defaults of that record).
     pub scenario: Scenario,
     /// Its run.
-    pub report: Report,
+    pub report: R,
     /// Its history samples (to write the representative record's files).
     pub capture: RunCapture,
     /// Its headline numbers.
     pub headline: Headline,
+}
+
+/// One record's run of a pair.
+pub type RecordRun = MemberRun<Report>;
+
+/// What the suite pipeline needs of a record's run: its headline numbers and the time-history
+/// required separation at a level.
+pub trait MemberReport {
+    /// The headline numbers for a record of PGA `pga` (m/s², as run).
+    fn headline(&self, pga: f64) -> Headline;
+    /// The time-history required separation at level `level` (0-based) of pair `pair`
+    /// (0-based; a pair's run has only pair 0), m.
+    fn required_gap(&self, pair: usize, level: usize) -> f64;
+}
+
+impl MemberReport for Report {
+    fn headline(&self, pga: f64) -> Headline {
+        Headline::of(self, pga)
+    }
+    fn required_gap(&self, _pair: usize, level: usize) -> f64 {
+        self.levels[level].required_gap
+    }
+}
+
+/// The records of a suite run ([`run_records`]): the scaling, every record's run, and across
+/// them the statistic of the rule, its clause and the statistics of every headline number.
+pub(crate) struct Runs<R> {
+    pub(crate) scaling: Option<ScaledSuite>,
+    pub(crate) records: Vec<MemberRun<R>>,
+    pub(crate) statistic: DesignStatistic,
+    pub(crate) basis: &'static str,
+    pub(crate) statistics: NamedStatistics,
+}
+
+/// The suite of `scenario` scaled by its rule, each record's scenario run by `simulate` (in
+/// parallel), and the statistics across the records: the one pipeline of a pair's suite
+/// ([`run`], [`run_headline`]) and a row's ([`row::run_row`], [`row::run_row_headline`]).
+pub(crate) fn run_records<R, F>(scenario: &Scenario, simulate: F) -> Result<Runs<R>, SuiteError>
+where
+    R: MemberReport + Send,
+    F: Fn(&Scenario) -> Result<(R, RunCapture), SolveError> + Sync,
+{
+    let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
+    let Members {
+        scaling,
+        factors,
+        scenarios,
+    } = members(scenario)?;
+    let runs = run_members(suite, &scenarios, simulate)?;
+    let records: Vec<MemberRun<R>> = runs
+        .into_iter()
+        .zip(scenarios)
+        .enumerate()
+        .map(|(i, ((report, capture), sc))| {
+            let m = &suite.records[i];
+            MemberRun {
+                file: m.file.clone(),
+                component: m.component.clone(),
+                factor: factors[i],
+                headline: report.headline(sc.ground_motion.pga()),
+                scenario: sc,
+                report,
+                capture,
+            }
+        })
+        .collect();
+    let (statistic, basis) = DesignStatistic::for_rule(suite.scaling.rule, records.len());
+    let statistics = named_statistics(records.iter().map(|r| &r.headline), statistic);
+    Ok(Runs {
+        scaling,
+        records,
+        statistic,
+        basis,
+        statistics,
+    })
+}
+
+/// The record with the largest required separation at level `level` of pair `pair` (0-based;
+/// the first of equal values): the representative record of a suite.
+pub(crate) fn representative<R: MemberReport>(
+    records: &[MemberRun<R>],
+    pair: usize,
+    level: usize,
+) -> usize {
+    (0..records.len())
+        .max_by(|&a, &b| {
+            let g = |i: usize| records[i].report.required_gap(pair, level);
+            // the first of equal values
+            g(a).total_cmp(&g(b)).then(b.cmp(&a))
+        })
+        .unwrap_or(0)
 }
 
 /// The design value of the required separation at one contact level.
@@ -251,7 +346,7 @@ pub fn scale(scenario: &Scenario, suite: &Suite) -> Result<Option<ScaledSuite>, 
 
 /// Scale the suite of `scenario`, run every record (self-checked with `check`) in parallel,
 /// and form the statistics and the verdict. Each record's history is kept
-/// ([`RecordRun::capture`]) to write the representative record's files.
+/// ([`MemberRun::capture`]) to write the representative record's files.
 pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
     run_with(scenario, |sc| {
         let mut capture = RunCapture::new();
@@ -261,7 +356,7 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
 
 /// [`run`] without the histories and the floor responses: every record through
 /// [`simulate_headline`] (the driver of a sweep's rows; the same integration, so the same
-/// numbers), [`RecordRun::capture`] empty. What a case of a sweep over a suite runs
+/// numbers), [`MemberRun::capture`] empty. What a case of a sweep over a suite runs
 /// ([`crate::study::sweep`]).
 pub fn run_headline(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
     run_with(scenario, |sc| {
@@ -366,42 +461,15 @@ where
     if scenario.is_row() {
         return Err(SuiteError::Row(scenario.structures.len()));
     }
-    let Members {
+    let Runs {
         scaling,
-        factors,
-        scenarios,
-    } = members(scenario)?;
-    let runs = run_members(suite, &scenarios, simulate)?;
-    let records: Vec<RecordRun> = runs
-        .into_iter()
-        .zip(scenarios)
-        .enumerate()
-        .map(|(i, ((report, capture), sc))| {
-            let pga = sc.ground_motion.pga();
-            let m = &suite.records[i];
-            RecordRun {
-                file: m.file.clone(),
-                component: m.component.clone(),
-                factor: factors[i],
-                headline: Headline::of(&report, pga),
-                scenario: sc,
-                report,
-                capture,
-            }
-        })
-        .collect();
-    let n = records.len();
-    let (statistic, basis) = DesignStatistic::for_rule(suite.scaling.rule, n);
-    let statistics = named_statistics(records.iter().map(|r| &r.headline), statistic);
+        records,
+        statistic,
+        basis,
+        statistics,
+    } = run_records(scenario, simulate)?;
     let design = design(scenario, &records, statistic, basis);
-    let k = design.governing_level - 1;
-    let representative = (0..n)
-        .max_by(|&a, &b| {
-            let g = |i: usize| records[i].report.levels[k].required_gap;
-            // the first of equal values
-            g(a).total_cmp(&g(b)).then(b.cmp(&a))
-        })
-        .unwrap_or(0);
+    let representative = representative(&records, 0, design.governing_level - 1);
     Ok(SuiteRun {
         rule: suite.scaling.rule,
         scaling,

@@ -16,11 +16,13 @@
 use serde::Serialize;
 
 use super::{
-    DesignStatistic, Headline, LevelDesign, Members, NamedStatistics, SuiteError, level_designs,
-    members, named_statistics, run_members,
+    DesignStatistic, Headline, LevelDesign, MemberReport, MemberRun, NamedStatistics, Runs,
+    SuiteError, level_designs, representative, run_records,
 };
 use crate::analysis::record_spectrum::ScaledSuite;
-use crate::analysis::simulate::{RowReport, RunCapture, simulate_row_streaming};
+use crate::analysis::simulate::{
+    RowReport, RunCapture, simulate_row_checked, simulate_row_streaming,
+};
 use crate::input::scenario::Scenario;
 use crate::input::scenario::suite::SuiteRule;
 
@@ -76,23 +78,16 @@ impl Headline {
     }
 }
 
-/// One record's run of a row.
-#[derive(Debug, Clone)]
-pub struct RowRecordRun {
-    /// The file as the scenario names it.
-    pub file: String,
-    /// The component read.
-    pub component: Option<String>,
-    /// The factor applied (the rule's, or the user's with rule = "none").
-    pub factor: f64,
-    /// The record's own scenario (the row with the record scaled as its ground motion).
-    pub scenario: Scenario,
-    /// Its run.
-    pub report: RowReport,
-    /// Its history samples (to write its run's files).
-    pub capture: RunCapture,
-    /// Its headline numbers ([`Headline::of_row`]).
-    pub headline: Headline,
+/// One record's run of a row (its `headline`: [`Headline::of_row`]).
+pub type RowRecordRun = MemberRun<RowReport>;
+
+impl MemberReport for RowReport {
+    fn headline(&self, pga: f64) -> Headline {
+        Headline::of_row(self, pga)
+    }
+    fn required_gap(&self, pair: usize, level: usize) -> f64 {
+        self.pairs[pair].levels[level].required_gap
+    }
 }
 
 /// The design values of one adjacent pair of the row.
@@ -163,47 +158,42 @@ pub struct RowSuiteRun {
 
 /// Scale the suite of the row `scenario`, run every record through the row's driver
 /// (self-checked with `check`) in parallel, keeping each record's history
-/// ([`RowRecordRun::capture`]), and form the statistics and the verdicts.
+/// ([`MemberRun::capture`]), and form the statistics and the verdicts.
 pub fn run_row(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
-    let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
-    let Members {
-        scaling,
-        factors,
-        scenarios,
-    } = members(scenario)?;
-    let runs = run_members(suite, &scenarios, |sc| {
+    run_row_with(scenario, |sc| {
         let mut capture = RunCapture::new();
         simulate_row_streaming(sc, check, &mut capture).map(|r| (r, capture))
-    })?;
-    let records: Vec<RowRecordRun> = runs
-        .into_iter()
-        .zip(scenarios)
-        .enumerate()
-        .map(|(i, ((report, capture), sc))| {
-            let m = &suite.records[i];
-            RowRecordRun {
-                file: m.file.clone(),
-                component: m.component.clone(),
-                factor: factors[i],
-                headline: Headline::of_row(&report, sc.ground_motion.pga()),
-                scenario: sc,
-                report,
-                capture,
-            }
-        })
-        .collect();
-    let n = records.len();
-    let (statistic, basis) = DesignStatistic::for_rule(suite.scaling.rule, n);
-    let statistics = named_statistics(records.iter().map(|r| &r.headline), statistic);
+    })
+}
+
+/// [`run_row`] without the histories: every record through [`simulate_row_checked`] (the
+/// driver of a row sweep's cases; the same integrations, so the same numbers, bit for bit),
+/// [`MemberRun::capture`] empty. What a case of a sweep over a suite on a row runs
+/// ([`crate::study::sweep`]).
+pub fn run_row_headline(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
+    run_row_with(scenario, |sc| {
+        simulate_row_checked(sc, check).map(|r| (r, RunCapture::new()))
+    })
+}
+
+/// The suite of the row `scenario` scaled by its rule, each record's scenario run by
+/// `simulate` (in parallel), the statistics and the verdicts: the one pipeline of [`run_row`]
+/// and [`run_row_headline`].
+fn run_row_with<F>(scenario: &Scenario, simulate: F) -> Result<RowSuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<(RowReport, RunCapture), crate::integrate::SolveError> + Sync,
+{
+    let suite = scenario.suite.as_ref().ok_or(SuiteError::NotASuite)?;
+    let Runs {
+        scaling,
+        records,
+        statistic,
+        basis,
+        statistics,
+    } = run_records(scenario, simulate)?;
     let design = row_design(scenario, &records, statistic, basis);
     let (p, k) = (design.governing_pair - 1, design.governing_level - 1);
-    let representative = (0..n)
-        .max_by(|&a, &b| {
-            let g = |i: usize| records[i].report.pairs[p].levels[k].required_gap;
-            // the first of equal values
-            g(a).total_cmp(&g(b)).then(b.cmp(&a))
-        })
-        .unwrap_or(0);
+    let representative = representative(&records, p, k);
     Ok(RowSuiteRun {
         rule: suite.scaling.rule,
         scaling,

@@ -531,7 +531,7 @@ fn check_row_axes(
             Some(Section::PairContact(p)) if matches!(field, "gap" | "height") => {
                 if let Some(Some(levels)) = pairs[p] {
                     return refuse(format!(
-                        "pair {}'s contact has {levels} levels (`level = [...]`): sweep \
+                        "pair {}'s contact has {levels} level(s) (`level = [...]`): sweep \
                          `contact[{}].level[L].{field}` instead",
                         p + 1,
                         p + 1

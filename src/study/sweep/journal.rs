@@ -64,41 +64,34 @@ impl Journal {
         let this_version = journal_version(sweep);
         let names = sweep.result_columns();
         let columns = 2 + sweep.axes.len() + names.len();
-        let kind = sweep.row_kind();
         let check = |body: &str| {
             let whole = parse_csv_line(body).is_some_and(|f| f.len() == columns);
-            check_row(body, &names, kind, sweep.len())
+            check_row(body, &names, sweep.row_kind(), sweep.len())
                 .filter(|(case, _)| whole && shard.contains(*case))
         };
-        // rows of the other kind (a suite of records per case, or one run): never mixed, and
-        // said so rather than as "another version"
-        if let Some(other) = journal_first_line(path).and_then(|first| {
-            first
-                .strip_prefix("# pounding sweep journal ")
-                .and_then(|r| r.split(';').next())
-                .map(str::to_string)
-        }) {
-            let suite_v = format!("v{}", super::suite_rows::JOURNAL_VERSION_SUITE);
-            if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE) {
-                let what = |suite: bool| {
-                    if suite {
-                        "a suite of records per case"
-                    } else {
-                        "one run per case"
-                    }
-                };
-                return Err(SweepError::Journal {
-                    path: path.display().to_string(),
-                    message: format!(
-                        "this journal holds the rows of another sweep ({}; this sweep has {}): \
-                         the two kinds of rows have different columns and are never mixed. Use \
-                         another --out, or delete the directory's journal and results to start \
-                         afresh",
-                        what(other == suite_v),
-                        what(other != suite_v)
-                    ),
-                });
-            }
+        // rows of another kind (one run, a suite of records, a row of buildings, a suite on a
+        // row per case): never mixed, and said so rather than as "another version"
+        let this_kind = sweep.row_kind();
+        if let Some(other) = journal_first_line(path)
+            .and_then(|first| {
+                first
+                    .strip_prefix("# pounding sweep journal v")
+                    .and_then(|r| r.split(';').next())
+                    .and_then(|v| v.parse::<u32>().ok())
+            })
+            .and_then(super::RowKind::describe_version)
+            .filter(|other| *other != this_kind.describe())
+        {
+            return Err(SweepError::Journal {
+                path: path.display().to_string(),
+                message: format!(
+                    "this journal holds the rows of another sweep ({other}; this sweep has {}): \
+                     the two kinds of rows have different columns and are never mixed. Use \
+                     another --out, or delete the directory's journal and results to start \
+                     afresh",
+                    this_kind.describe()
+                ),
+            });
         }
         let kind = JournalKind {
             magic: "# pounding sweep journal v",
@@ -171,29 +164,6 @@ impl Journal {
                     .split(';')
                     .next()
                     .unwrap_or("?");
-                // rows of the other kind (a suite of records per case, or one run): never mixed
-                let suite_v = format!("v{}", super::suite_rows::JOURNAL_VERSION_SUITE);
-                if (other == suite_v) != (this_version == super::suite_rows::JOURNAL_VERSION_SUITE)
-                {
-                    let what = |suite: bool| {
-                        if suite {
-                            "a suite of records per case"
-                        } else {
-                            "one run per case"
-                        }
-                    };
-                    return Err(SweepError::Journal {
-                        path: path.display().to_string(),
-                        message: format!(
-                            "this journal holds the rows of another sweep ({}; this sweep has {}): \
-                             the two kinds of rows have different columns and are never mixed. Use \
-                             another --out, or delete the directory's journal and results to start \
-                             afresh",
-                            what(other == suite_v),
-                            what(other != suite_v)
-                        ),
-                    });
-                }
                 return Err(SweepError::Journal {
                     path: path.display().to_string(),
                     message: format!(

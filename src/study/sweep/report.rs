@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::Sweep;
-use super::results::MergeSummary;
+use super::merge::MergeSummary;
 use super::run::RunOutcome;
 use super::shard::Shard;
 use crate::analysis::simulate::accuracy::{CHECK_THRESHOLD, percent};

@@ -1,5 +1,6 @@
-//! The results table of a sweep (`results.csv`), the format of its rows (which the journal of
-//! [`super::journal`] holds, as it finishes them), and merging the parts of a sharded sweep.
+//! The results table of a sweep (`results.csv`) and the format of its rows (which the journal
+//! of [`super::journal`] holds, as it finishes them); merging the parts of a sharded sweep is
+//! [`super::merge`]'s.
 //!
 //! Columns: `case` (0-based grid index), one column per axis named by its key, `status`
 //! (`ok` or `failed: reason`), then [`FIELDS`] (docs/model.md §6 meanings, SI units), the last two of
@@ -99,18 +100,17 @@ pub const DUCTILITY_FIELDS: [&str; 4] = [
     "peak_ductility_no_contact_2",
 ];
 
-/// The journal version of `sweep`: [`super::suite_rows::JOURNAL_VERSION_SUITE`] for a suite's
-/// rows, [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`] (codes, floors), else
+/// The journal version of `sweep`: its row kind's (a suite's, a row's, a suite on a row's), for
+/// single runs [`JOURNAL_VERSION_CODES`] with columns after [`FIELDS`] (codes, floors), else
 /// [`JOURNAL_VERSION`].
 pub fn journal_version(sweep: &Sweep) -> u32 {
-    if let super::RowKind::Row { .. } = sweep.row_kind() {
-        super::row_columns::JOURNAL_VERSION_ROW
-    } else if sweep.row_kind() != super::RowKind::Single {
-        super::suite_rows::JOURNAL_VERSION_SUITE
-    } else if sweep.extra_columns().is_empty() {
-        JOURNAL_VERSION
-    } else {
-        JOURNAL_VERSION_CODES
+    use super::RowKind;
+    match sweep.row_kind() {
+        RowKind::Single if sweep.extra_columns().is_empty() => JOURNAL_VERSION,
+        RowKind::Single => JOURNAL_VERSION_CODES,
+        RowKind::Suite { .. } => super::suite_rows::JOURNAL_VERSION_SUITE,
+        RowKind::Row { .. } => super::row_columns::JOURNAL_VERSION_ROW,
+        RowKind::RowSuite { .. } => super::row_suite_rows::JOURNAL_VERSION_ROW_SUITE,
     }
 }
 
@@ -354,7 +354,7 @@ pub fn columns(
 pub(super) fn check_row(
     line: &str,
     names: &[String],
-    kind: super::RowKind,
+    kind: &super::RowKind,
     cases: usize,
 ) -> Option<(usize, bool)> {
     let f = parse_csv_line(line)?;
@@ -370,7 +370,7 @@ pub(super) fn check_row(
     let nums = &f[columns - names.len()..];
     if status == "ok" {
         if nums.iter().zip(names).enumerate().all(|(k, (x, name))| {
-            if kind != super::RowKind::Single {
+            if *kind != super::RowKind::Single {
                 kind.parse(name, x).is_some()
             } else if k < NFIELDS {
                 parse_field(k, x).is_some()
@@ -435,9 +435,9 @@ pub struct Table {
     /// [`DUCTILITY_FIELDS`]: those the table has); for a sweep over a suite, every column
     /// after `status` ([`super::suite_rows::columns`]).
     pub codes: Vec<String>,
-    /// The rows are suites of records ([`super::suite_rows`]) or rows of buildings
-    /// ([`super::row_columns`]): [`TableRow::fields`] are NaN and the values are in
-    /// [`TableRow::codes`].
+    /// The rows are suites of records ([`super::suite_rows`]), rows of buildings
+    /// ([`super::row_columns`]) or suites on a row ([`super::row_suite_rows`]):
+    /// [`TableRow::fields`] are NaN and the values are in [`TableRow::codes`].
     pub suite: bool,
 }
 
@@ -587,9 +587,10 @@ impl Table {
     }
 
     /// A table of a sweep over a suite (columns `case`, the axes, `status`,
-    /// [`super::suite_rows::columns`]) or over a row of buildings
-    /// ([`super::row_columns::columns`]), or `None` when `all` (the header's columns) is
-    /// neither.
+    /// [`super::suite_rows::columns`]), over a row of buildings
+    /// ([`super::row_columns::columns`]) or over a suite on a row
+    /// ([`super::row_suite_rows::columns`]), or `None` when `all` (the header's columns) is
+    /// none of them.
     fn read_suite(
         path: &Path,
         header: &str,
@@ -597,6 +598,7 @@ impl Table {
         text: &str,
     ) -> Result<Option<Table>, SweepError> {
         use super::row_columns as row;
+        use super::row_suite_rows as row_suite;
         use super::suite_rows::{HEAD, PER_LEVEL, TAIL, columns};
         let bad = |line: usize, msg: String| SweepError::Journal {
             path: format!("{}:{line}", path.display()),
@@ -618,6 +620,27 @@ impl Table {
                 st,
                 super::RowKind::Suite { levels },
                 columns(levels),
+                expected,
+            )
+        } else if let Some(st) = after_status(row::HEAD[0])
+            .filter(|&st| all.get(st + 2).map(String::as_str) == Some(row_suite::HEAD[1]))
+        {
+            // a suite on a row of buildings: each pair's columns and its levels'
+            let names = &all[st + 1..];
+            let pair_levels = row_suite::pair_levels_of(names).unwrap_or_default();
+            let expected = format!(
+                "a suite on a row of buildings: expected columns case, <axis keys>, status, {}",
+                row_suite::columns(&[1])
+                    .join(", ")
+                    .replace("pair1_level1_", "pairP_levelK_")
+                    .replace("pair1_", "pairP_")
+            );
+            (
+                st,
+                super::RowKind::RowSuite {
+                    pair_levels: pair_levels.clone(),
+                },
+                row_suite::columns(&pair_levels),
                 expected,
             )
         } else if let Some(st) = after_status(row::HEAD[0]) {
@@ -696,175 +719,6 @@ impl Table {
     pub fn field_index(name: &str) -> Option<usize> {
         FIELDS.iter().position(|f| *f == name)
     }
-}
-
-/// What [`merge`] did.
-#[derive(Debug, Clone)]
-pub struct MergeSummary {
-    /// The parts read.
-    pub parts: Vec<PathBuf>,
-    /// Cases in the merged table.
-    pub cases: usize,
-    /// Of which failed.
-    pub failed: usize,
-}
-
-/// `results-shard-K-of-N.csv` → (K, N).
-fn shard_of(path: &Path) -> Option<(usize, usize)> {
-    let name = path.file_name()?.to_str()?;
-    let rest = name.strip_prefix("results-shard-")?.strip_suffix(".csv")?;
-    let (k, n) = rest.split_once("-of-")?;
-    Some((k.parse().ok()?, n.parse().ok()?))
-}
-
-/// Join the parts of a sharded sweep (files, or directories holding
-/// `results-shard-K-of-N.csv` files) into one table at `out`, checking that they belong to
-/// one sweep (same columns, consistent axis values), that no case appears twice and that
-/// none is missing (every part K of N present; cases 0 … n−1 with n the grid size).
-pub fn merge(out: &Path, inputs: &[PathBuf]) -> Result<MergeSummary, SweepError> {
-    let mut parts = Vec::new();
-    for p in inputs {
-        if p.is_dir() {
-            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
-                .map_err(|e| SweepError::Read {
-                    path: p.display().to_string(),
-                    source: e,
-                })?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|f| shard_of(f).is_some())
-                .collect();
-            if found.is_empty() {
-                return Err(SweepError::Merge(format!(
-                    "{} holds no results-shard-K-of-N.csv file",
-                    p.display()
-                )));
-            }
-            found.sort();
-            parts.extend(found);
-        } else {
-            parts.push(p.clone());
-        }
-    }
-    if parts.is_empty() {
-        return Err(SweepError::Merge("no parts given".into()));
-    }
-    let tables = parts
-        .iter()
-        .map(|p| Table::read(p))
-        .collect::<Result<Vec<_>, _>>()?;
-    let first = &tables[0];
-    // parts named K-of-N: all of 1..N, once each
-    let named: Vec<(usize, usize)> = parts.iter().filter_map(|p| shard_of(p)).collect();
-    if named.len() == parts.len() {
-        let n = named[0].1;
-        if let Some(p) = named.iter().position(|s| s.1 != n) {
-            return Err(SweepError::Merge(format!(
-                "{} is a part of {} but {} is a part of {n}",
-                parts[p].display(),
-                named[p].1,
-                parts[0].display()
-            )));
-        }
-        let mut seen: Vec<Option<usize>> = vec![None; n + 1];
-        for (i, (k, _)) in named.iter().enumerate() {
-            if let Some(j) = seen[*k] {
-                return Err(SweepError::Merge(format!(
-                    "part {k} of {n} is given twice: {} and {}",
-                    parts[j].display(),
-                    parts[i].display()
-                )));
-            }
-            seen[*k] = Some(i);
-        }
-        let missing: Vec<String> = (1..=n)
-            .filter(|k| seen[*k].is_none())
-            .map(|k| k.to_string())
-            .collect();
-        if !missing.is_empty() {
-            return Err(SweepError::Merge(format!(
-                "part(s) {} of {n} are missing (results-shard-K-of-{n}.csv)",
-                missing.join(", ")
-            )));
-        }
-    }
-    let mut rows: BTreeMap<usize, (&TableRow, usize)> = BTreeMap::new();
-    for (ti, t) in tables.iter().enumerate() {
-        if t.header != first.header {
-            return Err(SweepError::Merge(format!(
-                "{} and {} have different columns: not parts of one sweep",
-                first.path.display(),
-                t.path.display()
-            )));
-        }
-        for (case, r) in &t.rows {
-            if let Some((_, other)) = rows.insert(*case, (r, ti)) {
-                return Err(SweepError::Merge(format!(
-                    "case {case} is in both {} and {}",
-                    tables[other].path.display(),
-                    t.path.display()
-                )));
-            }
-        }
-    }
-    // the grid: the number of distinct values of each axis; the value of every axis must
-    // follow from the case number (first axis slowest)
-    let na = first.axes.len();
-    let mut distinct: Vec<Vec<&str>> = vec![Vec::new(); na];
-    for (r, _) in rows.values() {
-        for (j, v) in r.values.iter().enumerate() {
-            if !distinct[j].contains(&v.as_str()) {
-                distinct[j].push(v);
-            }
-        }
-    }
-    let sizes: Vec<usize> = distinct.iter().map(Vec::len).collect();
-    let total: usize = sizes.iter().product();
-    let mut at: Vec<Vec<Option<&str>>> = sizes.iter().map(|&n| vec![None; n]).collect();
-    for (case, (r, ti)) in &rows {
-        if *case >= total {
-            return Err(SweepError::Merge(format!(
-                "case {case} in {} is beyond the grid ({total} cases from the axis values): parts of different sweeps?",
-                tables[*ti].path.display()
-            )));
-        }
-        let mut rest = *case;
-        for j in (0..na).rev() {
-            let i = rest % sizes[j];
-            rest /= sizes[j];
-            let v = r.values[j].as_str();
-            match at[j][i] {
-                None => at[j][i] = Some(v),
-                Some(w) if w == v => {}
-                Some(w) => {
-                    return Err(SweepError::Merge(format!(
-                        "case {case} in {} has {} = {v} where the grid has {w}: parts of different sweeps?",
-                        tables[*ti].path.display(),
-                        first.axes[j]
-                    )));
-                }
-            }
-        }
-    }
-    let missing: Vec<usize> = (0..total).filter(|c| !rows.contains_key(c)).collect();
-    if !missing.is_empty() {
-        let list: Vec<String> = missing.iter().take(10).map(|c| c.to_string()).collect();
-        return Err(SweepError::Merge(format!(
-            "{} of {total} cases are missing (cases {}{}); rerun the parts that hold them",
-            missing.len(),
-            list.join(", "),
-            if missing.len() > 10 { ", …" } else { "" }
-        )));
-    }
-    write_results(
-        out,
-        &first.header,
-        rows.values().map(|(r, _)| r.line.as_str()),
-    )?;
-    Ok(MergeSummary {
-        parts,
-        cases: total,
-        failed: rows.values().filter(|(r, _)| r.status != "ok").count(),
-    })
 }
 
 #[cfg(test)]

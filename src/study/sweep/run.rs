@@ -246,6 +246,9 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
         match sweep.row_kind() {
             super::RowKind::Suite { .. } => return suite_case(&sc, check, &mut warning),
             super::RowKind::Row { .. } => return row_case(&sc, check, &mut warning),
+            super::RowKind::RowSuite { .. } => {
+                return row_suite_case(&sc, check, &mut warning);
+            }
             super::RowKind::Single => {}
         }
         // (the floor responses only when the table has floor columns: they cost more than the
@@ -297,6 +300,27 @@ fn suite_case(
             .map(|w| format!("record {} ({}): {w}", i + 1, r.file))
     });
     Ok(super::suite_rows::fields(&run, check))
+}
+
+/// A case of a sweep over a suite on a row of buildings: the whole suite on the whole row
+/// ([`crate::study::suite::row::run_row_headline`]: scaled by its rule over every building's
+/// first-mode periods, every record's run of the row with and without contact) to the fields
+/// of its row ([`super::row_suite_rows::fields`]); `warning` receives the first warning of a
+/// record's run (not the self-check's), naming the record.
+fn row_suite_case(
+    sc: &crate::input::scenario::Scenario,
+    check: bool,
+    warning: &mut Option<String>,
+) -> Result<Vec<String>, String> {
+    let run = crate::study::suite::row::run_row_headline(sc, check).map_err(|e| e.to_string())?;
+    *warning = run.records.iter().enumerate().find_map(|(i, r)| {
+        r.report
+            .warnings
+            .iter()
+            .find(|w| !crate::analysis::simulate::accuracy::is_check_warning(w))
+            .map(|w| format!("record {} ({}): {w}", i + 1, r.file))
+    });
+    Ok(super::row_suite_rows::fields(&run, check))
 }
 
 /// A case of a sweep over a row of buildings: the row run with and without contact and

@@ -36,7 +36,7 @@ use crate::study::suite::SuiteRun;
 const UNCHECKED: &str = "unchecked";
 
 /// What one row of a sweep holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum RowKind {
     /// One run (with and without contact): [`super::results::FIELDS`] and the extra columns.
     Single,
@@ -51,26 +51,64 @@ pub enum RowKind {
         /// Number of structures of the base scenario (the axes cannot change it).
         structures: usize,
     },
+    /// A suite of records on a row of buildings:
+    /// [`super::row_suite_rows::columns`] of `pair_levels`.
+    RowSuite {
+        /// Each adjacent pair's number of contact levels in the base scenario (N − 1 pairs;
+        /// the axes cannot change them).
+        pair_levels: Vec<usize>,
+    },
 }
 
 impl RowKind {
     /// Is `name` a column of text of this kind's rows (after [`super::results::FIELDS`]
     /// for a single run, which has none)?
-    pub fn is_text(self, name: &str) -> bool {
+    pub fn is_text(&self, name: &str) -> bool {
         match self {
             RowKind::Single => false,
             RowKind::Suite { .. } => is_text(name),
             RowKind::Row { .. } => super::row_columns::is_text(name),
+            RowKind::RowSuite { .. } => super::row_suite_rows::is_text(name),
         }
     }
 
     /// A field of this kind's own columns read back (a suite's [`parse`], a row's
     /// [`super::row_columns::parse`]; a single run's extra columns are numbers).
-    pub fn parse(self, name: &str, x: &str) -> Option<f64> {
+    pub fn parse(&self, name: &str, x: &str) -> Option<f64> {
         match self {
             RowKind::Single => x.parse().ok(),
             RowKind::Suite { .. } => parse(name, x),
             RowKind::Row { .. } => super::row_columns::parse(name, x),
+            RowKind::RowSuite { .. } => super::row_suite_rows::parse(name, x),
+        }
+    }
+
+    /// What a row of this kind holds, in messages ("one run per case", …).
+    pub fn describe(&self) -> &'static str {
+        match self {
+            RowKind::Single => "one run per case",
+            RowKind::Suite { .. } => "a suite of records per case",
+            RowKind::Row { .. } => "a row of buildings per case",
+            RowKind::RowSuite { .. } => "a suite of records on a row of buildings per case",
+        }
+    }
+
+    /// What the rows of a sweep journal of format `version` hold, in messages (`None`: a
+    /// version this program does not write).
+    pub fn describe_version(version: u32) -> Option<&'static str> {
+        match version {
+            1..=3 => Some(RowKind::Single.describe()),
+            JOURNAL_VERSION_SUITE => Some(RowKind::Suite { levels: 1 }.describe()),
+            super::row_columns::JOURNAL_VERSION_ROW => {
+                Some(RowKind::Row { structures: 3 }.describe())
+            }
+            super::row_suite_rows::JOURNAL_VERSION_ROW_SUITE => Some(
+                RowKind::RowSuite {
+                    pair_levels: Vec::new(),
+                }
+                .describe(),
+            ),
+            _ => None,
         }
     }
 }
@@ -155,20 +193,11 @@ pub fn fields(run: &SuiteRun, check: bool) -> Vec<String> {
         out.push(fmt_f64(force));
         out.push(l.sufficient.to_string());
     }
-    // the worst self-check over the records: the largest change; not converged if one is not
-    let acc = || run.records.iter().map(|r| &r.report.accuracy);
-    if !check || acc().any(|a| !a.checked) {
-        out.push(String::new());
-        out.push(UNCHECKED.to_string());
-    } else {
-        let changes: Option<Vec<f64>> = acc().map(|a| a.max_change).collect();
-        out.push(
-            changes
-                .map(|c| fmt_f64(c.into_iter().fold(0.0, f64::max)))
-                .unwrap_or_default(),
-        );
-        out.push(acc().all(|a| a.converged == Some(true)).to_string());
-    }
+    let acc = run.records.iter().map(|r| &r.report.accuracy);
+    out.extend(super::suite_check::worst_check(
+        acc.map(|a| (a.checked, a.max_change, a.converged)),
+        check,
+    ));
     out
 }
 
