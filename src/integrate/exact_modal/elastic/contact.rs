@@ -651,25 +651,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
         };
-        let start = self
-            .trace
-            .is_some()
-            .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
-        // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
-        let trs: [Trig; 5] = std::array::from_fn(|p| {
-            if p == 0 {
-                tr0
-            } else if self.big.is_some() {
-                let (sh, ch) = tab.rot[NODES8[p - 1]];
-                Trig {
-                    t: t0 + THETA8[p] * h,
-                    s: tr0.s * ch + tr0.c * sh,
-                    c: tr0.c * ch - tr0.s * sh,
-                }
-            } else {
-                self.gm.trig(t0 + THETA8[p] * h)
-            }
-        });
+        let start = self.trace_start();
+        let trs = self.node_trigs(tab, tr0, h);
         // dense output: a step whose nodal forces peak inside it is also observed at its
         // interior nodes, so that the recorder's interpolant around the peak is 4× denser
         let dense = (0..nl).any(|kk| {
@@ -950,6 +933,49 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[kk] * h * h);
             }
         }
+        self.close_contact_step(t0, h, t_end, trs[4], start, trial.err);
+    }
+
+    /// The state at a step's start, kept only when the steps are traced (tests).
+    pub(super) fn trace_start(&self) -> Option<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+        self.trace
+            .is_some()
+            .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()))
+    }
+
+    /// sin, cos of the harmonic ground motion at the 5-node scheme's nodes (start, B1, ½, B3,
+    /// end) of a step of length h from `tr0`: rotations by the table's angles when the motion
+    /// is harmonic, else direct.
+    pub(super) fn node_trigs(&self, tab: &Table, tr0: Trig, h: f64) -> [Trig; 5] {
+        let t0 = tr0.t;
+        std::array::from_fn(|p| {
+            if p == 0 {
+                tr0
+            } else if self.big.is_some() {
+                let (sh, ch) = tab.rot[NODES8[p - 1]];
+                Trig {
+                    t: t0 + THETA8[p] * h,
+                    s: tr0.s * ch + tr0.c * sh,
+                    c: tr0.c * ch - tr0.s * sh,
+                }
+            } else {
+                self.gm.trig(t0 + THETA8[p] * h)
+            }
+        })
+    }
+
+    /// What every accepted contact step does last, whatever its path: the step's length kept
+    /// for the next while in contact, the clock of sin Ωt, cos Ωt, the trace (tests) and the
+    /// observation.
+    pub(super) fn close_contact_step(
+        &mut self,
+        t0: f64,
+        h: f64,
+        t_end: f64,
+        end_trig: Trig,
+        start: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+        err: f64,
+    ) {
         self.last_h = if self.in_contact() { h } else { 0.0 };
         self.stats.steps += 1;
         // sin, cos at the end: the rotation to the end node (trs[4]), evaluated directly
@@ -957,7 +983,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // rotations' rounding, about an ulp each, cannot accumulate)
         self.contact_sync += 1;
         if self.big.is_some() && self.contact_sync < SYNC_CONTACT && t_end == t0 + h {
-            self.trig_memo = Trig { t: t_end, ..trs[4] };
+            self.trig_memo = Trig {
+                t: t_end,
+                ..end_trig
+            };
         } else {
             self.contact_sync = 0;
         }
@@ -965,7 +994,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.since_sync = 1;
         if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
             // (a row's passive levels: their free flight's end, both schemes')
-            let companion = (0..nl)
+            let companion = (0..self.nl)
                 .map(|kk| {
                     let p = self.sys.levels[kk].pair;
                     if self.act[p] || self.act[p + 1] {
@@ -983,7 +1012,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 onset,
                 q1: self.q.clone(),
                 v1: self.v.clone(),
-                err: trial.err,
+                err,
                 kink: self.kink,
                 z0: Vec::new(),
                 z1: Vec::new(),
@@ -995,7 +1024,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
 }
 
 /// Contact steps between direct evaluations of sin Ωt, cos Ωt (rotations in between).
-pub(super) const SYNC_CONTACT: u32 = 16;
+const SYNC_CONTACT: u32 = 16;
 
 /// Where a recorded motion's contact steps stand on the piece's dyadic grid: grid step `base`
 /// (of the piece's grid steps hh, from its start `start`) and the [`DyadicWalk`] inside it at

@@ -11,7 +11,6 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::contact::SYNC_CONTACT;
 use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
@@ -195,25 +194,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
         };
-        let start = self
-            .trace
-            .is_some()
-            .then(|| (self.q.clone(), self.v.clone(), self.onset.clone()));
-        // sin, cos at the 5-node scheme's nodes (start, B1, ½, B3, end)
-        let trs: [Trig; 5] = std::array::from_fn(|p| {
-            if p == 0 {
-                tr0
-            } else if self.big.is_some() {
-                let (sh, ch) = tab.rot[NODES8[p - 1]];
-                Trig {
-                    t: t0 + THETA8[p] * h,
-                    s: tr0.s * ch + tr0.c * sh,
-                    c: tr0.c * ch - tr0.s * sh,
-                }
-            } else {
-                self.gm.trig(t0 + THETA8[p] * h)
-            }
-        });
+        let start = self.trace_start();
+        let trs = self.node_trigs(tab, tr0, h);
         let f: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
         // dense output where the nodal forces peak inside the step
         let inner = f[1].max(f[2]).max(f[3]);
@@ -404,35 +386,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let kt = lv.force.tangent_stiffness(st.delta);
             self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[0] * h * h);
         }
-        self.last_h = if self.in_contact() { h } else { 0.0 };
-        self.stats.steps += 1;
-        // sin, cos at the end from the step's rotation, evaluated directly every SYNC_CONTACT
-        // steps and where the end was snapped to a span's end
-        self.contact_sync += 1;
-        if self.big.is_some() && self.contact_sync < SYNC_CONTACT && t_end == t0 + h {
-            self.trig_memo = Trig { t: t_end, ..trs[4] };
-        } else {
-            self.contact_sync = 0;
-        }
-        self.trig_now = self.exact_trig(self.t);
-        self.since_sync = 1;
-        if let (Some(trace), Some((q0, v0, onset))) = (self.trace.as_mut(), start) {
-            trace.push(StepTrace {
-                t: t0,
-                h,
-                q0,
-                v0,
-                onset,
-                q1: self.q.clone(),
-                v1: self.v.clone(),
-                err: trial.err,
-                kink: self.kink,
-                z0: Vec::new(),
-                z1: Vec::new(),
-                companion: vec![self.nodal6[2]],
-            });
-        }
-        self.observe();
+        self.close_contact_step(t0, h, t_end, trs[4], start, trial.err);
     }
 }
 
