@@ -33,6 +33,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+mod accept;
 mod active;
 mod contact;
 mod free;
