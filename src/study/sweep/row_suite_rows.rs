@@ -64,10 +64,6 @@ pub const PER_LEVEL: [&str; 1] = ["required_separation"];
 /// The last columns: the self-check (as in a single run's row).
 pub const TAIL: [&str; 2] = ["check_max_change", "converged"];
 
-/// The `converged` value of a row not self-checked (`results::UNCHECKED`: `results` reads
-/// these rows, so this file does not import it).
-const UNCHECKED: &str = "unchecked";
-
 /// The columns of a row suite's results row after `status`, for a row whose pair p (0-based)
 /// has `pair_levels[p]` contact levels (N − 1 pairs).
 pub fn columns(pair_levels: &[usize]) -> Vec<String> {
@@ -103,33 +99,6 @@ pub fn pair_levels_of(names: &[String]) -> Option<Vec<usize>> {
         }
     }
     (columns(&levels) == names).then_some(levels)
-}
-
-/// Is `name` a column of text (not a number) of a row suite's row?
-pub fn is_text(name: &str) -> bool {
-    matches!(name, "statistic" | "sufficient" | "converged") || name.ends_with("_sufficient")
-}
-
-/// A field of a row suite's row read back: `true`/`false` columns as 1/0, `converged` as 1, 0
-/// or NaN (`unchecked`), `statistic` as NaN (it is text), `check_max_change` empty as NaN,
-/// every other field a number. `None`: not a valid value of the column.
-pub fn parse(name: &str, x: &str) -> Option<f64> {
-    match name {
-        "statistic" => matches!(x, "mean" | "max").then_some(f64::NAN),
-        "converged" => match x {
-            "true" => Some(1.0),
-            "false" => Some(0.0),
-            UNCHECKED => Some(f64::NAN),
-            _ => None,
-        },
-        "check_max_change" if x.is_empty() => Some(f64::NAN),
-        n if is_text(n) => match x {
-            "true" => Some(1.0),
-            "false" => Some(0.0),
-            _ => None,
-        },
-        _ => x.parse().ok(),
-    }
 }
 
 /// The fields of a row suite's row ([`columns`]), formatted as the results table writes
@@ -177,12 +146,8 @@ pub fn fields(run: &RowSuiteRun, check: bool) -> Vec<String> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::suite_rows::parse;
     use super::*;
-
-    #[test]
-    fn unchecked_is_the_single_rows_value() {
-        assert_eq!(UNCHECKED, super::super::results::UNCHECKED);
-    }
 
     /// The columns of a row of three whose pairs have 2 and 1 levels, in order, read back to
     /// the levels, and each column's kind read back.

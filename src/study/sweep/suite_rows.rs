@@ -66,9 +66,10 @@ impl RowKind {
     pub fn is_text(&self, name: &str) -> bool {
         match self {
             RowKind::Single => false,
-            RowKind::Suite { .. } => is_text(name),
+            // (a row suite's text columns are a pair suite's: `statistic`, `sufficient`,
+            // `converged` and every `…_sufficient`, with the same values)
+            RowKind::Suite { .. } | RowKind::RowSuite { .. } => is_text(name),
             RowKind::Row { .. } => super::row_columns::is_text(name),
-            RowKind::RowSuite { .. } => super::row_suite_rows::is_text(name),
         }
     }
 
@@ -77,9 +78,8 @@ impl RowKind {
     pub fn parse(&self, name: &str, x: &str) -> Option<f64> {
         match self {
             RowKind::Single => x.parse().ok(),
-            RowKind::Suite { .. } => parse(name, x),
+            RowKind::Suite { .. } | RowKind::RowSuite { .. } => parse(name, x),
             RowKind::Row { .. } => super::row_columns::parse(name, x),
-            RowKind::RowSuite { .. } => super::row_suite_rows::parse(name, x),
         }
     }
 
