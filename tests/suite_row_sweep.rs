@@ -15,15 +15,17 @@
 //!
 //! The records are the bundled ones (examples/records), cut to a few seconds.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use common::pounding_here as pounding;
+use common::{ok, s};
 
 use pounding::study::sweep::Sweep;
 use pounding::study::sweep::results::{header, parse_csv_line};
 use pounding::study::sweep::run::compute_case;
-
-const BIN: &str = env!("CARGO_BIN_EXE_pounding");
 
 fn records_dir() -> String {
     format!("{}/examples/records/", env!("CARGO_MANIFEST_DIR"))
@@ -111,24 +113,6 @@ fn num(row: &BTreeMap<String, String>, k: &str) -> f64 {
         .unwrap_or_else(|| panic!("no column {k}"))
         .parse()
         .unwrap_or_else(|_| panic!("{k} = {:?}", row[k]))
-}
-
-fn pounding(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "failed: {}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// A row whose second gap never closes (10 m at 10.5 m; C a copy of A, so that the row's

@@ -19,7 +19,9 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use common::pounding_here as pounding;
+use common::{ok, s};
 
 use pounding::study::sweep::Sweep;
 use pounding::study::sweep::results::parse_csv_line;
@@ -111,24 +113,6 @@ fn suite(files: &[&str], scaling: &str) -> String {
 const EC8: &str =
     r#"{ rule = "ec8", target = { spectrum = "ec8", ag = 2.5, ground_type = "C", type = 1 } }"#;
 const NONE: &str = r#"{ rule = "none" }"#;
-
-fn pounding(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "failed: {}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 /// The rows of a results table as maps column → field.
 fn table(csv: &str) -> Vec<std::collections::BTreeMap<String, String>> {

@@ -3,7 +3,9 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use common::pounding_here as pounding;
+use common::{ok, s};
 
 const BIN: &str = env!("CARGO_BIN_EXE_pounding");
 const PAPER_C: &str = include_str!("../examples/paper-c.toml");
@@ -18,24 +20,6 @@ fn write(path: &Path, text: &str) -> PathBuf {
     }
     std::fs::write(path, text).unwrap();
     path.to_path_buf()
-}
-
-fn pounding(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn ok(out: &Output) -> String {
-    assert!(
-        out.status.success(),
-        "failed: {}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// A sweep of `n1 × 3` cases over period ratio and PGA.

@@ -252,6 +252,32 @@ pub fn pounding(args: &[&str], cwd: &Path) -> Output {
         .expect("the binary runs")
 }
 
+/// The `pounding` binary run with `args` in the tests' working directory (the repository's
+/// root).
+pub fn pounding_here(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// The standard output of a run that must have succeeded (else its stdout and stderr in the
+/// failure's message).
+pub fn ok(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "failed: {}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// A path as a command line's argument.
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
 /// A scenario from TOML `text`, named `file` in its messages, its paths relative to the
 /// repository's root; the error as its message.
 pub fn scenario_named(text: &str, file: &str) -> Result<Scenario, String> {
