@@ -572,22 +572,8 @@ fn row_suite_sweeps_resume_shard_merge_and_refuse_other_journals() {
     );
 
     // shards
-    let parts = d.path().join("parts");
-    for k in 1..=2 {
-        ok(&pounding(&[
-            "sweep",
-            s(&sw),
-            "--out",
-            s(&parts),
-            "--shard",
-            &format!("{k}/2"),
-            "-q",
-            "--no-plot",
-        ]));
-    }
-    let merged = d.path().join("merged.csv");
-    ok(&pounding(&["merge", s(&merged), s(&parts), "-q"]));
-    assert_eq!(std::fs::read_to_string(&merged).unwrap(), reference);
+    let merged = common::sharded_and_merged(&sw, d.path(), 2, &["--no-plot"]);
+    assert_eq!(merged, reference);
 
     // the pictures
     let plots = full.join("plots");

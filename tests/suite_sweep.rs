@@ -416,21 +416,8 @@ fn killed_suite_sweep_resumes_and_shards_merge() {
     );
 
     // shards
-    let parts = d.path().join("parts");
-    for k in 1..=3 {
-        ok(&pounding(&[
-            "sweep",
-            s(&sw),
-            "--out",
-            s(&parts),
-            "--shard",
-            &format!("{k}/3"),
-            "-q",
-        ]));
-    }
-    let merged = d.path().join("merged.csv");
-    ok(&pounding(&["merge", s(&merged), s(&parts), "-q"]));
-    assert_eq!(std::fs::read_to_string(&merged).unwrap(), reference);
+    let merged = common::sharded_and_merged(&sw, d.path(), 3, &[]);
+    assert_eq!(merged, reference);
 
     // the pictures: per level the design separation, the margin and the verdict
     let plots = full.join("plots");

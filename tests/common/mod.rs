@@ -273,6 +273,29 @@ pub fn ok(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
+/// The sweep `sweep` run as `shards` shards (`--shard k/shards`, `extra` arguments each) into
+/// `dir/parts`, then joined by `pounding merge` into `dir/merged.csv`: the merged table's text.
+pub fn sharded_and_merged(sweep: &Path, dir: &Path, shards: usize, extra: &[&str]) -> String {
+    let parts = dir.join("parts");
+    for k in 1..=shards {
+        let shard = format!("{k}/{shards}");
+        let mut args = vec![
+            "sweep",
+            s(sweep),
+            "--out",
+            s(&parts),
+            "--shard",
+            &shard,
+            "-q",
+        ];
+        args.extend_from_slice(extra);
+        ok(&pounding_here(&args));
+    }
+    let merged = dir.join("merged.csv");
+    ok(&pounding_here(&["merge", s(&merged), s(&parts), "-q"]));
+    std::fs::read_to_string(&merged).unwrap()
+}
+
 /// A path as a command line's argument.
 pub fn s(p: &Path) -> &str {
     p.to_str().unwrap()
