@@ -258,7 +258,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
             let r = sys.coupling_modes(k);
-            let rows: [&[[f64; 4]]; 6] = std::array::from_fn(|i| tab.cprop_at(sys, k, i));
+            let rows: [&[[f64; 4]]; 6] = tab.cprop_rows(sys, k);
             let mut acc = [(0.0, 0.0); 6];
             for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
                 for (s, row) in acc.iter_mut().zip(&rows) {
