@@ -553,12 +553,22 @@ impl Table {
     }
 
     /// Level k's coupled propagators at node i of [`NODES`], over `sys.coupling_modes(k)`
-    /// (the same system the table was filled for).
-    #[inline]
+    /// (the same system the table was filled for; the steps take all six at once,
+    /// [`Table::cprop_rows`]).
+    #[cfg(test)]
     pub(super) fn cprop_at(&self, sys: &System, k: usize, i: usize) -> &[[f64; 4]] {
         let w = sys.coupling_modes(k).len();
         let at = self.cstart[k] + i * w;
         &self.cprop[at..at + w]
+    }
+
+    /// Level k's coupled propagators at the six nodes of [`NODES`] (see [`Table::cprop_at`]),
+    /// in one call.
+    #[inline]
+    pub(super) fn cprop_rows(&self, sys: &System, k: usize) -> [&[[f64; 4]]; 6] {
+        let w = sys.coupling_modes(k).len();
+        let block = &self.cprop[self.cstart[k]..self.cstart[k] + 6 * w];
+        std::array::from_fn(|i| &block[i * w..(i + 1) * w])
     }
 
     /// The coupled propagators of a pair's single contact level (`n` modes, all coupled):
@@ -623,10 +633,22 @@ pub(super) struct Newton {
     /// step as far as the iterate goes, it weighs on no level's state (its products with the
     /// weights are zeros, skipped).
     quiet: Vec<bool>,
-    /// The unknowns of the nodes in contact, and their reduced system.
+    /// The unknowns of the nodes in contact, each one's place among them, and their reduced
+    /// system.
     act: Vec<usize>,
+    pos: Vec<usize>,
     red: Vec<f64>,
     red_rhs: Vec<f64>,
+    /// Of the level a pass is at, the levels of its band that carry force: where their
+    /// weights' block starts in the level table, and where their forces start.
+    loaded: Vec<(usize, usize)>,
+}
+
+/// The larger of a running maximum `s` (never NaN) and `x`, as `s.max(x)` gives it (a NaN `x`
+/// leaves `s`), in one comparison instead of `f64::max`'s NaN handling.
+#[inline(always)]
+fn fmax(s: f64, x: f64) -> f64 {
+    if x > s { x } else { s }
 }
 
 /// Why a collocation solve failed (the step is then retried shorter).
@@ -688,33 +710,56 @@ pub(super) fn solve<const S: usize>(
         let mut scale: f64 = 0.0;
         for &k in levels {
             let law = &sys.levels[k].force;
-            let fk = &force[k * S..(k + 1) * S];
             let band = sys.sharing_levels(k);
+            let first = sys.band_slot(k, band.start);
+            // (the band's levels in order, those out of contact throughout skipped: the same
+            // sums as over every level of the band, term for term)
+            let Newton {
+                rhs,
+                slopes,
+                free,
+                quiet,
+                loaded,
+                ..
+            } = &mut *scratch;
+            loaded.clear();
+            for l in band.clone() {
+                if !quiet[l] {
+                    loaded.push(((first + (l - band.start)) * m * S, l * S));
+                }
+            }
+            let rows = k * m..(k + 1) * m;
+            let (rhs, slopes, free) = (
+                &mut rhs[rows.clone()],
+                &mut slopes[rows.clone()],
+                &mut free[rows.clone()],
+            );
+            let (df, nd) = (&dfree[rows.clone()], &mut nodal[rows]);
+            let fk = &force[k * S + 1..(k + 1) * S];
+            let ok = onset[k];
             for p in 0..m {
-                let (mut d, mut dd) = dfree[k * m + p];
-                for l in band.clone() {
-                    if scratch.quiet[l] {
-                        continue;
-                    }
-                    let base = (sys.band_slot(k, l) * m + p) * S;
-                    let (row, fl) = (&w[base..base + S], &force[l * S..(l + 1) * S]);
+                let (mut d, mut dd) = df[p];
+                for &(at, fat) in loaded.iter() {
+                    let row: &[(f64, f64); S] = w[at + p * S..at + (p + 1) * S]
+                        .try_into()
+                        .expect("S weights");
+                    let fl: &[f64; S] = force[fat..fat + S].try_into().expect("S forces");
                     for q in 0..S {
                         d -= row[q].0 * fl[q];
                         dd -= row[q].1 * fl[q];
                     }
                 }
-                nodal[k * m + p] = (d, dd);
-                let v0 = episode_v0(onset[k], dd);
+                nd[p] = (d, dd);
+                let v0 = episode_v0(ok, dd);
                 let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
-                let r = k * m + p;
-                let f = fk[p + 1];
-                scratch.rhs[r] = phi - f;
-                scratch.slopes[r] = (kd, kv);
-                scratch.free[r] = kd == 0.0 && kv == 0.0;
-                scale = scale.max(phi.abs()).max(f.abs());
+                let f = fk[p];
+                rhs[p] = phi - f;
+                slopes[p] = (kd, kv);
+                free[p] = kd == 0.0 && kv == 0.0;
+                scale = fmax(fmax(scale, phi.abs()), f.abs());
             }
         }
-        let residual = scratch.rhs.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let residual = scratch.rhs.iter().fold(0.0f64, |a, x| fmax(a, x.abs()));
         if !residual.is_finite() {
             return Err(NoConvergence);
         }
@@ -729,7 +774,7 @@ pub(super) fn solve<const S: usize>(
             for p in 0..m {
                 let d = scratch.rhs[k * m + p];
                 force[k * S + p + 1] += d;
-                change = change.max(d.abs());
+                change = fmax(change, d.abs());
             }
         }
         // converged: the update is below the tolerance (the residual after it is of the order
@@ -811,9 +856,9 @@ fn solve_one<const S: usize>(
             let f = force[p + 1];
             rhs[p] = phi - f;
             slopes[p] = (kd, kv);
-            scale = scale.max(phi.abs()).max(f.abs());
+            scale = fmax(fmax(scale, phi.abs()), f.abs());
         }
-        let residual = rhs[..m].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let residual = rhs[..m].iter().fold(0.0f64, |a, x| fmax(a, x.abs()));
         if !residual.is_finite() {
             return Err(NoConvergence);
         }
@@ -862,7 +907,7 @@ fn solve_one<const S: usize>(
             }
             rhs[r] = x / jac[r][r];
             force[r + 1] += rhs[r];
-            change = change.max(rhs[r].abs());
+            change = fmax(change, rhs[r].abs());
         }
         if change <= tol * scale || (change <= 1e-11 * scale && change >= 0.5 * last) {
             return Ok(iter);
@@ -902,47 +947,63 @@ fn solve_touching<const S: usize>(
     dim: usize,
 ) -> bool {
     let m = S - 1;
-    s.act.clear();
-    s.act.extend((0..dim).filter(|&r| !s.free[r]));
-    let na = s.act.len();
+    let Newton {
+        rhs,
+        slopes,
+        free,
+        act,
+        pos,
+        red,
+        red_rhs,
+        ..
+    } = s;
+    act.clear();
+    pos.clear();
+    pos.resize(dim, 0);
+    for r in 0..dim {
+        if !free[r] {
+            pos[r] = act.len();
+            act.push(r);
+        }
+    }
+    let na = act.len();
     if na == 0 {
         return true;
     }
-    s.red.clear();
-    s.red.resize(na * na, 0.0);
-    s.red_rhs.resize(na, 0.0);
-    for i in 0..na {
-        let r = s.act[i];
+    red.clear();
+    red.resize(na * na, 0.0);
+    red_rhs.resize(na, 0.0);
+    for (i, &r) in act.iter().enumerate() {
         let (k, p) = (r / m, r % m);
-        let (kd, kv) = s.slopes[r];
-        // the row's entry at unknown c = l·m + q
-        let entry = |c: usize| {
-            let (l, q) = (c / m, c % m);
-            let x = w[(sys.band_slot(k, l) * m + p) * S + q + 1];
-            let e = kd * x.0 + kv * x.1;
-            if c == r { e + 1.0 } else { e }
-        };
+        let (kd, kv) = slopes[r];
         let band = sys.sharing_levels(k);
-        let cols = band.start * m..band.end * m;
-        let mut b = s.rhs[r];
-        for c in cols.clone() {
-            if s.free[c] {
-                b -= entry(c) * s.rhs[c];
+        let first = sys.band_slot(k, band.start);
+        // one pass over the row's unknowns c = l·m + q of its band, in order: a node out of
+        // contact moves the right-hand side by its entry times its (known) update, a node in
+        // contact takes its entry into the reduced row
+        let mut b = rhs[r];
+        let row = &mut red[i * na..(i + 1) * na];
+        for (slot, l) in (first..).zip(band) {
+            let at = (slot * m + p) * S;
+            let ws = &w[at + 1..at + S];
+            for (q, x) in ws.iter().enumerate() {
+                let c = l * m + q;
+                let e = kd * x.0 + kv * x.1;
+                let e = if c == r { e + 1.0 } else { e };
+                if free[c] {
+                    b -= e * rhs[c];
+                } else {
+                    row[pos[c]] = e;
+                }
             }
         }
-        s.red_rhs[i] = b;
-        for j in 0..na {
-            let c = s.act[j];
-            if cols.contains(&c) {
-                s.red[i * na + j] = entry(c);
-            }
-        }
+        red_rhs[i] = b;
     }
-    if !lu_solve(&mut s.red, &mut s.red_rhs, na) {
+    if !lu_solve(red, red_rhs, na) {
         return false;
     }
-    for (i, &r) in s.act.iter().enumerate() {
-        s.rhs[r] = s.red_rhs[i];
+    for (i, &r) in act.iter().enumerate() {
+        rhs[r] = red_rhs[i];
     }
     true
 }

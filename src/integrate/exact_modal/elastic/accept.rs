@@ -201,9 +201,24 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             q1s[j] = q1;
             v1s[j] = v1;
-            for (c, pr) in cj.iter().zip(&mut proj[holding]) {
-                pr.0 += c * q1;
-                pr.1 += c * v1;
+            if row {
+                for (c, pr) in cj.iter().zip(&mut proj[holding]) {
+                    pr.0 += c * q1;
+                    pr.1 += c * v1;
+                }
+            }
+        }
+        if !row {
+            // (a pair: each level's projections as one sum over the modes, in the same order
+            // as the per-mode accumulation of a row above, so the same bits)
+            for (k, pr) in proj.iter_mut().enumerate() {
+                let c = &self.sys.coupling(k)[..n];
+                let (mut a, mut b) = (0.0, 0.0);
+                for j in 0..n {
+                    a += c[j] * q1s[j];
+                    b += c[j] * v1s[j];
+                }
+                *pr = (a, b);
             }
         }
         // the tallies, one loop per kind of piece

@@ -187,19 +187,21 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 // particular solution A + Bτ + Cτ² per mode, projected per level
                 let mut proj = [[0.0; 3]; 8];
                 let wide = nl > proj.len();
+                let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
+                let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
+                let cpl = &self.cpl_t[..n * nl];
                 for j in 0..n {
                     let c = gm.poly_load(j, piece, t0);
-                    self.cpoly[j] = c;
-                    let (pa, pb, pc) = poly_coefficients(gm.inv_w2[j], gm.damp[j], &c);
-                    self.pcoef[j] = [pa, pb, pc];
+                    cpoly[j] = c;
+                    let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
+                    pcoef[j] = [pa, pb, pc];
                     x0s[j] = q[j] - pa;
                     y0s[j] = v[j] - pb;
                     if !wide {
-                        for k in 0..nl {
-                            let ck = self.cpl_t[j * nl + k];
-                            proj[k][0] += ck * pa;
-                            proj[k][1] += ck * pb;
-                            proj[k][2] += ck * pc;
+                        for (pr, &ck) in proj.iter_mut().zip(&cpl[j * nl..(j + 1) * nl]) {
+                            pr[0] += ck * pa;
+                            pr[1] += ck * pb;
+                            pr[2] += ck * pc;
                         }
                     }
                 }
@@ -258,7 +260,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
             let r = sys.coupling_modes(k);
-            let rows: [&[[f64; 4]]; 6] = std::array::from_fn(|i| tab.cprop_at(sys, k, i));
+            let rows: [&[[f64; 4]]; 6] = tab.cprop_rows(sys, k);
             let mut acc = [(0.0, 0.0); 6];
             for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
                 for (s, row) in acc.iter_mut().zip(&rows) {
