@@ -143,6 +143,45 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
     }
 
+    /// The next grid point after the current time (free flight's, see `free_segment`): the
+    /// piece's equal steps no longer than dt.
+    pub(super) fn next_grid_point(&self) -> f64 {
+        let (_, start, seg_end) = self.piece();
+        let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
+        let i = ((self.t - start) / hh + 1e-9).floor() + 1.0;
+        if i >= steps { seg_end } else { start + i * hh }
+    }
+
+    /// Observe the end of an accepted contact step. A row tells the observer which
+    /// structures the step carried ([`Observer::observe_stepped`]): the passive ones moved in
+    /// exact free flight and may be observed on the grid only, as free flight is, and every
+    /// structure is seen at the first observation at or past each grid point (a recorded
+    /// motion's contact steps end on its grid points; a harmonic one's may pass them).
+    pub(super) fn observe_step(&mut self) {
+        if !self.row {
+            return self.observe();
+        }
+        let grid = self.t >= self.obs_grid - 1e-9 * self.dt || self.t >= self.duration;
+        self.obs.observe_stepped(
+            self.sys,
+            &StepView {
+                t: self.t,
+                q: &self.q,
+                v: &self.v,
+                levels: &self.states,
+                z: &[],
+                tally: &self.tally,
+            },
+            &Stepped {
+                active: &self.act,
+                grid,
+            },
+        );
+        if grid {
+            self.obs_grid = self.next_grid_point();
+        }
+    }
+
     /// After a trial: if it reaches a level at the edge of the active structures (δ > 0 at a
     /// node of either scheme; their nodal states are the trial's), that level's passive
     /// structure joins the step (true: redo the trial).
