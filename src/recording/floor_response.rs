@@ -715,9 +715,11 @@ impl FloorRecorder {
     /// `stepped.active` only (`None`: every structure). A passive structure moved in exact
     /// free flight: it is observed at the grid points (`stepped.grid`) and wherever a history
     /// sample is due, so that its peaks between them come from the cubic Hermite interpolant
-    /// over the free flight, as a pair's free flight has them; one that a step carries again
-    /// is first observed at the last observation it skipped ([`Saved`]). Its peak
-    /// accelerations are sampled where it is observed.
+    /// over the free flight, as a pair's free flight has them; one that a step carries again,
+    /// or whose history sample falls inside the interval since the last observation, is first
+    /// observed at the last observation it skipped ([`Saved`]: the samples are then
+    /// interpolated over the same interval as every structure's). Its peak accelerations are
+    /// sampled where it is observed.
     pub(crate) fn observe_part(
         &mut self,
         system: &System,
@@ -726,13 +728,17 @@ impl FloorRecorder {
         stepped: Option<&crate::integrate::Stepped>,
     ) {
         let n = system.len();
-        let due =
-            sink.is_some() && self.next_sample as f64 * self.interval <= s.t + 1e-9 * self.interval;
+        let (tau, eps) = (
+            self.next_sample as f64 * self.interval,
+            1e-9 * self.interval,
+        );
+        let due = sink.is_some() && tau <= s.t + eps;
+        // (a sample inside the interval since the last observation: every structure is
+        // interpolated over that interval, as history.csv's sampler does)
+        let inside = due && tau < s.t - eps;
         let active = stepped.filter(|p| !p.grid && !due).map(|p| p.active);
         let full = self.full;
-        if let Some(active) = stepped.map(|p| p.active)
-            && self.saved.valid
-        {
+        if self.saved.valid {
             let sv = &self.saved;
             let at = At {
                 t: sv.t,
@@ -743,8 +749,9 @@ impl FloorRecorder {
                 levels: &sv.levels,
                 z: &sv.z,
             };
-            for (st, &a) in self.stations.iter_mut().zip(active) {
-                if a && st.last_t.is_some_and(|t| t < sv.t) {
+            for (i, st) in self.stations.iter_mut().enumerate() {
+                let carried = stepped.is_some_and(|p| p.active[i]);
+                if (carried || inside) && st.last_t.is_some_and(|t| t < sv.t) {
                     st.observe(system, &at, full);
                     st.hold_now();
                 }
