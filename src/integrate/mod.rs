@@ -317,6 +317,28 @@ pub trait Observer {
     /// interior nodes of a contact step whose force peaks inside it: dense output of the
     /// collocation, with the tallies integrated to that instant).
     fn observe(&mut self, system: &System, step: &StepView);
+
+    /// [`Observer::observe`] at the end of a row's contact step (or at one of its interior
+    /// nodes) that carried only the structures `stepped.active` under contact forces: the
+    /// others (passive) moved in exact free flight, no force acting on them, since their
+    /// last observation at a grid point or in a step that carried them. An observer may
+    /// leave a passive structure unobserved here and take it at its next observation
+    /// (`stepped.grid`: every structure must be seen now), as free flight is observed on the
+    /// grid. The default observes everything.
+    fn observe_stepped(&mut self, system: &System, step: &StepView, stepped: &Stepped) {
+        let _ = stepped;
+        self.observe(system, step);
+    }
+}
+
+/// Which structures a row's contact step carried (see [`Observer::observe_stepped`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Stepped<'a> {
+    /// Per structure (row order): whether the step carried it under contact forces.
+    pub active: &'a [bool],
+    /// Whether this observation is the first at or past a grid point (or the run's end):
+    /// every structure is to be observed.
+    pub grid: bool,
 }
 
 /// Counters of one integration.

@@ -31,8 +31,14 @@ use serde::Serialize;
 
 use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
-use crate::model::system::System;
+use crate::model::system::{LevelState, System};
 use crate::numerics::hermite::{Basis, hermite_abs_max};
+
+/// `dst` = `src` (resized: no allocation once grown).
+fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
+    dst.clear();
+    dst.extend_from_slice(src);
+}
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
 const HERMITE_REACH: f64 = 4.0 / 27.0;
@@ -230,6 +236,41 @@ struct Stations {
     abs_now: Vec<f64>,
     hold: Vec<f64>,
     peaks: Vec<FloorPeaks>,
+    /// The time of this structure's last observation and the interval before it, s (a row's
+    /// passive structure is observed on the grid only: see [`FloorRecorder::observe_part`]).
+    last_t: Option<f64>,
+    h: Option<f64>,
+    /// Whether the current observation saw this structure.
+    fresh: bool,
+}
+
+/// One observation's data as a structure's stations read it: the time (s), the modal state and
+/// accelerations, the ground's acceleration (m/s²), the levels' states and the yielding
+/// storeys' z.
+struct At<'v> {
+    t: f64,
+    q: &'v [f64],
+    v: &'v [f64],
+    accel: &'v [f64],
+    ag: f64,
+    levels: &'v [LevelState],
+    z: &'v [f64],
+}
+
+/// A copy of the last observation at which a row's structures were left unobserved (valid:
+/// there was one, and it is the last observation): a structure skipped there that the next
+/// step carries under contact forces is observed at it first, so that its interpolants never
+/// span a step with forces and the free flight before it.
+#[derive(Debug, Clone, Default)]
+struct Saved {
+    valid: bool,
+    t: f64,
+    ag: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    accel: Vec<f64>,
+    levels: Vec<LevelState>,
+    z: Vec<f64>,
 }
 
 impl Stations {
@@ -362,6 +403,196 @@ impl Stations {
             work: vec![0.0; 6 * ns],
             abs_now: vec![0.0; ns],
             hold: vec![0.0; ns],
+            last_t: None,
+            h: None,
+            fresh: false,
+        }
+    }
+
+    /// Observe this structure at `at` (its interval: since its last observation); `full`:
+    /// every station takes the full update (tests).
+    #[inline]
+    fn observe(&mut self, system: &System, at: &At, full: bool) {
+        let h = self.last_t.map(|t0| at.t - t0).filter(|h| *h > 0.0);
+        self.last_t = Some(at.t);
+        self.h = h;
+        let st = self;
+        let ag = at.ag;
+        let nm = st.modes;
+        let ns = st.heights.len();
+        let (q, v, a) = (
+            &at.q[st.offset..st.offset + nm],
+            &at.v[st.offset..st.offset + nm],
+            &at.accel[st.offset..st.offset + nm],
+        );
+        // every station's sums over the modes, formed mode by mode: the runs over the
+        // stations are contiguous (`[mode·stations + station]`) and vectorise
+        let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
+        let (ud, rest) = rest.split_at_mut(ns);
+        let (ua, rest) = rest.split_at_mut(ns);
+        let (vf, rest) = rest.split_at_mut(ns);
+        let (vfd, inertia) = rest.split_at_mut(ns);
+        let phi = &st.phi[..ns * nm];
+        {
+            let c = &phi[..ns];
+            let (q0, v0, a0) = (q[0], v[0], a[0]);
+            for f in 0..ns {
+                u[f] = c[f] * q0;
+                ud[f] = c[f] * v0;
+                ua[f] = c[f] * a0;
+            }
+        }
+        for j in 1..nm {
+            let c = &phi[j * ns..(j + 1) * ns];
+            let (qj, vj, aj) = (q[j], v[j], a[j]);
+            for f in 0..ns {
+                u[f] += c[f] * qj;
+                ud[f] += c[f] * vj;
+                ua[f] += c[f] * aj;
+            }
+        }
+        // the storey force from the modes' equivalent static forces (springs: at the end)
+        let rows = match &st.force {
+            StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
+            StoreyForce::Springs(_) => None,
+        };
+        if let Some(rows) = rows {
+            {
+                let c = &rows[..ns];
+                for f in 0..ns {
+                    vf[f] = c[f] * q[0];
+                    vfd[f] = c[f] * v[0];
+                }
+            }
+            for j in 1..nm {
+                let c = &rows[j * ns..(j + 1) * ns];
+                let (qj, vj) = (q[j], v[j]);
+                for f in 0..ns {
+                    vf[f] += c[f] * qj;
+                    vfd[f] += c[f] * vj;
+                }
+            }
+        }
+        // the previous observation's (u, u̇) become the one before: swap, then overwrite
+        std::mem::swap(&mut st.prev, &mut st.before);
+        let abs = &mut st.abs_now[..ns];
+        let (mut below, mut below_rate, mut below_prev, mut below_prev_rate) = (0.0, 0.0, 0.0, 0.0);
+        // (every per-station slice cut to the stations once: no bounds check per station)
+        let (u, ud, ua) = (&u[..ns], &ud[..ns], &ua[..ns]);
+        let (vf, vfd, yields) = (&vf[..ns], &vfd[..ns], &st.yields[..ns]);
+        let (before, prev) = (&st.before[..ns], &mut st.prev[..ns]);
+        let (peaks, prev_force) = (&mut st.peaks[..ns], &mut st.prev_force[..ns]);
+        // Most observations change no station's peak: a first, lean pass tests each
+        // station's bounds ([`reach`]: the very test `refine` makes, and ≥ the end values
+        // `raise` compares) and the acceleration against its peaks, and only a station
+        // that can change a peak (or yields: its force needs its law) takes the full
+        // update, out of line. The peaks are exactly those of the full update at every
+        // station (the skipped updates are no-ops).
+        let has_rows = rows.is_some();
+        for f in 0..ns {
+            let (u, ud) = (u[f], ud[f]);
+            let (up, udp) = before[f];
+            let (d, dd, dp, ddp) = (
+                u - below,
+                ud - below_rate,
+                up - below_prev,
+                udp - below_prev_rate,
+            );
+            let a = ua[f] + ag;
+            abs[f] = a;
+            let p = &peaks[f];
+            // (`|` not `||`: every test is cheap, and branch-free is cheaper)
+            let need = full
+                | yields[f].is_some()
+                | (a.abs() > p.acceleration)
+                | match h {
+                    Some(h) => {
+                        (reach(up, udp, u, ud, h) > p.displacement)
+                            | (reach(dp, ddp, d, dd, h) > p.drift)
+                            | (has_rows && {
+                                let (v0, vd0) = prev_force[f];
+                                reach(v0, vd0, vf[f], vfd[f], h) > p.shear
+                            })
+                    }
+                    None => {
+                        (u.abs() > p.displacement)
+                            | (d.abs() > p.drift)
+                            | (has_rows && vf[f].abs() > p.shear)
+                    }
+                };
+            if need {
+                // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
+                // this drift and its z, or the modal rows' V
+                let force = match yields[f] {
+                    Some(k) => {
+                        let law = &system.hysteresis.storeys()[k];
+                        let z = at.z.get(k).copied().unwrap_or(0.0);
+                        Some((law.force(d, z), law.force_rate(dd, z)))
+                    }
+                    None => rows.map(|_| (vf[f], vfd[f])),
+                };
+                update_station(
+                    &mut peaks[f],
+                    &mut prev_force[f],
+                    (at.t, h),
+                    [(up, udp), (u, ud), (dp, ddp), (d, dd)],
+                    a,
+                    force,
+                );
+            } else if has_rows {
+                prev_force[f] = (vf[f], vfd[f]);
+            }
+            prev[f] = (u, ud);
+            (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
+        }
+        // the equilibrium of what is above (storey force and damping forces)
+        let nl = st.levels.min(at.levels.len());
+        match &st.equilibrium {
+            Equilibrium::Lumped(masses) => {
+                let mut v_above = 0.0;
+                for f in (0..ns).rev() {
+                    v_above -= masses[f] * abs[f];
+                    // contact forces acting at this floor
+                    for k in 0..nl {
+                        if st.above[f * st.levels + k] {
+                            v_above += st.signs[k] * at.levels[k].force;
+                        }
+                    }
+                    raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
+                }
+            }
+            Equilibrium::Continuous { m, integral, above } => {
+                let above = &above[..ns];
+                for f in 0..ns {
+                    inertia[f] = ag * above[f];
+                }
+                let integral = &integral[..ns * nm];
+                for j in 0..nm {
+                    let c = &integral[j * ns..(j + 1) * ns];
+                    let aj = a[j];
+                    for f in 0..ns {
+                        inertia[f] += c[f] * aj;
+                    }
+                }
+                for f in 0..ns {
+                    let mut v_sec = -m * inertia[f];
+                    for k in 0..nl {
+                        if st.above[f * st.levels + k] {
+                            v_sec += st.signs[k] * at.levels[k].force;
+                        }
+                    }
+                    raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
+                }
+            }
+        }
+    }
+
+    /// The accelerations of its last observation count towards the next history sample.
+    fn hold_now(&mut self) {
+        for f in 0..self.heights.len() {
+            if self.abs_now[f].abs() > self.hold[f].abs() {
+                self.hold[f] = self.abs_now[f];
+            }
         }
     }
 
@@ -390,7 +621,8 @@ pub struct FloorRecorder {
     row: Vec<f64>,
     /// Modal accelerations at the current observation (scratch).
     accel: Vec<f64>,
-    last_t: Option<f64>,
+    /// The last observation that left structures unobserved (a row's passive ones).
+    saved: Saved,
     /// Every station takes the full update at every observation (tests: the skip changes
     /// nothing).
     full: bool,
@@ -442,7 +674,7 @@ impl FloorRecorder {
             next_sample: 0,
             row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
-            last_t: None,
+            saved: Saved::default(),
             full: false,
         }
     }
@@ -476,9 +708,56 @@ impl FloorRecorder {
         s: &StepView,
         sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
     ) {
+        self.observe_part(system, s, sink, None);
+    }
+
+    /// [`FloorRecorder::observe`] of a row's contact step that carried the structures
+    /// `stepped.active` only (`None`: every structure). A passive structure moved in exact
+    /// free flight: it is observed at the grid points (`stepped.grid`) and wherever a history
+    /// sample is due, so that its peaks between them come from the cubic Hermite interpolant
+    /// over the free flight, as a pair's free flight has them; one that a step carries again,
+    /// or whose history sample falls inside the interval since the last observation, is first
+    /// observed at the last observation it skipped ([`Saved`]: the samples are then
+    /// interpolated over the same interval as every structure's). Its peak accelerations are
+    /// sampled where it is observed.
+    pub(crate) fn observe_part(
+        &mut self,
+        system: &System,
+        s: &StepView,
+        sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
+        stepped: Option<&crate::integrate::Stepped>,
+    ) {
         let n = system.len();
+        let (tau, eps) = (
+            self.next_sample as f64 * self.interval,
+            1e-9 * self.interval,
+        );
+        let due = sink.is_some() && tau <= s.t + eps;
+        // (a sample inside the interval since the last observation: every structure is
+        // interpolated over that interval, as history.csv's sampler does)
+        let inside = due && tau < s.t - eps;
+        let active = stepped.filter(|p| !p.grid && !due).map(|p| p.active);
+        let full = self.full;
+        if self.saved.valid {
+            let sv = &self.saved;
+            let at = At {
+                t: sv.t,
+                q: &sv.q,
+                v: &sv.v,
+                accel: &sv.accel,
+                ag: sv.ag,
+                levels: &sv.levels,
+                z: &sv.z,
+            };
+            for (i, st) in self.stations.iter_mut().enumerate() {
+                let carried = stepped.is_some_and(|p| p.active[i]);
+                if (carried || inside) && st.last_t.is_some_and(|t| t < sv.t) {
+                    st.observe(system, &at, full);
+                    st.hold_now();
+                }
+            }
+        }
         let (ag, vg) = system.ground.accel_velocity(s.t);
-        let h = self.last_t.map(|t0| s.t - t0).filter(|h| *h > 0.0);
         {
             let (la, lv) = (system.ground_load(), system.air_load());
             let (damp, w) = (system.damping_coefficients(), system.omega());
@@ -505,191 +784,44 @@ impl FloorRecorder {
                 }
             }
         }
-        let full = self.full;
-        for st in &mut self.stations {
-            let nm = st.modes;
-            let ns = st.heights.len();
-            let (q, v, a) = (
-                &s.q[st.offset..st.offset + nm],
-                &s.v[st.offset..st.offset + nm],
-                &self.accel[st.offset..st.offset + nm],
-            );
-            // every station's sums over the modes, formed mode by mode: the runs over the
-            // stations are contiguous (`[mode·stations + station]`) and vectorise
-            let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
-            let (ud, rest) = rest.split_at_mut(ns);
-            let (ua, rest) = rest.split_at_mut(ns);
-            let (vf, rest) = rest.split_at_mut(ns);
-            let (vfd, inertia) = rest.split_at_mut(ns);
-            let phi = &st.phi[..ns * nm];
-            {
-                let c = &phi[..ns];
-                let (q0, v0, a0) = (q[0], v[0], a[0]);
-                for f in 0..ns {
-                    u[f] = c[f] * q0;
-                    ud[f] = c[f] * v0;
-                    ua[f] = c[f] * a0;
-                }
+        let at = At {
+            t: s.t,
+            q: s.q,
+            v: s.v,
+            accel: &self.accel,
+            ag,
+            levels: s.levels,
+            z: s.z,
+        };
+        for (i, st) in self.stations.iter_mut().enumerate() {
+            st.fresh = active.is_none_or(|a| a[i]);
+            if st.fresh {
+                st.observe(system, &at, full);
             }
-            for j in 1..nm {
-                let c = &phi[j * ns..(j + 1) * ns];
-                let (qj, vj, aj) = (q[j], v[j], a[j]);
-                for f in 0..ns {
-                    u[f] += c[f] * qj;
-                    ud[f] += c[f] * vj;
-                    ua[f] += c[f] * aj;
-                }
+        }
+        match active {
+            // (a copy of this observation for the structures it skipped)
+            Some(_) => {
+                let sv = &mut self.saved;
+                sv.valid = true;
+                (sv.t, sv.ag) = (s.t, ag);
+                copy_into(&mut sv.q, s.q);
+                copy_into(&mut sv.v, s.v);
+                copy_into(&mut sv.accel, &self.accel);
+                sv.levels.clear();
+                sv.levels.extend_from_slice(s.levels);
+                copy_into(&mut sv.z, s.z);
             }
-            // the storey force from the modes' equivalent static forces (springs: at the end)
-            let rows = match &st.force {
-                StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
-                StoreyForce::Springs(_) => None,
-            };
-            if let Some(rows) = rows {
-                {
-                    let c = &rows[..ns];
-                    for f in 0..ns {
-                        vf[f] = c[f] * q[0];
-                        vfd[f] = c[f] * v[0];
-                    }
-                }
-                for j in 1..nm {
-                    let c = &rows[j * ns..(j + 1) * ns];
-                    let (qj, vj) = (q[j], v[j]);
-                    for f in 0..ns {
-                        vf[f] += c[f] * qj;
-                        vfd[f] += c[f] * vj;
-                    }
-                }
-            }
-            // the previous observation's (u, u̇) become the one before: swap, then overwrite
-            std::mem::swap(&mut st.prev, &mut st.before);
-            let abs = &mut st.abs_now[..ns];
-            let (mut below, mut below_rate, mut below_prev, mut below_prev_rate) =
-                (0.0, 0.0, 0.0, 0.0);
-            // (every per-station slice cut to the stations once: no bounds check per station)
-            let (u, ud, ua) = (&u[..ns], &ud[..ns], &ua[..ns]);
-            let (vf, vfd, yields) = (&vf[..ns], &vfd[..ns], &st.yields[..ns]);
-            let (before, prev) = (&st.before[..ns], &mut st.prev[..ns]);
-            let (peaks, prev_force) = (&mut st.peaks[..ns], &mut st.prev_force[..ns]);
-            // Most observations change no station's peak: a first, lean pass tests each
-            // station's bounds ([`reach`]: the very test `refine` makes, and ≥ the end values
-            // `raise` compares) and the acceleration against its peaks, and only a station
-            // that can change a peak (or yields: its force needs its law) takes the full
-            // update, out of line. The peaks are exactly those of the full update at every
-            // station (the skipped updates are no-ops).
-            let has_rows = rows.is_some();
-            for f in 0..ns {
-                let (u, ud) = (u[f], ud[f]);
-                let (up, udp) = before[f];
-                let (d, dd, dp, ddp) = (
-                    u - below,
-                    ud - below_rate,
-                    up - below_prev,
-                    udp - below_prev_rate,
-                );
-                let a = ua[f] + ag;
-                abs[f] = a;
-                let p = &peaks[f];
-                // (`|` not `||`: every test is cheap, and branch-free is cheaper)
-                let need = full
-                    | yields[f].is_some()
-                    | (a.abs() > p.acceleration)
-                    | match h {
-                        Some(h) => {
-                            (reach(up, udp, u, ud, h) > p.displacement)
-                                | (reach(dp, ddp, d, dd, h) > p.drift)
-                                | (has_rows && {
-                                    let (v0, vd0) = prev_force[f];
-                                    reach(v0, vd0, vf[f], vfd[f], h) > p.shear
-                                })
-                        }
-                        None => {
-                            (u.abs() > p.displacement)
-                                | (d.abs() > p.drift)
-                                | (has_rows && vf[f].abs() > p.shear)
-                        }
-                    };
-                if need {
-                    // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
-                    // this drift and its z, or the modal rows' V
-                    let force = match yields[f] {
-                        Some(k) => {
-                            let law = &system.hysteresis.storeys()[k];
-                            let z = s.z.get(k).copied().unwrap_or(0.0);
-                            Some((law.force(d, z), law.force_rate(dd, z)))
-                        }
-                        None => rows.map(|_| (vf[f], vfd[f])),
-                    };
-                    update_station(
-                        &mut peaks[f],
-                        &mut prev_force[f],
-                        (s.t, h),
-                        [(up, udp), (u, ud), (dp, ddp), (d, dd)],
-                        a,
-                        force,
-                    );
-                } else if has_rows {
-                    prev_force[f] = (vf[f], vfd[f]);
-                }
-                prev[f] = (u, ud);
-                (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
-            }
-            // the equilibrium of what is above (storey force and damping forces)
-            let nl = st.levels.min(s.levels.len());
-            match &st.equilibrium {
-                Equilibrium::Lumped(masses) => {
-                    let mut v_above = 0.0;
-                    for f in (0..ns).rev() {
-                        v_above -= masses[f] * abs[f];
-                        // contact forces acting at this floor
-                        for k in 0..nl {
-                            if st.above[f * st.levels + k] {
-                                v_above += st.signs[k] * s.levels[k].force;
-                            }
-                        }
-                        raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
-                    }
-                }
-                Equilibrium::Continuous { m, integral, above } => {
-                    let above = &above[..ns];
-                    for f in 0..ns {
-                        inertia[f] = ag * above[f];
-                    }
-                    let integral = &integral[..ns * nm];
-                    for j in 0..nm {
-                        let c = &integral[j * ns..(j + 1) * ns];
-                        let aj = a[j];
-                        for f in 0..ns {
-                            inertia[f] += c[f] * aj;
-                        }
-                    }
-                    for f in 0..ns {
-                        let mut v_sec = -m * inertia[f];
-                        for k in 0..nl {
-                            if st.above[f * st.levels + k] {
-                                v_sec += st.signs[k] * s.levels[k].force;
-                            }
-                        }
-                        raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
-                    }
-                }
-            }
+            None => self.saved.valid = false,
         }
         if let Some(sink) = sink {
-            self.emit(s.t, h, sink);
+            self.emit(s.t, sink);
         }
-        self.last_t = Some(s.t);
     }
 
     /// The floor history samples due by time `t` (the current observation; `h` since the
     /// previous one).
-    fn emit(
-        &mut self,
-        t: f64,
-        h: Option<f64>,
-        sink: &mut (dyn crate::recording::history::HistorySink + '_),
-    ) {
+    fn emit(&mut self, t: f64, sink: &mut (dyn crate::recording::history::HistorySink + '_)) {
         let eps = 1e-9 * self.interval;
         let mut consumed = false;
         loop {
@@ -700,16 +832,27 @@ impl FloorRecorder {
             // a sample strictly before this observation holds the accelerations up to the
             // previous one; one at this observation includes it
             let here = tau >= t - eps;
-            let th = match h {
-                Some(h) if h > 0.0 && !here => ((tau - (t - h)) / h).clamp(0.0, 1.0),
-                _ => 1.0,
-            };
-            let hh = h.unwrap_or(0.0);
-            // h01 = 3θ² − 2θ³ was written −2θ³ + 3θ² here: the same sum (addition commutes
-            // exactly), so the rows are unchanged bit for bit
-            let basis = Basis::at(th);
             let mut k = 0;
+            // (every structure was observed now, a sample being due; each over its own
+            // interval: a row's passive ones since their last observation)
+            let mut last: Option<(Option<f64>, f64, Basis)> = None;
             for st in &mut self.stations {
+                let h = st.h;
+                let (hh, basis) = match last {
+                    Some((lh, hh, b)) if lh == h => (hh, b),
+                    _ => {
+                        let th = match h {
+                            Some(h) if h > 0.0 && !here => ((tau - (t - h)) / h).clamp(0.0, 1.0),
+                            _ => 1.0,
+                        };
+                        // h01 = 3θ² − 2θ³ was written −2θ³ + 3θ² here: the same sum (addition
+                        // commutes exactly), so the rows are unchanged bit for bit
+                        let b = Basis::at(th);
+                        let hh = h.unwrap_or(0.0);
+                        last = Some((h, hh, b));
+                        (hh, b)
+                    }
+                };
                 for f in 0..st.heights.len() {
                     let ((u0, d0), (u1, d1)) = (st.before[f], st.prev[f]);
                     self.row[k] = basis.combine(u0, d0, u1, d1, hh);
@@ -728,12 +871,11 @@ impl FloorRecorder {
         if consumed {
             return;
         }
-        // this observation's accelerations count towards the next sample
+        // this observation's accelerations count towards the next sample (of the structures
+        // it saw)
         for st in &mut self.stations {
-            for f in 0..st.heights.len() {
-                if st.abs_now[f].abs() > st.hold[f].abs() {
-                    st.hold[f] = st.abs_now[f];
-                }
+            if st.fresh {
+                st.hold_now();
             }
         }
     }

@@ -7,7 +7,7 @@
 //! [`History`] (for figures and the library) keeps at most [`MAX_KEPT_SAMPLES`] rows — every
 //! sample of an ordinary run, a min/max envelope of a long one ([`History::stride`]).
 
-use crate::integrate::{Observer, StepView, onset_speed};
+use crate::integrate::{Observer, StepView, Stepped, onset_speed};
 use crate::model::contact::ContactForce;
 use crate::model::system::System;
 use crate::numerics::hermite::{Basis, hermite, hermite_abs_max, hermite_max, hermite_slope};
@@ -526,6 +526,21 @@ fn modal_energy(w2: &[f64], q: &[f64], v: &[f64]) -> f64 {
 
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
+        self.observe_part(system, s, None);
+    }
+
+    /// A row's passive structures' floors are observed on the grid only
+    /// ([`FloorRecorder::observe_part`]); the rest as at every observation.
+    fn observe_stepped(&mut self, system: &System, s: &StepView, stepped: &Stepped) {
+        self.observe_part(system, s, Some(stepped));
+    }
+}
+
+impl Recorder<'_> {
+    /// [`Observer::observe`], the floors of the structures `stepped.active` only where a row's
+    /// contact step left the others in free flight (see [`Observer::observe_stepped`]).
+    #[inline]
+    fn observe_part(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
         if self.floors_pending.is_some() {
             self.build_floors(system);
         }
@@ -537,9 +552,9 @@ impl Observer for Recorder<'_> {
                         keep,
                         row: &mut self.floor_row,
                     };
-                    f.observe(system, s, Some(&mut picked));
+                    f.observe_part(system, s, Some(&mut picked), stepped);
                 }
-                (_, sink) => f.observe(system, s, sink),
+                (_, sink) => f.observe_part(system, s, sink, stepped),
             }
         }
         if let Some(st) = &mut self.storeys {

@@ -20,7 +20,7 @@ use std::cell::RefCell;
 use std::collections::VecDeque;
 
 use super::{Phase, RunSink};
-use crate::integrate::{Observer, StepView};
+use crate::integrate::{Observer, StepView, Stepped};
 use crate::model::system::System;
 use crate::numerics::hermite::Basis;
 use crate::recording::history::{HistorySink, MAX_KEPT_SAMPLES, sample_count};
@@ -286,6 +286,14 @@ impl Observer for RowObserver<'_, '_> {
     fn observe(&mut self, system: &System, step: &StepView) {
         self.sampler.observe(step);
         self.recorder.observe(system, step);
+    }
+
+    /// (the sampler's states are exact at every observation, passive structures' included:
+    /// it samples as at every observation; the recorder observes the passive structures'
+    /// floors on the grid)
+    fn observe_stepped(&mut self, system: &System, step: &StepView, stepped: &Stepped) {
+        self.sampler.observe(step);
+        self.recorder.observe_stepped(system, step, stepped);
     }
 }
 

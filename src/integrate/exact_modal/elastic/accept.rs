@@ -45,17 +45,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     force: self.sys.levels[k].force.force(delta, delta_dot, v0),
                 };
             }
-            self.obs.observe(
-                self.sys,
-                &StepView {
-                    t: t0 + x * h,
-                    q: &self.dense_q[i * n..(i + 1) * n],
-                    v: &self.dense_v[i * n..(i + 1) * n],
-                    levels: &self.dense_states,
-                    z: &[],
-                    tally: &self.dense_tally,
-                },
-            );
+            let view = StepView {
+                t: t0 + x * h,
+                q: &self.dense_q[i * n..(i + 1) * n],
+                v: &self.dense_v[i * n..(i + 1) * n],
+                levels: &self.dense_states,
+                z: &[],
+                tally: &self.dense_tally,
+            };
+            // (a row's passive structures: seen at the step's end, see `active`)
+            if self.row {
+                let active = &self.act;
+                let st = Stepped {
+                    active,
+                    grid: false,
+                };
+                self.obs.observe_stepped(self.sys, &view, &st);
+            } else {
+                self.obs.observe(self.sys, &view);
+            }
         }
     }
 
@@ -474,7 +482,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 companion,
             });
         }
-        self.observe();
+        self.observe_step();
     }
 }
 

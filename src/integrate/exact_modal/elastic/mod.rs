@@ -52,8 +52,8 @@ use super::super::plan::{DyadicWalk, EqualSteps};
 use super::super::poly_tally::{PolySums, PolyTally};
 use super::super::progress::Progress;
 use super::super::{
-    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView, Tally,
-    update_onsets,
+    InitialState, Method, Observer, SolveError, SolverSettings, Stats, StepTrace, StepView,
+    Stepped, Tally, update_onsets,
 };
 use super::{SubstepTolerance, hermite_gap_factor};
 use crate::model::system::{LevelState, System, episode_v0};
@@ -307,6 +307,9 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// Contact steps with a passive structure, and trials redone for a level at the edge.
     passive_steps: usize,
     edge_redos: usize,
+    /// The next grid point, at (or first past) which a row's observation sees every
+    /// structure (see [`Observer::observe_stepped`]), s.
+    obs_grid: f64,
 }
 
 pub(super) fn run<O: Observer>(
@@ -466,6 +469,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             contact_t_end: f64::NAN,
             passive_steps: 0,
             edge_redos: 0,
+            obs_grid: 0.0,
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
@@ -523,6 +527,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 tally: &self.tally,
             },
         );
+        if self.row {
+            self.obs_grid = self.next_grid_point();
+        }
     }
 
     /// The harmonic tallies' sums at the current state.
