@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use crate::numerics::lanes::F2;
 
 /// The harmonic particular solution `Im[G e^{iΩt}]` of every mode at a free step's ends.
 pub(super) struct HarmonicWave<'g> {
@@ -67,9 +68,19 @@ pub(super) fn harmonic_pass<const MARGIN: bool>(
 /// Stored two modes at a time, every coefficient of both side by side (`pairs[i][c]` = the
 /// coefficient c of modes 2i and 2i + 1; a missing last odd mode has zeros): one pass reads a
 /// single array and does both modes as one vector operation.
+///
+/// It also keeps what bounds the contact test's margins without a pass over the modes
+/// ([`PolyMap::margin_bounds`]): every level's gain over the margins' factors and the
+/// particular solution's size per unit of each ground factor.
 #[derive(Debug, Clone)]
 pub(super) struct PolyMap {
     pairs: Vec<[[f64; 2]; COEFS]>,
+    /// Per contact level k, `G_k = √(Σ_j c_kj² (H0_j²/ω_j² + H1_j²))` (∞ where a mode with
+    /// ω = 0 has a margin): empty until [`PolyMap::set_gains`].
+    gain: Vec<f64>,
+    /// The particular solution's start `(ωA, B)` in the norm `√Σ_j (ω_j² x_j² + y_j²)`, per
+    /// unit of |a_g|, |v_g| and |a1|.
+    part: [f64; 3],
 }
 
 /// The coefficients of a mode in [`PolyMap`]: the map, the ground-work weights of
@@ -130,6 +141,7 @@ impl PolyMap {
     ) -> PolyMap {
         let n = props.len();
         let mut pairs = vec![[[0.0; 2]; COEFS]; n.div_ceil(2)];
+        let mut part = [0.0; 3];
         for j in 0..n {
             let (la, lv, d, i) = (la[j], lv[j], damp[j], inv_w2[j]);
             // poly_coefficients with c = (la a_g + lv v_g, la a1 + lv a_g, ½lv a1), per factor
@@ -166,11 +178,55 @@ impl PolyMap {
             c[B1] = b1;
             c[H0] = herm[j].0;
             c[H1] = herm[j].1;
+            // A = aa a_g + av v_g + a1 a1, B = ba a_g + b1 a1
+            part[0] += w2[j] * aa * aa + ba * ba;
+            part[1] += w2[j] * av * av;
+            part[2] += w2[j] * a1 * a1 + b1 * b1;
             for (k, x) in c.into_iter().enumerate() {
                 pairs[j / 2][k][j % 2] = x;
             }
         }
-        PolyMap { pairs }
+        PolyMap {
+            pairs,
+            gain: Vec::new(),
+            part: part.map(f64::sqrt),
+        }
+    }
+
+    /// Every contact level's gain `G_k` from its coupling row `c_k` (`rows`, one per level).
+    pub(super) fn set_gains<'c>(&mut self, rows: impl Iterator<Item = &'c [f64]>) {
+        let gain = rows.map(|c| {
+            let mut s = 0.0;
+            for (j, &ckj) in c.iter().enumerate() {
+                let m = &self.pairs[j / 2];
+                let (h0, h1, w2) = (m[H0][j % 2], m[H1][j % 2], m[W2][j % 2]);
+                if ckj == 0.0 || (h0 == 0.0 && h1 == 0.0) {
+                    continue;
+                }
+                let x = if h0 == 0.0 { 0.0 } else { h0 * h0 / w2 };
+                s += ckj * ckj * (x + h1 * h1);
+            }
+            // (NaN, from ω² ≤ 0, is no bound either)
+            if s.is_finite() { s.sqrt() } else { f64::INFINITY }
+        });
+        self.gain = gain.collect();
+    }
+
+    /// An upper bound of every level's contact-test margin `Σ_j |c_kj| (H0_j |η_j − A_j| +
+    /// H1_j |η̇_j − B_j|)` (what a pass with margins gives, [`poly_pass`] `MARGIN`) into `out`,
+    /// from the start state's `s0 = Σ_j η̇_j² + ω_j² η_j²` and the ground factors `g` alone,
+    /// without a pass over the modes: with x = η − A, y = η̇ − B, Cauchy–Schwarz gives
+    /// `Σ_j (|c_kj| H0_j/ω_j)(ω_j|x_j|) + (|c_kj| H1_j)|y_j| ≤ G_k ‖(x, y)‖`, and Minkowski
+    /// `‖(x, y)‖ ≤ √s0 + ‖(A, B)‖ ≤ √s0 + |a_g|‖·‖_a + |v_g|‖·‖_v + |a1|‖·‖_1` (the particular
+    /// solution is linear in the factors). The rounding of both sides is a few ulps of sums of
+    /// positive terms (the margin's |η − A| too is at most |η| + |A| rounded): the factor
+    /// 1 + 1e-9 covers it. ∞ where [`PolyMap::set_gains`] has not run.
+    pub(super) fn margin_bounds(&self, (ag, vg, a1): (f64, f64, f64), s0: f64, out: &mut [f64]) {
+        let [na, nv, n1] = self.part;
+        let r = (s0.sqrt() + (na * ag.abs() + nv * vg.abs() + n1 * a1.abs())) * (1.0 + 1e-9);
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = self.gain.get(k).map_or(f64::INFINITY, |g| g * r);
+        }
     }
 
     /// Mode j's end state from (η, η̇) under the ground factors `g` = (a_g, v_g, a1).
@@ -192,8 +248,9 @@ impl PolyMap {
 
 /// The free flight of every mode under a recorded motion's piece (ground factors `g`):
 /// (q, v) → `out` = (qb, vb, amp), the Hermite margin in `amp` when `MARGIN` (else 0).
-/// Returns the end state's ground-work sums and `Σ η̇² + ω²η²` (twice the modal energy), each
-/// summed in two lanes (even and odd modes, added at the end).
+/// Returns the end state's ground-work sums, `Σ η̇² + ω²η²` (twice the modal energy) and,
+/// without margins, the same of the start state (0 with them: see [`PolyMap::margin_bounds`]),
+/// each summed in two lanes (even and odd modes, added at the end).
 #[inline(always)]
 pub(super) fn poly_pass<const MARGIN: bool>(
     m: &PolyMap,
@@ -201,12 +258,12 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     q: &[f64],
     v: &[f64],
     (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
-) -> (PolySums, f64) {
+) -> (PolySums, f64, f64) {
     let n = qb.len();
     // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
-    // Σ η̇² + ω²η²
-    let mut acc = [F2([0.0; 2]); 7];
-    let g = (F2([ag; 2]), F2([vg; 2]), F2([a1; 2]));
+    // Σ η̇² + ω²η² at the end and (without margins) at the start
+    let mut acc = [F2::zero(); 8];
+    let g = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     let (qp, _) = q[..n].as_chunks::<2>();
     let (vp, _) = v[..n].as_chunks::<2>();
     let (xp, _) = qb.as_chunks_mut::<2>();
@@ -215,7 +272,7 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     let full = qp.len();
     let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
     for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
-        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2(*qj), F2(*vj), &mut acc);
+        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2::load(qj), F2::load(vj), &mut acc);
     }
     if n % 2 == 1 {
         // the last odd mode in lane 0 (lane 1's coefficients are zeros: it adds nothing)
@@ -223,16 +280,82 @@ pub(super) fn poly_pass<const MARGIN: bool>(
         let (x, y, a) = pair::<MARGIN>(
             &m.pairs[full],
             g,
-            F2([q[j], 0.0]),
-            F2([v[j], 0.0]),
+            F2::new(q[j], 0.0),
+            F2::new(v[j], 0.0),
             &mut acc,
         );
         (qb[j], vb[j], amp[j]) = (x[0], y[0], a[0]);
     }
-    let acc = acc.map(|a| a.0);
+    let acc = acc.map(F2::get);
     let sum = |k: usize| acc[k][0] + acc[k][1];
     let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
-    (ps, sum(6))
+    (ps, sum(6), sum(7))
+}
+
+/// The contact test's margins of [`poly_pass`] alone (the same arithmetic, so the same bits):
+/// `amp` from the start state (q, v) under the ground factors `g`.
+pub(super) fn poly_margins(
+    m: &PolyMap,
+    (ag, vg, a1): (f64, f64, f64),
+    q: &[f64],
+    v: &[f64],
+    amp: &mut [f64],
+) {
+    let n = amp.len().min(q.len()).min(v.len());
+    let (g_a, g_v, g_1) = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
+    for j in (0..n).step_by(2) {
+        let c = &m.pairs[j / 2];
+        let k = |i: usize| F2::load(&c[i]);
+        let two = j + 1 < n;
+        let qj = F2::new(q[j], if two { q[j + 1] } else { 0.0 });
+        let vj = F2::new(v[j], if two { v[j + 1] } else { 0.0 });
+        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
+        let pb = k(BA) * g_a + k(B1) * g_1;
+        let a = k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs();
+        let a = a.get();
+        amp[j] = a[0];
+        if two {
+            amp[j + 1] = a[1];
+        }
+    }
+}
+
+/// `(c·x, c·y)` with the very arithmetic of [`crate::numerics::linalg::dot`] for each (a chain
+/// below 8 terms, else four partial sums, lanes 0 + 2 and 1 + 3 added last: the same bits),
+/// both in one pass that reads c once, the partial sums as two pairs of lanes.
+#[inline(always)]
+pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
+    let n = c.len().min(x.len()).min(y.len());
+    let (c, x, y) = (&c[..n], &x[..n], &y[..n]);
+    if n < 8 {
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for i in 0..n {
+            sx += c[i] * x[i];
+            sy += c[i] * y[i];
+        }
+        return (sx, sy);
+    }
+    let z = F2::zero();
+    let (mut x01, mut x23, mut y01, mut y23) = (z, z, z, z);
+    let (cc, _) = c.as_chunks::<4>();
+    let (xc, _) = x.as_chunks::<4>();
+    let (yc, _) = y.as_chunks::<4>();
+    for ((c, x), y) in cc.iter().zip(xc).zip(yc) {
+        let (c01, c23) = (F2::new(c[0], c[1]), F2::new(c[2], c[3]));
+        x01 = x01 + c01 * F2::new(x[0], x[1]);
+        x23 = x23 + c23 * F2::new(x[2], x[3]);
+        y01 = y01 + c01 * F2::new(y[0], y[1]);
+        y23 = y23 + c23 * F2::new(y[2], y[3]);
+    }
+    let ([x0, x1], [x2, x3]) = (x01.get(), x23.get());
+    let ([y0, y1], [y2, y3]) = (y01.get(), y23.get());
+    let (mut ax, mut ay) = ([x0, x1, x2, x3], [y0, y1, y2, y3]);
+    let r = n / 4 * 4;
+    for i in 0..n - r {
+        ax[i] += c[r + i] * x[r + i];
+        ay[i] += c[r + i] * y[r + i];
+    }
+    ((ax[0] + ax[2]) + (ax[1] + ax[3]), (ay[0] + ay[2]) + (ay[1] + ay[3]))
 }
 
 #[cfg(test)]
@@ -319,9 +442,9 @@ fn pair<const MARGIN: bool>(
     (g_a, g_v, g_1): (F2, F2, F2),
     qj: F2,
     vj: F2,
-    acc: &mut [F2; 7],
+    acc: &mut [F2; 8],
 ) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let k = |i: usize| F2(c[i]);
+    let k = |i: usize| F2::load(&c[i]);
     let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
     let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
     let a = if MARGIN {
@@ -329,7 +452,8 @@ fn pair<const MARGIN: bool>(
         let pb = k(BA) * g_a + k(B1) * g_1;
         k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
     } else {
-        F2([0.0; 2])
+        acc[7] = acc[7] + (vj * vj + k(W2) * qj * qj);
+        F2::zero()
     };
     let u = y + k(DD) * x;
     acc[0] = acc[0] + k(LA) * x;
@@ -339,41 +463,5 @@ fn pair<const MARGIN: bool>(
     acc[4] = acc[4] + k(LVI) * x;
     acc[5] = acc[5] + k(LVD) * u;
     acc[6] = acc[6] + (y * y + k(W2) * x * x);
-    (x.0, y.0, a.0)
-}
-
-/// Two lanes of f64 (the same operation on two modes), for passes the compiler does as
-/// vector operations.
-#[derive(Debug, Clone, Copy)]
-struct F2([f64; 2]);
-
-impl std::ops::Add for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn add(self, o: F2) -> F2 {
-        F2([self.0[0] + o.0[0], self.0[1] + o.0[1]])
-    }
-}
-
-impl std::ops::Sub for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn sub(self, o: F2) -> F2 {
-        F2([self.0[0] - o.0[0], self.0[1] - o.0[1]])
-    }
-}
-
-impl std::ops::Mul for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn mul(self, o: F2) -> F2 {
-        F2([self.0[0] * o.0[0], self.0[1] * o.0[1]])
-    }
-}
-
-impl F2 {
-    #[inline(always)]
-    fn abs(self) -> F2 {
-        F2([self.0[0].abs(), self.0[1].abs()])
-    }
+    (x.get(), y.get(), a.get())
 }
