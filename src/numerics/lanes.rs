@@ -45,7 +45,12 @@ impl F2 {
     #[inline(always)]
     pub(crate) fn get(self) -> [f64; 2] {
         // SAFETY: as in `new`
-        unsafe { [_mm_cvtsd_f64(self.0), _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0))] }
+        unsafe {
+            [
+                _mm_cvtsd_f64(self.0),
+                _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0)),
+            ]
+        }
     }
 
     /// |x| in each lane (the sign bit cleared, as `f64::abs`).
@@ -144,7 +149,8 @@ mod tests {
                 let (x, y) = (F2::new(a, b), F2::new(b, a));
                 let same = |v: F2, w: [f64; 2]| {
                     let g = v.get();
-                    (0..2).all(|i| g[i].to_bits() == w[i].to_bits() || g[i].is_nan() && w[i].is_nan())
+                    (0..2)
+                        .all(|i| g[i].to_bits() == w[i].to_bits() || g[i].is_nan() && w[i].is_nan())
                 };
                 assert!(same(x + y, [a + b, b + a]));
                 assert!(same(x - y, [a - b, b - a]));

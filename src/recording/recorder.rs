@@ -10,7 +10,10 @@
 use crate::integrate::{Observer, StepView, onset_speed};
 use crate::model::contact::ContactForce;
 use crate::model::system::System;
-use crate::numerics::hermite::{Basis, hermite, hermite_abs_max, hermite_max, hermite_slope};
+use crate::numerics::hermite::{
+    Basis, HERMITE_REACH, big, hermite, hermite_abs_max, hermite_bound, hermite_max, hermite_slope,
+    small,
+};
 use crate::numerics::lanes::F2;
 use crate::recording::floor_response::FloorRecorder;
 use crate::recording::history::{Envelope, History, HistorySink, MAX_KEPT_SAMPLES, sample_count};
@@ -408,31 +411,6 @@ fn raise(peak: &mut f64, x: f64) {
     }
 }
 
-/// The largest of the cubic Hermite slope basis functions θ(1−θ)² and θ²(1−θ) on [0, 1].
-const HERMITE_REACH: f64 = 4.0 / 27.0;
-
-/// An upper bound of the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`: its
-/// value basis functions are ≥ 0 and sum to 1 (at most the larger end value), its slope
-/// terms θ(1−θ)²·h·d0 ≥ 0 ≥ −θ²(1−θ)·h·d1 add at most (4/27)·h·(d0⁺ + d1⁻). A step whose
-/// bound does not beat a running maximum cannot raise it: no root solve needed.
-#[inline(always)]
-fn hermite_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
-    big(y0, y1) + HERMITE_REACH * h * (big(d0, 0.0) - small(d1, 0.0))
-}
-
-/// `a.max(b)` as a plain comparison for finite values (`f64::max`'s NaN handling costs
-/// instructions; a bound is only compared, so a zero's sign does not matter).
-#[inline(always)]
-fn big(a: f64, b: f64) -> f64 {
-    if a > b { a } else { b }
-}
-
-/// `a.min(b)` as [`big`] is `max`.
-#[inline(always)]
-fn small(a: f64, b: f64) -> f64 {
-    if a < b { a } else { b }
-}
-
 /// An upper bound of the interpolant's absolute value (see [`hermite_bound`], for y and −y).
 #[inline(always)]
 fn hermite_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
@@ -826,6 +804,36 @@ mod tests {
             rec.observe(sys, &view);
         }
         rec.finish()
+    }
+
+    /// The projections in two SSE2 pairs of lanes are the four-lane sums they replaced, bit
+    /// for bit: lane l takes the products of modes l, l + 4, … (and the remainder's l-th),
+    /// added as (lane 0 + lane 1) + (lane 2 + lane 3); below 8 modes one chain. Every length
+    /// from 0 to 45, on values that round.
+    #[test]
+    fn projections_in_pairs_of_lanes_are_the_four_lane_sums() {
+        fn four_lanes(phi: &[f64], x: &[f64]) -> f64 {
+            let n = phi.len();
+            if n < LANES_FROM {
+                return (0..n).fold(0.0, |s, j| s + phi[j] * x[j]);
+            }
+            let mut w = [0.0; 4];
+            for j in 0..n / 4 * 4 {
+                w[j % 4] += phi[j] * x[j];
+            }
+            for j in n / 4 * 4..n {
+                w[j % 4] += phi[j] * x[j];
+            }
+            (w[0] + w[1]) + (w[2] + w[3])
+        }
+        for n in 0..46 {
+            let phi: Vec<f64> = (0..n).map(|j| ((j * 5 + 1) as f64).sqrt() - 3.1).collect();
+            let q: Vec<f64> = (0..n).map(|j| 1.0 / (j as f64 + 0.7)).collect();
+            let v: Vec<f64> = (0..n).map(|j| ((j as f64) * 1.3).cos() * 7e-2).collect();
+            let (w, wd) = project(&phi, &q, &v);
+            assert_eq!(w.to_bits(), four_lanes(&phi, &q).to_bits(), "n = {n}");
+            assert_eq!(wd.to_bits(), four_lanes(&phi, &v).to_bits(), "n = {n}");
+        }
     }
 
     /// The largest penetration inside a step whose end slopes have one sign (δ̇ = +1 m/s at

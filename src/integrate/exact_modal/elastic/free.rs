@@ -4,8 +4,11 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::kernel::{HarmonicWave, ModeLoads, PolyMap, dots, harmonic_pass, poly_margins, poly_pass};
+use super::kernel::{
+    HarmonicWave, ModeLoads, PolyMap, dots, harmonic_pass, poly_margins, poly_pass,
+};
 use super::*;
+use crate::numerics::hermite::hermite_bound;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     // ---------------------------------------------------------------- free flight
@@ -256,7 +259,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let m = if sharp {
                 quartic_bound(d0, dd0, d1, dd1, h, margin)
             } else {
-                hermite_max(d0, dd0, d1, dd1, h).0 + margin
+                // the root solve only where the bound without it, with a slack for the
+                // solve's rounding, lets the level reach 0: elsewhere the solve's value too
+                // stays ≤ 0 (numerics::hermite's proptest), so the decision is the same
+                let slack = 1e-12 * (d0.abs() + d1.abs() + h * (dd0.abs() + dd1.abs()));
+                let reach = hermite_bound(d0, dd0, d1, dd1, h) + slack + margin;
+                if reach <= 0.0 {
+                    reach
+                } else {
+                    hermite_max(d0, dd0, d1, dd1, h).0 + margin
+                }
             };
             bound = bound.max(m);
         }

@@ -207,7 +207,11 @@ impl PolyMap {
                 s += ckj * ckj * (x + h1 * h1);
             }
             // (NaN, from ω² ≤ 0, is no bound either)
-            if s.is_finite() { s.sqrt() } else { f64::INFINITY }
+            if s.is_finite() {
+                s.sqrt()
+            } else {
+                f64::INFINITY
+            }
         });
         self.gain = gain.collect();
     }
@@ -225,7 +229,9 @@ impl PolyMap {
         let [na, nv, n1] = self.part;
         let r = (s0.sqrt() + (na * ag.abs() + nv * vg.abs() + n1 * a1.abs())) * (1.0 + 1e-9);
         for (k, o) in out.iter_mut().enumerate() {
-            *o = self.gain.get(k).map_or(f64::INFINITY, |g| g * r);
+            // (∞ · 0 is no bound: NaN reads as "may touch", which the margins then decide)
+            let b = self.gain.get(k).map_or(f64::INFINITY, |g| g * r);
+            *o = if b.is_nan() { f64::INFINITY } else { b };
         }
     }
 
@@ -355,7 +361,10 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
         ax[i] += c[r + i] * x[r + i];
         ay[i] += c[r + i] * y[r + i];
     }
-    ((ax[0] + ax[2]) + (ax[1] + ax[3]), (ay[0] + ay[2]) + (ay[1] + ay[3]))
+    (
+        (ax[0] + ax[2]) + (ax[1] + ax[3]),
+        (ay[0] + ay[2]) + (ay[1] + ay[3]),
+    )
 }
 
 #[cfg(test)]
@@ -431,6 +440,100 @@ mod tests {
             }
         }
         eprintln!("poly map vs closed form: worst relative error {worst:e}");
+    }
+
+    /// The margins' bound holds: for random modes (ω from 0.3 to 3000 rad/s, ζ up to 0.4, so
+    /// that (ωh)⁴/384 runs from ~0 to its cap of 2), loads, steps, coupling rows (zeros among
+    /// them, as a row's are), states and ground factors over many orders of magnitude, every
+    /// level's [`PolyMap::margin_bounds`] is at least its margin `Σ_j |c_kj| amp_j` as the pass
+    /// with margins forms it. The same draws check that the margins alone
+    /// ([`poly_margins`]) are the pass's bit for bit, that the pass without margins gives the
+    /// same end state and sums bit for bit, and its start sum of squares against a plain sum.
+    #[test]
+    fn the_margin_bound_holds_and_the_lean_pass_is_the_same_step() {
+        use proptest::prelude::*;
+        let mag = |lo: f64, hi: f64| {
+            (lo..hi, prop::bool::ANY)
+                .prop_map(|(e, s)| if s { 10f64.powf(e) } else { -10f64.powf(e) })
+        };
+        let mode = (-0.5f64..3.5, 0.0f64..0.4, mag(-2.0, 4.0), mag(-3.0, 2.0));
+        let levels = prop::collection::vec(
+            prop::collection::vec(prop_oneof![Just(0.0), mag(-4.0, 0.0)], 13),
+            1..4,
+        );
+        let state = prop::collection::vec((mag(-9.0, 0.0), mag(-7.0, 1.0)), 13);
+        let data = (
+            prop::collection::vec(mode, 1..13),
+            levels,
+            state,
+            -4.0f64..-1.5,
+            (mag(-3.0, 1.5), mag(-4.0, 0.5), mag(-2.0, 3.0)),
+        );
+        proptest!(ProptestConfig::with_cases(3000), |((modes, rows, st, eh, g) in data)| {
+            let n = modes.len();
+            let h = 10f64.powf(eh);
+            let omega: Vec<f64> = modes.iter().map(|m| 10f64.powf(m.0)).collect();
+            let damp: Vec<f64> = modes.iter().zip(&omega).map(|(m, w)| 2.0 * m.1 * w).collect();
+            let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+            let inv_w2: Vec<f64> = w2.iter().map(|x| 1.0 / x).collect();
+            let la: Vec<f64> = modes.iter().map(|m| m.2).collect();
+            let lv: Vec<f64> = modes.iter().map(|m| m.3).collect();
+            let props: Vec<Prop> = (0..n).map(|j| propagator(omega[j], damp[j], h)).collect();
+            // (FreeData::herm's factors)
+            let herm: Vec<(f64, f64)> = (0..n)
+                .map(|j| {
+                    let (w, zw) = (omega[j], 0.5 * damp[j]);
+                    let lam = if zw < w { w } else { zw + (zw * zw - w * w).sqrt() };
+                    let f = hermite_gap_factor(lam * h);
+                    (f, 2.0 * f / lam)
+                })
+                .collect();
+            let loads = ModeLoads { la: &la, lv: &lv, damp: &damp, w2: &w2, inv_w2: &inv_w2 };
+            let mut map = PolyMap::new(loads, &props, &herm, h);
+            let rows: Vec<Vec<f64>> = rows.into_iter().map(|r| r[..n].to_vec()).collect();
+            map.set_gains(rows.iter().map(|r| r.as_slice()));
+            let q: Vec<f64> = st[..n].iter().map(|s| s.0).collect();
+            let v: Vec<f64> = st[..n].iter().map(|s| s.1).collect();
+            let (mut qa, mut va, mut aa) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (mut qb, mut vb, mut ab) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (sa, ea, _) = poly_pass::<true>(&map, g, &q, &v, (&mut qa, &mut va, &mut aa));
+            let (sb, eb, s0) = poly_pass::<false>(&map, g, &q, &v, (&mut qb, &mut vb, &mut ab));
+            let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&qa), bits(&qb));
+            prop_assert_eq!(bits(&va), bits(&vb));
+            prop_assert_eq!(ea.to_bits(), eb.to_bits());
+            prop_assert_eq!(format!("{sa:?}"), format!("{sb:?}"));
+            let plain: f64 = (0..n).map(|j| v[j] * v[j] + w2[j] * q[j] * q[j]).sum();
+            // (two lanes against one chain: sums of positive terms, a few ulps apart)
+            prop_assert!((s0 - plain).abs() <= 1e-14 * plain, "{s0:e} vs {plain:e}");
+            let mut alone = vec![0.0; n];
+            poly_margins(&map, g, &q, &v, &mut alone);
+            prop_assert_eq!(bits(&alone), bits(&aa));
+            let mut bound = vec![0.0; rows.len()];
+            map.margin_bounds(g, s0, &mut bound);
+            for (k, r) in rows.iter().enumerate() {
+                let cabs: Vec<f64> = r.iter().map(|c| c.abs()).collect();
+                let margin = dot(&cabs, &aa);
+                prop_assert!(
+                    margin <= bound[k],
+                    "level {k}: margin {margin:e} above its bound {:e}", bound[k]
+                );
+            }
+        });
+    }
+
+    /// [`dots`] is [`dot`] twice, bit for bit, at every length from 0 to 41 (the chain below
+    /// 8 terms, the partial sums and every remainder above), on values that round.
+    #[test]
+    fn dots_are_dot_bit_for_bit() {
+        for n in 0..42 {
+            let c: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) as f64).sqrt() - 2.5).collect();
+            let x: Vec<f64> = (0..n).map(|i| 1.0 / (i as f64 + 0.3)).collect();
+            let y: Vec<f64> = (0..n).map(|i| ((i as f64) * 0.37).sin() * 1e-3).collect();
+            let (a, b) = dots(&c, &x, &y);
+            assert_eq!(a.to_bits(), dot(&c, &x).to_bits(), "n = {n}");
+            assert_eq!(b.to_bits(), dot(&c, &y).to_bits(), "n = {n}");
+        }
     }
 }
 

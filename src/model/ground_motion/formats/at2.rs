@@ -213,6 +213,28 @@ mod tests {
         Path::new(GROUND_MOTIONS_DIR).join(name)
     }
 
+    /// A data line's tokens cut on bytes are those of the character split they replace, on
+    /// lines of digits, signs, points, letters, commas and every kind of blank — ASCII
+    /// (tab, vertical tab, form feed, carriage return, space) and not (U+0085, U+00A0, which
+    /// is no blank, U+2003, U+3000), which send a line to the character split.
+    #[test]
+    fn tokens_cut_on_bytes_are_the_character_split() {
+        use proptest::prelude::*;
+        let chars = prop::sample::select(vec![
+            '1', '2', '9', '0', '.', '-', '+', 'E', 'e', 'D', 'x', ',', ' ', ' ', ' ', '\t',
+            '\u{b}', '\u{c}', '\r', '\u{85}', '\u{a0}', '\u{2003}', '\u{3000}', 'é',
+        ]);
+        proptest!(ProptestConfig::with_cases(5000), |(line in prop::collection::vec(chars, 0..40))| {
+            let line: String = line.into_iter().collect();
+            let want: Vec<&str> = line
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .filter(|t| !t.is_empty())
+                .collect();
+            let got: Vec<&str> = super::value_tokens(&line).collect();
+            prop_assert_eq!(got, want, "{:?}", line);
+        });
+    }
+
     // ---------------------------------------------------------------- real records
 
     #[test]
