@@ -500,15 +500,31 @@ fn modal_energy(w2: &[f64], q: &[f64], v: &[f64]) -> f64 {
         }
         return e;
     }
-    let mut e = [0.0; 4];
-    let (cw, cq, cv) = (w2.chunks_exact(4), q.chunks_exact(4), v.chunks_exact(4));
-    let (rw, rq, rv) = (cw.remainder(), cq.remainder(), cv.remainder());
-    for ((w, q), v) in cw.zip(cq).zip(cv) {
-        for l in 0..4 {
-            e[l] += 0.5 * (v[l] * v[l] + w[l] * q[l] * q[l]);
-        }
+    // (as `project`: two pairs of lanes, the same lanes and order as four-lane arrays)
+    let (half, z) = (F2::splat(0.5), F2::zero());
+    let (mut e01, mut e23) = (z, z);
+    let (cw, _) = w2.as_chunks::<4>();
+    let (cq, _) = q.as_chunks::<4>();
+    let (cv, _) = v.as_chunks::<4>();
+    for ((w, q), v) in cw.iter().zip(cq).zip(cv) {
+        let (w01, q01, v01) = (
+            F2::new(w[0], w[1]),
+            F2::new(q[0], q[1]),
+            F2::new(v[0], v[1]),
+        );
+        let (w23, q23, v23) = (
+            F2::new(w[2], w[3]),
+            F2::new(q[2], q[3]),
+            F2::new(v[2], v[3]),
+        );
+        e01 = e01 + half * (v01 * v01 + w01 * q01 * q01);
+        e23 = e23 + half * (v23 * v23 + w23 * q23 * q23);
     }
-    for (l, ((w, q), v)) in rw.iter().zip(rq).zip(rv).enumerate() {
+    let ([a, b], [c, d]) = (e01.get(), e23.get());
+    let mut e = [a, b, c, d];
+    let r = n / 4 * 4;
+    for l in 0..n - r {
+        let (w, q, v) = (w2[r + l], q[r + l], v[r + l]);
         e[l] += 0.5 * (v * v + w * q * q);
     }
     (e[0] + e[1]) + (e[2] + e[3])
@@ -806,8 +822,8 @@ mod tests {
         rec.finish()
     }
 
-    /// The projections in two SSE2 pairs of lanes are the four-lane sums they replaced, bit
-    /// for bit: lane l takes the products of modes l, l + 4, … (and the remainder's l-th),
+    /// The projections (and the modal energy) in two SSE2 pairs of lanes are the four-lane
+    /// sums they replaced, bit for bit: lane l takes the products of modes l, l + 4, … (and the remainder's l-th),
     /// added as (lane 0 + lane 1) + (lane 2 + lane 3); below 8 modes one chain. Every length
     /// from 0 to 45, on values that round.
     #[test]
@@ -833,6 +849,17 @@ mod tests {
             let (w, wd) = project(&phi, &q, &v);
             assert_eq!(w.to_bits(), four_lanes(&phi, &q).to_bits(), "n = {n}");
             assert_eq!(wd.to_bits(), four_lanes(&phi, &v).to_bits(), "n = {n}");
+            // the modal energy likewise, term ½(η̇² + ω²η²) per mode
+            let w2: Vec<f64> = (0..n).map(|j| (j as f64 * 3.7 + 0.4).powi(2)).collect();
+            let terms: Vec<f64> = (0..n)
+                .map(|j| 0.5 * (v[j] * v[j] + w2[j] * q[j] * q[j]))
+                .collect();
+            let ones = vec![1.0; n];
+            assert_eq!(
+                modal_energy(&w2, &q, &v).to_bits(),
+                four_lanes(&ones, &terms).to_bits(),
+                "n = {n}"
+            );
         }
     }
 
