@@ -367,6 +367,38 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     )
 }
 
+/// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
+/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
+#[inline(always)]
+fn pair<const MARGIN: bool>(
+    c: &[[f64; 2]; COEFS],
+    (g_a, g_v, g_1): (F2, F2, F2),
+    qj: F2,
+    vj: F2,
+    acc: &mut [F2; 8],
+) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let k = |i: usize| F2::load(&c[i]);
+    let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
+    let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
+    let a = if MARGIN {
+        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
+        let pb = k(BA) * g_a + k(B1) * g_1;
+        k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
+    } else {
+        acc[7] = acc[7] + (vj * vj + k(W2) * qj * qj);
+        F2::zero()
+    };
+    let u = y + k(DD) * x;
+    acc[0] = acc[0] + k(LA) * x;
+    acc[1] = acc[1] + k(LV) * x;
+    acc[2] = acc[2] + k(LAI) * u;
+    acc[3] = acc[3] + k(LVI) * u;
+    acc[4] = acc[4] + k(LVI) * x;
+    acc[5] = acc[5] + k(LVD) * u;
+    acc[6] = acc[6] + (y * y + k(W2) * x * x);
+    (x.get(), y.get(), a.get())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -535,36 +567,4 @@ mod tests {
             assert_eq!(b.to_bits(), dot(&c, &y).to_bits(), "n = {n}");
         }
     }
-}
-
-/// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
-/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
-#[inline(always)]
-fn pair<const MARGIN: bool>(
-    c: &[[f64; 2]; COEFS],
-    (g_a, g_v, g_1): (F2, F2, F2),
-    qj: F2,
-    vj: F2,
-    acc: &mut [F2; 8],
-) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let k = |i: usize| F2::load(&c[i]);
-    let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
-    let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
-    let a = if MARGIN {
-        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
-        let pb = k(BA) * g_a + k(B1) * g_1;
-        k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
-    } else {
-        acc[7] = acc[7] + (vj * vj + k(W2) * qj * qj);
-        F2::zero()
-    };
-    let u = y + k(DD) * x;
-    acc[0] = acc[0] + k(LA) * x;
-    acc[1] = acc[1] + k(LV) * x;
-    acc[2] = acc[2] + k(LAI) * u;
-    acc[3] = acc[3] + k(LVI) * u;
-    acc[4] = acc[4] + k(LVI) * x;
-    acc[5] = acc[5] + k(LVD) * u;
-    acc[6] = acc[6] + (y * y + k(W2) * x * x);
-    (x.get(), y.get(), a.get())
 }
