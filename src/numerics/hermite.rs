@@ -105,6 +105,34 @@ pub fn hermite_max(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> (f64, f64) {
     best
 }
 
+/// The largest of the cubic Hermite slope basis functions θ(1−θ)² and θ²(1−θ) on [0, 1].
+pub const HERMITE_REACH: f64 = 4.0 / 27.0;
+
+/// An upper bound of the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`,
+/// without its root solve: its value basis functions are ≥ 0 and sum to 1 (at most the larger
+/// end value), its slope terms θ(1−θ)²·h·d0 ≥ 0 ≥ −θ²(1−θ)·h·d1 add at most
+/// (4/27)·h·(d0⁺ + d1⁻). A step whose bound does not beat a running maximum cannot raise it.
+/// (Rounding: [`hermite_max`]'s evaluation may exceed it by a few ulps of
+/// |y0| + |y1| + h(|d0| + |d1|); a caller that must decide as [`hermite_max`] would adds a
+/// slack of that size.)
+#[inline(always)]
+pub fn hermite_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
+    big(y0, y1) + HERMITE_REACH * h * (big(d0, 0.0) - small(d1, 0.0))
+}
+
+/// `a.max(b)` as a plain comparison for finite values (`f64::max`'s NaN handling costs
+/// instructions; a bound is only compared, so a zero's sign does not matter).
+#[inline(always)]
+pub(crate) fn big(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// `a.min(b)` as [`big`] is `max`.
+#[inline(always)]
+pub(crate) fn small(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
 /// Largest absolute value over [0, h] of the cubic Hermite interpolant of (y0, d0), (y1, d1).
 /// An interior extremum does not need the end slopes to differ in sign: a cubic whose end
 /// slopes do not fit its end values (after a velocity jump, or over a step long against the
@@ -214,6 +242,29 @@ mod tests {
         assert!((th - r).abs() < 1e-14, "{th}");
         let th = hermite_crossing(0.3, 0.0, -0.7, -2.0, 1.0, 60);
         assert!((th - r).abs() < 1e-14, "{th}");
+    }
+
+    /// [`hermite_bound`] is at least [`hermite_max`] (its value as evaluated, rounding
+    /// included) up to the slack of 1e-12 (|y0| + |y1| + h(|d0| + |d1|)) that free flight's
+    /// skip adds, for random data over many orders of magnitude — and the bound itself is at
+    /// least the largest of 2001 samples of the cubic.
+    #[test]
+    fn the_bound_is_at_least_the_maximum() {
+        use proptest::prelude::*;
+        let mag = || (-6.0f64..2.0, -1.0f64..1.0).prop_map(|(e, s)| s * 10f64.powf(e));
+        let data = (mag(), mag(), mag(), mag(), -4.0f64..0.0)
+            .prop_map(|(y0, d0, y1, d1, e)| (y0, d0 * 1e2, y1, d1 * 1e2, 10f64.powf(e)));
+        proptest!(ProptestConfig::with_cases(4000), |((y0, d0, y1, d1, h) in data)| {
+            let b = hermite_bound(y0, d0, y1, d1, h);
+            let slack = 1e-12 * (y0.abs() + y1.abs() + h * (d0.abs() + d1.abs()));
+            let (m, _) = hermite_max(y0, d0, y1, d1, h);
+            prop_assert!(m <= b + slack, "max {m:e} above the bound {b:e}");
+            let mut top = f64::NEG_INFINITY;
+            for i in 0..=2000 {
+                top = top.max(hermite(y0, d0, y1, d1, h, i as f64 / 2000.0));
+            }
+            prop_assert!(top <= b + slack, "sample {top:e} above the bound {b:e}");
+        });
     }
 
     /// Values 0 at both ends of [0, π] with slopes 1 and −1 (as sin): the interpolant is

@@ -4,4 +4,5 @@
 
 pub mod format;
 pub mod hermite;
+pub(crate) mod lanes;
 pub mod linalg;

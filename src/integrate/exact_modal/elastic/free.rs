@@ -4,8 +4,11 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::kernel::{HarmonicWave, ModeLoads, PolyMap, harmonic_pass, poly_pass};
+use super::kernel::{
+    HarmonicWave, ModeLoads, PolyMap, dots, harmonic_pass, poly_margins, poly_pass,
+};
 use super::*;
+use crate::numerics::hermite::hermite_bound;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     // ---------------------------------------------------------------- free flight
@@ -43,8 +46,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
     /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
     /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
-    /// (`amp`) and every level's (`fmargin`), and what the step's exact tallies need (`fsums`,
-    /// `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos at the end.
+    /// (`amp`) and every level's (`fmargin`; without `margin`, under a recorded motion an upper
+    /// bound of them, [`PolyMap::margin_bounds`], else 0), and what the step's exact tallies
+    /// need (`fsums`, `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos
+    /// at the end.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn free_prop(
         &mut self,
@@ -71,7 +76,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     w2: &gm.w2,
                     inv_w2: &gm.inv_w2,
                 };
-                slot.poly = Some(PolyMap::new(modes, &slot.props, &slot.herm, slot.h));
+                let mut map = PolyMap::new(modes, &slot.props, &slot.herm, slot.h);
+                map.set_gains((0..self.nl).map(|k| self.sys.coupling(k)));
+                slot.poly = Some(map);
             }
         }
         let fd = match fd {
@@ -101,6 +108,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let w2 = &gm.w2[..n];
         let mut sums = StateSums::default();
         let mut energy = None;
+        let mut bounded = false;
         match (piece, gm.harmonic_plain(), &self.htally) {
             (Piece::Harmonic, Some((big, g_re, g_im)), ht) => {
                 let hw = HarmonicWave {
@@ -149,9 +157,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 let map = fd.poly.as_ref().expect("the map is built before the pass");
                 let out = (qb, vb, amp);
                 let (ps, e) = if margin {
-                    poly_pass::<true>(map, g, q, v, out)
+                    let (ps, e, _) = poly_pass::<true>(map, g, q, v, out);
+                    (ps, e)
                 } else {
-                    poly_pass::<false>(map, g, q, v, out)
+                    let (ps, e, s0) = poly_pass::<false>(map, g, q, v, out);
+                    map.margin_bounds(g, s0, &mut self.fmargin);
+                    bounded = true;
+                    (ps, e)
                 };
                 self.fpsums = ps;
                 self.fground = g;
@@ -185,12 +197,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // every level's projections and margin, and the modal energy, at the end
         for k in 0..nl {
             let c = self.sys.coupling(k);
-            self.fproj[k] = (dot(c, &self.qb), dot(c, &self.vb));
-            self.fmargin[k] = if margin {
-                dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp)
-            } else {
-                0.0
-            };
+            self.fproj[k] = dots(c, &self.qb, &self.vb);
+            if margin {
+                self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
+            } else if !bounded {
+                self.fmargin[k] = 0.0;
+            }
         }
         self.fenergy = match (&self.htally, energy) {
             (_, Some(e)) => e,
@@ -206,6 +218,23 @@ impl<'a, O: Observer> Elastic<'a, O> {
         };
         self.fsums = sums;
         tr1
+    }
+
+    /// The contact test's margins of the free step just passed without them under a recorded
+    /// motion (its data `fd`, its ground factors in `fground`, from (q, v)): each mode's in
+    /// `amp` and every level's in `fmargin`, the same bits a pass with margins gives.
+    fn exact_margins(&mut self, fd: Option<usize>) {
+        let n = self.n;
+        let g = self.fground;
+        let fd = match fd {
+            Some(i) => &self.free[i],
+            None => self.scratch_free.as_ref().expect("scratch free flight"),
+        };
+        let map = fd.poly.as_ref().expect("the map is built before the pass");
+        poly_margins(map, g, &self.q[..n], &self.v[..n], &mut self.amp[..n]);
+        for k in 0..self.nl {
+            self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
+        }
     }
 
     /// (δ, δ̇) of level k at the state (qb, vb) (from the free flight's projections).
@@ -230,7 +259,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let m = if sharp {
                 quartic_bound(d0, dd0, d1, dd1, h, margin)
             } else {
-                hermite_max(d0, dd0, d1, dd1, h).0 + margin
+                // the root solve only where the bound without it, with a slack for the
+                // solve's rounding, lets the level reach 0: elsewhere the solve's value too
+                // stays ≤ 0 (numerics::hermite's proptest), so the decision is the same
+                let slack = 1e-12 * (d0.abs() + d1.abs() + h * (dd0.abs() + dd1.abs()));
+                let reach = hermite_bound(d0, dd0, d1, dd1, h) + slack + margin;
+                if reach <= 0.0 {
+                    reach
+                } else {
+                    hermite_max(d0, dd0, d1, dd1, h).0 + margin
+                }
             };
             bound = bound.max(m);
         }
@@ -375,17 +413,27 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.since_sync = (self.since_sync + 1) % 16;
         let fd = self.free_index(h, on_grid);
         let check = self.nl > 0;
-        let tr1 = self.free_prop(fd, &piece, self.trig_now, self.t, h, false, check);
+        // under a recorded motion the pass gives the margins' upper bound (no per-mode work), and
+        // the margins themselves are formed only where that bound lets a level touch: the
+        // decision is the one the margins give (the bound is at least the margin, and the test
+        // grows with it), so nothing else changes
+        let lean = check && matches!(piece, Piece::Poly { .. });
+        let tr1 = self.free_prop(fd, &piece, self.trig_now, self.t, h, false, check && !lean);
         if check {
             for k in 0..self.nl {
                 self.at[k] = Self::free_start(&self.states[k]);
+            }
+            let mut touch = self.free_bound(h, false) > 0.0;
+            if touch && lean {
+                self.exact_margins(fd);
+                touch = self.free_bound(h, false) > 0.0;
             }
             // (stereomechanical impacts pressed together by the ground chatter without end — a
             // Zeno sequence, bounces 1e-9 s apart: after ZENO located impacts within one grid
             // step, or one at the current instant, the rest of the step is taken whole and its
             // impulse applied at the end, as a fixed-step method does)
             let impulsive = self.sys.has_impulsive();
-            if self.free_bound(h, false) > 0.0 && !(impulsive && self.zeno >= ZENO) {
+            if touch && !(impulsive && self.zeno >= ZENO) {
                 if let Some(tau) = self
                     .find_onset(&piece, h, on_grid)
                     .filter(|&tau| !(impulsive && tau <= 1e-12 * h))

@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use crate::numerics::lanes::F2;
 
 /// The harmonic particular solution `Im[G e^{iΩt}]` of every mode at a free step's ends.
 pub(super) struct HarmonicWave<'g> {
@@ -67,9 +68,19 @@ pub(super) fn harmonic_pass<const MARGIN: bool>(
 /// Stored two modes at a time, every coefficient of both side by side (`pairs[i][c]` = the
 /// coefficient c of modes 2i and 2i + 1; a missing last odd mode has zeros): one pass reads a
 /// single array and does both modes as one vector operation.
+///
+/// It also keeps what bounds the contact test's margins without a pass over the modes
+/// ([`PolyMap::margin_bounds`]): every level's gain over the margins' factors and the
+/// particular solution's size per unit of each ground factor.
 #[derive(Debug, Clone)]
 pub(super) struct PolyMap {
     pairs: Vec<[[f64; 2]; COEFS]>,
+    /// Per contact level k, `G_k = √(Σ_j c_kj² (H0_j²/ω_j² + H1_j²))` (∞ where a mode with
+    /// ω = 0 has a margin): empty until [`PolyMap::set_gains`].
+    gain: Vec<f64>,
+    /// The particular solution's start `(ωA, B)` in the norm `√Σ_j (ω_j² x_j² + y_j²)`, per
+    /// unit of |a_g|, |v_g| and |a1|.
+    part: [f64; 3],
 }
 
 /// The coefficients of a mode in [`PolyMap`]: the map, the ground-work weights of
@@ -130,6 +141,7 @@ impl PolyMap {
     ) -> PolyMap {
         let n = props.len();
         let mut pairs = vec![[[0.0; 2]; COEFS]; n.div_ceil(2)];
+        let mut part = [0.0; 3];
         for j in 0..n {
             let (la, lv, d, i) = (la[j], lv[j], damp[j], inv_w2[j]);
             // poly_coefficients with c = (la a_g + lv v_g, la a1 + lv a_g, ½lv a1), per factor
@@ -166,11 +178,61 @@ impl PolyMap {
             c[B1] = b1;
             c[H0] = herm[j].0;
             c[H1] = herm[j].1;
+            // A = aa a_g + av v_g + a1 a1, B = ba a_g + b1 a1
+            part[0] += w2[j] * aa * aa + ba * ba;
+            part[1] += w2[j] * av * av;
+            part[2] += w2[j] * a1 * a1 + b1 * b1;
             for (k, x) in c.into_iter().enumerate() {
                 pairs[j / 2][k][j % 2] = x;
             }
         }
-        PolyMap { pairs }
+        PolyMap {
+            pairs,
+            gain: Vec::new(),
+            part: part.map(f64::sqrt),
+        }
+    }
+
+    /// Every contact level's gain `G_k` from its coupling row `c_k` (`rows`, one per level).
+    pub(super) fn set_gains<'c>(&mut self, rows: impl Iterator<Item = &'c [f64]>) {
+        let gain = rows.map(|c| {
+            let mut s = 0.0;
+            for (j, &ckj) in c.iter().enumerate() {
+                let m = &self.pairs[j / 2];
+                let (h0, h1, w2) = (m[H0][j % 2], m[H1][j % 2], m[W2][j % 2]);
+                if ckj == 0.0 || (h0 == 0.0 && h1 == 0.0) {
+                    continue;
+                }
+                let x = if h0 == 0.0 { 0.0 } else { h0 * h0 / w2 };
+                s += ckj * ckj * (x + h1 * h1);
+            }
+            // (NaN, from ω² ≤ 0, is no bound either)
+            if s.is_finite() {
+                s.sqrt()
+            } else {
+                f64::INFINITY
+            }
+        });
+        self.gain = gain.collect();
+    }
+
+    /// An upper bound of every level's contact-test margin `Σ_j |c_kj| (H0_j |η_j − A_j| +
+    /// H1_j |η̇_j − B_j|)` (what a pass with margins gives, [`poly_pass`] `MARGIN`) into `out`,
+    /// from the start state's `s0 = Σ_j η̇_j² + ω_j² η_j²` and the ground factors `g` alone,
+    /// without a pass over the modes: with x = η − A, y = η̇ − B, Cauchy–Schwarz gives
+    /// `Σ_j (|c_kj| H0_j/ω_j)(ω_j|x_j|) + (|c_kj| H1_j)|y_j| ≤ G_k ‖(x, y)‖`, and Minkowski
+    /// `‖(x, y)‖ ≤ √s0 + ‖(A, B)‖ ≤ √s0 + |a_g|‖·‖_a + |v_g|‖·‖_v + |a1|‖·‖_1` (the particular
+    /// solution is linear in the factors). The rounding of both sides is a few ulps of sums of
+    /// positive terms (the margin's |η − A| too is at most |η| + |A| rounded): the factor
+    /// 1 + 1e-9 covers it. ∞ where [`PolyMap::set_gains`] has not run.
+    pub(super) fn margin_bounds(&self, (ag, vg, a1): (f64, f64, f64), s0: f64, out: &mut [f64]) {
+        let [na, nv, n1] = self.part;
+        let r = (s0.sqrt() + (na * ag.abs() + nv * vg.abs() + n1 * a1.abs())) * (1.0 + 1e-9);
+        for (k, o) in out.iter_mut().enumerate() {
+            // (∞ · 0 is no bound: NaN reads as "may touch", which the margins then decide)
+            let b = self.gain.get(k).map_or(f64::INFINITY, |g| g * r);
+            *o = if b.is_nan() { f64::INFINITY } else { b };
+        }
     }
 
     /// Mode j's end state from (η, η̇) under the ground factors `g` = (a_g, v_g, a1).
@@ -192,8 +254,9 @@ impl PolyMap {
 
 /// The free flight of every mode under a recorded motion's piece (ground factors `g`):
 /// (q, v) → `out` = (qb, vb, amp), the Hermite margin in `amp` when `MARGIN` (else 0).
-/// Returns the end state's ground-work sums and `Σ η̇² + ω²η²` (twice the modal energy), each
-/// summed in two lanes (even and odd modes, added at the end).
+/// Returns the end state's ground-work sums, `Σ η̇² + ω²η²` (twice the modal energy) and,
+/// without margins, the same of the start state (0 with them: see [`PolyMap::margin_bounds`]),
+/// each summed in two lanes (even and odd modes, added at the end).
 #[inline(always)]
 pub(super) fn poly_pass<const MARGIN: bool>(
     m: &PolyMap,
@@ -201,12 +264,12 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     q: &[f64],
     v: &[f64],
     (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
-) -> (PolySums, f64) {
+) -> (PolySums, f64, f64) {
     let n = qb.len();
     // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
-    // Σ η̇² + ω²η²
-    let mut acc = [F2([0.0; 2]); 7];
-    let g = (F2([ag; 2]), F2([vg; 2]), F2([a1; 2]));
+    // Σ η̇² + ω²η² at the end and (without margins) at the start
+    let mut acc = [F2::zero(); 8];
+    let g = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     let (qp, _) = q[..n].as_chunks::<2>();
     let (vp, _) = v[..n].as_chunks::<2>();
     let (xp, _) = qb.as_chunks_mut::<2>();
@@ -215,7 +278,7 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     let full = qp.len();
     let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
     for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
-        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2(*qj), F2(*vj), &mut acc);
+        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2::load(qj), F2::load(vj), &mut acc);
     }
     if n % 2 == 1 {
         // the last odd mode in lane 0 (lane 1's coefficients are zeros: it adds nothing)
@@ -223,16 +286,117 @@ pub(super) fn poly_pass<const MARGIN: bool>(
         let (x, y, a) = pair::<MARGIN>(
             &m.pairs[full],
             g,
-            F2([q[j], 0.0]),
-            F2([v[j], 0.0]),
+            F2::new(q[j], 0.0),
+            F2::new(v[j], 0.0),
             &mut acc,
         );
         (qb[j], vb[j], amp[j]) = (x[0], y[0], a[0]);
     }
-    let acc = acc.map(|a| a.0);
+    let acc = acc.map(F2::get);
     let sum = |k: usize| acc[k][0] + acc[k][1];
     let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
-    (ps, sum(6))
+    (ps, sum(6), sum(7))
+}
+
+/// The contact test's margins of [`poly_pass`] alone (the same arithmetic, so the same bits):
+/// `amp` from the start state (q, v) under the ground factors `g`.
+pub(super) fn poly_margins(
+    m: &PolyMap,
+    (ag, vg, a1): (f64, f64, f64),
+    q: &[f64],
+    v: &[f64],
+    amp: &mut [f64],
+) {
+    let n = amp.len().min(q.len()).min(v.len());
+    let (g_a, g_v, g_1) = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
+    for j in (0..n).step_by(2) {
+        let c = &m.pairs[j / 2];
+        let k = |i: usize| F2::load(&c[i]);
+        let two = j + 1 < n;
+        let qj = F2::new(q[j], if two { q[j + 1] } else { 0.0 });
+        let vj = F2::new(v[j], if two { v[j + 1] } else { 0.0 });
+        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
+        let pb = k(BA) * g_a + k(B1) * g_1;
+        let a = k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs();
+        let a = a.get();
+        amp[j] = a[0];
+        if two {
+            amp[j + 1] = a[1];
+        }
+    }
+}
+
+/// `(c·x, c·y)` with the very arithmetic of [`crate::numerics::linalg::dot`] for each (a chain
+/// below 8 terms, else four partial sums, lanes 0 + 2 and 1 + 3 added last: the same bits),
+/// both in one pass that reads c once, the partial sums as two pairs of lanes.
+#[inline(always)]
+pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
+    let n = c.len().min(x.len()).min(y.len());
+    let (c, x, y) = (&c[..n], &x[..n], &y[..n]);
+    if n < 8 {
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for i in 0..n {
+            sx += c[i] * x[i];
+            sy += c[i] * y[i];
+        }
+        return (sx, sy);
+    }
+    let z = F2::zero();
+    let (mut x01, mut x23, mut y01, mut y23) = (z, z, z, z);
+    let (cc, _) = c.as_chunks::<4>();
+    let (xc, _) = x.as_chunks::<4>();
+    let (yc, _) = y.as_chunks::<4>();
+    for ((c, x), y) in cc.iter().zip(xc).zip(yc) {
+        let (c01, c23) = (F2::new(c[0], c[1]), F2::new(c[2], c[3]));
+        x01 = x01 + c01 * F2::new(x[0], x[1]);
+        x23 = x23 + c23 * F2::new(x[2], x[3]);
+        y01 = y01 + c01 * F2::new(y[0], y[1]);
+        y23 = y23 + c23 * F2::new(y[2], y[3]);
+    }
+    let ([x0, x1], [x2, x3]) = (x01.get(), x23.get());
+    let ([y0, y1], [y2, y3]) = (y01.get(), y23.get());
+    let (mut ax, mut ay) = ([x0, x1, x2, x3], [y0, y1, y2, y3]);
+    let r = n / 4 * 4;
+    for i in 0..n - r {
+        ax[i] += c[r + i] * x[r + i];
+        ay[i] += c[r + i] * y[r + i];
+    }
+    (
+        (ax[0] + ax[2]) + (ax[1] + ax[3]),
+        (ay[0] + ay[2]) + (ay[1] + ay[3]),
+    )
+}
+
+/// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
+/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
+#[inline(always)]
+fn pair<const MARGIN: bool>(
+    c: &[[f64; 2]; COEFS],
+    (g_a, g_v, g_1): (F2, F2, F2),
+    qj: F2,
+    vj: F2,
+    acc: &mut [F2; 8],
+) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let k = |i: usize| F2::load(&c[i]);
+    let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
+    let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
+    let a = if MARGIN {
+        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
+        let pb = k(BA) * g_a + k(B1) * g_1;
+        k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
+    } else {
+        acc[7] = acc[7] + (vj * vj + k(W2) * qj * qj);
+        F2::zero()
+    };
+    let u = y + k(DD) * x;
+    acc[0] = acc[0] + k(LA) * x;
+    acc[1] = acc[1] + k(LV) * x;
+    acc[2] = acc[2] + k(LAI) * u;
+    acc[3] = acc[3] + k(LVI) * u;
+    acc[4] = acc[4] + k(LVI) * x;
+    acc[5] = acc[5] + k(LVD) * u;
+    acc[6] = acc[6] + (y * y + k(W2) * x * x);
+    (x.get(), y.get(), a.get())
 }
 
 #[cfg(test)]
@@ -309,71 +473,98 @@ mod tests {
         }
         eprintln!("poly map vs closed form: worst relative error {worst:e}");
     }
-}
 
-/// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
-/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
-#[inline(always)]
-fn pair<const MARGIN: bool>(
-    c: &[[f64; 2]; COEFS],
-    (g_a, g_v, g_1): (F2, F2, F2),
-    qj: F2,
-    vj: F2,
-    acc: &mut [F2; 7],
-) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let k = |i: usize| F2(c[i]);
-    let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
-    let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
-    let a = if MARGIN {
-        let pa = k(AA) * g_a + k(AV) * g_v + k(A1) * g_1;
-        let pb = k(BA) * g_a + k(B1) * g_1;
-        k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
-    } else {
-        F2([0.0; 2])
-    };
-    let u = y + k(DD) * x;
-    acc[0] = acc[0] + k(LA) * x;
-    acc[1] = acc[1] + k(LV) * x;
-    acc[2] = acc[2] + k(LAI) * u;
-    acc[3] = acc[3] + k(LVI) * u;
-    acc[4] = acc[4] + k(LVI) * x;
-    acc[5] = acc[5] + k(LVD) * u;
-    acc[6] = acc[6] + (y * y + k(W2) * x * x);
-    (x.0, y.0, a.0)
-}
-
-/// Two lanes of f64 (the same operation on two modes), for passes the compiler does as
-/// vector operations.
-#[derive(Debug, Clone, Copy)]
-struct F2([f64; 2]);
-
-impl std::ops::Add for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn add(self, o: F2) -> F2 {
-        F2([self.0[0] + o.0[0], self.0[1] + o.0[1]])
+    /// The margins' bound holds: for random modes (ω from 0.3 to 3000 rad/s, ζ up to 0.4, so
+    /// that (ωh)⁴/384 runs from ~0 to its cap of 2), loads, steps, coupling rows (zeros among
+    /// them, as a row's are), states and ground factors over many orders of magnitude, every
+    /// level's [`PolyMap::margin_bounds`] is at least its margin `Σ_j |c_kj| amp_j` as the pass
+    /// with margins forms it. The same draws check that the margins alone
+    /// ([`poly_margins`]) are the pass's bit for bit, that the pass without margins gives the
+    /// same end state and sums bit for bit, and its start sum of squares against a plain sum.
+    #[test]
+    fn the_margin_bound_holds_and_the_lean_pass_is_the_same_step() {
+        use proptest::prelude::*;
+        let mag = |lo: f64, hi: f64| {
+            (lo..hi, prop::bool::ANY)
+                .prop_map(|(e, s)| if s { 10f64.powf(e) } else { -10f64.powf(e) })
+        };
+        let mode = (-0.5f64..3.5, 0.0f64..0.4, mag(-2.0, 4.0), mag(-3.0, 2.0));
+        let levels = prop::collection::vec(
+            prop::collection::vec(prop_oneof![Just(0.0), mag(-4.0, 0.0)], 13),
+            1..4,
+        );
+        let state = prop::collection::vec((mag(-9.0, 0.0), mag(-7.0, 1.0)), 13);
+        let data = (
+            prop::collection::vec(mode, 1..13),
+            levels,
+            state,
+            -4.0f64..-1.5,
+            (mag(-3.0, 1.5), mag(-4.0, 0.5), mag(-2.0, 3.0)),
+        );
+        proptest!(ProptestConfig::with_cases(3000), |((modes, rows, st, eh, g) in data)| {
+            let n = modes.len();
+            let h = 10f64.powf(eh);
+            let omega: Vec<f64> = modes.iter().map(|m| 10f64.powf(m.0)).collect();
+            let damp: Vec<f64> = modes.iter().zip(&omega).map(|(m, w)| 2.0 * m.1 * w).collect();
+            let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+            let inv_w2: Vec<f64> = w2.iter().map(|x| 1.0 / x).collect();
+            let la: Vec<f64> = modes.iter().map(|m| m.2).collect();
+            let lv: Vec<f64> = modes.iter().map(|m| m.3).collect();
+            let props: Vec<Prop> = (0..n).map(|j| propagator(omega[j], damp[j], h)).collect();
+            // (FreeData::herm's factors)
+            let herm: Vec<(f64, f64)> = (0..n)
+                .map(|j| {
+                    let (w, zw) = (omega[j], 0.5 * damp[j]);
+                    let lam = if zw < w { w } else { zw + (zw * zw - w * w).sqrt() };
+                    let f = hermite_gap_factor(lam * h);
+                    (f, 2.0 * f / lam)
+                })
+                .collect();
+            let loads = ModeLoads { la: &la, lv: &lv, damp: &damp, w2: &w2, inv_w2: &inv_w2 };
+            let mut map = PolyMap::new(loads, &props, &herm, h);
+            let rows: Vec<Vec<f64>> = rows.into_iter().map(|r| r[..n].to_vec()).collect();
+            map.set_gains(rows.iter().map(|r| r.as_slice()));
+            let q: Vec<f64> = st[..n].iter().map(|s| s.0).collect();
+            let v: Vec<f64> = st[..n].iter().map(|s| s.1).collect();
+            let (mut qa, mut va, mut aa) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (mut qb, mut vb, mut ab) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (sa, ea, _) = poly_pass::<true>(&map, g, &q, &v, (&mut qa, &mut va, &mut aa));
+            let (sb, eb, s0) = poly_pass::<false>(&map, g, &q, &v, (&mut qb, &mut vb, &mut ab));
+            let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&qa), bits(&qb));
+            prop_assert_eq!(bits(&va), bits(&vb));
+            prop_assert_eq!(ea.to_bits(), eb.to_bits());
+            prop_assert_eq!(format!("{sa:?}"), format!("{sb:?}"));
+            let plain: f64 = (0..n).map(|j| v[j] * v[j] + w2[j] * q[j] * q[j]).sum();
+            // (two lanes against one chain: sums of positive terms, a few ulps apart)
+            prop_assert!((s0 - plain).abs() <= 1e-14 * plain, "{s0:e} vs {plain:e}");
+            let mut alone = vec![0.0; n];
+            poly_margins(&map, g, &q, &v, &mut alone);
+            prop_assert_eq!(bits(&alone), bits(&aa));
+            let mut bound = vec![0.0; rows.len()];
+            map.margin_bounds(g, s0, &mut bound);
+            for (k, r) in rows.iter().enumerate() {
+                let cabs: Vec<f64> = r.iter().map(|c| c.abs()).collect();
+                let margin = dot(&cabs, &aa);
+                prop_assert!(
+                    margin <= bound[k],
+                    "level {k}: margin {margin:e} above its bound {:e}", bound[k]
+                );
+            }
+        });
     }
-}
 
-impl std::ops::Sub for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn sub(self, o: F2) -> F2 {
-        F2([self.0[0] - o.0[0], self.0[1] - o.0[1]])
-    }
-}
-
-impl std::ops::Mul for F2 {
-    type Output = F2;
-    #[inline(always)]
-    fn mul(self, o: F2) -> F2 {
-        F2([self.0[0] * o.0[0], self.0[1] * o.0[1]])
-    }
-}
-
-impl F2 {
-    #[inline(always)]
-    fn abs(self) -> F2 {
-        F2([self.0[0].abs(), self.0[1].abs()])
+    /// [`dots`] is [`dot`] twice, bit for bit, at every length from 0 to 41 (the chain below
+    /// 8 terms, the partial sums and every remainder above), on values that round.
+    #[test]
+    fn dots_are_dot_bit_for_bit() {
+        for n in 0..42 {
+            let c: Vec<f64> = (0..n).map(|i| ((i * 7 + 3) as f64).sqrt() - 2.5).collect();
+            let x: Vec<f64> = (0..n).map(|i| 1.0 / (i as f64 + 0.3)).collect();
+            let y: Vec<f64> = (0..n).map(|i| ((i as f64) * 0.37).sin() * 1e-3).collect();
+            let (a, b) = dots(&c, &x, &y);
+            assert_eq!(a.to_bits(), dot(&c, &x).to_bits(), "n = {n}");
+            assert_eq!(b.to_bits(), dot(&c, &y).to_bits(), "n = {n}");
+        }
     }
 }

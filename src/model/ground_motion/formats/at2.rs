@@ -72,6 +72,35 @@ fn parse_npts(token: &str) -> Option<usize> {
     (x.is_finite() && x >= 0.0 && x.fract() == 0.0 && x < 9.0e15).then_some(x as usize)
 }
 
+/// The blank- or comma-separated tokens of a data line. An ASCII line (every line of a PEER
+/// file) is cut on its bytes — the ASCII characters `char::is_whitespace` takes (tab, line
+/// feed, vertical tab, form feed, carriage return, space) and the comma — without decoding
+/// characters; any other line by characters. The same tokens either way.
+fn value_tokens(line: &str) -> impl Iterator<Item = &str> {
+    let ascii = line.is_ascii();
+    let by_char = (!ascii).then(|| {
+        line.split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|t| !t.is_empty())
+    });
+    let bytes = line.as_bytes();
+    let mut at = 0;
+    let by_byte = std::iter::from_fn(move || {
+        if !ascii {
+            return None;
+        }
+        let sep = |b: u8| matches!(b, b'\t' | b'\n' | 0x0b | 0x0c | b'\r' | b' ' | b',');
+        while at < bytes.len() && sep(bytes[at]) {
+            at += 1;
+        }
+        let start = at;
+        while at < bytes.len() && !sep(bytes[at]) {
+            at += 1;
+        }
+        (at > start).then(|| &line[start..at])
+    });
+    by_char.into_iter().flatten().chain(by_byte)
+}
+
 /// Reads a PEER NGA `.AT2` file: one channel, units from line 3 (`… IN UNITS OF G`), g when
 /// it does not say.
 pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
@@ -111,10 +140,7 @@ pub fn read(text: &str, file: &str) -> Result<Parsed, RecordError> {
     let mut first_extra_line = None;
     for (i, line) in text.lines().enumerate().skip(4) {
         let line_no = i + 1;
-        for token in line
-            .split(|c: char| c.is_whitespace() || c == ',')
-            .filter(|t| !t.is_empty())
-        {
+        for token in value_tokens(line) {
             let a = parse_value(token, file, line_no)?;
             found += 1;
             if found <= npts {
@@ -185,6 +211,28 @@ mod tests {
 
     fn data_file(name: &str) -> PathBuf {
         Path::new(GROUND_MOTIONS_DIR).join(name)
+    }
+
+    /// A data line's tokens cut on bytes are those of the character split they replace, on
+    /// lines of digits, signs, points, letters, commas and every kind of blank — ASCII
+    /// (tab, vertical tab, form feed, carriage return, space) and not (U+0085, U+00A0, which
+    /// is no blank, U+2003, U+3000), which send a line to the character split.
+    #[test]
+    fn tokens_cut_on_bytes_are_the_character_split() {
+        use proptest::prelude::*;
+        let chars = prop::sample::select(vec![
+            '1', '2', '9', '0', '.', '-', '+', 'E', 'e', 'D', 'x', ',', ' ', ' ', ' ', '\t',
+            '\u{b}', '\u{c}', '\r', '\u{85}', '\u{a0}', '\u{2003}', '\u{3000}', 'é',
+        ]);
+        proptest!(ProptestConfig::with_cases(5000), |(line in prop::collection::vec(chars, 0..40))| {
+            let line: String = line.into_iter().collect();
+            let want: Vec<&str> = line
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .filter(|t| !t.is_empty())
+                .collect();
+            let got: Vec<&str> = super::value_tokens(&line).collect();
+            prop_assert_eq!(got, want, "{:?}", line);
+        });
     }
 
     // ---------------------------------------------------------------- real records

@@ -109,7 +109,12 @@ impl Record {
         opts: &RecordOptions,
     ) -> Result<Record, RecordError> {
         crate::model::ground_motion::formats::check_text(bytes, &path.display().to_string())?;
-        let text = String::from_utf8_lossy(bytes);
+        // (valid UTF-8, every bundled record, is checked by the standard library's fast scan,
+        // where the lossy conversion decodes character by character)
+        let text = match std::str::from_utf8(bytes) {
+            Ok(text) => std::borrow::Cow::Borrowed(text),
+            Err(_) => String::from_utf8_lossy(bytes),
+        };
         Record::parse(&text, path, opts)
     }
 
@@ -136,7 +141,10 @@ pub fn check_text(bytes: &[u8], file: &str) -> Result<(), RecordError> {
         at: record_line(file, line_of(at)),
         reason,
     };
-    if let Some(at) = bytes.iter().position(|&b| b == 0) {
+    // (`contains` scans a word at a time; the position only for the message)
+    if bytes.contains(&0)
+        && let Some(at) = bytes.iter().position(|&b| b == 0)
+    {
         return Err(not_text(at, format!("a NUL byte at byte {}", at + 1)));
     }
     let body = &bytes[..bytes.len() - bytes.iter().rev().take_while(|&&b| b == 0x1a).count()];
