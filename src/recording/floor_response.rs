@@ -21,8 +21,10 @@
 //! damping forces above: `shear_with_damping`.
 //!
 //! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
-//! observations on the cubic Hermite interpolant, as the contact-height peaks are;
-//! accelerations and the equilibrium value are taken at the observations.
+//! observations on the cubic Hermite interpolant, as the contact-height peaks are, and where
+//! modes too fast for it (`ω h > 0.5`) ring enough to matter (after a stiff impact), on a
+//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]); accelerations and the
+//! equilibrium value are taken at the observations.
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
@@ -33,6 +35,7 @@ use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::System;
 use crate::numerics::hermite::{Basis, hermite_abs_max};
+use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid};
 
 /// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
 const HERMITE_REACH: f64 = 4.0 / 27.0;
@@ -110,6 +113,35 @@ fn update_station(
             refine(&mut p.shear, v0, vd0, v1, vd1, h);
         }
         *prev_force = (v1, vd1);
+    }
+}
+
+/// The peaks of displacement, drift and (`rows`) storey force of the stations `flagged` (of
+/// `ns`) refined on the sub-grid's parts (values and rates from the modes' closed forms).
+fn refine_on_subgrid(
+    g: &SubGrid,
+    flagged: &[usize],
+    ns: usize,
+    rows: bool,
+    peaks: &mut [FloorPeaks],
+) {
+    let dl = g.delta;
+    for &f in flagged {
+        let p = &mut peaks[f];
+        for k in 0..g.parts {
+            let (i0, i1) = (k * ns + f, (k + 1) * ns + f);
+            let (u0, ud0, u1, ud1) = (g.u[i0], g.ud[i0], g.u[i1], g.ud[i1]);
+            refine(&mut p.displacement, u0, ud0, u1, ud1, dl);
+            let (b0, bd0, b1, bd1) = if f > 0 {
+                (g.u[i0 - 1], g.ud[i0 - 1], g.u[i1 - 1], g.ud[i1 - 1])
+            } else {
+                (0.0, 0.0, 0.0, 0.0)
+            };
+            refine(&mut p.drift, u0 - b0, ud0 - bd0, u1 - b1, ud1 - bd1, dl);
+            if rows {
+                refine(&mut p.shear, g.v[i0], g.vd[i0], g.v[i1], g.vd[i1], dl);
+            }
+        }
     }
 }
 
@@ -230,6 +262,15 @@ struct Stations {
     abs_now: Vec<f64>,
     hold: Vec<f64>,
     peaks: Vec<FloorPeaks>,
+    /// The modes' closed forms between observations ([`crate::recording::subgrid`]), the
+    /// largest ω (1/s), |φ|, |φ(j) − φ(j−1)| and |storey-force rows| (`[n·stations +
+    /// station]`), and the stations that take the sub-grid at this observation (scratch).
+    grid: SubGrid,
+    omega_max: f64,
+    abs_phi: Vec<f64>,
+    abs_drift: Vec<f64>,
+    abs_rows: Vec<f64>,
+    flagged: Vec<usize>,
 }
 
 impl Stations {
@@ -338,7 +379,27 @@ impl Stations {
                 })
             })
             .collect();
+        let abs_phi: Vec<f64> = phi.iter().map(|x| x.abs()).collect();
+        let abs_drift = (0..nm)
+            .flat_map(|n| {
+                let phi = &phi;
+                (0..ns).map(move |f| {
+                    let below = if f == 0 { 0.0 } else { phi[n * ns + f - 1] };
+                    (phi[n * ns + f] - below).abs()
+                })
+            })
+            .collect();
+        let abs_rows = match &force {
+            StoreyForce::Rows(r) => r.iter().map(|x| x.abs()).collect(),
+            StoreyForce::Springs(_) => Vec::new(),
+        };
         Stations {
+            grid: SubGrid::new(nm),
+            omega_max: m.omega.iter().fold(0.0, |a, &w| a.max(w)),
+            abs_phi,
+            abs_drift,
+            abs_rows,
+            flagged: Vec::with_capacity(ns),
             peaks: heights
                 .iter()
                 .map(|&height| FloorPeaks {
@@ -394,6 +455,9 @@ pub struct FloorRecorder {
     /// Every station takes the full update at every observation (tests: the skip changes
     /// nothing).
     full: bool,
+    /// The resolution Θ of the sub-grid ([`crate::recording::subgrid`]; `None`: the cubic
+    /// Hermite between observations only).
+    resolution: Option<f64>,
 }
 
 impl FloorRecorder {
@@ -444,7 +508,16 @@ impl FloorRecorder {
             accel: vec![0.0; system.len()],
             last_t: None,
             full: false,
+            resolution: Some(DEFAULT_RESOLUTION),
         }
+    }
+
+    /// The resolution Θ of the peaks between observations: modes with `ω h > Θ` are followed
+    /// on a sub-grid of their closed forms with parts `≤ Θ/ω_max`
+    /// ([`crate::recording::subgrid`]); `None`: the cubic Hermite only.
+    pub fn with_resolution(mut self, resolution: Option<f64>) -> FloorRecorder {
+        self.resolution = resolution;
+        self
     }
 
     /// The heights of the stations of every structure (m, lowest first), in the order of
@@ -506,6 +579,7 @@ impl FloorRecorder {
             }
         }
         let full = self.full;
+        let resolution = self.resolution;
         for st in &mut self.stations {
             let nm = st.modes;
             let ns = st.heights.len();
@@ -514,6 +588,18 @@ impl FloorRecorder {
                 &s.v[st.offset..st.offset + nm],
                 &self.accel[st.offset..st.offset + nm],
             );
+            let (omega, damp) = (
+                &system.omega()[st.offset..st.offset + nm],
+                &system.damping_coefficients()[st.offset..st.offset + nm],
+            );
+            // modes too fast for the Hermite that ring: the sub-grid may be needed
+            let ringing = match resolution {
+                Some(theta) => st
+                    .grid
+                    .prepare(h, theta, (q, v, a), omega, damp, st.omega_max),
+                None => false,
+            };
+            st.flagged.clear();
             // every station's sums over the modes, formed mode by mode: the runs over the
             // stations are contiguous (`[mode·stations + station]`) and vectorise
             let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
@@ -610,7 +696,42 @@ impl FloorRecorder {
                                 | (has_rows && vf[f].abs() > p.shear)
                         }
                     };
-                if need {
+                // where the fast modes' ringing may lift a peak the Hermite misses: the
+                // station's ends only here, and the sub-grid below
+                let sub = ringing && yields[f].is_none() && {
+                    let flag = |ring: f64, reach: f64, peak: f64| {
+                        ring > NEGLIGIBLE * peak && reach + ring > peak
+                    };
+                    let hh = h.unwrap_or(0.0);
+                    let g = &st.grid;
+                    flag(
+                        g.ring(&st.abs_phi, ns, f),
+                        reach(up, udp, u, ud, hh),
+                        p.displacement,
+                    ) | flag(
+                        g.ring(&st.abs_drift, ns, f),
+                        reach(dp, ddp, d, dd, hh),
+                        p.drift,
+                    ) | (has_rows && {
+                        let (v0, vd0) = prev_force[f];
+                        flag(
+                            g.ring(&st.abs_rows, ns, f),
+                            reach(v0, vd0, vf[f], vfd[f], hh),
+                            p.shear,
+                        )
+                    })
+                };
+                if sub {
+                    update_station(
+                        &mut peaks[f],
+                        &mut prev_force[f],
+                        (s.t, None),
+                        [(up, udp), (u, ud), (dp, ddp), (d, dd)],
+                        a,
+                        rows.map(|_| (vf[f], vfd[f])),
+                    );
+                    st.flagged.push(f);
+                } else if need {
                     // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
                     // this drift and its z, or the modal rows' V
                     let force = match yields[f] {
@@ -634,6 +755,14 @@ impl FloorRecorder {
                 }
                 prev[f] = (u, ud);
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
+            }
+            if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
+                st.grid
+                    .evaluate(h, theta, (q, v), omega, damp, st.omega_max, phi, rows, ns);
+                refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
+            }
+            if resolution.is_some() {
+                st.grid.advance(q, v);
             }
             // the equilibrium of what is above (storey force and damping forces)
             let nl = st.levels.min(s.levels.len());
