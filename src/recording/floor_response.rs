@@ -116,6 +116,24 @@ fn update_station(
     }
 }
 
+/// A bound of |Q| over an interval of length `h` for a station quantity `Q = Σ c_n η_n` with
+/// (Q, Q̇) at its ends `ends`, from the fast modes' sums `s` (`Σ c_n [η₀, η̇₀, η₁, η̇₁, α, β]`)
+/// and their ringing `ring = Σ |c_n| ρ_n` ([`crate::recording::subgrid`]): the Hermite bound
+/// of the slow modes' part ([`reach`]), the fast modes' linear part at its larger end, and
+/// their ringing.
+#[inline(always)]
+fn ring_bound(ends: (f64, f64, f64, f64), s: [f64; 6], ring: f64, h: f64) -> f64 {
+    let slow = reach(
+        ends.0 - s[0],
+        ends.1 - s[1],
+        ends.2 - s[2],
+        ends.3 - s[3],
+        h,
+    );
+    let linear = s[4].abs().max((s[4] + s[5] * h).abs());
+    slow + linear + ring
+}
+
 /// The peaks of displacement, drift and (`rows`) storey force of the stations `flagged` (of
 /// `ns`) refined on the sub-grid's parts (values and rates from the modes' closed forms).
 fn refine_on_subgrid(
@@ -270,6 +288,8 @@ struct Stations {
     abs_phi: Vec<f64>,
     abs_drift: Vec<f64>,
     abs_rows: Vec<f64>,
+    /// Per mode, the largest of |φ|, |φ(j) − φ(j−1)| and |storey-force row| over the stations.
+    cmax: [Vec<f64>; 3],
     flagged: Vec<usize>,
 }
 
@@ -380,7 +400,7 @@ impl Stations {
             })
             .collect();
         let abs_phi: Vec<f64> = phi.iter().map(|x| x.abs()).collect();
-        let abs_drift = (0..nm)
+        let abs_drift: Vec<f64> = (0..nm)
             .flat_map(|n| {
                 let phi = &phi;
                 (0..ns).map(move |f| {
@@ -389,11 +409,21 @@ impl Stations {
                 })
             })
             .collect();
-        let abs_rows = match &force {
+        let abs_rows: Vec<f64> = match &force {
             StoreyForce::Rows(r) => r.iter().map(|x| x.abs()).collect(),
             StoreyForce::Springs(_) => Vec::new(),
         };
+        let largest = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .map(|n| {
+                    x.get(n * ns..(n + 1) * ns)
+                        .map_or(0.0, |c| c.iter().fold(0.0, |a: f64, &b| a.max(b)))
+                })
+                .collect()
+        };
+        let cmax = [largest(&abs_phi), largest(&abs_drift), largest(&abs_rows)];
         Stations {
+            cmax,
             grid: SubGrid::new(nm),
             omega_max: m.omega.iter().fold(0.0, |a, &w| a.max(w)),
             abs_phi,
@@ -631,6 +661,13 @@ impl FloorRecorder {
                 StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
                 StoreyForce::Springs(_) => None,
             };
+            if ringing {
+                st.grid.station_sums(
+                    (phi, &st.abs_phi, &st.abs_drift),
+                    rows.map(|r| (r, &st.abs_rows[..])),
+                    ns,
+                );
+            }
             if let Some(rows) = rows {
                 {
                     let c = &rows[..ns];
@@ -696,32 +733,35 @@ impl FloorRecorder {
                                 | (has_rows && vf[f].abs() > p.shear)
                         }
                     };
-                // where the fast modes' ringing may lift a peak the Hermite misses: the
-                // station's ends only here, and the sub-grid below
-                let sub = ringing && yields[f].is_none() && {
-                    let flag = |ring: f64, reach: f64, peak: f64| {
-                        ring > NEGLIGIBLE * peak && reach + ring > peak
-                    };
+                // where the fast modes ring more than negligibly the Hermite of the ends
+                // neither follows nor bounds the station's quantities: their bound over the
+                // interval ([`ring_bound`]) decides between the ends only and the sub-grid
+                let (mut sub, mut ringing_here) = (false, false);
+                if ringing && yields[f].is_none() {
                     let hh = h.unwrap_or(0.0);
                     let g = &st.grid;
-                    flag(
-                        g.ring(&st.abs_phi, ns, f),
-                        reach(up, udp, u, ud, hh),
-                        p.displacement,
-                    ) | flag(
-                        g.ring(&st.abs_drift, ns, f),
-                        reach(dp, ddp, d, dd, hh),
-                        p.drift,
-                    ) | (has_rows && {
+                    let su: [f64; 6] = std::array::from_fn(|j| g.sums_u[j * ns + f]);
+                    let sd: [f64; 6] = std::array::from_fn(|j| {
+                        su[j] - if f > 0 { g.sums_u[j * ns + f - 1] } else { 0.0 }
+                    });
+                    let mut judge = |ends: (f64, f64, f64, f64), s: [f64; 6], ring, peak| {
+                        if ring * g.hermite_factor > NEGLIGIBLE * peak {
+                            ringing_here = true;
+                            sub |= ring_bound(ends, s, ring, hh) > peak;
+                        } else {
+                            sub |= reach(ends.0, ends.1, ends.2, ends.3, hh) > peak;
+                        }
+                    };
+                    judge((up, udp, u, ud), su, g.rings[f], p.displacement);
+                    judge((dp, ddp, d, dd), sd, g.rings[ns + f], p.drift);
+                    if has_rows {
                         let (v0, vd0) = prev_force[f];
-                        flag(
-                            g.ring(&st.abs_rows, ns, f),
-                            reach(v0, vd0, vf[f], vfd[f], hh),
-                            p.shear,
-                        )
-                    })
-                };
-                if sub {
+                        let sv: [f64; 6] = std::array::from_fn(|j| g.sums_v[j * ns + f]);
+                        judge((v0, vd0, vf[f], vfd[f]), sv, g.rings[2 * ns + f], p.shear);
+                    }
+                    sub &= ringing_here;
+                }
+                if sub || (ringing_here && need) {
                     update_station(
                         &mut peaks[f],
                         &mut prev_force[f],
@@ -730,7 +770,9 @@ impl FloorRecorder {
                         a,
                         rows.map(|_| (vf[f], vfd[f])),
                     );
-                    st.flagged.push(f);
+                    if sub {
+                        st.flagged.push(f);
+                    }
                 } else if need {
                     // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
                     // this drift and its z, or the modal rows' V
@@ -757,8 +799,18 @@ impl FloorRecorder {
                 (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
             }
             if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
+                let largest = |x: fn(&FloorPeaks) -> f64| -> f64 {
+                    st.peaks.iter().map(x).fold(0.0, f64::max)
+                };
+                let peak = [
+                    largest(|p| p.displacement),
+                    largest(|p| p.drift),
+                    largest(|p| p.shear),
+                ];
+                let cmax = [&st.cmax[0][..], &st.cmax[1][..], &st.cmax[2][..]];
+                let resolve = st.grid.resolved_omega(omega, cmax, peak);
                 st.grid
-                    .evaluate(h, theta, (q, v), omega, damp, st.omega_max, phi, rows, ns);
+                    .evaluate(h, theta, (q, v), omega, damp, resolve, phi, rows, ns);
                 refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
             }
             if resolution.is_some() {

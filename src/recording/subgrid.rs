@@ -23,12 +23,14 @@
 //!
 //! A mode is *fast* when `ω_n h >` the resolution Θ ([`DEFAULT_RESOLUTION`]). For a station
 //! quantity `Q = Σ c_n η_n` the Hermite of Q's ends is off by at most `Σ_fast |c_n| ρ_n (2 +
-//! (8/27) ω_n h)` (the ringing itself, and its Hermite: the slope weights are at most 4/27;
-//! [`SubGrid::ring`]). Where that is negligible (below [`NEGLIGIBLE`] of the peak), or cannot
-//! lift the Hermite's bound above the peak, nothing changes; otherwise the station's
-//! displacement, drift and storey force are evaluated from the model on a sub-grid of `m`
-//! equal parts with `ω_max h/m ≤ Θ` and refined on each part's cubic Hermite (as accurate
-//! there as the Hermite is for a slow mode).
+//! (8/27) ω_n h)` (the ringing itself, and its Hermite: the slope weights are at most 4/27).
+//! Where that is negligible (below [`NEGLIGIBLE`] of the peak) the Hermite stands. Otherwise
+//! Q over the interval is bounded by the Hermite bound of its slow part (Q less the fast
+//! modes' ends) plus the fast modes' linear part at its larger end plus `Σ_fast |c_n| ρ_n`
+//! ([`SubGrid::station_sums`]); where that cannot reach the peak nothing changes, and where it
+//! can the station's displacement, drift and storey force are evaluated from the model on a
+//! sub-grid of `m` equal parts with `ω_max h/m ≤ Θ` and refined on each part's cubic Hermite
+//! (as accurate there as the Hermite is for a slow mode).
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
@@ -40,17 +42,19 @@ use crate::numerics::hermite::Basis;
 /// `Θ⁴/384 ≈ 1.6e-4` of its amplitude.
 pub const DEFAULT_RESOLUTION: f64 = 0.5;
 
-/// The self-check's resolution: `Θ/√10`, so that the Hermite's error (∝ Θ⁴) is 100× smaller,
-/// as the check's integration is.
-pub const CHECK_RESOLUTION: f64 = DEFAULT_RESOLUTION * 0.316_227_766_016_837_94;
+/// The self-check's resolution: the run's. The sub-grid's own error is bounded by
+/// construction (about `Θ⁴/384 ≈ 1.6e-4` of a mode's ringing, tested against independent
+/// integrations), far below the check's 1 %; what the check must vary is the integration. A
+/// run whose floors were taken without the sub-grid is still flagged by it.
+pub const CHECK_RESOLUTION: f64 = DEFAULT_RESOLUTION;
 
 /// A station's ringing bound below this fraction of its peak leaves the Hermite's result
 /// within that fraction of the truth: no sub-grid.
 pub const NEGLIGIBLE: f64 = 1e-4;
 
 /// Most parts of one interval's sub-grid (a bound on the work of one interval; reached only
-/// for `ω_max h > 4096 Θ`).
-const MAX_PARTS: usize = 4096;
+/// for `ω h > 256 Θ` of a mode whose ringing matters, see [`SubGrid::resolved_omega`]).
+const MAX_PARTS: usize = 256;
 
 /// The 4/27 of the Hermite's slope weights, doubled (both ends).
 const TWO_REACH: f64 = 8.0 / 27.0;
@@ -117,16 +121,32 @@ pub(crate) struct SubGrid {
     /// The forcing at the current observation (scratch).
     now_f: Vec<f64>,
     have_prev: bool,
-    /// Per mode, `ρ_n (2 + (8/27) ω_n h)` for the fast modes of the current interval, else 0.
+    /// Per mode, `ρ_n` for the fast modes of the current interval, else 0.
     weight: Vec<f64>,
-    /// The fast modes of the current interval with a ringing.
+    /// Per fast mode `[η₀, η̇₀, η₁, η̇₁, α, β]` of the current interval: `[n·6 + j]`.
+    lin: Vec<f64>,
+    /// The fast modes of the current interval with a ringing, and the same by decreasing ω
+    /// (scratch).
     fast: Vec<usize>,
+    order: Vec<usize>,
+    /// `2 + (8/27) ω h` of the fastest of them: the Hermite's error on a ringing of size ρ is
+    /// at most that times ρ.
+    pub hermite_factor: f64,
+    /// Per station, the sums over the fast modes of [`SubGrid::lin`] weighted by φ
+    /// (`[j·stations + station]`), and of |c| ρ for the displacement, the drift and the
+    /// storey force (`[k·stations + station]`, k = 0, 1, 2); with rows, the same six sums
+    /// weighted by the storey-force rows.
+    pub sums_u: Vec<f64>,
+    pub sums_v: Vec<f64>,
+    pub rings: Vec<f64>,
     /// Parts of the sub-grid and their length, s (set by [`SubGrid::evaluate`]).
     pub parts: usize,
     pub delta: f64,
     /// η, η̇ of every mode at the sub-grid's points: `[k·modes + n]`.
     eta: Vec<f64>,
     etad: Vec<f64>,
+    /// The cubic Hermite's basis and slope basis at the points (scratch).
+    basis: Vec<(Basis, Basis)>,
     /// Per point `[k·stations + station]`: u, u̇, V, V̇.
     pub u: Vec<f64>,
     pub ud: Vec<f64>,
@@ -143,11 +163,18 @@ impl SubGrid {
             now_f: vec![0.0; modes],
             have_prev: false,
             weight: vec![0.0; modes],
+            lin: vec![0.0; 6 * modes],
             fast: Vec::with_capacity(modes),
+            order: Vec::with_capacity(modes),
+            hermite_factor: 0.0,
+            sums_u: Vec::new(),
+            sums_v: Vec::new(),
+            rings: Vec::new(),
             parts: 0,
             delta: 0.0,
             eta: Vec::new(),
             etad: Vec::new(),
+            basis: Vec::new(),
             u: Vec::new(),
             ud: Vec::new(),
             v: Vec::new(),
@@ -177,6 +204,7 @@ impl SubGrid {
             Some(h) if self.have_prev && omega_max * h > theta => h,
             _ => return false,
         };
+        let mut fastest: f64 = 0.0;
         for n in 0..nm {
             self.weight[n] = 0.0;
             let w = omega[n];
@@ -192,23 +220,101 @@ impl SubGrid {
                 );
                 let r = m.rho();
                 if r > 0.0 {
-                    self.weight[n] = r * (2.0 + TWO_REACH * w * h);
+                    self.weight[n] = r;
+                    self.lin[6 * n..6 * n + 6].copy_from_slice(&[
+                        self.prev_q[n],
+                        self.prev_v[n],
+                        q[n],
+                        v[n],
+                        m.alpha,
+                        m.beta,
+                    ]);
                     self.fast.push(n);
+                    fastest = fastest.max(w);
                 }
             }
         }
+        self.hermite_factor = 2.0 + TWO_REACH * fastest * h;
         !self.fast.is_empty()
     }
 
-    /// The bound on the Hermite's error from the ringing of the fast modes at station `f` of
-    /// `ns`, for a quantity with coefficients `coeff` (`[n·stations + station]`).
-    #[inline]
-    pub(crate) fn ring(&self, coeff: &[f64], ns: usize, f: usize) -> f64 {
-        let mut s = 0.0;
+    /// Per station, the fast modes' sums of the quantities' bounds: with `phi` (and its
+    /// absolute values `abs_phi`, and those of the drift rows `abs_drift`) and, with `rows`,
+    /// the storey-force rows (`[n·stations + station]`), see [`SubGrid::sums_u`].
+    pub(crate) fn station_sums(
+        &mut self,
+        (phi, abs_phi, abs_drift): (&[f64], &[f64], &[f64]),
+        rows: Option<(&[f64], &[f64])>,
+        ns: usize,
+    ) {
+        let fill = |x: &mut Vec<f64>, len: usize| {
+            x.clear();
+            x.resize(len, 0.0);
+        };
+        fill(&mut self.sums_u, 6 * ns);
+        fill(&mut self.rings, 3 * ns);
+        fill(&mut self.sums_v, if rows.is_some() { 6 * ns } else { 0 });
         for &n in &self.fast {
-            s += coeff[n * ns + f].abs() * self.weight[n];
+            let (lin, r) = (&self.lin[6 * n..6 * n + 6], self.weight[n]);
+            let add = |sums: &mut [f64], c: &[f64]| {
+                for j in 0..6 {
+                    let (x, out) = (lin[j], &mut sums[j * ns..(j + 1) * ns]);
+                    for f in 0..ns {
+                        out[f] += c[f] * x;
+                    }
+                }
+            };
+            fn mode(x: &[f64], n: usize, ns: usize) -> &[f64] {
+                &x[n * ns..(n + 1) * ns]
+            }
+            let cut = |x| mode(x, n, ns);
+            add(&mut self.sums_u, cut(phi));
+            let (ru, rest) = self.rings.split_at_mut(ns);
+            let (rd, rv) = rest.split_at_mut(ns);
+            let (au, ad) = (cut(abs_phi), cut(abs_drift));
+            for f in 0..ns {
+                ru[f] += au[f] * r;
+                rd[f] += ad[f] * r;
+            }
+            if let Some((rows, abs_rows)) = rows {
+                add(&mut self.sums_v, cut(rows));
+                let av = cut(abs_rows);
+                for f in 0..ns {
+                    rv[f] += av[f] * r;
+                }
+            }
         }
-        s
+    }
+
+    /// The ω the sub-grid must resolve: that of the fastest mode left once the fastest modes
+    /// whose ringing together stays below [`NEGLIGIBLE`] of the structure's largest peak of
+    /// every quantity are set aside (their values are still in the sub-grid's points; only
+    /// their swings between the points are not followed). `cmax[k][n]`: the largest |c| of
+    /// quantity k (displacement, drift, storey force) over the stations for mode n; `peak[k]`:
+    /// the structure's largest peak of quantity k.
+    pub(crate) fn resolved_omega(
+        &mut self,
+        omega: &[f64],
+        cmax: [&[f64]; 3],
+        peak: [f64; 3],
+    ) -> f64 {
+        self.order.clear();
+        self.order.extend_from_slice(&self.fast);
+        self.order.sort_by(|&a, &b| omega[b].total_cmp(&omega[a]));
+        let mut dropped = [0.0; 3];
+        for &n in &self.order {
+            for k in 0..3 {
+                if let Some(&c) = cmax[k].get(n) {
+                    dropped[k] += c * self.weight[n];
+                    if dropped[k] > NEGLIGIBLE * peak[k] {
+                        // this mode and every slower one are followed
+                        return omega[n];
+                    }
+                }
+            }
+        }
+        // every fast mode's ringing negligible: one part (the model's ends)
+        0.0
     }
 
     /// Fill the sub-grid of the interval of length `h` ending at (`q`, `v`): every mode's
@@ -235,14 +341,18 @@ impl SubGrid {
         let pts = parts + 1;
         self.eta.resize(pts * nm, 0.0);
         self.etad.resize(pts * nm, 0.0);
+        self.basis.clear();
+        self.basis.extend((0..pts).map(|k| {
+            let th = k as f64 / parts as f64;
+            (Basis::at(th), Basis::slope_at(th))
+        }));
         for n in 0..nm {
             let (q0, v0) = (self.prev_q[n], self.prev_v[n]);
             let m = Model::new(q0, v0, self.prev_f[n], self.now_f[n], h, omega[n], c[n]);
             if m.plain {
                 // no ringing: the mode's own cubic Hermite
                 for k in 0..pts {
-                    let th = k as f64 / parts as f64;
-                    let (b, s) = (Basis::at(th), Basis::slope_at(th));
+                    let (b, s) = &self.basis[k];
                     self.eta[k * nm + n] = b.combine(q0, v0, q[n], v[n], h);
                     self.etad[k * nm + n] = s.combine(q0, v0, q[n], v[n], h) / h;
                 }
@@ -267,8 +377,7 @@ impl SubGrid {
             );
             if eq != 0.0 || ev != 0.0 {
                 for k in 1..pts {
-                    let th = k as f64 / parts as f64;
-                    let (b, s) = (Basis::at(th), Basis::slope_at(th));
+                    let (b, s) = &self.basis[k];
                     self.eta[k * nm + n] += b.combine(0.0, 0.0, eq, ev, h);
                     self.etad[k * nm + n] += s.combine(0.0, 0.0, eq, ev, h) / h;
                 }
