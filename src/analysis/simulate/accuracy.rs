@@ -160,8 +160,11 @@ pub const QUANTITIES: [(&str, &str); 25] = [
     ),
 ];
 
-/// The floor quantities of [`QUANTITIES`] per structure, and the peak each compares.
-pub const FLOOR_QUANTITIES: [[(&str, fn(&FloorPeaks) -> f64); 5]; 2] = [
+/// A floor quantity of [`QUANTITIES`]: its name and the peak it compares.
+pub type FloorQuantity = (&'static str, fn(&FloorPeaks) -> f64);
+
+/// The floor quantities of [`QUANTITIES`] per structure.
+pub const FLOOR_QUANTITIES: [[FloorQuantity; 5]; 2] = [
     [
         ("floor_displacement_1", |p| p.displacement),
         ("floor_acceleration_1", |p| p.acceleration),
