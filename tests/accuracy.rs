@@ -73,7 +73,6 @@ fn accurate_run_passes_and_its_changes_are_reproduced() {
         largest = largest.max(c);
     }
     // the floors (with contact) are compared too: the largest change is over every quantity
-    // (the floor accelerations and equilibrium shears, taken at the steps, move most)
     for (q, v) in a["quantities"].as_object().unwrap() {
         let c = v["change"].as_f64().unwrap();
         assert!(c < 1e-2, "{q}: {c}");
@@ -138,8 +137,7 @@ fn adaptive_check_matches_a_hand_tightened_run() {
     let report = simulate_checked(&scenario(&text), true).unwrap();
     let acc = &report.accuracy;
     assert!(acc.checked && acc.is_converged(), "{acc:?}");
-    // the headline numbers to 1e-3; the floors are compared too (converged: within 1 %; their
-    // accelerations and equilibrium shears are taken at the steps and move most, ~2e-3)
+    // the headline numbers to 1e-3, and the floors too
     for q in QUANTITIES {
         let c = acc.change_of(q).unwrap();
         assert!(c < 1e-3, "{q}: {c}");
