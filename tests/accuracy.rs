@@ -72,6 +72,13 @@ fn accurate_run_passes_and_its_changes_are_reproduced() {
         assert!(c < 2e-3, "{q}: {c}");
         largest = largest.max(c);
     }
+    // the floors (with contact) are compared too: the largest change is over every quantity
+    for (q, v) in a["quantities"].as_object().unwrap() {
+        let c = v["change"].as_f64().unwrap();
+        assert!(c < 1e-2, "{q}: {c}");
+        largest = largest.max(c);
+    }
+    assert!(a["quantities"]["floor_shear_2"]["change"].is_number());
     assert!(rel(a["max_change"].as_f64().unwrap(), largest) < 1e-12);
     // the values are the report's own
     assert_eq!(
@@ -130,7 +137,12 @@ fn adaptive_check_matches_a_hand_tightened_run() {
     let report = simulate_checked(&scenario(&text), true).unwrap();
     let acc = &report.accuracy;
     assert!(acc.checked && acc.is_converged(), "{acc:?}");
-    assert!(acc.max_change.unwrap() < 1e-3, "{acc:?}");
+    // the headline numbers to 1e-3, and the floors too
+    for q in QUANTITIES {
+        let c = acc.change_of(q).unwrap();
+        assert!(c < 1e-3, "{q}: {c}");
+    }
+    assert!(acc.change_of("floor_shear_2").unwrap() < 1e-3, "{acc:?}");
     let s = acc.settings.unwrap();
     assert_eq!((s.method, s.dt), ("adaptive", 0.001));
     let (rtol, atol) = (1e-10 / 100.0, 1e-12 / 100.0);

@@ -209,10 +209,13 @@ fn one_case_sweep_equals_pounding_run_on_the_suite() {
         run.scaling.as_ref().unwrap().min_ratio
     );
     // the worst self-check: the largest change over the records, converged only if all are
+    // (of the headline numbers: the suite's runs also compare their floors, a sweep row has none)
     let worst = run
         .records
         .iter()
-        .map(|x| x.report.accuracy.max_change.unwrap())
+        .flat_map(|x| x.report.accuracy.quantities.iter())
+        .filter(|q| !q.name.starts_with("floor_"))
+        .map(|q| q.change)
         .fold(0.0, f64::max);
     assert_eq!(num(r, "check_max_change"), worst);
     let all = run
@@ -274,11 +277,16 @@ fn one_record_suite_rows_equal_the_single_record_rows() {
             num(&rb, "peak_force"),
             "case {case}"
         );
-        assert_eq!(
-            ra["check_max_change"], rb["check_max_change"],
+        // the single-record row records the floors (its floor columns) and its check compares
+        // them too; the suite's row compares the same runs' headline numbers: a subset of the
+        // same changes, so never larger
+        assert!(
+            num(&ra, "check_max_change") <= num(&rb, "check_max_change"),
             "case {case}"
         );
-        assert_eq!(ra["converged"], rb["converged"], "case {case}");
+        if rb["converged"] == "true" {
+            assert_eq!(ra["converged"], "true", "case {case}");
+        }
         // the verdict is gap ≥ the record's time-history separation
         let gap = num(&ra, "contact.level.1.gap");
         let sufficient = gap >= num(&rb, "sep_time_history");

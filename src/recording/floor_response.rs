@@ -21,8 +21,10 @@
 //! damping forces above: `shear_with_damping`.
 //!
 //! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
-//! observations on the cubic Hermite interpolant, as the contact-height peaks are;
-//! accelerations and the equilibrium value are taken at the observations.
+//! observations on the cubic Hermite interpolant, as the contact-height peaks are, and where
+//! modes too fast for it (`ω h > 0.5`) ring enough to matter (after a stiff impact), on a
+//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]); accelerations and the
+//! equilibrium value are taken at the observations.
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
@@ -33,6 +35,7 @@ use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
 use crate::numerics::hermite::{Basis, hermite_abs_max};
+use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid};
 
 /// `dst` = `src` (resized: no allocation once grown).
 fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
@@ -116,6 +119,53 @@ fn update_station(
             refine(&mut p.shear, v0, vd0, v1, vd1, h);
         }
         *prev_force = (v1, vd1);
+    }
+}
+
+/// A bound of |Q| over an interval of length `h` for a station quantity `Q = Σ c_n η_n` with
+/// (Q, Q̇) at its ends `ends`, from the fast modes' sums `s` (`Σ c_n [η₀, η̇₀, η₁, η̇₁, α, β]`)
+/// and their ringing `ring = Σ |c_n| ρ_n` ([`crate::recording::subgrid`]): the Hermite bound
+/// of the slow modes' part ([`reach`]), the fast modes' linear part at its larger end, and
+/// their ringing.
+#[inline(always)]
+fn ring_bound(ends: (f64, f64, f64, f64), s: [f64; 6], ring: f64, h: f64) -> f64 {
+    let slow = reach(
+        ends.0 - s[0],
+        ends.1 - s[1],
+        ends.2 - s[2],
+        ends.3 - s[3],
+        h,
+    );
+    let linear = s[4].abs().max((s[4] + s[5] * h).abs());
+    slow + linear + ring
+}
+
+/// The peaks of displacement, drift and (`rows`) storey force of the stations `flagged` (of
+/// `ns`) refined on the sub-grid's parts (values and rates from the modes' closed forms).
+fn refine_on_subgrid(
+    g: &SubGrid,
+    flagged: &[usize],
+    ns: usize,
+    rows: bool,
+    peaks: &mut [FloorPeaks],
+) {
+    let dl = g.delta;
+    for &f in flagged {
+        let p = &mut peaks[f];
+        for k in 0..g.parts {
+            let (i0, i1) = (k * ns + f, (k + 1) * ns + f);
+            let (u0, ud0, u1, ud1) = (g.u[i0], g.ud[i0], g.u[i1], g.ud[i1]);
+            refine(&mut p.displacement, u0, ud0, u1, ud1, dl);
+            let (b0, bd0, b1, bd1) = if f > 0 {
+                (g.u[i0 - 1], g.ud[i0 - 1], g.u[i1 - 1], g.ud[i1 - 1])
+            } else {
+                (0.0, 0.0, 0.0, 0.0)
+            };
+            refine(&mut p.drift, u0 - b0, ud0 - bd0, u1 - b1, ud1 - bd1, dl);
+            if rows {
+                refine(&mut p.shear, g.v[i0], g.vd[i0], g.v[i1], g.vd[i1], dl);
+            }
+        }
     }
 }
 
@@ -242,6 +292,17 @@ struct Stations {
     h: Option<f64>,
     /// Whether the current observation saw this structure.
     fresh: bool,
+    /// The modes' closed forms between observations ([`crate::recording::subgrid`]), the
+    /// largest ω (1/s), |φ|, |φ(j) − φ(j−1)| and |storey-force rows| (`[n·stations +
+    /// station]`), and the stations that take the sub-grid at this observation (scratch).
+    grid: SubGrid,
+    omega_max: f64,
+    abs_phi: Vec<f64>,
+    abs_drift: Vec<f64>,
+    abs_rows: Vec<f64>,
+    /// Per mode, the largest of |φ|, |φ(j) − φ(j−1)| and |storey-force row| over the stations.
+    cmax: [Vec<f64>; 3],
+    flagged: Vec<usize>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -379,7 +440,37 @@ impl Stations {
                 })
             })
             .collect();
+        let abs_phi: Vec<f64> = phi.iter().map(|x| x.abs()).collect();
+        let abs_drift: Vec<f64> = (0..nm)
+            .flat_map(|n| {
+                let phi = &phi;
+                (0..ns).map(move |f| {
+                    let below = if f == 0 { 0.0 } else { phi[n * ns + f - 1] };
+                    (phi[n * ns + f] - below).abs()
+                })
+            })
+            .collect();
+        let abs_rows: Vec<f64> = match &force {
+            StoreyForce::Rows(r) => r.iter().map(|x| x.abs()).collect(),
+            StoreyForce::Springs(_) => Vec::new(),
+        };
+        let largest = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .map(|n| {
+                    x.get(n * ns..(n + 1) * ns)
+                        .map_or(0.0, |c| c.iter().fold(0.0, |a: f64, &b| a.max(b)))
+                })
+                .collect()
+        };
+        let cmax = [largest(&abs_phi), largest(&abs_drift), largest(&abs_rows)];
         Stations {
+            cmax,
+            grid: SubGrid::new(nm),
+            omega_max: m.omega.iter().fold(0.0, |a, &w| a.max(w)),
+            abs_phi,
+            abs_drift,
+            abs_rows,
+            flagged: Vec::with_capacity(ns),
             peaks: heights
                 .iter()
                 .map(|&height| FloorPeaks {
@@ -412,7 +503,7 @@ impl Stations {
     /// Observe this structure at `at` (its interval: since its last observation); `full`:
     /// every station takes the full update (tests).
     #[inline]
-    fn observe(&mut self, system: &System, at: &At, full: bool) {
+    fn observe(&mut self, system: &System, at: &At, full: bool, resolution: Option<f64>) {
         let h = self.last_t.map(|t0| at.t - t0).filter(|h| *h > 0.0);
         self.last_t = Some(at.t);
         self.h = h;
@@ -425,6 +516,18 @@ impl Stations {
             &at.v[st.offset..st.offset + nm],
             &at.accel[st.offset..st.offset + nm],
         );
+        let (omega, damp) = (
+            &system.omega()[st.offset..st.offset + nm],
+            &system.damping_coefficients()[st.offset..st.offset + nm],
+        );
+        // modes too fast for the Hermite that ring: the sub-grid may be needed
+        let ringing = match resolution {
+            Some(theta) => st
+                .grid
+                .prepare(h, theta, (q, v, a), omega, damp, st.omega_max),
+            None => false,
+        };
+        st.flagged.clear();
         // every station's sums over the modes, formed mode by mode: the runs over the
         // stations are contiguous (`[mode·stations + station]`) and vectorise
         let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
@@ -456,6 +559,13 @@ impl Stations {
             StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
             StoreyForce::Springs(_) => None,
         };
+        if ringing {
+            st.grid.station_sums(
+                (phi, &st.abs_phi, &st.abs_drift),
+                rows.map(|r| (r, &st.abs_rows[..])),
+                ns,
+            );
+        }
         if let Some(rows) = rows {
             {
                 let c = &rows[..ns];
@@ -520,7 +630,47 @@ impl Stations {
                             | (has_rows && vf[f].abs() > p.shear)
                     }
                 };
-            if need {
+            // where the fast modes ring more than negligibly the Hermite of the ends
+            // neither follows nor bounds the station's quantities: their bound over the
+            // interval ([`ring_bound`]) decides between the ends only and the sub-grid
+            let (mut sub, mut ringing_here) = (false, false);
+            if ringing && yields[f].is_none() {
+                let hh = h.unwrap_or(0.0);
+                let g = &st.grid;
+                let su: [f64; 6] = std::array::from_fn(|j| g.sums_u[j * ns + f]);
+                let sd: [f64; 6] = std::array::from_fn(|j| {
+                    su[j] - if f > 0 { g.sums_u[j * ns + f - 1] } else { 0.0 }
+                });
+                let mut judge = |ends: (f64, f64, f64, f64), s: [f64; 6], ring, peak| {
+                    if ring * g.hermite_factor > NEGLIGIBLE * peak {
+                        ringing_here = true;
+                        sub |= ring_bound(ends, s, ring, hh) > peak;
+                    } else {
+                        sub |= reach(ends.0, ends.1, ends.2, ends.3, hh) > peak;
+                    }
+                };
+                judge((up, udp, u, ud), su, g.rings[f], p.displacement);
+                judge((dp, ddp, d, dd), sd, g.rings[ns + f], p.drift);
+                if has_rows {
+                    let (v0, vd0) = prev_force[f];
+                    let sv: [f64; 6] = std::array::from_fn(|j| g.sums_v[j * ns + f]);
+                    judge((v0, vd0, vf[f], vfd[f]), sv, g.rings[2 * ns + f], p.shear);
+                }
+                sub &= ringing_here;
+            }
+            if sub || (ringing_here && need) {
+                update_station(
+                    &mut peaks[f],
+                    &mut prev_force[f],
+                    (at.t, None),
+                    [(up, udp), (u, ud), (dp, ddp), (d, dd)],
+                    a,
+                    rows.map(|_| (vf[f], vfd[f])),
+                );
+                if sub {
+                    st.flagged.push(f);
+                }
+            } else if need {
                 // the storey force: a yielding storey's Bouc–Wen V (C¹ in time) from
                 // this drift and its z, or the modal rows' V
                 let force = match yields[f] {
@@ -544,6 +694,23 @@ impl Stations {
             }
             prev[f] = (u, ud);
             (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
+        }
+        if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
+            let largest =
+                |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
+            let peak = [
+                largest(|p| p.displacement),
+                largest(|p| p.drift),
+                largest(|p| p.shear),
+            ];
+            let cmax = [&st.cmax[0][..], &st.cmax[1][..], &st.cmax[2][..]];
+            let resolve = st.grid.resolved_omega(omega, cmax, peak);
+            st.grid
+                .evaluate(h, theta, (q, v), omega, damp, resolve, phi, rows, ns);
+            refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
+        }
+        if resolution.is_some() {
+            st.grid.advance(q, v);
         }
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
@@ -626,6 +793,9 @@ pub struct FloorRecorder {
     /// Every station takes the full update at every observation (tests: the skip changes
     /// nothing).
     full: bool,
+    /// The resolution Θ of the sub-grid ([`crate::recording::subgrid`]; `None`: the cubic
+    /// Hermite between observations only).
+    resolution: Option<f64>,
 }
 
 impl FloorRecorder {
@@ -676,7 +846,16 @@ impl FloorRecorder {
             accel: vec![0.0; system.len()],
             saved: Saved::default(),
             full: false,
+            resolution: Some(DEFAULT_RESOLUTION),
         }
+    }
+
+    /// The resolution Θ of the peaks between observations: modes with `ω h > Θ` are followed
+    /// on a sub-grid of their closed forms with parts `≤ Θ/ω_max`
+    /// ([`crate::recording::subgrid`]); `None`: the cubic Hermite only.
+    pub fn with_resolution(mut self, resolution: Option<f64>) -> FloorRecorder {
+        self.resolution = resolution;
+        self
     }
 
     /// The heights of the stations of every structure (m, lowest first), in the order of
@@ -737,7 +916,7 @@ impl FloorRecorder {
         // interpolated over that interval, as history.csv's sampler does)
         let inside = due && tau < s.t - eps;
         let active = stepped.filter(|p| !p.grid && !due).map(|p| p.active);
-        let full = self.full;
+        let (full, resolution) = (self.full, self.resolution);
         if self.saved.valid {
             let sv = &self.saved;
             let at = At {
@@ -752,7 +931,7 @@ impl FloorRecorder {
             for (i, st) in self.stations.iter_mut().enumerate() {
                 let carried = stepped.is_some_and(|p| p.active[i]);
                 if (carried || inside) && st.last_t.is_some_and(|t| t < sv.t) {
-                    st.observe(system, &at, full);
+                    st.observe(system, &at, full, resolution);
                     st.hold_now();
                 }
             }
@@ -796,7 +975,7 @@ impl FloorRecorder {
         for (i, st) in self.stations.iter_mut().enumerate() {
             st.fresh = active.is_none_or(|a| a[i]);
             if st.fresh {
-                st.observe(system, &at, full);
+                st.observe(system, &at, full, resolution);
             }
         }
         match active {

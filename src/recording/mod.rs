@@ -6,3 +6,4 @@ pub mod recorder;
 pub mod run_record;
 pub mod stations;
 pub mod storey_record;
+pub mod subgrid;

@@ -85,6 +85,9 @@ pub struct Recorder<'s> {
     /// [`Recorder::with_floor_stations`]), and a scratch row for them.
     floor_keep: Option<Vec<usize>>,
     floor_row: Vec<f64>,
+    /// The floor peaks' resolution between observations
+    /// ([`FloorRecorder::with_resolution`]).
+    floor_resolution: Option<f64>,
     /// Yielding storeys (`None`: none).
     storeys: Option<StoreyTracker>,
     /// ω² of every mode of the system, 1/s².
@@ -207,6 +210,7 @@ impl<'s> Recorder<'s> {
             floors_pending: Some(pairs.to_vec()),
             floor_keep: None,
             floor_row: Vec::new(),
+            floor_resolution: Some(crate::recording::subgrid::DEFAULT_RESOLUTION),
             storeys: StoreyTracker::new(system, interval, duration),
             w2: system.omega().iter().map(|w| w * w).collect(),
         }
@@ -225,13 +229,21 @@ impl<'s> Recorder<'s> {
     fn build_floors(&mut self, system: &System) {
         if let Some(pairs) = self.floors_pending.take() {
             let heights: Vec<f64> = self.levels.iter().map(|l| l.height).collect();
-            self.floors = Some(FloorRecorder::for_row(
-                system,
-                &heights,
-                &pairs,
-                self.interval,
-            ));
+            self.floors = Some(
+                FloorRecorder::for_row(system, &heights, &pairs, self.interval)
+                    .with_resolution(self.floor_resolution),
+            );
         }
+    }
+
+    /// The resolution of the floor peaks between observations (see
+    /// [`FloorRecorder::with_resolution`]; the self-check's run takes a finer one).
+    pub fn with_floor_resolution(mut self, resolution: Option<f64>) -> Recorder<'s> {
+        self.floor_resolution = resolution;
+        if let Some(f) = self.floors.take() {
+            self.floors = Some(f.with_resolution(resolution));
+        }
+        self
     }
 
     /// Send to the sink the floor history of the stations `stations` keeps (the peaks over

@@ -71,8 +71,32 @@ fn run_phase(
     phase: Phase,
     floors: Option<crate::recording::stations::FloorStations>,
 ) -> Result<(RunRecord, Stats), SolveError> {
+    let resolution = match phase {
+        Phase::CheckWithContact | Phase::CheckWithoutContact => accuracy::floor_resolution(),
+        _ => crate::recording::subgrid::DEFAULT_RESOLUTION,
+    };
+    let what = (system, settings, (heights, pairs), interval);
+    run_phase_at(what, sink, phase, floors, Some(resolution))
+}
+
+/// [`run_phase`] with the floor peaks' `resolution` between observations
+/// ([`Recorder::with_floor_resolution`]).
+#[allow(clippy::type_complexity)]
+fn run_phase_at(
+    (system, settings, (heights, pairs), interval): (
+        &System,
+        &SolverSettings,
+        (&[f64], &[usize]),
+        f64,
+    ),
+    sink: &mut dyn RunSink,
+    phase: Phase,
+    floors: Option<crate::recording::stations::FloorStations>,
+    resolution: Option<f64>,
+) -> Result<(RunRecord, Stats), SolveError> {
     let mut adapter = PhaseSink { sink, phase };
-    let mut rec = Recorder::for_row(system, heights, pairs, interval, settings.duration);
+    let mut rec = Recorder::for_row(system, heights, pairs, interval, settings.duration)
+        .with_floor_resolution(resolution);
     rec = match floors {
         Some(stations) => rec.with_floor_stations(system, heights, stations),
         None => rec.without_floors(),
@@ -105,6 +129,45 @@ fn no_spectrum(scenario: &Scenario) -> Result<(), SolveError> {
 /// (`accuracy.checked` is false); [`simulate_checked`] checks it.
 pub fn simulate(scenario: &Scenario) -> Result<Report, SolveError> {
     simulate_phases(scenario, &mut NoSink, false, true, None, true)
+}
+
+/// [`simulate`] with the floor peaks between observations taken at `resolution` (the largest
+/// `ω h` the cubic Hermite follows and the sub-grid's, [`crate::recording::subgrid`]; `None`:
+/// the cubic Hermite alone) in the run with contact: for the tests of the floor peaks and of
+/// the self-check, which takes
+/// [`floor_resolution`](accuracy::floor_resolution).
+pub fn simulate_with_floor_resolution(
+    scenario: &Scenario,
+    resolution: Option<f64>,
+) -> Result<Report, SolveError> {
+    refuse_row(scenario)?;
+    no_spectrum(scenario)?;
+    let mut report = simulate(scenario)?;
+    let system = scenario.system();
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    let pairs = vec![0; heights.len()];
+    let what = (
+        &system,
+        &scenario.solver,
+        (&heights[..], &pairs[..]),
+        scenario.output_interval,
+    );
+    let (with, _) = run_phase_at(
+        what,
+        &mut NoSink,
+        Phase::WithContact,
+        Some(scenario.floor_stations),
+        resolution,
+    )?;
+    for (i, s) in report.structures.iter_mut().enumerate() {
+        for (f, p) in s.floors.iter_mut().zip(&with.floors[i]) {
+            f.peak_displacement = p.displacement;
+            f.peak_drift = p.drift;
+            f.peak_shear = p.shear;
+        }
+    }
+    report.with_contact.floors = with.floors;
+    Ok(report)
 }
 
 /// Whether the scenario's run without contact is the same at any tolerance, so that the
@@ -151,8 +214,9 @@ fn simulate_phases(
         (Phase::WithContact, Phase::WithoutContact)
     };
     let interval = scenario.output_interval;
-    // (the self-check compares headline numbers only: its runs skip the floors)
-    let floors = (floors && !check).then_some(scenario.floor_stations);
+    // (the self-check compares the floors with contact of a run that has them: its run
+    // without contact skips them)
+    let floors = floors.then_some(scenario.floor_stations);
     let (with, stats) = run_phase(
         &system,
         &scenario.solver,
@@ -162,6 +226,7 @@ fn simulate_phases(
         p1,
         floors,
     )?;
+    let floors = floors.filter(|_| !check);
     // a run with contact that never touched is the run without contact (bit for bit)
     let derived = (shortcut && reuse.is_none() && (check || !sink.wants_rows()))
         .then(|| free_run_of(scenario, &stats, &with))
@@ -316,7 +381,7 @@ fn simulate_run_reusing(
         free.and_then(|f| f.check.as_ref())
     };
     let mut check_run = None;
-    report.accuracy = match simulate_phases(&tight, sink, true, false, reuse, shortcut) {
+    report.accuracy = match simulate_phases(&tight, sink, true, floors, reuse, shortcut) {
         Ok(t) => {
             let a = AccuracyCheck::compare(&report, &t, &scenario.solver);
             if !exact {
