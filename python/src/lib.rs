@@ -492,7 +492,7 @@ impl PyRunOutput {
             no_panic(|| {
                 if let Some(run) = self.suite.as_deref() {
                     let draw = plots.then(|| pounding::figures::suite::suite_pictures(run));
-                    return pounding::study::suite::write::write(&dir, run, draw)
+                    return pounding::study::suite::write::write(&dir, run, draw, |_| None)
                         .map_err(|e| OutputError::new_err(e.to_string()));
                 }
                 let draw = plots

@@ -6,12 +6,12 @@
 //! ([`statistics`]), and per contact level the code's design value of the required separation
 //! against the level's gap, the verdict at the level of least margin.
 //!
-//! The files are written by [`write`]; the pictures by `crate::figures::suite`.
+//! The files are written by [`write`] (a pair's suite and a row's); the pictures by
+//! `crate::figures::suite`.
 
 pub mod report;
 pub mod row;
 pub mod row_report;
-pub mod row_write;
 pub mod statistics;
 pub mod write;
 
@@ -148,6 +148,8 @@ pub trait MemberReport {
     /// The time-history required separation at level `level` (0-based) of pair `pair`
     /// (0-based; a pair's run has only pair 0), m.
     fn required_gap(&self, pair: usize, level: usize) -> f64;
+    /// The run's warnings.
+    fn warnings(&self) -> &[String];
 }
 
 impl MemberReport for Report {
@@ -156,6 +158,9 @@ impl MemberReport for Report {
     }
     fn required_gap(&self, _pair: usize, level: usize) -> f64 {
         self.levels[level].required_gap
+    }
+    fn warnings(&self) -> &[String] {
+        &self.warnings
     }
 }
 

@@ -88,6 +88,9 @@ impl MemberReport for RowReport {
     fn required_gap(&self, pair: usize, level: usize) -> f64 {
         self.pairs[pair].levels[level].required_gap
     }
+    fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
 }
 
 /// The design values of one adjacent pair of the row.

@@ -248,7 +248,7 @@ pub fn text(run: &RowSuiteRun, title: &str, name: &str) -> String {
          record's run is in {}/",
         run.representative + 1,
         rep.file,
-        super::row_write::RECORDS_DIR
+        super::write::RECORDS_DIR
     );
     o
 }
