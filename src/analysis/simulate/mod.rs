@@ -27,8 +27,8 @@ pub use warnings::{ENERGY_WARNING_THRESHOLD, PLAUSIBLE_DRIFT, PLAUSIBLE_PENETRAT
 use warnings::{drift_warning, level_warnings, run_warnings};
 
 pub use row::{
-    PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
-    simulate_row_streaming, simulate_row_with,
+    PairReport, RowFreeRuns, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
+    simulate_row_reusing, simulate_row_streaming, simulate_row_with,
 };
 
 use self::accuracy::{AccuracyCheck, limited_tightening, tightened};

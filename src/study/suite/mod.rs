@@ -364,9 +364,17 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
 /// numbers), [`MemberRun::capture`] empty. What a case of a sweep over a suite runs
 /// ([`crate::study::sweep`]).
 pub fn run_headline(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
-    run_with(scenario, |sc| {
-        simulate_headline(sc, check).map(|r| (r, RunCapture::new()))
-    })
+    run_headline_by(scenario, |sc| simulate_headline(sc, check))
+}
+
+/// [`run_headline`] with every record's scenario run by `simulate`, which must give the
+/// report [`simulate_headline`] gives (a sweep's runs through its cache of runs without
+/// contact, [`crate::study::sweep::free_cache`]).
+pub fn run_headline_by<F>(scenario: &Scenario, simulate: F) -> Result<SuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<Report, SolveError> + Sync,
+{
+    run_with(scenario, |sc| simulate(sc).map(|r| (r, RunCapture::new())))
 }
 
 /// The records of a suite, each as a scenario of its own: what every driver of a suite runs
