@@ -52,7 +52,7 @@ impl PyRowOutput {
     fn summary_text(&self) -> PyResult<String> {
         no_panic(|| {
             if let Some(run) = self.suite.as_deref() {
-                return Ok(pounding::study::suite::row_report::text(
+                return Ok(pounding::study::suite::report::text(
                     run,
                     &self.scenario.title,
                     &self.name,

@@ -89,7 +89,7 @@ fn run_row_suite(
         (!no_plot).then(|| pounding::figures::suite::row_suite_record_pictures(&run, i))
     })?;
     if !quiet {
-        print!("{}", suite::row_report::text(&run, &sc.title, name));
+        print!("{}", suite::report::text(&run, &sc.title, name));
         // (each record's folder once, not its every file)
         let top: Vec<_> = written
             .iter()
@@ -102,7 +102,7 @@ fn run_row_suite(
             out.join(suite::write::RECORDS_DIR).display()
         );
     }
-    for w in suite::row_report::warnings(sc, &run) {
+    for w in suite::report::warnings(sc, &run) {
         eprintln!("warning: {w}");
     }
     Ok(())

@@ -11,7 +11,6 @@
 
 pub mod report;
 pub mod row;
-pub mod row_report;
 pub mod statistics;
 pub mod write;
 
