@@ -13,7 +13,7 @@ use pounding::analysis::simulate::{
     RunCapture, simulate_row_checked, simulate_row_streaming, simulate_streaming,
 };
 use pounding::input::scenario::Scenario;
-use pounding::output::run::RunWriter;
+use pounding::output::writer::RunWriter;
 use pounding::recording::history::{MAX_KEPT_SAMPLES, sample_count};
 
 fn tmp(tag: &str) -> PathBuf {
@@ -241,7 +241,7 @@ fn a_long_row_history_is_streamed_and_bounded_in_memory() {
     let mut cap = RunCapture::new();
     let again = simulate_row_streaming(&row, false, &mut cap).unwrap();
     let d2 = tmp("long-replay");
-    pounding::output::run::write_run(&d2, &row, &again, &cap, None).unwrap();
+    pounding::output::writer::write_run(&d2, &row, &again, &cap, None).unwrap();
     for f in ["history.csv", "floors.csv", "impacts.csv", "summary.json"] {
         assert_eq!(
             std::fs::read(d.join(f)).unwrap(),

@@ -497,7 +497,7 @@ impl PyRunOutput {
                 }
                 let draw = plots
                     .then(|| pounding::figures::run::run_pictures(&self.scenario, &self.report));
-                pounding::output::run::write_run(
+                pounding::output::writer::write_run(
                     &dir,
                     &self.scenario,
                     &self.report,

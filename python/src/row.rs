@@ -142,7 +142,7 @@ impl PyRowOutput {
                 }
                 let draw = plots
                     .then(|| pounding::figures::row::row_pictures(&self.scenario, &self.report));
-                pounding::output::run::write_run(
+                pounding::output::writer::write_run(
                     &dir,
                     &self.scenario,
                     &self.report,

@@ -24,7 +24,7 @@ pub(super) fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> 
         return run_row(&sc, &name, &a, quiet);
     }
     pounding::output::budget::check_run(&sc, a.max_output_size)?;
-    let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
+    let mut writer = pounding::output::writer::RunWriter::for_scenario(&a.out, &sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
@@ -113,7 +113,7 @@ fn run_row_suite(
 /// the pictures (unless `--no-plot`) and summary.json last.
 fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
     pounding::output::budget::check_run(sc, a.max_output_size)?;
-    let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, sc)?;
+    let mut writer = pounding::output::writer::RunWriter::for_scenario(&a.out, sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);

@@ -1,5 +1,5 @@
 //! The files of a row of buildings' run (issue 29), written by the one writer of a run's files
-//! ([`crate::output::run::RunWriter`], as a pair's): `history.csv` and `floors.csv` streamed
+//! (`output::writer::RunWriter`, as a pair's): `history.csv` and `floors.csv` streamed
 //! during the run, then `impacts.csv` (one row per contact episode, naming its pair), the
 //! pictures ([`crate::figures::row`]) and `summary.json` last (the row's [`RowReport`]:
 //! `structures`, `pairs`, `verdict`, `accuracy`, …, with the solver's facts and the defaults
@@ -25,7 +25,7 @@ struct RowSummary<'a> {
     report: &'a RowReport,
     solver: super::run::SolverInfo,
     defaults_applied: &'a [String],
-    /// A suite's own section ([`crate::output::run::RunWriter::with_suite`]); absent for one
+    /// A suite's own section (`output::writer::RunWriter::with_suite`); absent for one
     /// record.
     #[serde(skip_serializing_if = "Option::is_none")]
     suite: Option<&'a serde_json::Value>,

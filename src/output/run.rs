@@ -1,7 +1,7 @@
 //! A pair's output files (docs/model.md §6): `summary.json`, `history.csv`, `impacts.csv` —
 //! their contents, by the SPEC's output contract. They are written by the one writer of a
-//! run's files, [`RunWriter`] ([`crate::output::writer`]: temporary files renamed into place,
-//! `summary.json` last), a pair's or a row's.
+//! run's files, a pair's or a row's (`output::writer::RunWriter`: temporary files renamed
+//! into place, `summary.json` last).
 
 use std::fmt::Write as _;
 
@@ -11,9 +11,6 @@ use crate::analysis::simulate::Report;
 use crate::input::scenario::Scenario;
 use crate::integrate::Method;
 use crate::output::csv::{push_field, push_number};
-pub use crate::output::writer::{
-    DrawPictures, PICTURE_FILES, RunOutput, RunWriter, WrittenHook, write_run,
-};
 
 /// Solver facts recorded in the summary.
 #[derive(Debug, Serialize)]
@@ -49,7 +46,7 @@ struct Summary<'a> {
     ground_motion: serde_json::Value,
     /// Keys the scenario left out and the defaults used for them (`key = value`).
     defaults_applied: &'a [String],
-    /// A suite's own section ([`RunWriter::with_suite`]); absent for one record.
+    /// A suite's own section (`output::writer::RunWriter::with_suite`); absent for one record.
     #[serde(skip_serializing_if = "Option::is_none")]
     suite: Option<&'a serde_json::Value>,
 }
@@ -140,7 +137,7 @@ pub(crate) fn history_row(out: &mut Vec<u8>, t: f64, w: [f64; 2], forces: &[f64]
 
 /// `history.csv` from a report's in-memory history: `t,w1,w2,force,w1_free,w2_free` and, with
 /// several levels, `force_1 … force_k` (`force` is then their sum). Displacements at the main
-/// contact height, m; forces, N. This is exactly what [`RunWriter`] streams when the history
+/// contact height, m; forces, N. This is exactly what `output::writer::RunWriter` streams when the history
 /// holds every sample (`History::stride == 1`, runs of at most
 /// [`crate::recording::history::MAX_KEPT_SAMPLES`] samples); for longer runs the in-memory history is an
 /// envelope and only the streamed file has every sample.
@@ -192,6 +189,25 @@ pub fn impacts_csv(report: &Report) -> String {
     }
     out
 }
+
+/// The pictures `pounding run` draws into its directory (a pair's or a row's: the same
+/// names): removed by the writer's `finish` when a run draws none, so that no stale picture
+/// sits beside a new summary.
+pub const PICTURE_FILES: [&str; 6] = [
+    "history.png",
+    "history.svg",
+    "envelopes.png",
+    "envelopes.svg",
+    "hysteresis.png",
+    "hysteresis.svg",
+];
+
+/// Draws a run's pictures into the directory it is given; returns the files written.
+pub type DrawPictures<'a> =
+    dyn FnOnce(&std::path::Path) -> Result<Vec<std::path::PathBuf>, String> + 'a;
+
+/// Called with each file of a run once it is complete and in place.
+pub type WrittenHook = dyn FnMut(&std::path::Path);
 
 /// One column of a table handed to another program (the Python package's arrays): whole
 /// numbers, numbers, or text.

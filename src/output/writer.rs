@@ -23,24 +23,7 @@ use crate::output::atomic::{OutputError, temp_file, write_atomic};
 use crate::output::csv::{push_field, push_number};
 use crate::output::floors_csv::{FILE_NAME as FLOORS_FILE, FloorsCsv};
 use crate::output::row_spool::RowSpool;
-
-/// The pictures `pounding run` draws into its directory (a pair's or a row's: the same
-/// names): removed by [`RunWriter::finish`] when a run draws none, so that no stale picture
-/// sits beside a new summary.
-pub const PICTURE_FILES: [&str; 6] = [
-    "history.png",
-    "history.svg",
-    "envelopes.png",
-    "envelopes.svg",
-    "hysteresis.png",
-    "hysteresis.svg",
-];
-
-/// Draws a run's pictures into the directory it is given; returns the files written.
-pub type DrawPictures<'a> = dyn FnOnce(&Path) -> Result<Vec<PathBuf>, String> + 'a;
-
-/// Called with each file of a run once it is complete and in place.
-pub type WrittenHook = dyn FnMut(&Path);
+pub use crate::output::run::{DrawPictures, PICTURE_FILES, WrittenHook};
 
 /// The layout of `history.csv`: what a spooled sample of the run with contact holds and how a
 /// line is formed from it and the run without contact's sample at the same time.

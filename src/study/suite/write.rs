@@ -29,8 +29,8 @@ use super::{MemberReport, MemberRun, NamedStatistics, SuiteRun};
 use crate::analysis::record_spectrum::ScaledSuite;
 use crate::input::scenario::suite::SuiteRule;
 use crate::output::atomic::{OutputError, write_atomic};
-use crate::output::run::{DrawPictures, RunOutput, RunWriter, write_run};
-use crate::output::writer::remove_stale;
+use crate::output::run::DrawPictures;
+use crate::output::writer::{RunOutput, RunWriter, remove_stale, write_run};
 
 /// What the files of a suite run take from it: a pair's [`SuiteRun`] or a row's
 /// [`RowSuiteRun`].
