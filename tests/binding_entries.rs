@@ -6,7 +6,8 @@ use std::path::Path;
 
 use pounding::analysis::simulate::{RunCapture, simulate_streaming};
 use pounding::input::scenario::Scenario;
-use pounding::output::run::{Column, RunWriter, write_run};
+use pounding::output::run::Column;
+use pounding::output::writer::{RunWriter, write_run};
 use pounding::study::sweep::Sweep;
 
 fn example(name: &str) -> std::path::PathBuf {

@@ -457,7 +457,7 @@ fn building_keys_are_sweep_axes() {
 /// until the next sample), with and without pounding.
 #[test]
 fn floors_csv_matches_the_history_and_the_peaks() {
-    use pounding::output::run::RunWriter;
+    use pounding::output::writer::RunWriter;
     let dir = std::env::temp_dir().join(format!("pounding-floors-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let text = std::fs::read_to_string(

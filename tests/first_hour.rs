@@ -8,7 +8,8 @@ use std::rc::Rc;
 
 use pounding::analysis::simulate::{NoSink, simulate_streaming};
 use pounding::input::scenario::{DEFAULT_DAMPING_RATIO, DEFAULT_MODES, Scenario};
-use pounding::output::run::{RunWriter, history_csv};
+use pounding::output::run::history_csv;
+use pounding::output::writer::RunWriter;
 
 mod common;
 use common::pounding;

@@ -13,8 +13,7 @@ use pounding::analysis::simulate::{
     RunCapture, simulate_row_checked, simulate_row_streaming, simulate_streaming,
 };
 use pounding::input::scenario::Scenario;
-use pounding::output::row::RowWriter;
-use pounding::output::run::RunWriter;
+use pounding::output::writer::RunWriter;
 use pounding::recording::history::{MAX_KEPT_SAMPLES, sample_count};
 
 fn tmp(tag: &str) -> PathBuf {
@@ -48,7 +47,7 @@ fn numbers(col: &[&str]) -> Vec<f64> {
 
 /// Write a row's run as `pounding run` does (no pictures, no self-check).
 fn write_row_run(dir: &Path, sc: &Scenario) -> pounding::analysis::simulate::RowReport {
-    let mut w = RowWriter::for_scenario(dir, sc).unwrap();
+    let mut w = RunWriter::for_scenario(dir, sc).unwrap();
     let r = simulate_row_streaming(sc, false, &mut w).unwrap();
     w.finish(sc, &r, None).unwrap();
     r
@@ -242,7 +241,7 @@ fn a_long_row_history_is_streamed_and_bounded_in_memory() {
     let mut cap = RunCapture::new();
     let again = simulate_row_streaming(&row, false, &mut cap).unwrap();
     let d2 = tmp("long-replay");
-    pounding::output::row::write_row(&d2, &row, &again, &cap, None).unwrap();
+    pounding::output::writer::write_run(&d2, &row, &again, &cap, None).unwrap();
     for f in ["history.csv", "floors.csv", "impacts.csv", "summary.json"] {
         assert_eq!(
             std::fs::read(d.join(f)).unwrap(),

@@ -492,12 +492,12 @@ impl PyRunOutput {
             no_panic(|| {
                 if let Some(run) = self.suite.as_deref() {
                     let draw = plots.then(|| pounding::figures::suite::suite_pictures(run));
-                    return pounding::study::suite::write::write(&dir, run, draw)
+                    return pounding::study::suite::write::write(&dir, run, draw, |_| None)
                         .map_err(|e| OutputError::new_err(e.to_string()));
                 }
                 let draw = plots
                     .then(|| pounding::figures::run::run_pictures(&self.scenario, &self.report));
-                pounding::output::run::write_run(
+                pounding::output::writer::write_run(
                     &dir,
                     &self.scenario,
                     &self.report,

@@ -1,8 +1,8 @@
 //! A row of buildings from Python (issue 29): `pounding.run` on a row returns a `RowOutput`
 //! (wrapped by `pounding.RowResult`), with arrays per structure and per pair. As for a pair,
 //! everything is the library's: the row's run (`simulate_row_streaming`), its tables
-//! (`output::row`), its text (`output::text::row_summary`) and its files (`output::row::
-//! write_row`).
+//! (`output::row`), its text (`output::text::row_summary`) and its files (`output::run::
+//! write_run`).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -36,7 +36,7 @@ impl PyRowOutput {
         let section = self
             .suite
             .as_deref()
-            .map(pounding::study::suite::row_write::row_section);
+            .map(pounding::study::suite::write::section);
         pounding::output::row::row_summary_json_with(&self.scenario, &self.report, section.as_ref())
             .map_err(OutputError::new_err)
     }
@@ -45,14 +45,14 @@ impl PyRowOutput {
     fn suite_csv(&self) -> Option<String> {
         self.suite
             .as_deref()
-            .map(pounding::study::suite::row_write::row_suite_csv)
+            .map(pounding::study::suite::write::suite_csv)
     }
 
     /// The summary `pounding run` prints for a row.
     fn summary_text(&self) -> PyResult<String> {
         no_panic(|| {
             if let Some(run) = self.suite.as_deref() {
-                return Ok(pounding::study::suite::row_report::text(
+                return Ok(pounding::study::suite::report::text(
                     run,
                     &self.scenario.title,
                     &self.name,
@@ -135,17 +135,14 @@ impl PyRowOutput {
                 if let Some(run) = self.suite.as_deref() {
                     use pounding::figures::suite::{row_suite_pictures, row_suite_record_pictures};
                     let draw = plots.then(|| row_suite_pictures(run));
-                    return pounding::study::suite::row_write::write_row_suite(
-                        &dir,
-                        run,
-                        draw,
-                        |i| plots.then(|| row_suite_record_pictures(run, i)),
-                    )
+                    return pounding::study::suite::write::write(&dir, run, draw, |i| {
+                        plots.then(|| row_suite_record_pictures(run, i))
+                    })
                     .map_err(|e| OutputError::new_err(e.to_string()));
                 }
                 let draw = plots
                     .then(|| pounding::figures::row::row_pictures(&self.scenario, &self.report));
-                pounding::output::row::write_row(
+                pounding::output::writer::write_run(
                     &dir,
                     &self.scenario,
                     &self.report,

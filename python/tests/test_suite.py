@@ -146,3 +146,68 @@ def test_row_suite_run_gives_per_pair_results(examples: Path, tmp_path: Path, cl
     for f in ("summary.json", "suite.csv", "history.csv", "records/01/summary.json"):
         assert (tmp_path / "py" / f).read_text() == (tmp_path / "cli" / f).read_text(), f
     assert out.stdout.startswith(r.summary_text() + "\nwrote ")
+
+
+def test_row_suite_sweep_columns_have_their_dtypes_and_equal_results_csv(
+    examples: Path, tmp_path: Path, cli
+) -> None:
+    """A sweep over a suite of records on a row (examples/suite-row-sweep.toml: a row of three,
+    pair 1 with two levels, pair 2 with one; 3 stiffnesses x 3 gaps): the suite-on-a-row
+    columns in the documented order, each of its documented type (the verdicts, `statistic`
+    and `converged` lists of str, every other column float64, `case` int64), the margins
+    gap - design value exactly as the file's, and every field equal to results.csv of
+    `pounding sweep` (numbers read back bit for bit; an empty field is NaN)."""
+    import numpy as np
+
+    table = pounding.sweep(examples / "suite-row-sweep.toml", check=False, jobs=2)
+    axes = ["structure.2.stiffness_scale", "contact.2.gap"]
+    own = ["structures", "records", "statistic", "min_mean_to_target_ratio", "sufficient",
+           "governing_pair", "governing_height", "governing_margin"]
+    per_pair = ["sufficient", "governing_height", "required", "margin", "peak_force"]
+    for p, levels in ((1, 2), (2, 1)):
+        own += [f"pair{p}_{c}" for c in per_pair]
+        own += [f"pair{p}_level{k}_required_separation" for k in range(1, levels + 1)]
+    own += ["check_max_change", "converged"]
+    assert list(table) == ["case", *axes, "status", *own]
+    text = {"status", "statistic", "sufficient", "converged", "pair1_sufficient",
+            "pair2_sufficient"}
+    n = 9
+    assert table["case"].dtype == np.int64 and list(table["case"]) == list(range(n))
+    for k, v in table.items():
+        if k == "case":
+            continue
+        if k in text:
+            assert isinstance(v, list) and len(v) == n, k
+            assert all(isinstance(x, str) for x in v), k
+        else:
+            assert isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == (n,), k
+    assert table["status"] == ["ok"] * n
+    assert table["statistic"] == ["max"] * n  # EN 1998-1 with 3 records: the largest
+    assert table["converged"] == ["unchecked"] * n
+    assert np.isnan(table["check_max_change"]).all()
+    assert (table["structures"] == 3.0).all() and (table["records"] == 3.0).all()
+    for i in range(n):
+        # pair 2's one level is the swept gap: its margin is gap - design value, as computed
+        gap = table["contact.2.gap"][i]
+        assert table["pair2_margin"][i] == gap - table["pair2_required"][i]
+        assert table["pair2_required"][i] == table["pair2_level1_required_separation"][i]
+        assert table["pair2_sufficient"][i] == str(bool(gap >= table["pair2_required"][i])).lower()
+        margins = [table["pair1_margin"][i], table["pair2_margin"][i]]
+        assert table["governing_margin"][i] == min(margins)
+        assert table["governing_pair"][i] == 1 + margins.index(min(margins))
+        ok = all(table[f"pair{p}_sufficient"][i] == "true" for p in (1, 2))
+        assert table["sufficient"][i] == str(ok).lower()
+    out = cli("sweep", examples / "suite-row-sweep.toml", "--out", tmp_path / "o", "--no-check",
+              "--no-plot", "-q")
+    assert out.returncode == 0, out.stderr
+    rows = _csv_rows(tmp_path / "o" / "results.csv")
+    assert len(rows) == n and list(rows[0]) == list(table)
+    for i, row in enumerate(rows):
+        for k, v in row.items():
+            got = table[k][i]
+            if isinstance(got, str):
+                assert got == v, k
+            elif v in ("", "NaN"):
+                assert np.isnan(got), k
+            else:
+                assert float(v) == got, k

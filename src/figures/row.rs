@@ -26,7 +26,7 @@ pub fn building_color(i: usize) -> usize {
 
 /// The pictures of a row, as `pounding run` draws them into its directory (the envelopes on
 /// a second thread while the histories are drawn here); removes a pair's `hysteresis.png/.svg`
-/// an earlier run left. For [`crate::output::row::RowWriter::finish`].
+/// an earlier run left. For [`crate::output::writer::RunWriter::finish`].
 pub fn row_pictures<'a>(
     scenario: &'a Scenario,
     report: &'a RowReport,

@@ -75,7 +75,7 @@ pub(crate) fn beside_each_other<T: Send>(
 /// figure (`history.png/.svg`, [`time_history_figure`]) and the envelopes over height
 /// (`envelopes.png/.svg`, [`envelope_figure`]) and, with yielding storeys, the hysteresis loops
 /// (`hysteresis.png/.svg`, [`hysteresis_figure`]; removed after an elastic run so that no stale
-/// loops sit beside its summary); for [`crate::output::run::RunWriter::finish`].
+/// loops sit beside its summary); for [`crate::output::writer::RunWriter::finish`].
 pub fn run_pictures<'a>(
     scenario: &'a Scenario,
     report: &'a Report,

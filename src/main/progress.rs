@@ -2,7 +2,7 @@
 
 use pounding::analysis::simulate::{Phase, RunSink};
 
-/// Streams a run into its writer (a pair's `RunWriter`, a row's `RowWriter`) and shows a progress bar on a terminal when the run
+/// Streams a run into its writer (`RunWriter`, a pair's or a row's) and shows a progress bar on a terminal when the run
 /// takes more than a second.
 pub struct RunProgress<'a> {
     writer: &'a mut dyn RunSink,

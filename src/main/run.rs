@@ -24,7 +24,7 @@ pub(super) fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> 
         return run_row(&sc, &name, &a, quiet);
     }
     pounding::output::budget::check_run(&sc, a.max_output_size)?;
-    let mut writer = pounding::output::run::RunWriter::for_scenario(&a.out, &sc)?;
+    let mut writer = pounding::output::writer::RunWriter::for_scenario(&a.out, &sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
@@ -61,7 +61,7 @@ fn run_suite(
     }
     let run = suite::run(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
     let draw = (!no_plot).then(|| pounding::figures::suite::suite_pictures(&run));
-    let written = suite::write::write(out, &run, draw)?;
+    let written = suite::write::write(out, &run, draw, |_| None)?;
     if !quiet {
         print!("{}", suite::report::text(&run, &sc.title, name));
         println!("\nwrote {}", list_paths(&written));
@@ -85,24 +85,24 @@ fn run_row_suite(
 ) -> anyhow::Result<()> {
     let run = suite::row::run_row(sc, !no_check).map_err(|e| anyhow!("{name}: {e}"))?;
     let draw = (!no_plot).then(|| pounding::figures::suite::row_suite_pictures(&run));
-    let written = suite::row_write::write_row_suite(out, &run, draw, |i| {
+    let written = suite::write::write(out, &run, draw, |i| {
         (!no_plot).then(|| pounding::figures::suite::row_suite_record_pictures(&run, i))
     })?;
     if !quiet {
-        print!("{}", suite::row_report::text(&run, &sc.title, name));
+        print!("{}", suite::report::text(&run, &sc.title, name));
         // (each record's folder once, not its every file)
         let top: Vec<_> = written
             .iter()
-            .filter(|p| !p.starts_with(out.join(suite::row_write::RECORDS_DIR)))
+            .filter(|p| !p.starts_with(out.join(suite::write::RECORDS_DIR)))
             .cloned()
             .collect();
         println!(
             "\nwrote {}, and each record's run in {}",
             list_paths(&top),
-            out.join(suite::row_write::RECORDS_DIR).display()
+            out.join(suite::write::RECORDS_DIR).display()
         );
     }
-    for w in suite::row_report::warnings(sc, &run) {
+    for w in suite::report::warnings(sc, &run) {
         eprintln!("warning: {w}");
     }
     Ok(())
@@ -113,7 +113,7 @@ fn run_row_suite(
 /// the pictures (unless `--no-plot`) and summary.json last.
 fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
     pounding::output::budget::check_run(sc, a.max_output_size)?;
-    let mut writer = pounding::output::row::RowWriter::for_scenario(&a.out, sc)?;
+    let mut writer = pounding::output::writer::RunWriter::for_scenario(&a.out, sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);

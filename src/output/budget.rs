@@ -2,7 +2,7 @@
 //! (results.csv and its journal) is estimated before anything is computed and refused above a
 //! limit — 1 GB unless the user raises it (`--max-output-size`) — with the estimated size and
 //! the keys that change it. Memory does not depend on these sizes (the history is streamed,
-//! see [`crate::output::run::RunWriter`]); disk and time do.
+//! see [`crate::output::writer::RunWriter`]); disk and time do.
 
 use crate::input::scenario::Scenario;
 use crate::recording::history::sample_count;

@@ -12,3 +12,4 @@ pub mod run;
 pub mod sa_scaling;
 pub mod spectrum_report;
 pub mod text;
+pub mod writer;

@@ -1,9 +1,9 @@
-//! The files of a row of buildings' run (issue 29), as a pair's are written: `history.csv`
-//! and `floors.csv` streamed during the run (temporary files, renamed when complete; memory
-//! holds one row), then `impacts.csv` (one row per contact episode, naming its pair), the
+//! The files of a row of buildings' run (issue 29), written by the one writer of a run's files
+//! (`output::writer::RunWriter`, as a pair's): `history.csv` and `floors.csv` streamed
+//! during the run, then `impacts.csv` (one row per contact episode, naming its pair), the
 //! pictures ([`crate::figures::row`]) and `summary.json` last (the row's [`RowReport`]:
 //! `structures`, `pairs`, `verdict`, `accuracy`, …, with the solver's facts and the defaults
-//! applied).
+//! applied). This module gives their contents.
 //!
 //! A row's `history.csv` is a layout of its own (a pair's is unchanged): `t`, then `w_<name>`
 //! for every structure (its displacement at its headline height — its highest contact level
@@ -13,17 +13,11 @@
 //! and `a_<name>_<h>` (displacement, m; absolute acceleration, m/s²) for every structure and
 //! station (height h, m), then the same with `_free`.
 
-use std::io::{BufWriter, Write as _};
-use std::path::{Path, PathBuf};
-
 use serde::Serialize;
 
-use crate::analysis::simulate::{RowReport, RunCapture, RunSink};
+use crate::analysis::simulate::{RowReport, RunCapture};
 use crate::input::scenario::Scenario;
-use crate::output::atomic::{OutputError, temp_file, write_atomic};
-use crate::output::csv::{push_field, push_number};
-use crate::output::row_spool::RowSpool;
-use crate::output::run::{DrawPictures, PICTURE_FILES};
+use crate::output::csv::push_field;
 
 #[derive(Debug, Serialize)]
 struct RowSummary<'a> {
@@ -31,7 +25,8 @@ struct RowSummary<'a> {
     report: &'a RowReport,
     solver: super::run::SolverInfo,
     defaults_applied: &'a [String],
-    /// A suite's own section ([`RowWriter::with_suite`]); absent for one record.
+    /// A suite's own section (`output::writer::RunWriter::with_suite`); absent for one
+    /// record.
     #[serde(skip_serializing_if = "Option::is_none")]
     suite: Option<&'a serde_json::Value>,
 }
@@ -162,250 +157,6 @@ pub fn row_floor_columns(scenario: &Scenario) -> Vec<String> {
         None => all,
         Some(keep) => keep.iter().filter_map(|&i| all.get(i).cloned()).collect(),
     }
-}
-
-/// Writes a row's run into a directory: streams `history.csv` and `floors.csv` during the run
-/// (it is the run's [`RunSink`]: the rows of the run with contact spooled in binary, each row
-/// of the run without contact completing one line) and writes the rest in
-/// [`RowWriter::finish`], `summary.json` last.
-pub struct RowWriter {
-    dir: PathBuf,
-    /// Structures and contact levels of the row.
-    structures: usize,
-    levels: usize,
-    csv: Option<BufWriter<tempfile::NamedTempFile>>,
-    /// The rows with contact: t, every structure's w, every level's force.
-    spool: RowSpool,
-    line: Vec<u8>,
-    row: Vec<f64>,
-    error: Option<OutputError>,
-    created_dir: bool,
-    floors: Option<crate::output::floors_csv::FloorsCsv>,
-    /// A suite's section of summary.json ([`RowWriter::with_suite`]).
-    suite: Option<serde_json::Value>,
-}
-
-impl std::fmt::Debug for RowWriter {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("RowWriter")
-            .field("dir", &self.dir)
-            .field("structures", &self.structures)
-            .field("levels", &self.levels)
-            .finish_non_exhaustive()
-    }
-}
-
-impl Drop for RowWriter {
-    /// A writer dropped before [`RowWriter::finish`] completes (the run failed) deletes its
-    /// temporary files and the directory it created, if nothing else is in it.
-    fn drop(&mut self) {
-        self.csv.take();
-        self.floors.take();
-        if self.created_dir {
-            let _ = std::fs::remove_dir(&self.dir);
-        }
-    }
-}
-
-fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |source| OutputError::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
-/// Remove `dir/name` if it is there.
-fn remove_stale(dir: &Path, name: &str) -> Result<(), OutputError> {
-    let p = dir.join(name);
-    match std::fs::remove_file(&p) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(io(&p)(e)),
-    }
-}
-
-impl RowWriter {
-    /// Prepare `dir` (created if needed) for a run of the row `scenario`: remove a
-    /// `summary.json` an earlier run left (a summary must never describe other files than its
-    /// own run's) and open the temporary `history.csv` and `floors.csv`.
-    pub fn for_scenario(dir: &Path, scenario: &Scenario) -> Result<RowWriter, OutputError> {
-        let created_dir = !dir.exists();
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
-        remove_stale(dir, "summary.json")?;
-        let history = dir.join("history.csv");
-        let tmp = temp_file(dir, ".pounding-history-", ".tmp").map_err(io(&history))?;
-        let mut csv = BufWriter::with_capacity(1 << 16, tmp);
-        writeln!(csv, "{}", row_history_header(scenario)).map_err(io(&history))?;
-        let structures = scenario.structures.len();
-        let levels = scenario.system().levels.len();
-        let width = 1 + structures + levels;
-        let spool = RowSpool::new(dir, width).map_err(io(&history))?;
-        let floors_path = dir.join(crate::output::floors_csv::FILE_NAME);
-        let floors =
-            crate::output::floors_csv::FloorsCsv::create(dir, &row_floor_columns(scenario))
-                .map_err(io(&floors_path))?;
-        Ok(RowWriter {
-            dir: dir.to_path_buf(),
-            structures,
-            levels,
-            csv: Some(csv),
-            spool,
-            line: Vec::with_capacity(24 * (1 + 2 * structures + levels)),
-            row: vec![0.0; width],
-            error: None,
-            created_dir,
-            floors: Some(floors),
-            suite: None,
-        })
-    }
-
-    /// Add `section` as the key `suite` of summary.json (a suite of records on a row, written
-    /// by the suite driver of the study layer).
-    pub fn with_suite(mut self, section: serde_json::Value) -> RowWriter {
-        self.suite = Some(section);
-        self
-    }
-
-    fn fail(&mut self, source: std::io::Error) {
-        if self.error.is_none() {
-            self.error = Some(OutputError::Io {
-                path: self.dir.join("history.csv"),
-                source,
-            });
-        }
-    }
-
-    /// The spooled row with contact, then `free` (NaN: the run without contact did not
-    /// reach it), as a line of history.csv.
-    fn write_line(&mut self, free: Option<&[f64]>) {
-        self.line.clear();
-        push_number(&mut self.line, self.row[0]);
-        for &v in &self.row[1..] {
-            push_field(&mut self.line, v);
-        }
-        for j in 0..self.structures {
-            push_field(
-                &mut self.line,
-                free.and_then(|f| f.get(j).copied()).unwrap_or(f64::NAN),
-            );
-        }
-        self.line.push(b'\n');
-        if let Some(csv) = self.csv.as_mut()
-            && let Err(e) = csv.write_all(&self.line)
-        {
-            self.fail(e);
-        }
-    }
-
-    /// Rename `history.csv` and `floors.csv` into place, write `impacts.csv`, the pictures
-    /// (`draw`, e.g. [`crate::figures::row::row_pictures`]) — or, without, remove those an
-    /// earlier run left — and last `summary.json`. Returns the files written, in order.
-    pub fn finish(
-        mut self,
-        scenario: &Scenario,
-        report: &RowReport,
-        draw: Option<Box<DrawPictures<'_>>>,
-    ) -> Result<Vec<PathBuf>, OutputError> {
-        // rows with contact the run without contact did not match (none, normally)
-        self.spool.rewind();
-        while self.spool.next(&mut self.row) {
-            self.write_line(None);
-        }
-        if let Some(e) = self.spool.take_error() {
-            self.fail(e);
-        }
-        if let Some(e) = self.error.take() {
-            return Err(e);
-        }
-        let mut written = Vec::new();
-        let history = self.dir.join("history.csv");
-        if let Some(csv) = self.csv.take() {
-            let tmp = csv.into_inner().map_err(|e| io(&history)(e.into_error()))?;
-            tmp.as_file().sync_all().map_err(io(&history))?;
-            tmp.persist(&history).map_err(|e| io(&history)(e.error))?;
-        }
-        written.push(history);
-        let impacts = self.dir.join("impacts.csv");
-        write_atomic(&impacts, row_impacts_csv(report).as_bytes())?;
-        written.push(impacts);
-        if let Some(f) = self.floors.take() {
-            let path = self.dir.join(crate::output::floors_csv::FILE_NAME);
-            written.push(f.finish().map_err(io(&path))?);
-        }
-        match draw {
-            Some(draw) => {
-                let files = draw(&self.dir).map_err(|message| OutputError::Encode {
-                    path: self.dir.join(PICTURE_FILES[0]),
-                    message: format!(
-                        "{message} (history.csv and impacts.csv are written; summary.json is not)"
-                    ),
-                })?;
-                written.extend(files);
-            }
-            None => {
-                for name in PICTURE_FILES {
-                    remove_stale(&self.dir, name)?;
-                }
-            }
-        }
-        let summary = self.dir.join("summary.json");
-        let json =
-            row_summary_json_with(scenario, report, self.suite.as_ref()).map_err(|message| {
-                OutputError::Encode {
-                    path: summary.clone(),
-                    message,
-                }
-            })?;
-        write_atomic(&summary, json.as_bytes())?;
-        written.push(summary);
-        self.created_dir = false;
-        Ok(written)
-    }
-}
-
-impl RunSink for RowWriter {
-    fn contact_floor_row(&mut self, t: f64, values: &[f64]) {
-        if let Some(f) = self.floors.as_mut() {
-            f.contact_row(t, values);
-        }
-    }
-
-    fn free_floor_row(&mut self, t: f64, values: &[f64]) {
-        if let Some(f) = self.floors.as_mut() {
-            f.free_row(t, values);
-        }
-    }
-
-    fn row_contact_row(&mut self, t: f64, w: &[f64], forces: &[f64]) {
-        let (n, l) = (self.structures, self.levels);
-        self.spool.push(
-            std::iter::once(t)
-                .chain(w.iter().copied().chain(std::iter::repeat(f64::NAN)).take(n))
-                .chain(forces.iter().copied().take(l)),
-        );
-    }
-
-    fn row_free_row(&mut self, _t: f64, w: &[f64]) {
-        self.spool.rewind();
-        if self.spool.next(&mut self.row) {
-            self.write_line(Some(w));
-        }
-    }
-}
-
-/// Write a row's run already done into `dir` exactly as `pounding run --out dir` does while it
-/// runs: the samples in `capture` replayed into a [`RowWriter`], then [`RowWriter::finish`]
-/// (pictures by `draw`; `summary.json` last). Returns the files written, in order.
-pub fn write_row(
-    dir: &Path,
-    scenario: &Scenario,
-    report: &RowReport,
-    capture: &RunCapture,
-    draw: Option<Box<DrawPictures<'_>>>,
-) -> Result<Vec<PathBuf>, OutputError> {
-    let mut writer = RowWriter::for_scenario(dir, scenario)?;
-    capture.replay(&mut writer);
-    writer.finish(scenario, report, draw)
 }
 
 /// Columns of numbers by name, in order.

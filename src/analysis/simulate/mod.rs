@@ -27,8 +27,8 @@ pub use warnings::{ENERGY_WARNING_THRESHOLD, PLAUSIBLE_DRIFT, PLAUSIBLE_PENETRAT
 use warnings::{drift_warning, level_warnings, run_warnings};
 
 pub use row::{
-    PairReport, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
-    simulate_row_streaming, simulate_row_with,
+    PairReport, RowFreeRuns, RowImpact, RowReport, RowVerdict, simulate_row, simulate_row_checked,
+    simulate_row_reusing, simulate_row_streaming, simulate_row_with,
 };
 
 use self::accuracy::{AccuracyCheck, limited_tightening, tightened};
@@ -317,7 +317,7 @@ pub fn simulate_checked(scenario: &Scenario, check: bool) -> Result<Report, Solv
 /// [`simulate_checked`], streaming the history of both runs and the progress of every run to
 /// `sink` as they are computed (the self-check's runs report progress only). This is how a
 /// long run is written without holding its history in memory (see
-/// [`crate::output::run::RunWriter`]).
+/// [`crate::output::writer::RunWriter`]).
 pub fn simulate_streaming(
     scenario: &Scenario,
     check: bool,

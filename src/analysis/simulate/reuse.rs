@@ -65,16 +65,18 @@ pub struct FreeRuns {
 impl FreeRuns {
     /// Approximate heap size, bytes (what a cache of them bounds).
     pub fn bytes(&self) -> usize {
-        let one = |r: &RunRecord| {
-            let h = &r.history;
-            8 * (h.t.len() + h.w1.len() + h.w2.len())
-                + 8 * h.force.iter().map(Vec::len).sum::<usize>()
-                + 64 * r.levels.len()
-                + 128 * r.floors.iter().map(Vec::len).sum::<usize>()
-                + 64 * r.storeys.len()
-                + 256
-        };
-        one(&self.run) + self.check.as_ref().map_or(0, one)
+        FreeRuns::record_bytes(&self.run) + self.check.as_ref().map_or(0, FreeRuns::record_bytes)
+    }
+
+    /// Approximate heap size of one run record, bytes.
+    pub(super) fn record_bytes(r: &RunRecord) -> usize {
+        let h = &r.history;
+        8 * (h.t.len() + h.w1.len() + h.w2.len())
+            + 8 * h.force.iter().map(Vec::len).sum::<usize>()
+            + 64 * r.levels.len()
+            + 128 * r.floors.iter().map(Vec::len).sum::<usize>()
+            + 64 * r.storeys.len()
+            + 256
     }
 }
 
@@ -115,7 +117,8 @@ impl PartialEq for FreeRunKey {
 impl FreeRunKey {
     /// The key of `scenario`'s run without contact (with its self-check's if `check`; with
     /// the floor responses if `floors`, as [`super::simulate_reusing`] takes them), or `None`
-    /// for what is not a single run of a pair (a row, a suite, a design spectrum).
+    /// for what is not a single run of a pair (a row: [`FreeRunKey::of_row`]; a suite, a
+    /// design spectrum).
     pub fn of(scenario: &Scenario, check: bool, floors: bool) -> Option<FreeRunKey> {
         if scenario.is_row() || scenario.suite.is_some() || scenario.design.spectrum.is_some() {
             return None;
@@ -126,13 +129,44 @@ impl FreeRunKey {
             .iter()
             .map(|l| l.height.to_bits())
             .collect();
+        Some(FreeRunKey::with_levels(
+            scenario,
+            &format!("{heights:?}"),
+            check,
+            floors,
+        ))
+    }
+
+    /// The key of a row's run without contact (issue 29; with its self-check's if `check`,
+    /// as [`super::simulate_row_reusing`] takes them: a row's result always records its
+    /// floors), or `None` for a suite or a design spectrum. Besides a pair's key it holds
+    /// every pair's level heights, pair by pair (the run records the closing at each, and each
+    /// structure's headline height is its highest level with either neighbour).
+    pub fn of_row(scenario: &Scenario, check: bool) -> Option<FreeRunKey> {
+        if scenario.suite.is_some() || scenario.design.spectrum.is_some() {
+            return None;
+        }
+        let heights: Vec<Vec<u64>> = scenario
+            .contacts()
+            .map(|c| c.levels.iter().map(|l| l.height.to_bits()).collect())
+            .collect();
+        Some(FreeRunKey::with_levels(
+            scenario,
+            &format!("row {heights:?}"),
+            check,
+            true,
+        ))
+    }
+
+    /// The key of `scenario` with its contact levels described by `levels`.
+    fn with_levels(scenario: &Scenario, levels: &str, check: bool, floors: bool) -> FreeRunKey {
         let (ground, record) = match &scenario.ground_motion {
             GroundMotion::Record(r) => (format!("record {:?}", r.dt.to_bits()), Some(r.clone())),
             g => (format!("{g:?}"), None),
         };
         // Debug writes every f64 so that it reads back exactly (shortest round trip)
         let text = format!(
-            "{:?}|{ground}|{:?}|{:?}|{:?}|{heights:?}|{check}|{floors}",
+            "{:?}|{ground}|{:?}|{:?}|{:?}|{levels}|{check}|{floors}",
             scenario.structures,
             scenario.solver,
             scenario.output_interval.to_bits(),
@@ -149,10 +183,10 @@ impl FreeRunKey {
                 r.accel.get(i).map(|a| a.to_bits()).hash(&mut h);
             }
         }
-        Some(FreeRunKey {
+        FreeRunKey {
             hash: h.finish(),
             text,
             record,
-        })
+        }
     }
 }

@@ -160,22 +160,96 @@ pub fn simulate_row_checked(scenario: &Scenario, check: bool) -> Result<RowRepor
 
 /// [`simulate_row_checked`] streaming the two runs of the result to `sink` (the self-check's
 /// runs report progress only); how `pounding run` writes a row
-/// ([`crate::output::row::RowWriter`]).
+/// ([`crate::output::writer::RunWriter`]).
 pub fn simulate_row_streaming(
     scenario: &Scenario,
     check: bool,
     sink: &mut dyn RunSink,
 ) -> Result<RowReport, SolveError> {
-    let mut report = simulate_row_phases(scenario, sink, false, None)?;
+    simulate_row_run(scenario, check, sink, None).map(|(r, _)| r)
+}
+
+/// The runs without contact of one row, to take for another that differs only in its
+/// contact (same [`super::FreeRunKey::of_row`]): the result's with its history, and the
+/// self-check's when it integrates its own (`None`: it reuses the result's,
+/// [`free_run_is_exact`], or no check was run).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RowFreeRuns {
+    /// The run without contact of the result.
+    pub run: RunRecord,
+    /// Its displacement histories ([`RowReport::history_no_contact`]).
+    pub history: RowHistory,
+    /// The self-check's run without contact, when it has its own.
+    pub check: Option<RunRecord>,
+}
+
+impl RowFreeRuns {
+    /// Approximate heap size, bytes (what a cache of them bounds).
+    pub fn bytes(&self) -> usize {
+        let h = &self.history;
+        let history = 8
+            * (h.t.len()
+                + h.structures.iter().map(Vec::len).sum::<usize>()
+                + h.levels
+                    .iter()
+                    .map(|[a, b]| a.len() + b.len())
+                    .sum::<usize>());
+        super::FreeRuns::record_bytes(&self.run)
+            + self.check.as_ref().map_or(0, super::FreeRuns::record_bytes)
+            + history
+    }
+}
+
+/// [`simulate_row_checked`], taking the runs without contact from `free` when given — those
+/// of another row with the same [`super::FreeRunKey::of_row`], which a sweep over contact
+/// keys caches — and returning them with the report, for the next such row. The report is
+/// bit-identical to the one computed without `free` (tested).
+pub fn simulate_row_reusing(
+    scenario: &Scenario,
+    check: bool,
+    free: Option<&RowFreeRuns>,
+) -> Result<(RowReport, RowFreeRuns), SolveError> {
+    let (report, check_run) = simulate_row_run(scenario, check, &mut NoSink, free)?;
+    let runs = RowFreeRuns {
+        run: report.without_contact.clone(),
+        history: report.history_no_contact.clone(),
+        check: check_run,
+    };
+    Ok((report, runs))
+}
+
+/// [`simulate_row_streaming`] with the runs without contact from `free` (then not streamed
+/// to `sink`); also the self-check's run without contact when it integrated its own.
+fn simulate_row_run(
+    scenario: &Scenario,
+    check: bool,
+    sink: &mut dyn RunSink,
+    free: Option<&RowFreeRuns>,
+) -> Result<(RowReport, Option<RunRecord>), SolveError> {
+    let reuse = free.map(|f| (&f.run, &f.history));
+    let mut report = simulate_row_phases(scenario, sink, false, reuse)?;
     if !check {
-        return Ok(report);
+        return Ok((report, None));
     }
     let mut tight = scenario.clone();
     tight.solver = super::accuracy::tightened(&scenario.solver);
     // (the run without contact again only where the tolerance changes it)
-    let reuse = free_run_is_exact(scenario).then_some(&report.without_contact);
+    let exact = free_run_is_exact(scenario);
+    let none = RowHistory::default();
+    let reuse = if exact {
+        Some((&report.without_contact, &none))
+    } else {
+        free.and_then(|f| f.check.as_ref()).map(|r| (r, &none))
+    };
+    let mut check_run = None;
     report.accuracy = match simulate_row_phases(&tight, sink, true, reuse) {
-        Ok(t) => RowAccuracyCheck::compare(&report, &t, &scenario.solver),
+        Ok(t) => {
+            let a = RowAccuracyCheck::compare(&report, &t, &scenario.solver);
+            if !exact {
+                check_run = Some(t.without_contact);
+            }
+            a
+        }
         Err(e) => RowAccuracyCheck::failed(&scenario.solver, &e),
     };
     if let Some(w) = report.accuracy.warning(&scenario.solver) {
@@ -191,7 +265,7 @@ pub fn simulate_row_streaming(
             super::accuracy::MIN_ATOL
         ));
     }
-    Ok(report)
+    Ok((report, check_run))
 }
 
 /// One integration of a row `system` with its recorder and (unless `check`) the row's sampler
@@ -243,13 +317,13 @@ fn run_row_phase(
     Ok((recorder.finish(), stats, sampler.finish()))
 }
 
-/// The two runs of a row (with `check`: the self-check's, `reuse` the run without contact to
-/// take instead of integrating it again) and its report.
+/// The two runs of a row (with `check`: the self-check's, `reuse` the run without contact and
+/// its history to take instead of integrating it again) and its report.
 fn simulate_row_phases(
     scenario: &Scenario,
     sink: &mut dyn RunSink,
     check: bool,
-    reuse: Option<&RunRecord>,
+    reuse: Option<(&RunRecord, &RowHistory)>,
 ) -> Result<RowReport, SolveError> {
     no_spectrum(scenario)?;
     let system = scenario.system();
@@ -274,7 +348,7 @@ fn simulate_row_phases(
         check,
     )?;
     let (without, history_no_contact) = match reuse {
-        Some(r) => (r.clone(), RowHistory::default()),
+        Some((r, h)) => (r.clone(), h.clone()),
         None => {
             let (r, _, h) = run_row_phase(
                 &free,

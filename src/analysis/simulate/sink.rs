@@ -100,7 +100,7 @@ impl RunSink for NoSink {
 
 /// A [`RunSink`] that keeps every streamed sample of the two runs in memory, in the order
 /// they came, so that a run can be looked at as arrays and written later, exactly as if it
-/// had been streamed ([`RunCapture::replay`] into an [`crate::output::run::RunWriter`]). Used by
+/// had been streamed ([`RunCapture::replay`] into an [`crate::output::writer::RunWriter`]). Used by
 /// the Python package (`pounding.run`); memory grows with the duration (the CLI streams
 /// instead).
 #[derive(Debug, Clone, Default, PartialEq)]

@@ -6,12 +6,11 @@
 //! ([`statistics`]), and per contact level the code's design value of the required separation
 //! against the level's gap, the verdict at the level of least margin.
 //!
-//! The files are written by [`write`]; the pictures by `crate::figures::suite`.
+//! The files are written by [`write`] (a pair's suite and a row's); the pictures by
+//! `crate::figures::suite`.
 
 pub mod report;
 pub mod row;
-pub mod row_report;
-pub mod row_write;
 pub mod statistics;
 pub mod write;
 
@@ -148,6 +147,8 @@ pub trait MemberReport {
     /// The time-history required separation at level `level` (0-based) of pair `pair`
     /// (0-based; a pair's run has only pair 0), m.
     fn required_gap(&self, pair: usize, level: usize) -> f64;
+    /// The run's warnings.
+    fn warnings(&self) -> &[String];
 }
 
 impl MemberReport for Report {
@@ -156,6 +157,9 @@ impl MemberReport for Report {
     }
     fn required_gap(&self, _pair: usize, level: usize) -> f64 {
         self.levels[level].required_gap
+    }
+    fn warnings(&self) -> &[String] {
+        &self.warnings
     }
 }
 
@@ -359,9 +363,17 @@ pub fn run(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
 /// numbers), [`MemberRun::capture`] empty. What a case of a sweep over a suite runs
 /// ([`crate::study::sweep`]).
 pub fn run_headline(scenario: &Scenario, check: bool) -> Result<SuiteRun, SuiteError> {
-    run_with(scenario, |sc| {
-        simulate_headline(sc, check).map(|r| (r, RunCapture::new()))
-    })
+    run_headline_by(scenario, |sc| simulate_headline(sc, check))
+}
+
+/// [`run_headline`] with every record's scenario run by `simulate`, which must give the
+/// report [`simulate_headline`] gives (a sweep's runs through its cache of runs without
+/// contact, [`crate::study::sweep::free_cache`]).
+pub fn run_headline_by<F>(scenario: &Scenario, simulate: F) -> Result<SuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<Report, SolveError> + Sync,
+{
+    run_with(scenario, |sc| simulate(sc).map(|r| (r, RunCapture::new())))
 }
 
 /// The records of a suite, each as a scenario of its own: what every driver of a suite runs

@@ -88,6 +88,9 @@ impl MemberReport for RowReport {
     fn required_gap(&self, pair: usize, level: usize) -> f64 {
         self.pairs[pair].levels[level].required_gap
     }
+    fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
 }
 
 /// The design values of one adjacent pair of the row.
@@ -171,9 +174,17 @@ pub fn run_row(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteErr
 /// [`MemberRun::capture`] empty. What a case of a sweep over a suite on a row runs
 /// ([`crate::study::sweep`]).
 pub fn run_row_headline(scenario: &Scenario, check: bool) -> Result<RowSuiteRun, SuiteError> {
-    run_row_with(scenario, |sc| {
-        simulate_row_checked(sc, check).map(|r| (r, RunCapture::new()))
-    })
+    run_row_headline_by(scenario, |sc| simulate_row_checked(sc, check))
+}
+
+/// [`run_row_headline`] with every record's scenario run by `simulate`, which must give the
+/// report [`simulate_row_checked`] gives (a sweep's runs through its cache of runs without
+/// contact, [`crate::study::sweep::free_cache`]).
+pub fn run_row_headline_by<F>(scenario: &Scenario, simulate: F) -> Result<RowSuiteRun, SuiteError>
+where
+    F: Fn(&Scenario) -> Result<RowReport, crate::integrate::SolveError> + Sync,
+{
+    run_row_with(scenario, |sc| simulate(sc).map(|r| (r, RunCapture::new())))
 }
 
 /// The suite of the row `scenario` scaled by its rule, each record's scenario run by

@@ -1,9 +1,15 @@
 //! The runs without contact of a sweep's cases, cached across cases that differ only in
-//! their contact (gap, stiffness, law, restitution, the levels' gaps): such cases share their
-//! structures, ground motion and solver settings, hence their runs without contact, bit for
-//! bit ([`FreeRunKey`]). Enabled only for a sweep with an axis on a contact key; its cases
-//! are then computed in an order where the contact axes vary fastest ([`FreeRunCache::order`]),
-//! so that the cases sharing a run follow one another and a small cache serves them all.
+//! their contact (gap, stiffness, law, restitution, the levels' gaps; of a row, any pair's):
+//! such cases share their structures, ground motion and solver settings, hence their runs
+//! without contact, bit for bit ([`FreeRunKey`]: a pair's, [`FreeRunKey::of_row`]: a row's).
+//! Enabled only for a sweep with an axis on a contact key; its cases are then computed in an
+//! order where the contact axes vary fastest ([`FreeRunCache::order`]), so that the cases
+//! sharing a run follow one another and a small cache serves them all. Every kind of case
+//! uses it: a single run of a pair ([`FreeRunCache::simulate`]) or of a row
+//! ([`FreeRunCache::simulate_row`]), and each record's run of a suite on either (the records
+//! of a case are keyed one by one: a record's run without contact is shared by the cases
+//! that differ only in contact, whose suites are scaled alike — the scaling reads the
+//! first-mode periods, not the contact).
 
 use std::collections::{HashMap, VecDeque};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -11,7 +17,9 @@ use std::sync::{Arc, Mutex};
 
 use super::axes::Axis;
 use super::keys::{Section, Target};
-use crate::analysis::simulate::{FreeRunKey, FreeRuns, Report, simulate_reusing};
+use crate::analysis::simulate::{
+    FreeRunKey, FreeRuns, Report, RowFreeRuns, RowReport, simulate_reusing, simulate_row_reusing,
+};
 use crate::input::scenario::Scenario;
 use crate::integrate::SolveError;
 
@@ -19,9 +27,25 @@ use crate::integrate::SolveError;
 /// 2001 history samples each, no floors).
 pub const FREE_RUN_CACHE_BYTES: usize = 64 << 20;
 
+/// The runs without contact of a pair's case or of a row's.
+#[derive(Clone)]
+enum Runs {
+    Pair(Arc<FreeRuns>),
+    Row(Arc<RowFreeRuns>),
+}
+
+impl Runs {
+    fn bytes(&self) -> usize {
+        match self {
+            Runs::Pair(r) => r.bytes(),
+            Runs::Row(r) => r.bytes(),
+        }
+    }
+}
+
 #[derive(Default)]
 struct Entries {
-    map: HashMap<u64, Vec<(FreeRunKey, Arc<FreeRuns>)>>,
+    map: HashMap<u64, Vec<(FreeRunKey, Runs)>>,
     /// Insertion order (hash, key), oldest first: what is evicted first.
     order: VecDeque<(u64, usize)>,
     bytes: usize,
@@ -115,18 +139,47 @@ impl FreeRunCache {
                 crate::analysis::simulate::simulate_headline(scenario, check)
             };
         };
-        let cached = self.get(&key);
+        let cached = match self.get(&key) {
+            Some(Runs::Pair(r)) => Some(r),
+            _ => None,
+        };
         if cached.is_some() {
             self.hits.fetch_add(1, Ordering::Relaxed);
         }
         let (report, runs) = simulate_reusing(scenario, check, floors, cached.as_deref())?;
         if cached.is_none() {
-            self.put(key, runs);
+            self.put(key, Runs::Pair(Arc::new(runs)));
         }
         Ok(report)
     }
 
-    fn get(&self, key: &FreeRunKey) -> Option<Arc<FreeRuns>> {
+    /// [`simulate_row_reusing`] of the row `scenario` (the report of
+    /// `simulate_row_checked(scenario, check)`), its runs without contact taken from the cache
+    /// when a case with the same [`FreeRunKey::of_row`] has computed them, and stored for the
+    /// next one otherwise. The report is bit-identical either way.
+    pub fn simulate_row(&self, scenario: &Scenario, check: bool) -> Result<RowReport, SolveError> {
+        let key = self
+            .enabled()
+            .then(|| FreeRunKey::of_row(scenario, check))
+            .flatten();
+        let Some(key) = key else {
+            return crate::analysis::simulate::simulate_row_checked(scenario, check);
+        };
+        let cached = match self.get(&key) {
+            Some(Runs::Row(r)) => Some(r),
+            _ => None,
+        };
+        if cached.is_some() {
+            self.hits.fetch_add(1, Ordering::Relaxed);
+        }
+        let (report, runs) = simulate_row_reusing(scenario, check, cached.as_deref())?;
+        if cached.is_none() {
+            self.put(key, Runs::Row(Arc::new(runs)));
+        }
+        Ok(report)
+    }
+
+    fn get(&self, key: &FreeRunKey) -> Option<Runs> {
         let e = self.entries.lock().unwrap_or_else(|p| p.into_inner());
         e.map
             .get(&key.hash)?
@@ -135,7 +188,7 @@ impl FreeRunCache {
             .map(|(_, r)| r.clone())
     }
 
-    fn put(&self, key: FreeRunKey, runs: FreeRuns) {
+    fn put(&self, key: FreeRunKey, runs: Runs) {
         let size = runs.bytes();
         if size > self.budget {
             return;
@@ -146,7 +199,7 @@ impl FreeRunCache {
         if bucket.iter().any(|(k, _)| *k == key) {
             return; // another thread computed it meanwhile
         }
-        bucket.push((key, Arc::new(runs)));
+        bucket.push((key, runs));
         e.order.push_back((hash, size));
         e.bytes += size;
         while e.bytes > self.budget {
@@ -167,14 +220,18 @@ impl FreeRunCache {
     }
 }
 
-/// Whether an axis sets a key of the contact (the contact table or a level): cases apart
-/// only along such axes have the same run without contact. (A level's height is a contact
-/// key that the run without contact does record: [`FreeRunKey`] tells those apart.)
+/// Whether an axis sets a key of the contact (the contact table or a level; of a row, any
+/// pair's): cases apart only along such axes have the same run without contact. (A level's
+/// height is a contact key that the run without contact does record: [`FreeRunKey`] tells
+/// those apart.)
 fn sets_contact(a: &Axis) -> bool {
     matches!(
         a.target,
         Target::Key {
-            section: Section::Contact | Section::Level(_),
+            section: Section::Contact
+                | Section::Level(_)
+                | Section::PairContact(_)
+                | Section::PairLevel(..),
             ..
         }
     )
@@ -211,7 +268,7 @@ mod tests {
         let pgas: Vec<f64> = (1..=10).map(|i| 0.1 * f64::from(i)).collect();
         for &pga in &pgas {
             let key = FreeRunKey::of(&scenario(pga), false, false).expect("a pair");
-            cache.put(key, runs(pga));
+            cache.put(key, Runs::Pair(Arc::new(runs(pga))));
             assert!(cache.entries.lock().expect("lock").bytes <= cache.budget);
         }
         let held: Vec<bool> = pgas

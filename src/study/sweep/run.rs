@@ -243,20 +243,21 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
     let mut warning = None;
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let sc = sweep.case_scenario(case)?;
+        // (every kind of case: cases that differ only in their contact share their runs
+        // without contact, through the sweep's cache)
+        let cache = sweep.free_runs();
         match sweep.row_kind() {
-            super::RowKind::Suite { .. } => return suite_case(&sc, check, &mut warning),
-            super::RowKind::Row { .. } => return row_case(&sc, check, &mut warning),
+            super::RowKind::Suite { .. } => return suite_case(&sc, check, cache, &mut warning),
+            super::RowKind::Row { .. } => return row_case(&sc, check, cache, &mut warning),
             super::RowKind::RowSuite { .. } => {
-                return row_suite_case(&sc, check, &mut warning);
+                return row_suite_case(&sc, check, cache, &mut warning);
             }
             super::RowKind::Single => {}
         }
         // (the floor responses only when the table has floor columns: they cost more than the
         // integration of a small model)
-        // (cases that differ only in their contact share their runs without contact)
         let floors = !sweep.floor_columns().is_empty();
-        let report = sweep
-            .free_runs()
+        let report = cache
             .simulate(&sc, check, floors)
             .map_err(|e| e.to_string())?;
         // the self-check's verdict is counted from the `converged` column instead
@@ -283,15 +284,18 @@ pub fn compute_case(sweep: &Sweep, case: usize, check: bool) -> CaseResult {
 }
 
 /// A case of a sweep over a suite: the whole suite run ([`crate::study::suite::run_headline`]:
-/// scaled by its rule for the case's structures, every record with and without contact) to
-/// the fields of its row ([`super::suite_rows::fields`]); `warning` receives the first
-/// warning of a record's run (not the self-check's), naming the record.
+/// scaled by its rule for the case's structures, every record with and without contact, the
+/// runs without contact through `cache`) to the fields of its row
+/// ([`super::suite_rows::fields`]); `warning` receives the first warning of a record's run
+/// (not the self-check's), naming the record.
 fn suite_case(
     sc: &crate::input::scenario::Scenario,
     check: bool,
+    cache: &super::free_cache::FreeRunCache,
     warning: &mut Option<String>,
 ) -> Result<Vec<String>, String> {
-    let run = crate::study::suite::run_headline(sc, check).map_err(|e| e.to_string())?;
+    let run = crate::study::suite::run_headline_by(sc, |s| cache.simulate(s, check, false))
+        .map_err(|e| e.to_string())?;
     *warning = run.records.iter().enumerate().find_map(|(i, r)| {
         r.report
             .warnings
@@ -304,15 +308,18 @@ fn suite_case(
 
 /// A case of a sweep over a suite on a row of buildings: the whole suite on the whole row
 /// ([`crate::study::suite::row::run_row_headline`]: scaled by its rule over every building's
-/// first-mode periods, every record's run of the row with and without contact) to the fields
-/// of its row ([`super::row_suite_rows::fields`]); `warning` receives the first warning of a
-/// record's run (not the self-check's), naming the record.
+/// first-mode periods, every record's run of the row with and without contact, the runs
+/// without contact through `cache`) to the fields of its row
+/// ([`super::row_suite_rows::fields`]); `warning` receives the first warning of a record's run
+/// (not the self-check's), naming the record.
 fn row_suite_case(
     sc: &crate::input::scenario::Scenario,
     check: bool,
+    cache: &super::free_cache::FreeRunCache,
     warning: &mut Option<String>,
 ) -> Result<Vec<String>, String> {
-    let run = crate::study::suite::row::run_row_headline(sc, check).map_err(|e| e.to_string())?;
+    let run = crate::study::suite::row::run_row_headline_by(sc, |s| cache.simulate_row(s, check))
+        .map_err(|e| e.to_string())?;
     *warning = run.records.iter().enumerate().find_map(|(i, r)| {
         r.report
             .warnings
@@ -324,16 +331,17 @@ fn row_suite_case(
 }
 
 /// A case of a sweep over a row of buildings: the row run with and without contact and
-/// self-checked unless `check` is off ([`crate::analysis::simulate::simulate_row_checked`]) to
-/// the fields of its row ([`super::row_columns::fields`]); `warning` receives the run's first
-/// warning other than the self-check's (that one is counted from `converged`).
+/// self-checked unless `check` is off ([`crate::analysis::simulate::simulate_row_checked`], its
+/// runs without contact through `cache`) to the fields of its row
+/// ([`super::row_columns::fields`]); `warning` receives the run's first warning other than the
+/// self-check's (that one is counted from `converged`).
 fn row_case(
     sc: &crate::input::scenario::Scenario,
     check: bool,
+    cache: &super::free_cache::FreeRunCache,
     warning: &mut Option<String>,
 ) -> Result<Vec<String>, String> {
-    let report =
-        crate::analysis::simulate::simulate_row_checked(sc, check).map_err(|e| e.to_string())?;
+    let report = cache.simulate_row(sc, check).map_err(|e| e.to_string())?;
     // the self-check's verdict is counted from the `converged` column instead
     *warning = report
         .warnings
