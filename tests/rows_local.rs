@@ -27,6 +27,21 @@ fn contact(a: &str, b: &str, h: f64, gap: f64) -> String {
     )
 }
 
+/// Buildings A–D (4, 5, 3 and 4 storeys) whose outer pairs pound (gaps 10 mm) and whose middle
+/// gap (10 m) never closes.
+fn row_of_four_with_a_wide_middle_gap() -> String {
+    [
+        building("A", 4, 3.0e8),
+        building("B", 5, 1.6e8),
+        building("C", 3, 1.0e8),
+        building("D", 4, 2.4e8),
+        contact("A", "B", 14.0, 0.01),
+        contact("B", "C", 10.5, 10.0),
+        contact("C", "D", 10.5, 0.01),
+    ]
+    .concat()
+}
+
 fn close(x: f64, y: f64, rel: f64, what: &str) {
     let d = (x - y).abs() / x.abs().max(y.abs()).max(1e-300);
     assert!(d <= rel, "{what}: {x} vs {y} (relative {d:e})");
@@ -48,15 +63,9 @@ fn close(x: f64, y: f64, rel: f64, what: &str) {
 #[test]
 fn a_row_of_four_whose_middle_gap_never_closes_is_its_outer_pairs() {
     let text = format!(
-        "{}{}{}{}{}{}{}[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n\
+        "{}[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n\
          [solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\nrtol = 1e-9\n",
-        building("A", 4, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 3, 1.0e8),
-        building("D", 4, 2.4e8),
-        contact("A", "B", 14.0, 0.01),
-        contact("B", "C", 10.5, 10.0),
-        contact("C", "D", 10.5, 0.01),
+        row_of_four_with_a_wide_middle_gap()
     );
     let row = scenario(&text);
     let r = simulate_row(&row).expect("row");
@@ -134,15 +143,9 @@ fn a_row_of_four_under_a_record_observes_its_passive_buildings_as_their_pairs_do
     let record =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/records/RSN753_LOMAP_CLS000.AT2");
     let text = format!(
-        "{}{}{}{}{}{}{}[ground_motion]\nkind = \"record\"\nfile = \"{}\"\nscale_to_pga = 0.4\n\
+        "{}[ground_motion]\nkind = \"record\"\nfile = \"{}\"\nscale_to_pga = 0.4\n\
          [solver]\nmethod = \"exact-modal\"\ndt = 0.005\nduration = 10.0\nrtol = 1e-9\n",
-        building("A", 4, 3.0e8),
-        building("B", 5, 1.6e8),
-        building("C", 3, 1.0e8),
-        building("D", 4, 2.4e8),
-        contact("A", "B", 14.0, 0.01),
-        contact("B", "C", 10.5, 10.0),
-        contact("C", "D", 10.5, 0.01),
+        row_of_four_with_a_wide_middle_gap(),
         record.display(),
     );
     let row = scenario(&text);
