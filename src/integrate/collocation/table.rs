@@ -136,7 +136,7 @@ pub(in crate::integrate) struct Table {
     /// Per mode, see [`ModeStep`].
     pub modes: Vec<ModeStep>,
     /// Per mode, its responses to the Lagrange loads in the level tables' layout (scratch of
-    /// [`Table::fill`]).
+    /// [`Table::fill_for`]).
     gammas: Vec<Gammas>,
     /// Level tables of the 5-node scheme: the response of `c_k·η` (and `c_k·η̇`) at its node i
     /// (B1, ½, B3, end) to a unit force at level l shaped as ℓ_p,
