@@ -262,13 +262,16 @@ fn solve_one<const S: usize>(
         }
         // elimination with partial pivoting
         for col in 0..m {
-            let mut piv = col;
+            // (the pivot's magnitude kept as it is found: the same choice and the same test
+            // as comparing and testing the entries themselves, a NaN included)
+            let (mut piv, mut best) = (col, jac[col][col].abs());
             for r in col + 1..m {
-                if jac[r][col].abs() > jac[piv][col].abs() {
-                    piv = r;
+                let x = jac[r][col].abs();
+                if x > best {
+                    (piv, best) = (r, x);
                 }
             }
-            if jac[piv][col] == 0.0 || !jac[piv][col].is_finite() {
+            if best == 0.0 || !best.is_finite() {
                 return Err(NoConvergence);
             }
             if piv != col {

@@ -12,6 +12,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use crate::numerics::lanes::F2;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     /// Whether the contact steps take the one-level path: a pair (two structures) with a single
@@ -96,21 +97,24 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
         }
         // the homogeneous parts Σ_j c_j P(θh)(x0, y0): one pass over the modes for the six
-        // nodes, the level's block of coupled propagators node by node (a pair: every mode)
+        // nodes, the level's block of coupled propagators node by node (a pair: every mode),
+        // δ and δ̇ in the two lanes of one vector operation ([`F2`]: each lane the scalar
+        // `s += a·x + b·y`, the modes added in the same order: the same bits)
         let block = tab.cprop_single(n);
         let rows: [&[[f64; 4]]; 6] = std::array::from_fn(|i| &block[i * n..(i + 1) * n]);
-        let mut acc = [(0.0, 0.0); 6];
+        let mut acc = [F2::zero(); 6];
         for (jj, (&x, &y)) in self.x0[..n].iter().zip(&self.y0[..n]).enumerate() {
+            let (x, y) = (F2::splat(x), F2::splat(y));
             for (s, row) in acc.iter_mut().zip(&rows) {
                 let [a, c, b, e] = row[jj];
-                s.0 += a * x + b * y;
-                s.1 += c * x + e * y;
+                *s = *s + (F2::new(a, c) * x + F2::new(b, e) * y);
             }
         }
         let lv = &sys.levels[0];
-        for (x, s) in df.iter_mut().zip(acc) {
-            x.0 = lv.delta(-(x.0 - s.0));
-            x.1 -= s.1;
+        for (d, s) in df.iter_mut().zip(acc) {
+            let [s0, s1] = s.get();
+            d.0 = lv.delta(-(d.0 - s0));
+            d.1 -= s1;
         }
         self.dfree[..6].copy_from_slice(&df);
         let d8free = NODES8.map(|node| df[node]);
@@ -248,37 +252,37 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // the end state (and the dense output's), the level's projections of it
         let (q1s, v1s) = (&mut self.q1s[..n], &mut self.v1s[..n]);
         let (dq, dv) = (&mut self.dense_q[..3 * n], &mut self.dense_v[..3 * n]);
-        let mut proj = (0.0, 0.0);
+        // (η, η̇) in the two lanes of one vector operation ([`F2`]: each lane the scalar
+        // arithmetic, term for term in the same order: the same bits)
+        let lanes =
+            |p: &Prop, x0: F2, y0: F2| F2::new(p.p11, p.p21) * x0 + F2::new(p.p12, p.p22) * y0;
+        let pair = |x: (f64, f64)| F2::new(x.0, x.1);
+        let mut proj = F2::zero();
         for j in 0..n {
             let c = cs[j];
-            let g = f.map(|x| c * x);
+            let g = f.map(|x| F2::splat(c * x));
             let ms = &modes[j];
-            let (x0, y0) = (x0s[j], y0s[j]);
-            let (xe, ye) = ms.end.apply(x0, y0);
-            let pe = pend[j];
-            let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
+            let (x0, y0) = (F2::splat(x0s[j]), F2::splat(y0s[j]));
+            let mut qv = lanes(&ms.end, x0, y0) + pair(pend[j]);
             for p in 0..5 {
-                q1 += g[p] * ms.end8[p].0;
-                v1 += g[p] * ms.end8[p].1;
+                qv = qv + g[p] * pair(ms.end8[p]);
             }
             if dense {
                 for i in 0..3 {
-                    let (x, y) = ms.mid[i].apply(x0, y0);
-                    let pi = pmid[j][i];
-                    let (mut e, mut d) = (x + pi.0, y + pi.1);
+                    let mut ed = lanes(&ms.mid[i], x0, y0) + pair(pmid[j][i]);
                     for p in 0..5 {
-                        e += g[p] * ms.mid8[i][p].0;
-                        d += g[p] * ms.mid8[i][p].1;
+                        ed = ed + g[p] * pair(ms.mid8[i][p]);
                     }
-                    dq[i * n + j] = e;
-                    dv[i * n + j] = d;
+                    [dq[i * n + j], dv[i * n + j]] = ed.get();
                 }
             }
-            q1s[j] = q1;
-            v1s[j] = v1;
-            proj.0 += c * q1;
-            proj.1 += c * v1;
+            [q1s[j], v1s[j]] = qv.get();
+            proj = proj + F2::splat(c) * qv;
         }
+        let proj = {
+            let [a, b] = proj.get();
+            (a, b)
+        };
         self.proj[0] = proj;
         // the tallies, per kind of piece
         let mut sums = StateSums::default();
