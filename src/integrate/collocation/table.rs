@@ -345,13 +345,15 @@ impl Table {
 
     /// The level tables, slot by slot over each level's band: the sum over the modes both
     /// levels couple to (c_kj c_lj = 0 on every other mode), in mode order from 0 — the slots
-    /// whose structures are all filled and one of them just now (`fresh`).
+    /// whose structures are all filled and one of them just now (`fresh`). The tables are
+    /// symmetric, (k, l) the same bits as (l, k) (`c_kj c_lj` = `c_lj c_kj` exactly, the same
+    /// terms in the same order): each pair of slots is summed once, for l ≥ k.
     fn fill_slots(&mut self, sys: &System) {
         let nl = sys.levels.len();
         for k in 0..nl {
             let (ck, mk) = (sys.coupling(k), sys.coupling_modes(k));
             let pk = sys.levels[k].pair;
-            for l in sys.sharing_levels(k) {
+            for l in sys.sharing_levels(k).filter(|&l| l >= k) {
                 let (cl, ml) = (sys.coupling(l), sys.coupling_modes(l));
                 // (the structures both pairs hold)
                 let pl = sys.levels[l].pair;
@@ -380,6 +382,12 @@ impl Table {
                 self.w8[kl * 20..(kl + 1) * 20].copy_from_slice(&sum.g8);
                 self.w6[kl * 12..(kl + 1) * 12].copy_from_slice(&sum.g6);
                 self.w86[kl * 10..(kl + 1) * 10].copy_from_slice(&sum.g86);
+                if l != k {
+                    let lk = sys.band_slot(l, k);
+                    self.w8[lk * 20..(lk + 1) * 20].copy_from_slice(&sum.g8);
+                    self.w6[lk * 12..(lk + 1) * 12].copy_from_slice(&sum.g6);
+                    self.w86[lk * 10..(lk + 1) * 10].copy_from_slice(&sum.g86);
+                }
             }
         }
     }

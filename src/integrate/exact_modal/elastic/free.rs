@@ -194,13 +194,24 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 }
             }
         }
-        // every level's projections and margin, and the modal energy, at the end
+        // every level's projections and margin, and the modal energy, at the end (of a row,
+        // over the level's pair's modes only: the same bits, see `dots_within`)
         for k in 0..nl {
             let c = self.sys.coupling(k);
-            self.fproj[k] = dots(c, &self.qb, &self.vb);
-            if margin {
-                self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
-            } else if !bounded {
+            let ca = &self.cabs_t[k * n..(k + 1) * n];
+            if self.row {
+                let r = self.sys.coupling_modes(k);
+                self.fproj[k] = dots_within(c, &self.qb, &self.vb, r.clone());
+                if margin {
+                    self.fmargin[k] = dot_within(ca, &self.amp, r);
+                }
+            } else {
+                self.fproj[k] = dots(c, &self.qb, &self.vb);
+                if margin {
+                    self.fmargin[k] = dot(ca, &self.amp);
+                }
+            }
+            if !margin && !bounded {
                 self.fmargin[k] = 0.0;
             }
         }
@@ -233,7 +244,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let map = fd.poly.as_ref().expect("the map is built before the pass");
         poly_margins(map, g, &self.q[..n], &self.v[..n], &mut self.amp[..n]);
         for k in 0..self.nl {
-            self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
+            let ca = &self.cabs_t[k * n..(k + 1) * n];
+            self.fmargin[k] = if self.row {
+                dot_within(ca, &self.amp, self.sys.coupling_modes(k))
+            } else {
+                dot(ca, &self.amp)
+            };
         }
     }
 
@@ -580,4 +596,58 @@ mod tests {
             }
         }
     }
+}
+
+/// [`dot`]`(a, b)` when `a` is zero outside `r` (a row's coupling row outside its level's
+/// pair's modes), the same bits from the terms in `r` only. `dot` adds term j to partial sum
+/// j mod 4 (for 8 terms and more; below, one chain) and adds the sums as (0 + 2) + (1 + 3);
+/// each partial sum here takes the same terms in the same order, less the products 0·b_j,
+/// which change none: a sum starts at +0, to which ±0 adds +0, and adding ±0 to a non-zero
+/// sum leaves it (for finite b; a NaN or an infinity there is a diverged run either way).
+#[inline]
+pub(super) fn dot_within(a: &[f64], b: &[f64], r: std::ops::Range<usize>) -> f64 {
+    let n = a.len().min(b.len());
+    let r = r.start.min(n)..r.end.min(n);
+    if n < 8 {
+        let mut s = 0.0;
+        for j in r {
+            s += a[j] * b[j];
+        }
+        return s;
+    }
+    let mut acc = [0.0; 4];
+    for j in r {
+        acc[j & 3] += a[j] * b[j];
+    }
+    (acc[0] + acc[2]) + (acc[1] + acc[3])
+}
+
+/// [`dots`]`(c, x, y)` when `c` is zero outside `r`, the same bits from the terms in `r` only
+/// (as [`dot_within`]: `dots` has `dot`'s arithmetic for each).
+#[inline]
+pub(super) fn dots_within(
+    c: &[f64],
+    x: &[f64],
+    y: &[f64],
+    r: std::ops::Range<usize>,
+) -> (f64, f64) {
+    let n = c.len().min(x.len()).min(y.len());
+    let r = r.start.min(n)..r.end.min(n);
+    if n < 8 {
+        let (mut sx, mut sy) = (0.0, 0.0);
+        for j in r {
+            sx += c[j] * x[j];
+            sy += c[j] * y[j];
+        }
+        return (sx, sy);
+    }
+    let (mut ax, mut ay) = ([0.0; 4], [0.0; 4]);
+    for j in r {
+        ax[j & 3] += c[j] * x[j];
+        ay[j & 3] += c[j] * y[j];
+    }
+    (
+        (ax[0] + ax[2]) + (ax[1] + ax[3]),
+        (ay[0] + ay[2]) + (ay[1] + ay[3]),
+    )
 }

@@ -5,6 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use super::free::dots_within;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     /// The first instant (as an offset from the current time, s) within the next `h` at which a
@@ -58,7 +59,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             std::mem::swap(&mut self.vs, &mut self.vb);
             for k in 0..nl {
                 let c = self.sys.coupling(k);
-                self.at[k] = self.sys.levels[k].penetration(dot(c, &self.qs), dot(c, &self.vs));
+                let (cq, cv) = if self.row {
+                    dots_within(c, &self.qs, &self.vs, self.sys.coupling_modes(k))
+                } else {
+                    (dot(c, &self.qs), dot(c, &self.vs))
+                };
+                self.at[k] = self.sys.levels[k].penetration(cq, cv);
             }
             tr_a = tr1;
             walk.advance();
