@@ -11,6 +11,16 @@ fn reciprocals() -> &'static [f64; 70] {
     R.get_or_init(|| std::array::from_fn(|k| if k == 0 { 0.0 } else { 1.0 / k as f64 }))
 }
 
+/// One mode's propagators `P(θ_i h)` to every node of [`NODES`] (ω rad/s, damp = 2ζω 1/s).
+#[inline]
+fn node_props(omega: f64, damp: f64, h: f64) -> [Prop; 6] {
+    let mut out = [Prop::default(); 6];
+    for (o, &x) in out.iter_mut().zip(&NODES) {
+        *o = propagator(omega, damp, x * h);
+    }
+    out
+}
+
 /// Exact response (η, η̇) at times `s_i = θ_i h` from rest of one mode (ω rad/s, damp = 2ζω
 /// 1/s) to the loads (τ/h)^m, m = 0..4, with the propagators `props[i] = P(s_i)`: into
 /// `out[i][m]`. A series in `sA` (shared by the five loads) where `s(ω + damp)` is small, the
@@ -166,6 +176,9 @@ pub(in crate::integrate) struct Table {
     /// filled: a row's passive structure without a filled level is given `P(h)` only, the
     /// others on demand ([`Table::ensure_mid`]: a step observed at its interior nodes).
     mid_ok: Vec<bool>,
+    /// Whether every level, structure and interior node is filled (a pair's table, always):
+    /// [`Table::ensure`] has nothing to do.
+    complete: bool,
 }
 
 impl Table {
@@ -200,6 +213,7 @@ impl Table {
             fresh: Vec::new(),
             seen: Vec::new(),
             mid_ok: Vec::new(),
+            complete: false,
         };
         t.fill_for(sys, big, h, active);
         t
@@ -249,17 +263,26 @@ impl Table {
                 continue;
             }
             for j in sys.modes_of(s) {
-                let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                let props = node_props(omega[j], damp[j], h);
                 self.put_mid(j, &props);
             }
             self.mid_ok[s] = true;
         }
+        self.set_complete();
     }
 
     /// Fill the structures `active` marks that are not filled yet (their responses to the
     /// Lagrange loads, and the level-table slots that sum over them): a row's contact step
     /// that grows its set of active structures ([`Table::fill_for`]).
+    #[inline]
     pub(in crate::integrate) fn ensure(&mut self, sys: &System, active: &[bool]) {
+        if !self.complete {
+            self.ensure_parts(sys, active);
+        }
+    }
+
+    /// [`Table::ensure`] of a table not complete.
+    fn ensure_parts(&mut self, sys: &System, active: &[bool]) {
         let (omega, damp) = (sys.omega(), sys.damping_coefficients());
         let h = self.h;
         // (the levels newly next to an active structure: their coupled propagators, and the
@@ -269,7 +292,7 @@ impl Table {
                 continue;
             }
             for j in sys.coupling_modes(k) {
-                let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                let props = node_props(omega[j], damp[j], h);
                 self.put_cprop(sys, k, j, &props);
                 self.put_mid(j, &props);
             }
@@ -279,6 +302,7 @@ impl Table {
             self.seen[k] = true;
         }
         if self.covers(active) {
+            self.set_complete();
             return;
         }
         self.fresh.clear();
@@ -287,7 +311,7 @@ impl Table {
         for s in 0..sys.structures.len() {
             if self.fresh[s] {
                 for j in sys.modes_of(s) {
-                    let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                    let props = node_props(omega[j], damp[j], h);
                     self.fill_mode(omega[j], damp[j], h, j, &props);
                 }
                 self.done[s] = true;
@@ -295,6 +319,17 @@ impl Table {
             }
         }
         self.fill_slots(sys);
+        self.set_complete();
+    }
+
+    /// Whether every part is filled (`complete`).
+    fn set_complete(&mut self) {
+        self.complete = self
+            .seen
+            .iter()
+            .chain(&self.done)
+            .chain(&self.mid_ok)
+            .all(|&x| x);
     }
 
     /// Recompute for step length `h` (the buffers are reused): every mode's propagators to the
@@ -370,7 +405,7 @@ impl Table {
                 continue;
             }
             for j in sys.modes_of(s) {
-                let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                let props = node_props(omega[j], damp[j], h);
                 // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
                 for k in sys.levels_of_mode(j) {
                     if self.seen[k] {
@@ -387,6 +422,7 @@ impl Table {
             }
         }
         self.fill_slots(sys);
+        self.set_complete();
     }
 
     /// Mode j's responses to the Lagrange loads (its [`ModeStep`] and Γ_j), from its

@@ -196,23 +196,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // every level's projections and margin, and the modal energy, at the end (of a row,
         // over the level's pair's modes only: the same bits, see `dots_within`)
-        for k in 0..nl {
-            let c = self.sys.coupling(k);
-            let ca = &self.cabs_t[k * n..(k + 1) * n];
-            if self.row {
-                let r = self.sys.coupling_modes(k);
+        if self.row {
+            for k in 0..nl {
+                let (c, r) = (self.sys.coupling(k), self.sys.coupling_modes(k));
                 self.fproj[k] = dots_within(c, &self.qb, &self.vb, r.clone());
                 if margin {
-                    self.fmargin[k] = dot_within(ca, &self.amp, r);
-                }
-            } else {
-                self.fproj[k] = dots(c, &self.qb, &self.vb);
-                if margin {
-                    self.fmargin[k] = dot(ca, &self.amp);
+                    self.fmargin[k] = dot_within(&self.cabs_t[k * n..(k + 1) * n], &self.amp, r);
+                } else if !bounded {
+                    self.fmargin[k] = 0.0;
                 }
             }
-            if !margin && !bounded {
-                self.fmargin[k] = 0.0;
+        } else {
+            for k in 0..nl {
+                let c = self.sys.coupling(k);
+                self.fproj[k] = dots(c, &self.qb, &self.vb);
+                if margin {
+                    self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
+                } else if !bounded {
+                    self.fmargin[k] = 0.0;
+                }
             }
         }
         self.fenergy = match (&self.htally, energy) {
@@ -556,48 +558,6 @@ fn round(x: f64) -> f64 {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::{floor, round};
-
-    /// The call-free floor and round equal the standard library's for every value the grid
-    /// test meets (grid indices 0…10⁶ and their neighbours by an ulp and by 1e-9, halves and
-    /// just below them) and outside the fast range (negative, ≥ 2⁵², infinite); the grid
-    /// test's one departure, x just below a half, is ½ away from both candidates.
-    #[test]
-    fn floor_and_round_without_calls() {
-        let mut xs = vec![
-            -2.5,
-            -1.0,
-            -0.3,
-            4.6e15,
-            1e300,
-            f64::INFINITY,
-            0.5,
-            1.5,
-            2.5,
-        ];
-        for i in (0..1_000_000u64)
-            .step_by(997)
-            .chain([0, 1, 2, 3, 2000, 8000])
-        {
-            let x = i as f64;
-            xs.extend([x, x.next_up(), x.next_down().max(0.0), x + 1e-9, x - 1e-9]);
-            xs.extend([x + 0.5, (x + 0.5).next_down(), (x + 0.5).next_up()]);
-        }
-        for x in xs {
-            assert_eq!(floor(x), x.floor(), "floor {x:e}");
-            let (r, want) = (round(x), x.round());
-            if r != want {
-                assert_eq!(x, 0.5f64.next_down() + x.floor(), "round {x:e}");
-                assert!(
-                    ((x - r).abs() - 0.5).abs() < 1e-12 && ((x - want).abs() - 0.5).abs() < 1e-12
-                );
-            }
-        }
-    }
-}
-
 /// [`dot`]`(a, b)` when `a` is zero outside `r` (a row's coupling row outside its level's
 /// pair's modes), the same bits from the terms in `r` only. `dot` adds term j to partial sum
 /// j mod 4 (for 8 terms and more; below, one chain) and adds the sums as (0 + 2) + (1 + 3);
@@ -650,4 +610,89 @@ pub(super) fn dots_within(
         (ax[0] + ax[2]) + (ax[1] + ax[3]),
         (ay[0] + ay[2]) + (ay[1] + ay[3]),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{dot_within, dots_within, floor, round};
+    use crate::integrate::exact_modal::elastic::kernel::dots;
+    use crate::numerics::linalg::dot;
+
+    /// `dot_within`/`dots_within` over a range give the bits of `dot`/`dots` over the whole
+    /// vector when the first factor is zero (of either sign) outside the range: every length
+    /// from 1 to 40 (below and above the four-lane threshold of 8, every remainder), every
+    /// range, factors of mixed signs and magnitudes (so that the partial sums round).
+    #[test]
+    fn sums_within_a_range_are_the_whole_sums_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            (u - 0.5) * 10f64.powi((seed % 7) as i32 - 3)
+        };
+        for n in 1..=40 {
+            for lo in 0..n {
+                for hi in lo..=n {
+                    let c: Vec<f64> = (0..n)
+                        .map(|j| {
+                            let x = next();
+                            if (lo..hi).contains(&j) {
+                                x
+                            } else if j % 2 == 0 {
+                                0.0
+                            } else {
+                                -0.0
+                            }
+                        })
+                        .collect();
+                    let x: Vec<f64> = (0..n).map(|_| next()).collect();
+                    let y: Vec<f64> = (0..n).map(|_| next()).collect();
+                    let (a, b) = (dot(&c, &x), dot_within(&c, &x, lo..hi));
+                    assert_eq!(a.to_bits(), b.to_bits(), "n {n} range {lo}..{hi}: {a} {b}");
+                    let (p, q) = (dots(&c, &x, &y), dots_within(&c, &x, &y, lo..hi));
+                    assert_eq!(p.0.to_bits(), q.0.to_bits(), "n {n} range {lo}..{hi}");
+                    assert_eq!(p.1.to_bits(), q.1.to_bits(), "n {n} range {lo}..{hi}");
+                }
+            }
+        }
+    }
+
+    /// The call-free floor and round equal the standard library's for every value the grid
+    /// test meets (grid indices 0…10⁶ and their neighbours by an ulp and by 1e-9, halves and
+    /// just below them) and outside the fast range (negative, ≥ 2⁵², infinite); the grid
+    /// test's one departure, x just below a half, is ½ away from both candidates.
+    #[test]
+    fn floor_and_round_without_calls() {
+        let mut xs = vec![
+            -2.5,
+            -1.0,
+            -0.3,
+            4.6e15,
+            1e300,
+            f64::INFINITY,
+            0.5,
+            1.5,
+            2.5,
+        ];
+        for i in (0..1_000_000u64)
+            .step_by(997)
+            .chain([0, 1, 2, 3, 2000, 8000])
+        {
+            let x = i as f64;
+            xs.extend([x, x.next_up(), x.next_down().max(0.0), x + 1e-9, x - 1e-9]);
+            xs.extend([x + 0.5, (x + 0.5).next_down(), (x + 0.5).next_up()]);
+        }
+        for x in xs {
+            assert_eq!(floor(x), x.floor(), "floor {x:e}");
+            let (r, want) = (round(x), x.round());
+            if r != want {
+                assert_eq!(x, 0.5f64.next_down() + x.floor(), "round {x:e}");
+                assert!(
+                    ((x - r).abs() - 0.5).abs() < 1e-12 && ((x - want).abs() - 0.5).abs() < 1e-12
+                );
+            }
+        }
+    }
 }

@@ -4,8 +4,8 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use super::*;
 use super::free::dots_within;
+use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     /// The first instant (as an offset from the current time, s) within the next `h` at which a
