@@ -11,6 +11,16 @@ fn reciprocals() -> &'static [f64; 70] {
     R.get_or_init(|| std::array::from_fn(|k| if k == 0 { 0.0 } else { 1.0 / k as f64 }))
 }
 
+/// One mode's propagators `P(θ_i h)` to every node of [`NODES`] (ω rad/s, damp = 2ζω 1/s).
+#[inline]
+fn node_props(omega: f64, damp: f64, h: f64) -> [Prop; 6] {
+    let mut out = [Prop::default(); 6];
+    for (o, &x) in out.iter_mut().zip(&NODES) {
+        *o = propagator(omega, damp, x * h);
+    }
+    out
+}
+
 /// Exact response (η, η̇) at times `s_i = θ_i h` from rest of one mode (ω rad/s, damp = 2ζω
 /// 1/s) to the loads (τ/h)^m, m = 0..4, with the propagators `props[i] = P(s_i)`: into
 /// `out[i][m]`. A series in `sA` (shared by the five loads) where `s(ω + damp)` is small, the
@@ -159,6 +169,16 @@ pub(in crate::integrate) struct Table {
     /// the last fill (scratch).
     done: Vec<bool>,
     fresh: Vec<bool>,
+    /// Per level, whether its coupled propagators (`cprop`) are filled: a row's level both of
+    /// whose structures are passive is not (no step reads its free flight to the nodes).
+    seen: Vec<bool>,
+    /// Per structure, whether its modes' interior-node propagators ([`ModeStep::mid`]) are
+    /// filled: a row's passive structure without a filled level is given `P(h)` only, the
+    /// others on demand ([`Table::ensure_mid`]: a step observed at its interior nodes).
+    mid_ok: Vec<bool>,
+    /// Whether every level, structure and interior node is filled (a pair's table, always):
+    /// [`Table::ensure`] has nothing to do.
+    complete: bool,
 }
 
 impl Table {
@@ -191,6 +211,9 @@ impl Table {
             hmom: [(0.0, 0.0); 5],
             done: Vec::new(),
             fresh: Vec::new(),
+            seen: Vec::new(),
+            mid_ok: Vec::new(),
+            complete: false,
         };
         t.fill_for(sys, big, h, active);
         t
@@ -202,28 +225,111 @@ impl Table {
         active.iter().zip(&self.done).all(|(&a, &d)| d || !a)
     }
 
-    /// Fill the structures `active` marks that are not filled yet (their responses to the
-    /// Lagrange loads, and the level-table slots that sum over them): a row's contact step
-    /// that grows its set of active structures ([`Table::fill_for`]).
-    pub(in crate::integrate) fn ensure(&mut self, sys: &System, active: &[bool]) {
-        if self.covers(active) {
+    /// Whether level k's coupled propagators are needed under `active`: one of its pair's
+    /// structures is active (the step's free flight to the nodes is projected on it).
+    #[inline]
+    fn level_needed(sys: &System, active: &[bool], k: usize) -> bool {
+        let p = sys.levels[k].pair;
+        active[p] || active[p + 1]
+    }
+
+    /// Level k's coupled propagators from mode j's propagators to the nodes.
+    #[inline]
+    fn put_cprop(&mut self, sys: &System, k: usize, j: usize, props: &[Prop; 6]) {
+        let c = sys.coupling(k)[j];
+        let modes = sys.coupling_modes(k);
+        let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
+        for (i, p) in props.iter().enumerate() {
+            self.cprop[at + i * w] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
+        }
+    }
+
+    /// Mode j's interior-node propagators from its propagators to the nodes.
+    #[inline]
+    fn put_mid(&mut self, j: usize, props: &[Prop; 6]) {
+        self.modes[j].mid = [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]];
+    }
+
+    /// Fill the interior-node propagators ([`ModeStep::mid`]) of every structure's modes: a
+    /// step about to be observed at its interior nodes (the same values a full fill gives).
+    pub(in crate::integrate) fn ensure_mid(&mut self, sys: &System) {
+        if self.mid_ok.iter().all(|&m| m) {
             return;
         }
         let (omega, damp) = (sys.omega(), sys.damping_coefficients());
         let h = self.h;
+        for s in 0..sys.structures.len() {
+            if self.mid_ok[s] {
+                continue;
+            }
+            for j in sys.modes_of(s) {
+                let props = node_props(omega[j], damp[j], h);
+                self.put_mid(j, &props);
+            }
+            self.mid_ok[s] = true;
+        }
+        self.set_complete();
+    }
+
+    /// Fill the structures `active` marks that are not filled yet (their responses to the
+    /// Lagrange loads, and the level-table slots that sum over them): a row's contact step
+    /// that grows its set of active structures ([`Table::fill_for`]).
+    #[inline]
+    pub(in crate::integrate) fn ensure(&mut self, sys: &System, active: &[bool]) {
+        if !self.complete {
+            self.ensure_parts(sys, active);
+        }
+    }
+
+    /// [`Table::ensure`] of a table not complete.
+    fn ensure_parts(&mut self, sys: &System, active: &[bool]) {
+        let (omega, damp) = (sys.omega(), sys.damping_coefficients());
+        let h = self.h;
+        // (the levels newly next to an active structure: their coupled propagators, and the
+        // interior-node propagators of both their structures, from the same propagators)
+        for k in 0..sys.levels.len() {
+            if self.seen[k] || !Self::level_needed(sys, active, k) {
+                continue;
+            }
+            for j in sys.coupling_modes(k) {
+                let props = node_props(omega[j], damp[j], h);
+                self.put_cprop(sys, k, j, &props);
+                self.put_mid(j, &props);
+            }
+            let p = sys.levels[k].pair;
+            self.mid_ok[p] = true;
+            self.mid_ok[p + 1] = true;
+            self.seen[k] = true;
+        }
+        if self.covers(active) {
+            self.set_complete();
+            return;
+        }
         self.fresh.clear();
         self.fresh
             .extend(active.iter().zip(&self.done).map(|(&a, &d)| a && !d));
         for s in 0..sys.structures.len() {
             if self.fresh[s] {
                 for j in sys.modes_of(s) {
-                    let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
+                    let props = node_props(omega[j], damp[j], h);
                     self.fill_mode(omega[j], damp[j], h, j, &props);
                 }
                 self.done[s] = true;
+                self.mid_ok[s] = true;
             }
         }
         self.fill_slots(sys);
+        self.set_complete();
+    }
+
+    /// Whether every part is filled (`complete`).
+    fn set_complete(&mut self) {
+        self.complete = self
+            .seen
+            .iter()
+            .chain(&self.done)
+            .chain(&self.mid_ok)
+            .all(|&x| x);
     }
 
     /// Recompute for step length `h` (the buffers are reused): every mode's propagators to the
@@ -276,27 +382,47 @@ impl Table {
         self.done.extend_from_slice(active);
         self.fresh.clear();
         self.fresh.extend_from_slice(active);
-        for j in 0..n {
-            let props: [Prop; 6] = NODES.map(|x| propagator(omega[j], damp[j], x * h));
-            // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
-            for k in sys.levels_of_mode(j) {
-                let c = sys.coupling(k)[j];
-                let modes = sys.coupling_modes(k);
-                let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
-                for (i, p) in props.iter().enumerate() {
-                    self.cprop[at + i * w] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
+        // (of a row, the coupled propagators of the levels next to an active structure only:
+        // a level between two passive structures is cleared on its exact free flight, see
+        // `exact_modal::elastic::active`; the others on demand, [`Table::ensure`])
+        self.seen.clear();
+        self.seen
+            .extend((0..nl).map(|k| Self::level_needed(sys, active, k)));
+        self.mid_ok.clear();
+        self.mid_ok.resize(sys.structures.len(), false);
+        for s in 0..sys.structures.len() {
+            // (a structure with a level next to an active one: every node's propagators)
+            let full = active[s]
+                || (s > 0 && active[s - 1])
+                || (s + 1 < sys.structures.len() && active[s + 1]);
+            self.mid_ok[s] = full;
+            if !full {
+                // (a passive mode no filled level holds: its free flight to the end only, the
+                // interior nodes on demand)
+                for j in sys.modes_of(s) {
+                    self.modes[j].end = propagator(omega[j], damp[j], NODES[END] * h);
                 }
+                continue;
             }
-            if self.done[sys.structure_of_mode(j).0] {
-                self.fill_mode(omega[j], damp[j], h, j, &props);
-            } else {
-                // (a passive mode: its free flight to the end and the interior nodes only)
-                let ms = &mut self.modes[j];
-                ms.end = props[END];
-                ms.mid = [props[NODES8[0]], props[NODES8[1]], props[NODES8[2]]];
+            for j in sys.modes_of(s) {
+                let props = node_props(omega[j], damp[j], h);
+                // (of a row, only the levels whose pair holds mode j: c_kj = 0 for the others)
+                for k in sys.levels_of_mode(j) {
+                    if self.seen[k] {
+                        self.put_cprop(sys, k, j, &props);
+                    }
+                }
+                if self.done[s] {
+                    self.fill_mode(omega[j], damp[j], h, j, &props);
+                } else {
+                    // (a passive mode: its free flight to the end and the interior nodes only)
+                    self.modes[j].end = props[END];
+                    self.put_mid(j, &props);
+                }
             }
         }
         self.fill_slots(sys);
+        self.set_complete();
     }
 
     /// Mode j's responses to the Lagrange loads (its [`ModeStep`] and Γ_j), from its
@@ -345,13 +471,15 @@ impl Table {
 
     /// The level tables, slot by slot over each level's band: the sum over the modes both
     /// levels couple to (c_kj c_lj = 0 on every other mode), in mode order from 0 — the slots
-    /// whose structures are all filled and one of them just now (`fresh`).
+    /// whose structures are all filled and one of them just now (`fresh`). The tables are
+    /// symmetric, (k, l) the same bits as (l, k) (`c_kj c_lj` = `c_lj c_kj` exactly, the same
+    /// terms in the same order): each pair of slots is summed once, for l ≥ k.
     fn fill_slots(&mut self, sys: &System) {
         let nl = sys.levels.len();
         for k in 0..nl {
             let (ck, mk) = (sys.coupling(k), sys.coupling_modes(k));
             let pk = sys.levels[k].pair;
-            for l in sys.sharing_levels(k) {
+            for l in sys.sharing_levels(k).filter(|&l| l >= k) {
                 let (cl, ml) = (sys.coupling(l), sys.coupling_modes(l));
                 // (the structures both pairs hold)
                 let pl = sys.levels[l].pair;
@@ -380,6 +508,12 @@ impl Table {
                 self.w8[kl * 20..(kl + 1) * 20].copy_from_slice(&sum.g8);
                 self.w6[kl * 12..(kl + 1) * 12].copy_from_slice(&sum.g6);
                 self.w86[kl * 10..(kl + 1) * 10].copy_from_slice(&sum.g86);
+                if l != k {
+                    let lk = sys.band_slot(l, k);
+                    self.w8[lk * 20..(lk + 1) * 20].copy_from_slice(&sum.g8);
+                    self.w6[lk * 12..(lk + 1) * 12].copy_from_slice(&sum.g6);
+                    self.w86[lk * 10..(lk + 1) * 10].copy_from_slice(&sum.g86);
+                }
             }
         }
     }

@@ -95,12 +95,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let bases = collocation::bases();
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
-        let tab: &Table = match trial.k {
-            Some(k) => self.tables[k].as_deref().expect("table"),
-            None => self.scratch_table.as_deref().expect("table"),
-        };
-        let start = self.trace_start();
-        let trs = self.node_trigs(tab, tr0, h);
         // dense output: a step whose nodal forces peak inside it is also observed at its
         // interior nodes, so that the recorder's interpolant around the peak is 4× denser
         let dense = (0..nl).any(|kk| {
@@ -108,6 +102,20 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let inner = f[1].max(f[2]).max(f[3]);
             inner > 0.0 && inner > f[0].max(f[4])
         });
+        if dense && self.row {
+            // (a row's table holds its passive modes' interior-node propagators on demand)
+            let slot = match trial.k {
+                Some(k) => &mut self.tables[k],
+                None => &mut self.scratch_table,
+            };
+            slot.as_deref_mut().expect("table").ensure_mid(self.sys);
+        }
+        let tab: &Table = match trial.k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
+        let start = self.trace_start();
+        let trs = self.node_trigs(tab, tr0, h);
         // per level, the contact quartic's integral and first moment (records' ground work)
         for kk in 0..nl {
             let f = &self.f8[kk * 5..kk * 5 + 5];

@@ -346,6 +346,75 @@ mod tests {
         panic!("B–C never reaches a new largest approach while A–B or C–D touches");
     }
 
+    /// A row's step table filled for some active structures holds exactly what a step over
+    /// them reads, and grown ([`Table::ensure`], [`Table::ensure_mid`]) it is the table filled
+    /// for every structure, bit for bit: every mode's P(h), the coupled propagators of every
+    /// level next to an active structure, the active modes' responses and the level tables.
+    #[test]
+    fn a_table_grown_from_an_active_set_is_the_full_table() {
+        let sys = row(0.01, 0.01);
+        let h = 1.3e-3;
+        let full = Table::new(&sys, None, h);
+        let ns = sys.structures.len();
+        let same_mode = |t: &Table, j: usize, responses: bool, mid: bool| {
+            let (a, b) = (&t.modes[j], &full.modes[j]);
+            assert_eq!(a.end, b.end, "P(h) of mode {j}");
+            if mid {
+                assert_eq!(a.mid, b.mid, "interior nodes of mode {j}");
+            }
+            if responses {
+                assert_eq!(a.end8, b.end8, "mode {j}");
+                assert_eq!(a.mid8, b.mid8, "mode {j}");
+            }
+        };
+        let same_cprop = |t: &Table, k: usize| {
+            for i in 0..6 {
+                assert_eq!(
+                    t.cprop_at(&sys, k, i),
+                    full.cprop_at(&sys, k, i),
+                    "level {k}"
+                );
+            }
+        };
+        for act in [
+            [true, true, false, false],
+            [false, false, false, true],
+            [false, true, false, false],
+            [true, false, false, false],
+        ] {
+            let mut t = Table::new_for(&sys, None, h, &act);
+            for s in 0..ns {
+                let near = act[s] || (s > 0 && act[s - 1]) || (s + 1 < ns && act[s + 1]);
+                for j in sys.modes_of(s) {
+                    same_mode(&t, j, act[s], near);
+                }
+            }
+            for k in 0..sys.levels.len() {
+                let p = sys.levels[k].pair;
+                if act[p] || act[p + 1] {
+                    same_cprop(&t, k);
+                }
+            }
+            // grown: first by a neighbour (the levels newly next to it), then to every
+            // structure and every interior node
+            let mut more = act;
+            let first = (0..ns).find(|&s| !act[s]).expect("a passive structure");
+            more[first] = true;
+            t.ensure(&sys, &more);
+            t.ensure(&sys, &[true; 4]);
+            t.ensure_mid(&sys);
+            for j in 0..sys.len() {
+                same_mode(&t, j, true, true);
+            }
+            for k in 0..sys.levels.len() {
+                same_cprop(&t, k);
+            }
+            assert_eq!(t.w8, full.w8, "{act:?}");
+            assert_eq!(t.w6, full.w6, "{act:?}");
+            assert_eq!(t.w86, full.w86, "{act:?}");
+        }
+    }
+
     /// The edge of the active structures (issue 29): the row of four whose B–C gap is first
     /// reached inside a contact step of C–D's ([`edge_gap`]: 0.32 mm, at 0.283 s) while B is
     /// passive — B–C is then a level at the edge, and the trial that reaches it (δ > 0 at its

@@ -547,7 +547,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
     fn evaluate_states(&mut self) {
         for k in 0..self.nl {
             let c = self.sys.coupling(k);
-            let (cq, cv) = (dot(c, &self.q), dot(c, &self.v));
+            let (cq, cv) = if self.row {
+                free::dots_within(c, &self.q, &self.v, self.sys.coupling_modes(k))
+            } else {
+                (dot(c, &self.q), dot(c, &self.v))
+            };
             self.set_state(k, cq, cv);
         }
     }

@@ -4,6 +4,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use super::free::dots_within;
 use super::*;
 
 impl<'a, O: Observer> Elastic<'a, O> {
@@ -58,7 +59,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             std::mem::swap(&mut self.vs, &mut self.vb);
             for k in 0..nl {
                 let c = self.sys.coupling(k);
-                self.at[k] = self.sys.levels[k].penetration(dot(c, &self.qs), dot(c, &self.vs));
+                let (cq, cv) = if self.row {
+                    dots_within(c, &self.qs, &self.vs, self.sys.coupling_modes(k))
+                } else {
+                    (dot(c, &self.qs), dot(c, &self.vs))
+                };
+                self.at[k] = self.sys.levels[k].penetration(cq, cv);
             }
             tr_a = tr1;
             walk.advance();
