@@ -24,8 +24,9 @@ pub(in crate::integrate) struct Newton {
     pos: Vec<usize>,
     red: Vec<f64>,
     red_rhs: Vec<f64>,
-    /// Of the level a pass is at, the levels of its band that carry force: where their
-    /// weights' block starts in the level table, and where their forces start.
+    /// Of the level a pass is at, the levels of its band that carry force: their places in
+    /// the band (their weights' block in the level table follows from the level's first
+    /// slot), and where their forces start.
     loaded: Vec<(usize, usize)>,
 }
 
@@ -93,12 +94,16 @@ pub(in crate::integrate) fn solve<const S: usize>(
             *q = force[l * S..(l + 1) * S].iter().all(|&f| f == 0.0);
         }
         let mut scale: f64 = 0.0;
+        // (the band whose loaded levels `loaded` holds: a pair's levels all share one band,
+        // listed once a pass)
+        let mut listed = usize::MAX..usize::MAX;
         for &k in levels {
             let law = &sys.levels[k].force;
             let band = sys.sharing_levels(k);
             let first = sys.band_slot(k, band.start);
             // (the band's levels in order, those out of contact throughout skipped: the same
-            // sums as over every level of the band, term for term)
+            // sums as over every level of the band, term for term; `loaded` holds each one's
+            // place in the band and where its forces start)
             let Newton {
                 rhs,
                 slopes,
@@ -107,11 +112,14 @@ pub(in crate::integrate) fn solve<const S: usize>(
                 loaded,
                 ..
             } = &mut *scratch;
-            loaded.clear();
-            for l in band.clone() {
-                if !quiet[l] {
-                    loaded.push(((first + (l - band.start)) * m * S, l * S));
+            if band != listed {
+                loaded.clear();
+                for l in band.clone() {
+                    if !quiet[l] {
+                        loaded.push((l - band.start, l * S));
+                    }
                 }
+                listed = band.clone();
             }
             let rows = k * m..(k + 1) * m;
             let (rhs, slopes, free) = (
@@ -124,7 +132,8 @@ pub(in crate::integrate) fn solve<const S: usize>(
             let ok = onset[k];
             for p in 0..m {
                 let (mut d, mut dd) = df[p];
-                for &(at, fat) in loaded.iter() {
+                for &(rel, fat) in loaded.iter() {
+                    let at = (first + rel) * m * S;
                     let row: &[(f64, f64); S] = w[at + p * S..at + (p + 1) * S]
                         .try_into()
                         .expect("S weights");
