@@ -464,7 +464,7 @@ fn fixed_size_lu_is_the_general_one_bit_for_bit() {
         for seed in 0..4u64 {
             let entry = |r: usize, c: usize| {
                 let x = ((r * 31 + c * 17 + seed as usize * 7) % 23) as f64;
-                if (r + 2 * c + seed as usize) % 5 == 0 && r != c {
+                if (r + 2 * c + seed as usize).is_multiple_of(5) && r != c {
                     0.0
                 } else if r == c {
                     1e-3 * (x + 1.0).sqrt()
