@@ -572,3 +572,62 @@ impl PairLevel {
         (gi, gt)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`PairLevel`]'s sums are the per-mode loops' over the levels bit for bit (each weight and
+    /// moment from 0, the levels in order): one to eight levels, couplings of both signs and
+    /// zeros, forces and moments that round, a zero level among them.
+    #[test]
+    fn pair_level_sums_are_the_per_mode_loops() {
+        for nl in 1..=MAX_PAIR_LEVELS {
+            for j in 0..40usize {
+                let cj: Vec<f64> = (0..nl)
+                    .map(|k| match (j + 3 * k) % 7 {
+                        0 => 0.0,
+                        r => {
+                            ((r * 13 + j) as f64).sqrt()
+                                * if (j + k) % 2 == 0 { 1.0 } else { -1e-3 }
+                        }
+                    })
+                    .collect();
+                let f8: Vec<f64> = (0..5 * nl)
+                    .map(|i| {
+                        if i / 5 == 1 {
+                            0.0
+                        } else {
+                            1e6 / (i as f64 + 0.37)
+                        }
+                    })
+                    .collect();
+                let moments: Vec<(f64, f64)> = (0..nl)
+                    .map(|k| (1.0 / (k as f64 + 1.3), -1e-3 / (k as f64 + 2.9)))
+                    .collect();
+                let lanes: Vec<PairLevel> = (0..nl)
+                    .map(|k| PairLevel::new(&f8[k * 5..k * 5 + 5], moments[k]))
+                    .collect();
+                let mut g = [0.0; 5];
+                let (mut gi, mut gt) = (0.0, 0.0);
+                for (c, f) in cj.iter().zip(f8.chunks_exact(5)) {
+                    for p in 0..5 {
+                        g[p] += c * f[p];
+                    }
+                }
+                for (c, mo) in cj.iter().zip(&moments) {
+                    gi += c * mo.0;
+                    gt += c * mo.1;
+                }
+                let got = PairLevel::weights(&lanes, &cj);
+                assert_eq!(
+                    got.map(f64::to_bits),
+                    g.map(f64::to_bits),
+                    "nl {nl}, mode {j}"
+                );
+                let (a, b) = PairLevel::moments(&lanes, &cj);
+                assert_eq!((a.to_bits(), b.to_bits()), (gi.to_bits(), gt.to_bits()));
+            }
+        }
+    }
+}
