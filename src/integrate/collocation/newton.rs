@@ -24,8 +24,9 @@ pub(in crate::integrate) struct Newton {
     pos: Vec<usize>,
     red: Vec<f64>,
     red_rhs: Vec<f64>,
-    /// Of the level a pass is at, the levels of its band that carry force: where their
-    /// weights' block starts in the level table, and where their forces start.
+    /// Of the level a pass is at, the levels of its band that carry force: their places in
+    /// the band (their weights' block in the level table follows from the level's first
+    /// slot), and where their forces start.
     loaded: Vec<(usize, usize)>,
 }
 
@@ -93,12 +94,16 @@ pub(in crate::integrate) fn solve<const S: usize>(
             *q = force[l * S..(l + 1) * S].iter().all(|&f| f == 0.0);
         }
         let mut scale: f64 = 0.0;
+        // (the band whose loaded levels `loaded` holds: a pair's levels all share one band,
+        // listed once a pass)
+        let mut listed = usize::MAX..usize::MAX;
         for &k in levels {
             let law = &sys.levels[k].force;
             let band = sys.sharing_levels(k);
             let first = sys.band_slot(k, band.start);
             // (the band's levels in order, those out of contact throughout skipped: the same
-            // sums as over every level of the band, term for term)
+            // sums as over every level of the band, term for term; `loaded` holds each one's
+            // place in the band and where its forces start)
             let Newton {
                 rhs,
                 slopes,
@@ -107,11 +112,14 @@ pub(in crate::integrate) fn solve<const S: usize>(
                 loaded,
                 ..
             } = &mut *scratch;
-            loaded.clear();
-            for l in band.clone() {
-                if !quiet[l] {
-                    loaded.push(((first + (l - band.start)) * m * S, l * S));
+            if band != listed {
+                loaded.clear();
+                for l in band.clone() {
+                    if !quiet[l] {
+                        loaded.push((l - band.start, l * S));
+                    }
                 }
+                listed = band.clone();
             }
             let rows = k * m..(k + 1) * m;
             let (rhs, slopes, free) = (
@@ -124,7 +132,8 @@ pub(in crate::integrate) fn solve<const S: usize>(
             let ok = onset[k];
             for p in 0..m {
                 let (mut d, mut dd) = df[p];
-                for &(at, fat) in loaded.iter() {
+                for &(rel, fat) in loaded.iter() {
+                    let at = (first + rel) * m * S;
                     let row: &[(f64, f64); S] = w[at + p * S..at + (p + 1) * S]
                         .try_into()
                         .expect("S weights");
@@ -397,8 +406,80 @@ pub(super) fn solve_touching<const S: usize>(
 }
 
 /// Solve `a·x = b` in place (b becomes x; `a` is destroyed) by Gaussian elimination with
-/// partial pivoting; false if singular.
+/// partial pivoting; false if singular. The systems of up to three levels in contact (n ≤ 12:
+/// four unknowns a level) take [`lu_fixed`], the same operations in the same order on arrays
+/// of their size (no bounds checks, loops the compiler can unroll): the same bits.
 pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    match n {
+        1 => lu_fixed::<1>(a, b),
+        2 => lu_fixed::<2>(a, b),
+        3 => lu_fixed::<3>(a, b),
+        4 => lu_fixed::<4>(a, b),
+        5 => lu_fixed::<5>(a, b),
+        6 => lu_fixed::<6>(a, b),
+        7 => lu_fixed::<7>(a, b),
+        8 => lu_fixed::<8>(a, b),
+        9 => lu_fixed::<9>(a, b),
+        10 => lu_fixed::<10>(a, b),
+        11 => lu_fixed::<11>(a, b),
+        12 => lu_fixed::<12>(a, b),
+        _ => lu_any(a, b, n),
+    }
+}
+
+/// [`lu_solve`] for N unknowns (`a` row-major N×N, `b` of N): the very arithmetic of
+/// [`lu_any`] (pivot search, row exchange from the pivot's column on, the elimination that
+/// skips a zero factor, the back substitution in the same order).
+#[inline]
+fn lu_fixed<const N: usize>(a: &mut [f64], b: &mut [f64]) -> bool {
+    let (rows, _) = a[..N * N].as_chunks_mut::<N>();
+    let a: &mut [[f64; N]; N] = rows.try_into().expect("N rows");
+    let b: &mut [f64; N] = (&mut b[..N]).try_into().expect("N values");
+    for col in 0..N {
+        let mut piv = col;
+        let mut best = a[col][col].abs();
+        for r in col + 1..N {
+            let x = a[r][col].abs();
+            if x > best {
+                (piv, best) = (r, x);
+            }
+        }
+        if best == 0.0 || !best.is_finite() {
+            return false;
+        }
+        if piv != col {
+            for c in col..N {
+                let t = a[col][c];
+                a[col][c] = a[piv][c];
+                a[piv][c] = t;
+            }
+            b.swap(col, piv);
+        }
+        let inv = 1.0 / a[col][col];
+        let prow = a[col];
+        let bc = b[col];
+        for r in col + 1..N {
+            let f = a[r][col] * inv;
+            if f != 0.0 {
+                for c in col + 1..N {
+                    a[r][c] -= f * prow[c];
+                }
+                b[r] -= f * bc;
+            }
+        }
+    }
+    for r in (0..N).rev() {
+        let mut s = b[r];
+        for c in r + 1..N {
+            s -= a[r][c] * b[c];
+        }
+        b[r] = s / a[r][r];
+    }
+    true
+}
+
+/// [`lu_solve`] for any n.
+pub(super) fn lu_any(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     for col in 0..n {
         let mut piv = col;
         let mut best = a[col * n + col].abs();

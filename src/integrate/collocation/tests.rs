@@ -452,3 +452,51 @@ fn lu_solves() {
         assert!((s - b0[r]).abs() < 1e-12, "row {r}: {s}");
     }
 }
+
+/// The fixed-size eliminations of `lu_solve` (1 to 12 unknowns) are `lu_any`'s, bit for bit:
+/// on matrices whose rows need exchanges (a small diagonal), with zero entries (the skipped
+/// zero factors) and values that round, at every size from 1 to 13 (13: `lu_any` itself),
+/// and a singular one is refused alike. Each solution is also checked by its residual.
+#[test]
+fn fixed_size_lu_is_the_general_one_bit_for_bit() {
+    use super::newton::lu_any;
+    for n in 1..=13usize {
+        for seed in 0..4u64 {
+            let entry = |r: usize, c: usize| {
+                let x = ((r * 31 + c * 17 + seed as usize * 7) % 23) as f64;
+                if (r + 2 * c + seed as usize).is_multiple_of(5) && r != c {
+                    0.0
+                } else if r == c {
+                    1e-3 * (x + 1.0).sqrt()
+                } else {
+                    (x + 0.5).sqrt() - 2.2
+                }
+            };
+            let a0: Vec<f64> = (0..n * n).map(|i| entry(i / n, i % n)).collect();
+            let b0: Vec<f64> = (0..n).map(|r| 1.0 / (r as f64 + 0.7) - 0.4).collect();
+            let (mut a1, mut b1) = (a0.clone(), b0.clone());
+            let (mut a2, mut b2) = (a0.clone(), b0.clone());
+            let ok1 = lu_solve(&mut a1, &mut b1, n);
+            let ok2 = lu_any(&mut a2, &mut b2, n);
+            assert_eq!(ok1, ok2, "n = {n}, seed {seed}");
+            let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&b1), bits(&b2), "n = {n}, seed {seed}");
+            if ok1 {
+                // (a residual of round-off size against the row's terms: 1e-10 of them
+                // allows the pivots' growth on these small systems many times over)
+                for r in 0..n {
+                    let s: f64 = (0..n).map(|c| a0[r * n + c] * b1[c]).sum();
+                    let size: f64 = (0..n).map(|c| (a0[r * n + c] * b1[c]).abs()).sum();
+                    let err = (s - b0[r]).abs();
+                    assert!(
+                        err <= 1e-10 * (size + b0[r].abs()),
+                        "n = {n}, row {r}: {err:e}"
+                    );
+                }
+            }
+        }
+        let mut z = vec![0.0; n * n];
+        let mut y = vec![1.0; n];
+        assert!(!lu_solve(&mut z, &mut y, n), "singular, n = {n}");
+    }
+}

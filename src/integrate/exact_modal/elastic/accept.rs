@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use crate::numerics::lanes::F2;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     /// Observe the step being accepted (start `t0`, length h) at its three interior nodes, from
@@ -126,6 +127,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             self.moments[kk] = (h * a, h * h * b);
         }
+        // (a pair with several levels: every mode's weights g and moments summed level by
+        // level, see `pair_loads`; the very sums of the per-mode loops below)
+        let pair = self.sys.structures.len() == 2 && nl > 1 && nl <= MAX_PAIR_LEVELS;
+        let mut lanes = [PairLevel::default(); MAX_PAIR_LEVELS];
+        if pair {
+            for (k, l) in lanes.iter_mut().enumerate().take(nl) {
+                *l = PairLevel::new(&self.f8[k * 5..k * 5 + 5], self.moments[k]);
+            }
+        }
+        let lanes = &lanes[..if pair { nl } else { 0 }];
         let gm = &self.gm;
         let harmonic = gm.harmonic_plain();
         let mut sums = StateSums::default();
@@ -177,6 +188,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let forced = self.mode_act[j];
             let g = if !forced {
                 [0.0; 5]
+            } else if pair {
+                PairLevel::weights(lanes, cj)
             } else if one {
                 let c = cj[0];
                 f1.map(|x| c * x)
@@ -248,17 +261,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
             }
             (Piece::Poly { .. }, _) => {
                 for j in 0..n {
-                    let holding = if row {
-                        self.sys.levels_of_mode(j)
+                    let (gi, gt) = if pair {
+                        PairLevel::moments(lanes, &self.cpl_t[j * nl..(j + 1) * nl])
                     } else {
-                        0..nl
+                        let holding = if row {
+                            self.sys.levels_of_mode(j)
+                        } else {
+                            0..nl
+                        };
+                        let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                        let (mut gi, mut gt) = (0.0, 0.0);
+                        for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
+                            gi += c * mo.0;
+                            gt += c * mo.1;
+                        }
+                        (gi, gt)
                     };
-                    let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
-                    let (mut gi, mut gt) = (0.0, 0.0);
-                    for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
-                        gi += c * mo.0;
-                        gt += c * mo.1;
-                    }
                     input += poly_ground_work(
                         (damp[j], iw2[j]),
                         h,
@@ -496,3 +514,128 @@ impl<'a, O: Observer> Elastic<'a, O> {
 
 /// Contact steps between direct evaluations of sin Ωt, cos Ωt (rotations in between).
 const SYNC_CONTACT: u32 = 16;
+
+/// The most contact levels of a pair whose accepted steps take [`PairLevel`]'s sums (more
+/// take the per-mode loops over the levels; the same sums).
+const MAX_PAIR_LEVELS: usize = 8;
+
+/// One contact level of a pair in the accepted step, its forces and moments laid out for the
+/// sums over the levels of a mode's contact load weights `g_p = Σ_k c_kj F_kp` and moments
+/// `Σ_k c_kj (∫F_k, ∫τF_k)`: two weights (or both moments) to a vector operation, each sum
+/// starting at 0 and adding the levels in order, as the per-mode loops of
+/// [`Elastic::accept_general`] do — the same bits.
+#[derive(Clone, Copy)]
+struct PairLevel {
+    f01: F2,
+    f23: F2,
+    f4: f64,
+    mo: F2,
+}
+
+impl Default for PairLevel {
+    fn default() -> PairLevel {
+        PairLevel {
+            f01: F2::zero(),
+            f23: F2::zero(),
+            f4: 0.0,
+            mo: F2::zero(),
+        }
+    }
+}
+
+impl PairLevel {
+    /// From the level's five nodal forces and its moments.
+    #[inline(always)]
+    fn new(f: &[f64], (m0, m1): (f64, f64)) -> PairLevel {
+        PairLevel {
+            f01: F2::new(f[0], f[1]),
+            f23: F2::new(f[2], f[3]),
+            f4: f[4],
+            mo: F2::new(m0, m1),
+        }
+    }
+
+    /// `g_p = Σ_k c_kj F_kp` of a mode whose couplings to the levels are `cj`.
+    #[inline(always)]
+    fn weights(levels: &[PairLevel], cj: &[f64]) -> [f64; 5] {
+        let (mut a, mut b, mut e) = (F2::zero(), F2::zero(), 0.0);
+        for (l, &c) in levels.iter().zip(cj) {
+            let cc = F2::splat(c);
+            a = a + cc * l.f01;
+            b = b + cc * l.f23;
+            e += c * l.f4;
+        }
+        let ([g0, g1], [g2, g3]) = (a.get(), b.get());
+        [g0, g1, g2, g3, e]
+    }
+
+    /// `Σ_k c_kj (∫F_k, ∫τF_k)` of a mode whose couplings to the levels are `cj`.
+    #[inline(always)]
+    fn moments(levels: &[PairLevel], cj: &[f64]) -> (f64, f64) {
+        let mut m = F2::zero();
+        for (l, &c) in levels.iter().zip(cj) {
+            m = m + F2::splat(c) * l.mo;
+        }
+        let [gi, gt] = m.get();
+        (gi, gt)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`PairLevel`]'s sums are the per-mode loops' over the levels bit for bit (each weight and
+    /// moment from 0, the levels in order): one to eight levels, couplings of both signs and
+    /// zeros, forces and moments that round, a zero level among them.
+    #[test]
+    fn pair_level_sums_are_the_per_mode_loops() {
+        for nl in 1..=MAX_PAIR_LEVELS {
+            for j in 0..40usize {
+                let cj: Vec<f64> = (0..nl)
+                    .map(|k| match (j + 3 * k) % 7 {
+                        0 => 0.0,
+                        r => {
+                            ((r * 13 + j) as f64).sqrt()
+                                * if (j + k) % 2 == 0 { 1.0 } else { -1e-3 }
+                        }
+                    })
+                    .collect();
+                let f8: Vec<f64> = (0..5 * nl)
+                    .map(|i| {
+                        if i / 5 == 1 {
+                            0.0
+                        } else {
+                            1e6 / (i as f64 + 0.37)
+                        }
+                    })
+                    .collect();
+                let moments: Vec<(f64, f64)> = (0..nl)
+                    .map(|k| (1.0 / (k as f64 + 1.3), -1e-3 / (k as f64 + 2.9)))
+                    .collect();
+                let lanes: Vec<PairLevel> = (0..nl)
+                    .map(|k| PairLevel::new(&f8[k * 5..k * 5 + 5], moments[k]))
+                    .collect();
+                let mut g = [0.0; 5];
+                let (mut gi, mut gt) = (0.0, 0.0);
+                for (c, f) in cj.iter().zip(f8.chunks_exact(5)) {
+                    for p in 0..5 {
+                        g[p] += c * f[p];
+                    }
+                }
+                for (c, mo) in cj.iter().zip(&moments) {
+                    gi += c * mo.0;
+                    gt += c * mo.1;
+                }
+                let got = PairLevel::weights(&lanes, &cj);
+                assert_eq!(
+                    got.map(f64::to_bits),
+                    g.map(f64::to_bits),
+                    "nl {nl}, mode {j}"
+                );
+                let (a, b) = PairLevel::moments(&lanes, &cj);
+                assert_eq!((a.to_bits(), b.to_bits()), (gi.to_bits(), gt.to_bits()));
+            }
+        }
+    }
+}

@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::*;
+use crate::numerics::lanes::F2;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     // ---------------------------------------------------------------- contact
@@ -259,16 +260,24 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // one pass over the modes for all six nodes (each mode's start read once; every
             // node's sum still runs over the modes in order, so the sums are the same bit
             // for bit); over the level's pair's modes only: the row's others have c_kj = 0
+            // (each node's (δ, δ̇) sums in the two lanes of one register: lane 0 adds
+            // a·x + b·y, lane 1 c·x + e·y, the very operations of the scalar sums)
             let r = sys.coupling_modes(k);
-            let rows: [&[[f64; 4]]; 6] = tab.cprop_rows(sys, k);
-            let mut acc = [(0.0, 0.0); 6];
-            for (jj, (&x, &y)) in x0s[r.clone()].iter().zip(&y0s[r]).enumerate() {
+            let (xs, ys) = (&x0s[r.clone()], &y0s[r]);
+            let w = xs.len().min(ys.len());
+            let rows: [&[[f64; 4]]; 6] = tab.cprop_rows(sys, k).map(|row| &row[..w]);
+            let mut acc = [F2::zero(); 6];
+            for jj in 0..w {
+                let (x, y) = (F2::splat(xs[jj]), F2::splat(ys[jj]));
                 for (s, row) in acc.iter_mut().zip(&rows) {
                     let [a, c, b, e] = row[jj];
-                    s.0 += a * x + b * y;
-                    s.1 += c * x + e * y;
+                    *s = *s + (F2::new(a, c) * x + F2::new(b, e) * y);
                 }
             }
+            let acc = acc.map(|s| {
+                let [s0, s1] = s.get();
+                (s0, s1)
+            });
             // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s
             // exactly, so this is the former `s − d` bit for bit)
             let lv = &sys.levels[k];
