@@ -36,6 +36,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::numerics::hermite::Basis;
+use crate::numerics::lanes::F2;
 
 /// The default resolution Θ: a mode is followed by the cubic Hermite while `ω h ≤ Θ`, and the
 /// sub-grid's parts are at most `Θ/ω_max` long. At 0.5 the Hermite's error on a sinusoid is
@@ -133,9 +134,9 @@ pub(crate) struct SubGrid {
     /// at most that times ρ.
     pub hermite_factor: f64,
     /// Per station, the sums over the fast modes of [`SubGrid::lin`] weighted by φ
-    /// (`[j·stations + station]`), and of |c| ρ for the displacement, the drift and the
-    /// storey force (`[k·stations + station]`, k = 0, 1, 2); with rows, the same six sums
-    /// weighted by the storey-force rows.
+    /// (`[station·6 + j]`), and of |c| ρ for the displacement, the drift and the storey force
+    /// (`[station·3 + k]`, k = 0, 1, 2); with rows, the same six sums weighted by the
+    /// storey-force rows.
     pub sums_u: Vec<f64>,
     pub sums_v: Vec<f64>,
     pub rings: Vec<f64>,
@@ -240,47 +241,46 @@ impl SubGrid {
 
     /// Per station, the fast modes' sums of the quantities' bounds: with `phi` (and its
     /// absolute values `abs_phi`, and those of the drift rows `abs_drift`) and, with `rows`,
-    /// the storey-force rows (`[n·stations + station]`), see [`SubGrid::sums_u`].
+    /// the storey-force rows (`[n·stations + station]`), see [`SubGrid::sums_u`]. Each
+    /// station's sums are contiguous (the per-station decision reads them together); every
+    /// sum is accumulated from 0 over the fast modes in their order, as a plain loop would.
     pub(crate) fn station_sums(
         &mut self,
         (phi, abs_phi, abs_drift): (&[f64], &[f64], &[f64]),
         rows: Option<(&[f64], &[f64])>,
         ns: usize,
     ) {
-        let fill = |x: &mut Vec<f64>, len: usize| {
-            x.clear();
-            x.resize(len, 0.0);
-        };
-        fill(&mut self.sums_u, 6 * ns);
-        fill(&mut self.rings, 3 * ns);
-        fill(&mut self.sums_v, if rows.is_some() { 6 * ns } else { 0 });
+        // (resized once: the lengths only change with the structure, i.e. never)
+        self.sums_u.resize(6 * ns, 0.0);
+        self.rings.resize(3 * ns, 0.0);
+        self.sums_v.resize(if rows.is_some() { 6 * ns } else { 0 }, 0.0);
+        self.sums_u.fill(0.0);
+        self.rings.fill(0.0);
+        self.sums_v.fill(0.0);
+        let (su, rings) = (&mut self.sums_u[..6 * ns], &mut self.rings[..3 * ns]);
         for &n in &self.fast {
-            let (lin, r) = (&self.lin[6 * n..6 * n + 6], self.weight[n]);
-            let add = |sums: &mut [f64], c: &[f64]| {
-                for j in 0..6 {
-                    let (x, out) = (lin[j], &mut sums[j * ns..(j + 1) * ns]);
-                    for f in 0..ns {
-                        out[f] += c[f] * x;
-                    }
-                }
-            };
-            fn mode(x: &[f64], n: usize, ns: usize) -> &[f64] {
-                &x[n * ns..(n + 1) * ns]
-            }
-            let cut = |x| mode(x, n, ns);
-            add(&mut self.sums_u, cut(phi));
-            let (ru, rest) = self.rings.split_at_mut(ns);
-            let (rd, rv) = rest.split_at_mut(ns);
-            let (au, ad) = (cut(abs_phi), cut(abs_drift));
-            for f in 0..ns {
-                ru[f] += au[f] * r;
-                rd[f] += ad[f] * r;
+            let lin: [F2; 3] = std::array::from_fn(|i| {
+                F2::new(self.lin[6 * n + 2 * i], self.lin[6 * n + 2 * i + 1])
+            });
+            let r = self.weight[n];
+            let at = n * ns..(n + 1) * ns;
+            let (c, au, ad) = (&phi[at.clone()], &abs_phi[at.clone()], &abs_drift[at.clone()]);
+            for ((s, ring), ((&c, &au), &ad)) in (su.as_chunks_mut::<6>().0.iter_mut())
+                .zip(rings.as_chunks_mut::<3>().0.iter_mut())
+                .zip(c.iter().zip(au).zip(ad))
+            {
+                add_six(s, c, &lin);
+                ring[0] += au * r;
+                ring[1] += ad * r;
             }
             if let Some((rows, abs_rows)) = rows {
-                add(&mut self.sums_v, cut(rows));
-                let av = cut(abs_rows);
-                for f in 0..ns {
-                    rv[f] += av[f] * r;
+                let (c, av) = (&rows[at.clone()], &abs_rows[at]);
+                for ((s, ring), (&c, &av)) in (self.sums_v.as_chunks_mut::<6>().0.iter_mut())
+                    .zip(rings.as_chunks_mut::<3>().0.iter_mut())
+                    .zip(c.iter().zip(av))
+                {
+                    add_six(s, c, &lin);
+                    ring[2] += av * r;
                 }
             }
         }
@@ -419,6 +419,16 @@ impl SubGrid {
         self.prev_v.copy_from_slice(&v[..nm]);
         std::mem::swap(&mut self.prev_f, &mut self.now_f);
         self.have_prev = true;
+    }
+}
+
+/// `s[j] += c · lin[j]` for the six sums (in pairs: [`F2`], each lane the scalar operation).
+#[inline(always)]
+fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
+    let c = F2::splat(c);
+    for i in 0..3 {
+        let [a, b] = (F2::new(s[2 * i], s[2 * i + 1]) + c * lin[i]).get();
+        (s[2 * i], s[2 * i + 1]) = (a, b);
     }
 }
 
