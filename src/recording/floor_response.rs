@@ -949,14 +949,16 @@ impl FloorRecorder {
         }
         let (ag, vg) = system.ground.accel_velocity(s.t);
         {
-            let (la, lv) = (system.ground_load(), system.air_load());
-            let (damp, w) = (system.damping_coefficients(), system.omega());
+            // (every slice cut to the modes once: no bounds check per mode)
+            let (la, lv) = (&system.ground_load()[..n], &system.air_load()[..n]);
+            let (damp, w) = (&system.damping_coefficients()[..n], &system.omega()[..n]);
+            let (q, v, accel) = (&s.q[..n], &s.v[..n], &mut self.accel[..n]);
             for j in 0..n {
-                self.accel[j] = la[j] * ag + lv[j] * vg - damp[j] * s.v[j] - w[j] * w[j] * s.q[j];
+                accel[j] = la[j] * ag + lv[j] * vg - damp[j] * v[j] - w[j] * w[j] * q[j];
             }
             for (k, st) in s.levels.iter().enumerate() {
                 if st.force != 0.0 {
-                    for (a, c) in self.accel.iter_mut().zip(system.coupling(k)) {
+                    for (a, c) in accel.iter_mut().zip(system.coupling(k)) {
                         *a += c * st.force;
                     }
                 }
