@@ -35,8 +35,7 @@ use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
 use crate::numerics::hermite::{Basis, hermite_abs_max};
-use crate::numerics::lanes::F2;
-use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid};
+use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
 fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
@@ -141,52 +140,6 @@ fn ring_bound(ends: (f64, f64, f64, f64), s: &[f64; 6], ring: f64, h: f64) -> f6
     let (l0, l1) = (s[4].abs(), (s[4] + s[5] * h).abs());
     let linear = if l0 > l1 { l0 } else { l1 };
     slow + linear + ring
-}
-
-/// `out[k][f] = s_f + Σ_n c[n·ns + f] x[k][n]` for every station f (`c`: `[mode·stations +
-/// station]`), summed in the modes' order from `s_f = start.0 · start.1[f]` (`start`) or from
-/// the first mode's term: the same operations in the same order as the plain loops, two
-/// stations per operation ([`F2`]: each lane is the scalar operation, bit for bit), over
-/// slices cut into pairs once (no bounds check per element).
-#[inline(always)]
-fn modal_sums<const K: usize>(
-    c: &[f64],
-    ns: usize,
-    x: [&[f64]; K],
-    out: [&mut [f64]; K],
-    start: Option<(f64, &[f64])>,
-) {
-    if ns == 0 {
-        return;
-    }
-    let pair = |s: &[f64; 2]| F2::new(s[0], s[1]);
-    for (k, out) in out.into_iter().enumerate() {
-        let (pairs, tail) = out[..ns].as_chunks_mut::<2>();
-        // the first term: `s·w_f`, or the first mode's
-        let (scale, first) = match start {
-            Some((s, w)) => (s, &w[..ns]),
-            None => (x[k][0], &c[..ns]),
-        };
-        let (fp, ft) = first.as_chunks::<2>();
-        let sp = F2::splat(scale);
-        for (o, w) in pairs.iter_mut().zip(fp) {
-            *o = (sp * pair(w)).get();
-        }
-        for (o, w) in tail.iter_mut().zip(ft) {
-            *o = scale * w;
-        }
-        let m0 = usize::from(start.is_none());
-        for (j, cj) in c.chunks_exact(ns).enumerate().skip(m0) {
-            let (xj, xs) = (x[k][j], F2::splat(x[k][j]));
-            let (cp, ct) = cj.as_chunks::<2>();
-            for (o, c) in pairs.iter_mut().zip(cp) {
-                *o = (pair(o) + pair(c) * xs).get();
-            }
-            for (o, c) in tail.iter_mut().zip(ct) {
-                *o += c * xj;
-            }
-        }
-    }
 }
 
 /// The peaks of displacement, drift and (`rows`) storey force of the stations `flagged` (of
@@ -659,7 +612,11 @@ impl Stations {
                     x[6 * f..6 * f + 6].try_into().expect("six sums")
                 };
                 let su = six(&g.sums_u, f);
-                let sb = if f > 0 { six(&g.sums_u, f - 1) } else { [0.0; 6] };
+                let sb = if f > 0 {
+                    six(&g.sums_u, f - 1)
+                } else {
+                    [0.0; 6]
+                };
                 let sd: [f64; 6] = std::array::from_fn(|j| su[j] - sb[j]);
                 let ring: [f64; 3] = g.rings[3 * f..3 * f + 3].try_into().expect("three");
                 let mut judge = |ends: (f64, f64, f64, f64), s: &[f64; 6], ring, peak| {
@@ -674,7 +631,12 @@ impl Stations {
                 judge((dp, ddp, d, dd), &sd, ring[1], p.drift);
                 if has_rows {
                     let (v0, vd0) = prev_force[f];
-                    judge((v0, vd0, vf[f], vfd[f]), &six(&g.sums_v, f), ring[2], p.shear);
+                    judge(
+                        (v0, vd0, vf[f], vfd[f]),
+                        &six(&g.sums_v, f),
+                        ring[2],
+                        p.shear,
+                    );
                 }
                 sub &= ringing_here;
             }
@@ -734,17 +696,24 @@ impl Stations {
         }
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
+        // `v += Σ_k sign_k F_k` over the levels that load the part above station f, in order
+        let (signs, forces, stride) = (&st.signs[..nl], &at.levels[..nl], st.levels);
+        let above_of = &st.above;
+        let contact = |v: &mut f64, f: usize| {
+            let row = &above_of[f * stride..f * stride + nl];
+            for ((&on, &sign), level) in row.iter().zip(signs).zip(forces) {
+                if on {
+                    *v += sign * level.force;
+                }
+            }
+        };
         match &st.equilibrium {
             Equilibrium::Lumped(masses) => {
                 let mut v_above = 0.0;
                 for f in (0..ns).rev() {
                     v_above -= masses[f] * abs[f];
                     // contact forces acting at this floor
-                    for k in 0..nl {
-                        if st.above[f * st.levels + k] {
-                            v_above += st.signs[k] * at.levels[k].force;
-                        }
-                    }
+                    contact(&mut v_above, f);
                     raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
                 }
             }
@@ -752,14 +721,10 @@ impl Stations {
                 // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
                 let above = &above[..ns];
                 modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
-                for f in 0..ns {
-                    let mut v_sec = -m * inertia[f];
-                    for k in 0..nl {
-                        if st.above[f * st.levels + k] {
-                            v_sec += st.signs[k] * at.levels[k].force;
-                        }
-                    }
-                    raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
+                for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
+                    let mut v_sec = -m * x;
+                    contact(&mut v_sec, f);
+                    raise(&mut p.shear_with_damping, v_sec.abs());
                 }
             }
         }

@@ -153,6 +153,8 @@ pub(crate) struct SubGrid {
     pub ud: Vec<f64>,
     pub v: Vec<f64>,
     pub vd: Vec<f64>,
+    /// `ns` zeros: the start of the sub-grid's sums ([`combine`]).
+    zeros: Vec<f64>,
 }
 
 impl SubGrid {
@@ -180,6 +182,7 @@ impl SubGrid {
             ud: Vec::new(),
             v: Vec::new(),
             vd: Vec::new(),
+            zeros: Vec::new(),
         }
     }
 
@@ -253,7 +256,8 @@ impl SubGrid {
         // (resized once: the lengths only change with the structure, i.e. never)
         self.sums_u.resize(6 * ns, 0.0);
         self.rings.resize(3 * ns, 0.0);
-        self.sums_v.resize(if rows.is_some() { 6 * ns } else { 0 }, 0.0);
+        self.sums_v
+            .resize(if rows.is_some() { 6 * ns } else { 0 }, 0.0);
         self.sums_u.fill(0.0);
         self.rings.fill(0.0);
         self.sums_v.fill(0.0);
@@ -264,7 +268,11 @@ impl SubGrid {
             });
             let r = self.weight[n];
             let at = n * ns..(n + 1) * ns;
-            let (c, au, ad) = (&phi[at.clone()], &abs_phi[at.clone()], &abs_drift[at.clone()]);
+            let (c, au, ad) = (
+                &phi[at.clone()],
+                &abs_phi[at.clone()],
+                &abs_drift[at.clone()],
+            );
             for ((s, ring), ((&c, &au), &ad)) in (su.as_chunks_mut::<6>().0.iter_mut())
                 .zip(rings.as_chunks_mut::<3>().0.iter_mut())
                 .zip(c.iter().zip(au).zip(ad))
@@ -386,29 +394,14 @@ impl SubGrid {
         let stations = |x: &mut Vec<f64>| x.resize(pts * ns, 0.0);
         stations(&mut self.u);
         stations(&mut self.ud);
-        combine(
-            &self.eta,
-            &self.etad,
-            phi,
-            nm,
-            ns,
-            pts,
-            &mut self.u,
-            &mut self.ud,
-        );
+        self.zeros.resize(ns, 0.0);
+        let dims = (nm, ns, pts);
+        let etas = (&self.eta[..], &self.etad[..]);
+        combine(etas, phi, dims, &self.zeros, &mut self.u, &mut self.ud);
         if let Some(rows) = rows {
             stations(&mut self.v);
             stations(&mut self.vd);
-            combine(
-                &self.eta,
-                &self.etad,
-                rows,
-                nm,
-                ns,
-                pts,
-                &mut self.v,
-                &mut self.vd,
-            );
+            combine(etas, rows, dims, &self.zeros, &mut self.v, &mut self.vd);
         }
     }
 
@@ -432,30 +425,67 @@ fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
     }
 }
 
-/// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k.
-#[allow(clippy::too_many_arguments)]
-fn combine(
-    eta: &[f64],
-    etad: &[f64],
-    coeff: &[f64],
-    nm: usize,
+/// `out[k][f] = s_f + Σ_n c[n·ns + f] x[k][n]` for every station f (`c`: `[mode·stations +
+/// station]`), summed in the modes' order from `s_f = start.0 · start.1[f]` (`start`) or from
+/// the first mode's term: the same operations in the same order as the plain loops, two
+/// stations per operation ([`F2`]: each lane is the scalar operation, bit for bit), over
+/// slices cut into pairs once (no bounds check per element).
+#[inline(always)]
+pub(crate) fn modal_sums<const K: usize>(
+    c: &[f64],
     ns: usize,
-    pts: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    if ns == 0 {
+        return;
+    }
+    let pair = |s: &[f64; 2]| F2::new(s[0], s[1]);
+    for (k, out) in out.into_iter().enumerate() {
+        let (pairs, tail) = out[..ns].as_chunks_mut::<2>();
+        // the first term: `s·w_f`, or the first mode's
+        let (scale, first) = match start {
+            Some((s, w)) => (s, &w[..ns]),
+            None => (x[k][0], &c[..ns]),
+        };
+        let (fp, ft) = first.as_chunks::<2>();
+        let sp = F2::splat(scale);
+        for (o, w) in pairs.iter_mut().zip(fp) {
+            *o = (sp * pair(w)).get();
+        }
+        for (o, w) in tail.iter_mut().zip(ft) {
+            *o = scale * w;
+        }
+        let m0 = usize::from(start.is_none());
+        for (j, cj) in c.chunks_exact(ns).enumerate().skip(m0) {
+            let (xj, xs) = (x[k][j], F2::splat(x[k][j]));
+            let (cp, ct) = cj.as_chunks::<2>();
+            for (o, c) in pairs.iter_mut().zip(cp) {
+                *o = (pair(o) + pair(c) * xs).get();
+            }
+            for (o, c) in tail.iter_mut().zip(ct) {
+                *o += c * xj;
+            }
+        }
+    }
+}
+
+/// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k, each sum
+/// from 0 in the modes' order ([`modal_sums`] from `0·zeros`, the same operations as a loop
+/// adding to zeroed values).
+fn combine(
+    (eta, etad): (&[f64], &[f64]),
+    coeff: &[f64],
+    (nm, ns, pts): (usize, usize, usize),
+    zeros: &[f64],
     y: &mut [f64],
     yd: &mut [f64],
 ) {
     for k in 0..pts {
+        let (e, ed) = (&eta[k * nm..(k + 1) * nm], &etad[k * nm..(k + 1) * nm]);
         let (y, yd) = (&mut y[k * ns..(k + 1) * ns], &mut yd[k * ns..(k + 1) * ns]);
-        y.fill(0.0);
-        yd.fill(0.0);
-        for n in 0..nm {
-            let c = &coeff[n * ns..(n + 1) * ns];
-            let (e, ed) = (eta[k * nm + n], etad[k * nm + n]);
-            for f in 0..ns {
-                y[f] += c[f] * e;
-                yd[f] += c[f] * ed;
-            }
-        }
+        modal_sums(coeff, ns, [e, ed], [y, yd], Some((0.0, zeros)));
     }
 }
 
