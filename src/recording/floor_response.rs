@@ -35,7 +35,7 @@ use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
 use crate::numerics::hermite::{Basis, hermite_abs_max};
-use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid};
+use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
 fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
@@ -128,7 +128,7 @@ fn update_station(
 /// of the slow modes' part ([`reach`]), the fast modes' linear part at its larger end, and
 /// their ringing.
 #[inline(always)]
-fn ring_bound(ends: (f64, f64, f64, f64), s: [f64; 6], ring: f64, h: f64) -> f64 {
+fn ring_bound(ends: (f64, f64, f64, f64), s: &[f64; 6], ring: f64, h: f64) -> f64 {
     let slow = reach(
         ends.0 - s[0],
         ends.1 - s[1],
@@ -136,7 +136,9 @@ fn ring_bound(ends: (f64, f64, f64, f64), s: [f64; 6], ring: f64, h: f64) -> f64
         ends.3 - s[3],
         h,
     );
-    let linear = s[4].abs().max((s[4] + s[5] * h).abs());
+    // (a plain comparison for f64::max: the values are finite)
+    let (l0, l1) = (s[4].abs(), (s[4] + s[5] * h).abs());
+    let linear = if l0 > l1 { l0 } else { l1 };
     slow + linear + ring
 }
 
@@ -528,32 +530,15 @@ impl Stations {
             None => false,
         };
         st.flagged.clear();
-        // every station's sums over the modes, formed mode by mode: the runs over the
-        // stations are contiguous (`[mode·stations + station]`) and vectorise
+        // every station's sums over the modes, in the modes' order (`c_0 x_0 + c_1 x_1 + …`),
+        // two stations per pass ([`modal_sums`])
         let (u, rest) = st.work[..6 * ns].split_at_mut(ns);
         let (ud, rest) = rest.split_at_mut(ns);
         let (ua, rest) = rest.split_at_mut(ns);
         let (vf, rest) = rest.split_at_mut(ns);
         let (vfd, inertia) = rest.split_at_mut(ns);
         let phi = &st.phi[..ns * nm];
-        {
-            let c = &phi[..ns];
-            let (q0, v0, a0) = (q[0], v[0], a[0]);
-            for f in 0..ns {
-                u[f] = c[f] * q0;
-                ud[f] = c[f] * v0;
-                ua[f] = c[f] * a0;
-            }
-        }
-        for j in 1..nm {
-            let c = &phi[j * ns..(j + 1) * ns];
-            let (qj, vj, aj) = (q[j], v[j], a[j]);
-            for f in 0..ns {
-                u[f] += c[f] * qj;
-                ud[f] += c[f] * vj;
-                ua[f] += c[f] * aj;
-            }
-        }
+        modal_sums(phi, ns, [q, v, a], [u, ud, ua], None);
         // the storey force from the modes' equivalent static forces (springs: at the end)
         let rows = match &st.force {
             StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
@@ -567,21 +552,7 @@ impl Stations {
             );
         }
         if let Some(rows) = rows {
-            {
-                let c = &rows[..ns];
-                for f in 0..ns {
-                    vf[f] = c[f] * q[0];
-                    vfd[f] = c[f] * v[0];
-                }
-            }
-            for j in 1..nm {
-                let c = &rows[j * ns..(j + 1) * ns];
-                let (qj, vj) = (q[j], v[j]);
-                for f in 0..ns {
-                    vf[f] += c[f] * qj;
-                    vfd[f] += c[f] * vj;
-                }
-            }
+            modal_sums(rows, ns, [q, v], [vf, vfd], None);
         }
         // the previous observation's (u, u̇) become the one before: swap, then overwrite
         std::mem::swap(&mut st.prev, &mut st.before);
@@ -637,11 +608,18 @@ impl Stations {
             if ringing && yields[f].is_none() {
                 let hh = h.unwrap_or(0.0);
                 let g = &st.grid;
-                let su: [f64; 6] = std::array::from_fn(|j| g.sums_u[j * ns + f]);
-                let sd: [f64; 6] = std::array::from_fn(|j| {
-                    su[j] - if f > 0 { g.sums_u[j * ns + f - 1] } else { 0.0 }
-                });
-                let mut judge = |ends: (f64, f64, f64, f64), s: [f64; 6], ring, peak| {
+                let six = |x: &[f64], f: usize| -> [f64; 6] {
+                    x[6 * f..6 * f + 6].try_into().expect("six sums")
+                };
+                let su = six(&g.sums_u, f);
+                let sb = if f > 0 {
+                    six(&g.sums_u, f - 1)
+                } else {
+                    [0.0; 6]
+                };
+                let sd: [f64; 6] = std::array::from_fn(|j| su[j] - sb[j]);
+                let ring: [f64; 3] = g.rings[3 * f..3 * f + 3].try_into().expect("three");
+                let mut judge = |ends: (f64, f64, f64, f64), s: &[f64; 6], ring, peak| {
                     if ring * g.hermite_factor > NEGLIGIBLE * peak {
                         ringing_here = true;
                         sub |= ring_bound(ends, s, ring, hh) > peak;
@@ -649,12 +627,16 @@ impl Stations {
                         sub |= reach(ends.0, ends.1, ends.2, ends.3, hh) > peak;
                     }
                 };
-                judge((up, udp, u, ud), su, g.rings[f], p.displacement);
-                judge((dp, ddp, d, dd), sd, g.rings[ns + f], p.drift);
+                judge((up, udp, u, ud), &su, ring[0], p.displacement);
+                judge((dp, ddp, d, dd), &sd, ring[1], p.drift);
                 if has_rows {
                     let (v0, vd0) = prev_force[f];
-                    let sv: [f64; 6] = std::array::from_fn(|j| g.sums_v[j * ns + f]);
-                    judge((v0, vd0, vf[f], vfd[f]), sv, g.rings[2 * ns + f], p.shear);
+                    judge(
+                        (v0, vd0, vf[f], vfd[f]),
+                        &six(&g.sums_v, f),
+                        ring[2],
+                        p.shear,
+                    );
                 }
                 sub &= ringing_here;
             }
@@ -714,41 +696,35 @@ impl Stations {
         }
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
+        // `v += Σ_k sign_k F_k` over the levels that load the part above station f, in order
+        let (signs, forces, stride) = (&st.signs[..nl], &at.levels[..nl], st.levels);
+        let above_of = &st.above;
+        let contact = |v: &mut f64, f: usize| {
+            let row = &above_of[f * stride..f * stride + nl];
+            for ((&on, &sign), level) in row.iter().zip(signs).zip(forces) {
+                if on {
+                    *v += sign * level.force;
+                }
+            }
+        };
         match &st.equilibrium {
             Equilibrium::Lumped(masses) => {
                 let mut v_above = 0.0;
                 for f in (0..ns).rev() {
                     v_above -= masses[f] * abs[f];
                     // contact forces acting at this floor
-                    for k in 0..nl {
-                        if st.above[f * st.levels + k] {
-                            v_above += st.signs[k] * at.levels[k].force;
-                        }
-                    }
+                    contact(&mut v_above, f);
                     raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
                 }
             }
             Equilibrium::Continuous { m, integral, above } => {
+                // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
                 let above = &above[..ns];
-                for f in 0..ns {
-                    inertia[f] = ag * above[f];
-                }
-                let integral = &integral[..ns * nm];
-                for j in 0..nm {
-                    let c = &integral[j * ns..(j + 1) * ns];
-                    let aj = a[j];
-                    for f in 0..ns {
-                        inertia[f] += c[f] * aj;
-                    }
-                }
-                for f in 0..ns {
-                    let mut v_sec = -m * inertia[f];
-                    for k in 0..nl {
-                        if st.above[f * st.levels + k] {
-                            v_sec += st.signs[k] * at.levels[k].force;
-                        }
-                    }
-                    raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
+                modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
+                for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
+                    let mut v_sec = -m * x;
+                    contact(&mut v_sec, f);
+                    raise(&mut p.shear_with_damping, v_sec.abs());
                 }
             }
         }
@@ -938,14 +914,16 @@ impl FloorRecorder {
         }
         let (ag, vg) = system.ground.accel_velocity(s.t);
         {
-            let (la, lv) = (system.ground_load(), system.air_load());
-            let (damp, w) = (system.damping_coefficients(), system.omega());
+            // (every slice cut to the modes once: no bounds check per mode)
+            let (la, lv) = (&system.ground_load()[..n], &system.air_load()[..n]);
+            let (damp, w) = (&system.damping_coefficients()[..n], &system.omega()[..n]);
+            let (q, v, accel) = (&s.q[..n], &s.v[..n], &mut self.accel[..n]);
             for j in 0..n {
-                self.accel[j] = la[j] * ag + lv[j] * vg - damp[j] * s.v[j] - w[j] * w[j] * s.q[j];
+                accel[j] = la[j] * ag + lv[j] * vg - damp[j] * v[j] - w[j] * w[j] * q[j];
             }
             for (k, st) in s.levels.iter().enumerate() {
                 if st.force != 0.0 {
-                    for (a, c) in self.accel.iter_mut().zip(system.coupling(k)) {
+                    for (a, c) in accel.iter_mut().zip(system.coupling(k)) {
                         *a += c * st.force;
                     }
                 }

@@ -36,6 +36,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::numerics::hermite::Basis;
+use crate::numerics::lanes::F2;
 
 /// The default resolution Θ: a mode is followed by the cubic Hermite while `ω h ≤ Θ`, and the
 /// sub-grid's parts are at most `Θ/ω_max` long. At 0.5 the Hermite's error on a sinusoid is
@@ -133,9 +134,9 @@ pub(crate) struct SubGrid {
     /// at most that times ρ.
     pub hermite_factor: f64,
     /// Per station, the sums over the fast modes of [`SubGrid::lin`] weighted by φ
-    /// (`[j·stations + station]`), and of |c| ρ for the displacement, the drift and the
-    /// storey force (`[k·stations + station]`, k = 0, 1, 2); with rows, the same six sums
-    /// weighted by the storey-force rows.
+    /// (`[station·6 + j]`), and of |c| ρ for the displacement, the drift and the storey force
+    /// (`[station·3 + k]`, k = 0, 1, 2); with rows, the same six sums weighted by the
+    /// storey-force rows.
     pub sums_u: Vec<f64>,
     pub sums_v: Vec<f64>,
     pub rings: Vec<f64>,
@@ -152,6 +153,8 @@ pub(crate) struct SubGrid {
     pub ud: Vec<f64>,
     pub v: Vec<f64>,
     pub vd: Vec<f64>,
+    /// `ns` zeros: the start of the sub-grid's sums ([`combine`]).
+    zeros: Vec<f64>,
 }
 
 impl SubGrid {
@@ -179,6 +182,7 @@ impl SubGrid {
             ud: Vec::new(),
             v: Vec::new(),
             vd: Vec::new(),
+            zeros: Vec::new(),
         }
     }
 
@@ -240,47 +244,51 @@ impl SubGrid {
 
     /// Per station, the fast modes' sums of the quantities' bounds: with `phi` (and its
     /// absolute values `abs_phi`, and those of the drift rows `abs_drift`) and, with `rows`,
-    /// the storey-force rows (`[n·stations + station]`), see [`SubGrid::sums_u`].
+    /// the storey-force rows (`[n·stations + station]`), see [`SubGrid::sums_u`]. Each
+    /// station's sums are contiguous (the per-station decision reads them together); every
+    /// sum is accumulated from 0 over the fast modes in their order, as a plain loop would.
     pub(crate) fn station_sums(
         &mut self,
         (phi, abs_phi, abs_drift): (&[f64], &[f64], &[f64]),
         rows: Option<(&[f64], &[f64])>,
         ns: usize,
     ) {
-        let fill = |x: &mut Vec<f64>, len: usize| {
-            x.clear();
-            x.resize(len, 0.0);
-        };
-        fill(&mut self.sums_u, 6 * ns);
-        fill(&mut self.rings, 3 * ns);
-        fill(&mut self.sums_v, if rows.is_some() { 6 * ns } else { 0 });
+        // (resized once: the lengths only change with the structure, i.e. never)
+        self.sums_u.resize(6 * ns, 0.0);
+        self.rings.resize(3 * ns, 0.0);
+        self.sums_v
+            .resize(if rows.is_some() { 6 * ns } else { 0 }, 0.0);
+        self.sums_u.fill(0.0);
+        self.rings.fill(0.0);
+        self.sums_v.fill(0.0);
+        let (su, rings) = (&mut self.sums_u[..6 * ns], &mut self.rings[..3 * ns]);
         for &n in &self.fast {
-            let (lin, r) = (&self.lin[6 * n..6 * n + 6], self.weight[n]);
-            let add = |sums: &mut [f64], c: &[f64]| {
-                for j in 0..6 {
-                    let (x, out) = (lin[j], &mut sums[j * ns..(j + 1) * ns]);
-                    for f in 0..ns {
-                        out[f] += c[f] * x;
-                    }
-                }
-            };
-            fn mode(x: &[f64], n: usize, ns: usize) -> &[f64] {
-                &x[n * ns..(n + 1) * ns]
-            }
-            let cut = |x| mode(x, n, ns);
-            add(&mut self.sums_u, cut(phi));
-            let (ru, rest) = self.rings.split_at_mut(ns);
-            let (rd, rv) = rest.split_at_mut(ns);
-            let (au, ad) = (cut(abs_phi), cut(abs_drift));
-            for f in 0..ns {
-                ru[f] += au[f] * r;
-                rd[f] += ad[f] * r;
+            let lin: [F2; 3] = std::array::from_fn(|i| {
+                F2::new(self.lin[6 * n + 2 * i], self.lin[6 * n + 2 * i + 1])
+            });
+            let r = self.weight[n];
+            let at = n * ns..(n + 1) * ns;
+            let (c, au, ad) = (
+                &phi[at.clone()],
+                &abs_phi[at.clone()],
+                &abs_drift[at.clone()],
+            );
+            for ((s, ring), ((&c, &au), &ad)) in (su.as_chunks_mut::<6>().0.iter_mut())
+                .zip(rings.as_chunks_mut::<3>().0.iter_mut())
+                .zip(c.iter().zip(au).zip(ad))
+            {
+                add_six(s, c, &lin);
+                ring[0] += au * r;
+                ring[1] += ad * r;
             }
             if let Some((rows, abs_rows)) = rows {
-                add(&mut self.sums_v, cut(rows));
-                let av = cut(abs_rows);
-                for f in 0..ns {
-                    rv[f] += av[f] * r;
+                let (c, av) = (&rows[at.clone()], &abs_rows[at]);
+                for ((s, ring), (&c, &av)) in (self.sums_v.as_chunks_mut::<6>().0.iter_mut())
+                    .zip(rings.as_chunks_mut::<3>().0.iter_mut())
+                    .zip(c.iter().zip(av))
+                {
+                    add_six(s, c, &lin);
+                    ring[2] += av * r;
                 }
             }
         }
@@ -386,29 +394,14 @@ impl SubGrid {
         let stations = |x: &mut Vec<f64>| x.resize(pts * ns, 0.0);
         stations(&mut self.u);
         stations(&mut self.ud);
-        combine(
-            &self.eta,
-            &self.etad,
-            phi,
-            nm,
-            ns,
-            pts,
-            &mut self.u,
-            &mut self.ud,
-        );
+        self.zeros.resize(ns, 0.0);
+        let dims = (nm, ns, pts);
+        let etas = (&self.eta[..], &self.etad[..]);
+        combine(etas, phi, dims, &self.zeros, &mut self.u, &mut self.ud);
         if let Some(rows) = rows {
             stations(&mut self.v);
             stations(&mut self.vd);
-            combine(
-                &self.eta,
-                &self.etad,
-                rows,
-                nm,
-                ns,
-                pts,
-                &mut self.v,
-                &mut self.vd,
-            );
+            combine(etas, rows, dims, &self.zeros, &mut self.v, &mut self.vd);
         }
     }
 
@@ -422,30 +415,77 @@ impl SubGrid {
     }
 }
 
-/// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k.
-#[allow(clippy::too_many_arguments)]
-fn combine(
-    eta: &[f64],
-    etad: &[f64],
-    coeff: &[f64],
-    nm: usize,
+/// `s[j] += c · lin[j]` for the six sums (in pairs: [`F2`], each lane the scalar operation).
+#[inline(always)]
+fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
+    let c = F2::splat(c);
+    for i in 0..3 {
+        let [a, b] = (F2::new(s[2 * i], s[2 * i + 1]) + c * lin[i]).get();
+        (s[2 * i], s[2 * i + 1]) = (a, b);
+    }
+}
+
+/// `out[k][f] = s_f + Σ_n c[n·ns + f] x[k][n]` for every station f (`c`: `[mode·stations +
+/// station]`), summed in the modes' order from `s_f = start.0 · start.1[f]` (`start`) or from
+/// the first mode's term: the same operations in the same order as the plain loops, two
+/// stations per operation ([`F2`]: each lane is the scalar operation, bit for bit), over
+/// slices cut into pairs once (no bounds check per element).
+#[inline(always)]
+pub(crate) fn modal_sums<const K: usize>(
+    c: &[f64],
     ns: usize,
-    pts: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    if ns == 0 {
+        return;
+    }
+    let pair = |s: &[f64; 2]| F2::new(s[0], s[1]);
+    for (k, out) in out.into_iter().enumerate() {
+        let (pairs, tail) = out[..ns].as_chunks_mut::<2>();
+        // the first term: `s·w_f`, or the first mode's
+        let (scale, first) = match start {
+            Some((s, w)) => (s, &w[..ns]),
+            None => (x[k][0], &c[..ns]),
+        };
+        let (fp, ft) = first.as_chunks::<2>();
+        let sp = F2::splat(scale);
+        for (o, w) in pairs.iter_mut().zip(fp) {
+            *o = (sp * pair(w)).get();
+        }
+        for (o, w) in tail.iter_mut().zip(ft) {
+            *o = scale * w;
+        }
+        let m0 = usize::from(start.is_none());
+        for (j, cj) in c.chunks_exact(ns).enumerate().skip(m0) {
+            let (xj, xs) = (x[k][j], F2::splat(x[k][j]));
+            let (cp, ct) = cj.as_chunks::<2>();
+            for (o, c) in pairs.iter_mut().zip(cp) {
+                *o = (pair(o) + pair(c) * xs).get();
+            }
+            for (o, c) in tail.iter_mut().zip(ct) {
+                *o += c * xj;
+            }
+        }
+    }
+}
+
+/// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k, each sum
+/// from 0 in the modes' order ([`modal_sums`] from `0·zeros`, the same operations as a loop
+/// adding to zeroed values).
+fn combine(
+    (eta, etad): (&[f64], &[f64]),
+    coeff: &[f64],
+    (nm, ns, pts): (usize, usize, usize),
+    zeros: &[f64],
     y: &mut [f64],
     yd: &mut [f64],
 ) {
     for k in 0..pts {
+        let (e, ed) = (&eta[k * nm..(k + 1) * nm], &etad[k * nm..(k + 1) * nm]);
         let (y, yd) = (&mut y[k * ns..(k + 1) * ns], &mut yd[k * ns..(k + 1) * ns]);
-        y.fill(0.0);
-        yd.fill(0.0);
-        for n in 0..nm {
-            let c = &coeff[n * ns..(n + 1) * ns];
-            let (e, ed) = (eta[k * nm + n], etad[k * nm + n]);
-            for f in 0..ns {
-                y[f] += c[f] * e;
-                yd[f] += c[f] * ed;
-            }
-        }
+        modal_sums(coeff, ns, [e, ed], [y, yd], Some((0.0, zeros)));
     }
 }
 
