@@ -34,7 +34,7 @@ use serde::Serialize;
 use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
-use crate::numerics::hermite::{Basis, hermite_abs_max};
+use crate::numerics::hermite::{Basis, hermite_abs_max, hermite_max};
 use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid};
 
 /// `dst` = `src` (resized: no allocation once grown).
@@ -165,6 +165,95 @@ fn refine_on_subgrid(
             if rows {
                 refine(&mut p.shear, g.v[i0], g.vd[i0], g.v[i1], g.vd[i1], dl);
             }
+        }
+    }
+}
+
+/// The absolute accelerations and the equilibrium shears of the stations that need them
+/// (`st.between.flagged`) between the observations at `t − h` and `t`, on a sub-grid of the
+/// modes' closed forms with parts `≤ theta/ω` of the fastest mode whose ringing matters
+/// ([`SubGrid::resolved_omega_for`]): at its points `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n
+/// η̈_n − M a_g` with their rates (η⃛ from the modes' equations, `C` and `a_g` linear between
+/// their values `(ag0, ag1)` at both ends), refined on each part's cubic Hermite. The
+/// interval's largest |a| (signed) also counts towards the next floor history sample.
+fn between_on_subgrid(
+    st: &mut Stations,
+    (t, h, theta): (f64, f64, f64),
+    (q, v): (&[f64], &[f64]),
+    (omega, damp): (&[f64], &[f64]),
+    (ag0, ag1): (f64, f64),
+) {
+    let ns = st.heights.len();
+    let largest = |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
+    let peak = [
+        largest(|p| p.acceleration),
+        largest(|p| p.shear_with_damping),
+    ];
+    let bt = &mut st.between;
+    let resolve = st
+        .grid
+        .resolved_omega_for(omega, &[&bt.cmax[0], &bt.cmax[1]], &peak);
+    // the modes only (no station: the displacements are not needed here)
+    st.grid
+        .evaluate(h, theta, (q, v), omega, damp, resolve, &st.phi, None, 0);
+    st.grid.accelerations(h, omega, damp);
+    let g = &st.grid;
+    let (parts, dl, t0) = (g.parts, g.delta, t - h);
+    let (y, yd) = (&mut bt.y, &mut bt.yd);
+    y.resize(parts + 1, 0.0);
+    yd.resize(parts + 1, 0.0);
+    let sg = (ag1 - ag0) / h;
+    for &f in &bt.flagged {
+        let p = &mut st.peaks[f];
+        // the absolute acceleration: its signed largest over the interval, and where
+        g.station_accelerations(&st.phi, ns, f, y, yd);
+        for k in 0..=parts {
+            y[k] += ag0 + sg * (k as f64 * dl);
+            yd[k] += sg;
+        }
+        let (mut top, mut when) = (st.abs_now[f], t);
+        for k in 0..parts {
+            if reach(y[k], yd[k], y[k + 1], yd[k + 1], dl) > top.abs() {
+                let (hi, th_hi) = hermite_max(y[k], yd[k], y[k + 1], yd[k + 1], dl);
+                let (lo, th_lo) = hermite_max(-y[k], -yd[k], -y[k + 1], -yd[k + 1], dl);
+                let t_k = t0 + k as f64 * dl;
+                if hi > top.abs() {
+                    (top, when) = (hi, t_k + th_hi * dl);
+                }
+                if lo > top.abs() {
+                    (top, when) = (-lo, t_k + th_lo * dl);
+                }
+            }
+        }
+        if top.abs() > p.acceleration {
+            p.acceleration = top.abs();
+            p.acceleration_time = when;
+        }
+        if top.abs() > st.hold[f].abs() {
+            st.hold[f] = top;
+        }
+        // the equilibrium shear: the contact forces above and the ground linear, less the
+        // inertia of the modes
+        g.station_accelerations(&bt.eq_rows, ns, f, y, yd);
+        let (c0, sc, mass) = (
+            bt.prev_contact[f],
+            (bt.contact_now[f] - bt.prev_contact[f]) / h,
+            bt.mass_above[f],
+        );
+        for k in 0..=parts {
+            let tau = k as f64 * dl;
+            y[k] = c0 + sc * tau - y[k] - mass * (ag0 + sg * tau);
+            yd[k] = sc - yd[k] - mass * sg;
+        }
+        for k in 0..parts {
+            refine(
+                &mut p.shear_with_damping,
+                y[k],
+                yd[k],
+                y[k + 1],
+                yd[k + 1],
+                dl,
+            );
         }
     }
 }
@@ -303,6 +392,43 @@ struct Stations {
     /// Per mode, the largest of |φ|, |φ(j) − φ(j−1)| and |storey-force row| over the stations.
     cmax: [Vec<f64>; 3],
     flagged: Vec<usize>,
+    /// The absolute acceleration and the equilibrium shear between observations
+    /// ([`Between`]).
+    between: Between,
+}
+
+/// What the absolute acceleration and the equilibrium shear (`shear_with_damping`) of one
+/// structure need between observations where fast modes ring (docs/model.md §2.6c): per
+/// station `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n η̈_n − M a_g`, with the contact forces
+/// above `C` and the ground's `a_g` linear over the interval (as the modal loads have them).
+#[derive(Debug, Clone)]
+struct Between {
+    /// `E_n` per station, kg·kg^−½ (`Σ_{g ≥ f} m_g φ_n(g)` of floors, `m ∫_x^L φ_n dx` of a
+    /// cantilever), `[n·stations + station]`, and the mass above M, kg.
+    eq_rows: Vec<f64>,
+    mass_above: Vec<f64>,
+    /// `|φ_n| ω_n²` and `|E_n| ω_n²` (`[n·stations + station]`): the weights of the modes'
+    /// ringing `|R̈_n| ≤ ω_n² ρ_n` ([`crate::recording::subgrid`]), and per mode their
+    /// largest over the stations.
+    abs_acc: Vec<f64>,
+    abs_eq: Vec<f64>,
+    cmax: [Vec<f64>; 2],
+    /// At the previous observation: per station the acceleration, the equilibrium shear and
+    /// the contact forces above, and the ground's acceleration (m/s²).
+    prev_acc: Vec<f64>,
+    prev_eq: Vec<f64>,
+    prev_contact: Vec<f64>,
+    prev_ag: f64,
+    /// At the current observation (scratch): the equilibrium shear and the contact forces
+    /// above, per station.
+    eq_now: Vec<f64>,
+    contact_now: Vec<f64>,
+    /// The fast modes' ringing of both quantities per station (`[k·stations + station]`),
+    /// the stations that take the sub-grid, and the values and rates at its points (scratch).
+    rings: Vec<f64>,
+    flagged: Vec<usize>,
+    y: Vec<f64>,
+    yd: Vec<f64>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -463,6 +589,48 @@ impl Stations {
                 .collect()
         };
         let cmax = [largest(&abs_phi), largest(&abs_drift), largest(&abs_rows)];
+        // the equilibrium's modal rows E_n and the mass above each station
+        let (eq_rows, mass_above): (Vec<f64>, Vec<f64>) = match &equilibrium {
+            Equilibrium::Lumped(masses) => {
+                let mut e = vec![0.0; nm * ns];
+                let mut mass = vec![0.0; ns];
+                for f in (0..ns).rev() {
+                    mass[f] = masses[f] + if f + 1 < ns { mass[f + 1] } else { 0.0 };
+                    for n in 0..nm {
+                        let up = if f + 1 < ns { e[n * ns + f + 1] } else { 0.0 };
+                        e[n * ns + f] = up + masses[f] * phi[n * ns + f];
+                    }
+                }
+                (e, mass)
+            }
+            Equilibrium::Continuous { m, integral, above } => (
+                integral.iter().map(|x| m * x).collect(),
+                above.iter().map(|x| m * x).collect(),
+            ),
+        };
+        let weigh = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .flat_map(|n| (0..ns).map(move |f| (x[n * ns + f] * m.omega[n] * m.omega[n]).abs()))
+                .collect()
+        };
+        let (abs_acc, abs_eq) = (weigh(&phi), weigh(&eq_rows));
+        let between = Between {
+            cmax: [largest(&abs_acc), largest(&abs_eq)],
+            abs_acc,
+            abs_eq,
+            eq_rows,
+            mass_above,
+            prev_acc: vec![0.0; ns],
+            prev_eq: vec![0.0; ns],
+            prev_contact: vec![0.0; ns],
+            prev_ag: 0.0,
+            eq_now: vec![0.0; ns],
+            contact_now: vec![0.0; ns],
+            rings: vec![0.0; 2 * ns],
+            flagged: Vec::with_capacity(ns),
+            y: Vec::new(),
+            yd: Vec::new(),
+        };
         Stations {
             cmax,
             grid: SubGrid::new(nm),
@@ -471,6 +639,7 @@ impl Stations {
             abs_drift,
             abs_rows,
             flagged: Vec::with_capacity(ns),
+            between,
             peaks: heights
                 .iter()
                 .map(|&height| FloorPeaks {
@@ -695,36 +864,23 @@ impl Stations {
             prev[f] = (u, ud);
             (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
         }
-        if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
-            let largest =
-                |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
-            let peak = [
-                largest(|p| p.displacement),
-                largest(|p| p.drift),
-                largest(|p| p.shear),
-            ];
-            let cmax = [&st.cmax[0][..], &st.cmax[1][..], &st.cmax[2][..]];
-            let resolve = st.grid.resolved_omega(omega, cmax, peak);
-            st.grid
-                .evaluate(h, theta, (q, v), omega, damp, resolve, phi, rows, ns);
-            refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
-        }
-        if resolution.is_some() {
-            st.grid.advance(q, v);
-        }
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
+        let bt = &mut st.between;
         match &st.equilibrium {
             Equilibrium::Lumped(masses) => {
-                let mut v_above = 0.0;
+                let (mut v_above, mut c_above) = (0.0, 0.0);
                 for f in (0..ns).rev() {
                     v_above -= masses[f] * abs[f];
                     // contact forces acting at this floor
                     for k in 0..nl {
                         if st.above[f * st.levels + k] {
                             v_above += st.signs[k] * at.levels[k].force;
+                            c_above += st.signs[k] * at.levels[k].force;
                         }
                     }
+                    bt.eq_now[f] = v_above;
+                    bt.contact_now[f] = c_above;
                     raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
                 }
             }
@@ -742,16 +898,73 @@ impl Stations {
                     }
                 }
                 for f in 0..ns {
-                    let mut v_sec = -m * inertia[f];
+                    let mut contact = 0.0;
                     for k in 0..nl {
                         if st.above[f * st.levels + k] {
-                            v_sec += st.signs[k] * at.levels[k].force;
+                            contact += st.signs[k] * at.levels[k].force;
                         }
                     }
+                    let v_sec = -m * inertia[f] + contact;
+                    bt.eq_now[f] = v_sec;
+                    bt.contact_now[f] = contact;
                     raise(&mut st.peaks[f].shear_with_damping, v_sec.abs());
                 }
             }
         }
+        // the accelerations and the equilibrium shear where fast modes ring: the stations whose
+        // bound over the interval (both ends, the fast modes' part twice: at the ends and
+        // between) can beat a peak, and whose ringing is not negligible
+        bt.flagged.clear();
+        if ringing && h.is_some() {
+            let g = &st.grid;
+            let (ra, re) = bt.rings.split_at_mut(ns);
+            g.ring_sums(&bt.abs_acc, ns, ra);
+            g.ring_sums(&bt.abs_eq, ns, re);
+            for f in 0..ns {
+                let p = &st.peaks[f];
+                let judge = |y0: f64, y1: f64, ring: f64, peak: f64| {
+                    let swing = 2.0 * ring;
+                    swing > NEGLIGIBLE * peak && y0.abs().max(y1.abs()) + swing > peak
+                };
+                if judge(bt.prev_acc[f], abs[f], ra[f], p.acceleration)
+                    || judge(bt.prev_eq[f], bt.eq_now[f], re[f], p.shear_with_damping)
+                {
+                    bt.flagged.push(f);
+                }
+            }
+        }
+        if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
+            let largest =
+                |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
+            let peak = [
+                largest(|p| p.displacement),
+                largest(|p| p.drift),
+                largest(|p| p.shear),
+            ];
+            let cmax = [&st.cmax[0][..], &st.cmax[1][..], &st.cmax[2][..]];
+            let resolve = st.grid.resolved_omega(omega, cmax, peak);
+            st.grid
+                .evaluate(h, theta, (q, v), omega, damp, resolve, phi, rows, ns);
+            refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
+        }
+        if let (false, Some(theta), Some(h)) = (st.between.flagged.is_empty(), resolution, h) {
+            between_on_subgrid(
+                st,
+                (at.t, h, theta),
+                (q, v),
+                (omega, damp),
+                (st.between.prev_ag, ag),
+            );
+        }
+        if resolution.is_some() {
+            st.grid.advance(q, v);
+        }
+        let bt = &mut st.between;
+        // (abs_now: this observation's values, not the interval's largest)
+        bt.prev_acc[..ns].copy_from_slice(&st.abs_now[..ns]);
+        bt.prev_eq[..ns].copy_from_slice(&bt.eq_now[..ns]);
+        bt.prev_contact[..ns].copy_from_slice(&bt.contact_now[..ns]);
+        bt.prev_ag = ag;
     }
 
     /// The accelerations of its last observation count towards the next history sample.
