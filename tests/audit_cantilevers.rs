@@ -803,6 +803,51 @@ fn paper_case_c_floors_between_coarse_observations() {
             i + 1
         );
     }
+    // The self-check compares both. The floors taken at the observations are flagged NOT
+    // converged by the check run (rtol/100, on the sub-grid), and the changes it reports for
+    // structure 1 are the true errors within a factor 1.5 either way (the check run's own error
+    // is ≤ 0.3 %, measured at rtol 1e-10 above: the estimate is the run's error up to that).
+    use pounding::analysis::simulate::accuracy::{AccuracyCheck, floor_resolution, tightened};
+    let mut t = s.clone();
+    t.solver = tightened(&s.solver);
+    let check_run =
+        pounding::analysis::simulate::simulate_with_floor_resolution(&t, Some(floor_resolution()))
+            .expect("runs");
+    let (ba, bv) = err(&before, 0);
+    let check = AccuracyCheck::compare(&before, &check_run, &s.solver);
+    assert!(!check.is_converged(), "{check:?}");
+    for (name, truth) in [
+        ("floor_acceleration_1", ba),
+        ("floor_shear_with_damping_1", bv),
+    ] {
+        let estimate = check.change_of(name).expect("compared");
+        eprintln!(
+            "at the observations: {name}: error {truth:.3e}, the check's estimate {estimate:.3e}"
+        );
+        assert!(
+            estimate > truth / 1.5 && estimate < 1.5 * truth,
+            "{name}: estimate {estimate:.3e} against the true error {truth:.3e}"
+        );
+    }
+    let warning = check.warning(&s.solver).expect("a warning");
+    assert!(
+        warning.contains("shear with damping (equilibrium) of structure 1"),
+        "{warning}"
+    );
+    // The run as it is: its equilibrium shear agrees with the check run's; its accelerations'
+    // 1.2 % error in the impact pulses is real, and the check names it (within 1.5×).
+    let check = AccuracyCheck::compare(&now, &check_run, &s.solver);
+    let (ea, _) = err(&now, 0);
+    let estimate = check.change_of("floor_acceleration_1").expect("compared");
+    eprintln!("now: floor_acceleration_1: error {ea:.3e}, the check's estimate {estimate:.3e}");
+    assert!(
+        estimate > ea / 1.5 && estimate < 1.5 * ea,
+        "{estimate:.3e} vs {ea:.3e}"
+    );
+    for name in ["floor_shear_with_damping_1", "floor_shear_with_damping_2"] {
+        let c = check.change_of(name).expect("compared");
+        assert!(c < 0.01, "{name}: {c:.3e}");
+    }
 }
 
 /// The self-check looks at the floors: the 40-mode case's section shears taken as they were
