@@ -626,7 +626,7 @@ impl Stations {
             prev_ag: 0.0,
             eq_now: vec![0.0; ns],
             contact_now: vec![0.0; ns],
-            rings: vec![0.0; 2 * ns],
+            rings: vec![0.0; 6 * ns],
             flagged: Vec::with_capacity(ns),
             y: Vec::new(),
             yd: Vec::new(),
@@ -917,18 +917,39 @@ impl Stations {
         bt.flagged.clear();
         if ringing && h.is_some() {
             let g = &st.grid;
-            let (ra, re) = bt.rings.split_at_mut(ns);
-            g.ring_sums(&bt.abs_acc, ns, ra);
-            g.ring_sums(&bt.abs_eq, ns, re);
+            // 1/cos(Θ/2): a sinusoid followed over `ω h ≤ Θ` exceeds the larger of its end
+            // values by at most this factor (its crest midway, the ends Θ/2 from it)
+            let slow_reach = 1.0 / (0.5 * resolution.unwrap_or(0.0)).cos();
+            let (ra, rest) = bt.rings.split_at_mut(ns);
+            let (re, rest) = rest.split_at_mut(ns);
+            let (fa, fe) = rest.split_at_mut(2 * ns);
+            g.fast_parts((phi, &bt.abs_acc), (omega, damp), ns, ra, fa);
+            g.fast_parts((&bt.eq_rows, &bt.abs_eq), (omega, damp), ns, re, fe);
             for f in 0..ns {
                 let p = &st.peaks[f];
-                let judge = |y0: f64, y1: f64, ring: f64, peak: f64| {
-                    let swing = 2.0 * ring;
-                    swing > NEGLIGIBLE * peak && y0.abs().max(y1.abs()) + swing > peak
+                // the slow part (slow modes and the linear parts) at its larger end, widened by
+                // `slow_reach`, and the fast modes' ringing; a ringing whose swing stays below
+                // NEGLIGIBLE of the peak is left out
+                let judge = |y0: f64, y1: f64, fast0: f64, fast1: f64, ring: f64, peak: f64| {
+                    let slow = (y0 - fast0).abs().max((y1 - fast1).abs());
+                    2.0 * ring > NEGLIGIBLE * peak && slow_reach * slow + ring > peak
                 };
-                if judge(bt.prev_acc[f], abs[f], ra[f], p.acceleration)
-                    || judge(bt.prev_eq[f], bt.eq_now[f], re[f], p.shear_with_damping)
-                {
+                // (with the sign the equilibrium gives the modes' part: V = C − Σ E η̈ − M a_g)
+                if judge(
+                    bt.prev_acc[f],
+                    abs[f],
+                    fa[f],
+                    fa[ns + f],
+                    ra[f],
+                    p.acceleration,
+                ) || judge(
+                    bt.prev_eq[f],
+                    bt.eq_now[f],
+                    -fe[f],
+                    -fe[ns + f],
+                    re[f],
+                    p.shear_with_damping,
+                ) {
                     bt.flagged.push(f);
                 }
             }

@@ -418,15 +418,39 @@ impl SubGrid {
         }
     }
 
-    /// Per station, the fast modes' ringing `Σ_fast c_n ρ_n` of a quantity whose per-mode
-    /// weights are `abs_coeff` (`[n·stations + station]`, ≥ 0: e.g. `|φ_n| ω_n²` for the
-    /// acceleration, whose ringing part is `R̈_n`, `|R̈_n| ≤ ω_n² ρ_n`), into `out` (`ns`).
-    pub(crate) fn ring_sums(&self, abs_coeff: &[f64], ns: usize, out: &mut [f64]) {
-        out[..ns].fill(0.0);
+    /// Per station, for a quantity `Q = Σ_n c_n η̈_n` (+ parts linear over the interval) with
+    /// per-mode weights `coeff` (`[n·stations + station]`) and `abs_weight` (≥ 0, e.g. `|φ_n|
+    /// ω_n²`: the ringing part of a fast mode's η̈ is `R̈_n`, `|R̈_n| ≤ ω_n² ρ_n`): the fast
+    /// modes' ringing `Σ_fast abs_weight ρ_n` into `ring`, and their part of Q at both ends of
+    /// the interval, `Σ_fast c_n η̈_n(0)` and `Σ_fast c_n η̈_n(h)` (η̈ from the mode's equation
+    /// at the observed states), into `ends` (`[0..ns]` and `[ns..2ns]`).
+    pub(crate) fn fast_parts(
+        &self,
+        (coeff, abs_weight): (&[f64], &[f64]),
+        (omega, c): (&[f64], &[f64]),
+        ns: usize,
+        ring: &mut [f64],
+        ends: &mut [f64],
+    ) {
+        ring[..ns].fill(0.0);
+        ends[..2 * ns].fill(0.0);
+        let (e0, e1) = ends[..2 * ns].split_at_mut(ns);
         for &n in &self.fast {
-            let (c, r) = (&abs_coeff[n * ns..(n + 1) * ns], self.weight[n]);
+            let (w2, r, l) = (
+                omega[n] * omega[n],
+                self.weight[n],
+                &self.lin[6 * n..6 * n + 6],
+            );
+            let a0 = self.prev_f[n] - c[n] * l[1] - w2 * l[0];
+            let a1 = self.now_f[n] - c[n] * l[3] - w2 * l[2];
+            let (cf, aw) = (
+                &coeff[n * ns..(n + 1) * ns],
+                &abs_weight[n * ns..(n + 1) * ns],
+            );
             for f in 0..ns {
-                out[f] += c[f] * r;
+                ring[f] += aw[f] * r;
+                e0[f] += cf[f] * a0;
+                e1[f] += cf[f] * a1;
             }
         }
     }
