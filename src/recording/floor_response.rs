@@ -23,8 +23,11 @@
 //! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
 //! observations on the cubic Hermite interpolant, as the contact-height peaks are, and where
 //! modes too fast for it (`ω h > 0.5`) ring enough to matter (after a stiff impact), on a
-//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]); accelerations and the
-//! equilibrium value are taken at the observations.
+//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]). The absolute
+//! accelerations and the equilibrium value are taken at the observations and, where the fast
+//! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
+//! form and its equation with the interval's linear load, [`Between`]); inside an impact pulse
+//! the observations are the contact sub-steps.
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
@@ -267,7 +270,8 @@ pub struct FloorPeaks {
     pub displacement: f64,
     /// Peak |ü + a_g|, absolute, m/s².
     pub acceleration: f64,
-    /// The time of that peak, s (the observation it was taken at).
+    /// The time of that peak, s (the observation it was taken at, or the point between two
+    /// where the sub-grid found it).
     pub acceleration_time: f64,
     /// Peak |u_j − u_{j−1}| of the storey below (the first relative to the base), m.
     pub drift: f64,
