@@ -23,8 +23,11 @@
 //! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
 //! observations on the cubic Hermite interpolant, as the contact-height peaks are, and where
 //! modes too fast for it (`ω h > 0.5`) ring enough to matter (after a stiff impact), on a
-//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]); accelerations and the
-//! equilibrium value are taken at the observations.
+//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]). The absolute
+//! accelerations and the equilibrium value are taken at the observations and, where the fast
+//! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
+//! form and its equation with the interval's linear load, [`Between`]); inside an impact pulse
+//! the observations are the contact sub-steps.
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
@@ -34,7 +37,7 @@ use serde::Serialize;
 use crate::integrate::StepView;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
-use crate::numerics::hermite::{Basis, hermite_abs_max};
+use crate::numerics::hermite::{Basis, hermite_abs_max, hermite_max};
 use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
@@ -171,6 +174,95 @@ fn refine_on_subgrid(
     }
 }
 
+/// The absolute accelerations and the equilibrium shears of the stations that need them
+/// (`st.between.flagged`) between the observations at `t − h` and `t`, on a sub-grid of the
+/// modes' closed forms with parts `≤ theta/ω` of the fastest mode whose ringing matters
+/// ([`SubGrid::resolved_omega_for`]): at its points `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n
+/// η̈_n − M a_g` with their rates (η⃛ from the modes' equations, `C` and `a_g` linear between
+/// their values `(ag0, ag1)` at both ends), refined on each part's cubic Hermite. The
+/// interval's largest |a| (signed) also counts towards the next floor history sample.
+fn between_on_subgrid(
+    st: &mut Stations,
+    (t, h, theta): (f64, f64, f64),
+    (q, v): (&[f64], &[f64]),
+    (omega, damp): (&[f64], &[f64]),
+    (ag0, ag1): (f64, f64),
+) {
+    let ns = st.heights.len();
+    let largest = |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
+    let peak = [
+        largest(|p| p.acceleration),
+        largest(|p| p.shear_with_damping),
+    ];
+    let bt = &mut st.between;
+    let resolve = st
+        .grid
+        .resolved_omega_for(omega, &[&bt.cmax[0], &bt.cmax[1]], &peak);
+    // the modes only (no station: the displacements are not needed here)
+    st.grid
+        .evaluate(h, theta, (q, v), omega, damp, resolve, &st.phi, None, 0);
+    st.grid.accelerations(h, omega, damp);
+    let g = &st.grid;
+    let (parts, dl, t0) = (g.parts, g.delta, t - h);
+    let (y, yd) = (&mut bt.y, &mut bt.yd);
+    y.resize(parts + 1, 0.0);
+    yd.resize(parts + 1, 0.0);
+    let sg = (ag1 - ag0) / h;
+    for &f in &bt.flagged {
+        let p = &mut st.peaks[f];
+        // the absolute acceleration: its signed largest over the interval, and where
+        g.station_accelerations(&st.phi, ns, f, y, yd);
+        for k in 0..=parts {
+            y[k] += ag0 + sg * (k as f64 * dl);
+            yd[k] += sg;
+        }
+        let (mut top, mut when) = (st.abs_now[f], t);
+        for k in 0..parts {
+            if reach(y[k], yd[k], y[k + 1], yd[k + 1], dl) > top.abs() {
+                let (hi, th_hi) = hermite_max(y[k], yd[k], y[k + 1], yd[k + 1], dl);
+                let (lo, th_lo) = hermite_max(-y[k], -yd[k], -y[k + 1], -yd[k + 1], dl);
+                let t_k = t0 + k as f64 * dl;
+                if hi > top.abs() {
+                    (top, when) = (hi, t_k + th_hi * dl);
+                }
+                if lo > top.abs() {
+                    (top, when) = (-lo, t_k + th_lo * dl);
+                }
+            }
+        }
+        if top.abs() > p.acceleration {
+            p.acceleration = top.abs();
+            p.acceleration_time = when;
+        }
+        if top.abs() > st.hold[f].abs() {
+            st.hold[f] = top;
+        }
+        // the equilibrium shear: the contact forces above and the ground linear, less the
+        // inertia of the modes
+        g.station_accelerations(&bt.eq_rows, ns, f, y, yd);
+        let (c0, sc, mass) = (
+            bt.prev_contact[f],
+            (bt.contact_now[f] - bt.prev_contact[f]) / h,
+            bt.mass_above[f],
+        );
+        for k in 0..=parts {
+            let tau = k as f64 * dl;
+            y[k] = c0 + sc * tau - y[k] - mass * (ag0 + sg * tau);
+            yd[k] = sc - yd[k] - mass * sg;
+        }
+        for k in 0..parts {
+            refine(
+                &mut p.shear_with_damping,
+                y[k],
+                yd[k],
+                y[k + 1],
+                yd[k + 1],
+                dl,
+            );
+        }
+    }
+}
+
 /// Peaks at one floor (station) of one run.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct FloorPeaks {
@@ -180,7 +272,8 @@ pub struct FloorPeaks {
     pub displacement: f64,
     /// Peak |ü + a_g|, absolute, m/s².
     pub acceleration: f64,
-    /// The time of that peak, s (the observation it was taken at).
+    /// The time of that peak, s (the observation it was taken at, or the point between two
+    /// where the sub-grid found it).
     pub acceleration_time: f64,
     /// Peak |u_j − u_{j−1}| of the storey below (the first relative to the base), m.
     pub drift: f64,
@@ -305,6 +398,43 @@ struct Stations {
     /// Per mode, the largest of |φ|, |φ(j) − φ(j−1)| and |storey-force row| over the stations.
     cmax: [Vec<f64>; 3],
     flagged: Vec<usize>,
+    /// The absolute acceleration and the equilibrium shear between observations
+    /// ([`Between`]).
+    between: Between,
+}
+
+/// What the absolute acceleration and the equilibrium shear (`shear_with_damping`) of one
+/// structure need between observations where fast modes ring (docs/model.md §2.6c): per
+/// station `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n η̈_n − M a_g`, with the contact forces
+/// above `C` and the ground's `a_g` linear over the interval (as the modal loads have them).
+#[derive(Debug, Clone)]
+struct Between {
+    /// `E_n` per station, kg·kg^−½ (`Σ_{g ≥ f} m_g φ_n(g)` of floors, `m ∫_x^L φ_n dx` of a
+    /// cantilever), `[n·stations + station]`, and the mass above M, kg.
+    eq_rows: Vec<f64>,
+    mass_above: Vec<f64>,
+    /// `|φ_n| ω_n²` and `|E_n| ω_n²` (`[n·stations + station]`): the weights of the modes'
+    /// ringing `|R̈_n| ≤ ω_n² ρ_n` ([`crate::recording::subgrid`]), and per mode their
+    /// largest over the stations.
+    abs_acc: Vec<f64>,
+    abs_eq: Vec<f64>,
+    cmax: [Vec<f64>; 2],
+    /// At the previous observation: per station the acceleration, the equilibrium shear and
+    /// the contact forces above, and the ground's acceleration (m/s²).
+    prev_acc: Vec<f64>,
+    prev_eq: Vec<f64>,
+    prev_contact: Vec<f64>,
+    prev_ag: f64,
+    /// At the current observation (scratch): the equilibrium shear and the contact forces
+    /// above, per station.
+    eq_now: Vec<f64>,
+    contact_now: Vec<f64>,
+    /// The fast modes' ringing of both quantities per station (`[k·stations + station]`),
+    /// the stations that take the sub-grid, and the values and rates at its points (scratch).
+    rings: Vec<f64>,
+    flagged: Vec<usize>,
+    y: Vec<f64>,
+    yd: Vec<f64>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -465,6 +595,48 @@ impl Stations {
                 .collect()
         };
         let cmax = [largest(&abs_phi), largest(&abs_drift), largest(&abs_rows)];
+        // the equilibrium's modal rows E_n and the mass above each station
+        let (eq_rows, mass_above): (Vec<f64>, Vec<f64>) = match &equilibrium {
+            Equilibrium::Lumped(masses) => {
+                let mut e = vec![0.0; nm * ns];
+                let mut mass = vec![0.0; ns];
+                for f in (0..ns).rev() {
+                    mass[f] = masses[f] + if f + 1 < ns { mass[f + 1] } else { 0.0 };
+                    for n in 0..nm {
+                        let up = if f + 1 < ns { e[n * ns + f + 1] } else { 0.0 };
+                        e[n * ns + f] = up + masses[f] * phi[n * ns + f];
+                    }
+                }
+                (e, mass)
+            }
+            Equilibrium::Continuous { m, integral, above } => (
+                integral.iter().map(|x| m * x).collect(),
+                above.iter().map(|x| m * x).collect(),
+            ),
+        };
+        let weigh = |x: &[f64]| -> Vec<f64> {
+            (0..nm)
+                .flat_map(|n| (0..ns).map(move |f| (x[n * ns + f] * m.omega[n] * m.omega[n]).abs()))
+                .collect()
+        };
+        let (abs_acc, abs_eq) = (weigh(&phi), weigh(&eq_rows));
+        let between = Between {
+            cmax: [largest(&abs_acc), largest(&abs_eq)],
+            abs_acc,
+            abs_eq,
+            eq_rows,
+            mass_above,
+            prev_acc: vec![0.0; ns],
+            prev_eq: vec![0.0; ns],
+            prev_contact: vec![0.0; ns],
+            prev_ag: 0.0,
+            eq_now: vec![0.0; ns],
+            contact_now: vec![0.0; ns],
+            rings: vec![0.0; 6 * ns],
+            flagged: Vec::with_capacity(ns),
+            y: Vec::new(),
+            yd: Vec::new(),
+        };
         Stations {
             cmax,
             grid: SubGrid::new(nm),
@@ -473,6 +645,7 @@ impl Stations {
             abs_drift,
             abs_rows,
             flagged: Vec::with_capacity(ns),
+            between,
             peaks: heights
                 .iter()
                 .map(|&height| FloorPeaks {
@@ -677,6 +850,91 @@ impl Stations {
             prev[f] = (u, ud);
             (below, below_rate, below_prev, below_prev_rate) = (u, ud, up, udp);
         }
+        // the equilibrium of what is above (storey force and damping forces)
+        let nl = st.levels.min(at.levels.len());
+        // `v += Σ_k sign_k F_k` over the levels that load the part above station f, in order
+        let (signs, forces, stride) = (&st.signs[..nl], &at.levels[..nl], st.levels);
+        let above_of = &st.above;
+        let contact = |v: &mut f64, f: usize| {
+            let row = &above_of[f * stride..f * stride + nl];
+            for ((&on, &sign), level) in row.iter().zip(signs).zip(forces) {
+                if on {
+                    *v += sign * level.force;
+                }
+            }
+        };
+        let bt = &mut st.between;
+        match &st.equilibrium {
+            Equilibrium::Lumped(masses) => {
+                let (mut v_above, mut c_above) = (0.0, 0.0);
+                for f in (0..ns).rev() {
+                    v_above -= masses[f] * abs[f];
+                    // contact forces acting at this floor
+                    contact(&mut v_above, f);
+                    contact(&mut c_above, f);
+                    bt.eq_now[f] = v_above;
+                    bt.contact_now[f] = c_above;
+                    raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
+                }
+            }
+            Equilibrium::Continuous { m, integral, above } => {
+                // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
+                let above = &above[..ns];
+                modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
+                for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
+                    let mut v_sec = -m * x;
+                    contact(&mut v_sec, f);
+                    let mut c = 0.0;
+                    contact(&mut c, f);
+                    bt.eq_now[f] = v_sec;
+                    bt.contact_now[f] = c;
+                    raise(&mut p.shear_with_damping, v_sec.abs());
+                }
+            }
+        }
+        // the accelerations and the equilibrium shear where fast modes ring: the stations whose
+        // bound over the interval (both ends, the fast modes' part twice: at the ends and
+        // between) can beat a peak, and whose ringing is not negligible
+        bt.flagged.clear();
+        if ringing && h.is_some() {
+            let g = &st.grid;
+            // 1/cos(Θ/2): a sinusoid followed over `ω h ≤ Θ` exceeds the larger of its end
+            // values by at most this factor (its crest midway, the ends Θ/2 from it)
+            let slow_reach = 1.0 / (0.5 * resolution.unwrap_or(0.0)).cos();
+            let (ra, rest) = bt.rings.split_at_mut(ns);
+            let (re, rest) = rest.split_at_mut(ns);
+            let (fa, fe) = rest.split_at_mut(2 * ns);
+            g.fast_parts((phi, &bt.abs_acc), (omega, damp), ns, ra, fa);
+            g.fast_parts((&bt.eq_rows, &bt.abs_eq), (omega, damp), ns, re, fe);
+            for f in 0..ns {
+                let p = &st.peaks[f];
+                // the slow part (slow modes and the linear parts) at its larger end, widened by
+                // `slow_reach`, and the fast modes' ringing; a ringing whose swing stays below
+                // NEGLIGIBLE of the peak is left out
+                let judge = |y0: f64, y1: f64, fast0: f64, fast1: f64, ring: f64, peak: f64| {
+                    let slow = (y0 - fast0).abs().max((y1 - fast1).abs());
+                    2.0 * ring > NEGLIGIBLE * peak && slow_reach * slow + ring > peak
+                };
+                // (with the sign the equilibrium gives the modes' part: V = C − Σ E η̈ − M a_g)
+                if judge(
+                    bt.prev_acc[f],
+                    abs[f],
+                    fa[f],
+                    fa[ns + f],
+                    ra[f],
+                    p.acceleration,
+                ) || judge(
+                    bt.prev_eq[f],
+                    bt.eq_now[f],
+                    -fe[f],
+                    -fe[ns + f],
+                    re[f],
+                    p.shear_with_damping,
+                ) {
+                    bt.flagged.push(f);
+                }
+            }
+        }
         if let (false, Some(theta), Some(h)) = (st.flagged.is_empty(), resolution, h) {
             let largest =
                 |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
@@ -691,43 +949,24 @@ impl Stations {
                 .evaluate(h, theta, (q, v), omega, damp, resolve, phi, rows, ns);
             refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
         }
+        if let (false, Some(theta), Some(h)) = (st.between.flagged.is_empty(), resolution, h) {
+            between_on_subgrid(
+                st,
+                (at.t, h, theta),
+                (q, v),
+                (omega, damp),
+                (st.between.prev_ag, ag),
+            );
+        }
         if resolution.is_some() {
             st.grid.advance(q, v);
         }
-        // the equilibrium of what is above (storey force and damping forces)
-        let nl = st.levels.min(at.levels.len());
-        // `v += Σ_k sign_k F_k` over the levels that load the part above station f, in order
-        let (signs, forces, stride) = (&st.signs[..nl], &at.levels[..nl], st.levels);
-        let above_of = &st.above;
-        let contact = |v: &mut f64, f: usize| {
-            let row = &above_of[f * stride..f * stride + nl];
-            for ((&on, &sign), level) in row.iter().zip(signs).zip(forces) {
-                if on {
-                    *v += sign * level.force;
-                }
-            }
-        };
-        match &st.equilibrium {
-            Equilibrium::Lumped(masses) => {
-                let mut v_above = 0.0;
-                for f in (0..ns).rev() {
-                    v_above -= masses[f] * abs[f];
-                    // contact forces acting at this floor
-                    contact(&mut v_above, f);
-                    raise(&mut st.peaks[f].shear_with_damping, v_above.abs());
-                }
-            }
-            Equilibrium::Continuous { m, integral, above } => {
-                // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
-                let above = &above[..ns];
-                modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
-                for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
-                    let mut v_sec = -m * x;
-                    contact(&mut v_sec, f);
-                    raise(&mut p.shear_with_damping, v_sec.abs());
-                }
-            }
-        }
+        let bt = &mut st.between;
+        // (abs_now: this observation's values, not the interval's largest)
+        bt.prev_acc[..ns].copy_from_slice(&st.abs_now[..ns]);
+        bt.prev_eq[..ns].copy_from_slice(&bt.eq_now[..ns]);
+        bt.prev_contact[..ns].copy_from_slice(&bt.contact_now[..ns]);
+        bt.prev_ag = ag;
     }
 
     /// The accelerations of its last observation count towards the next history sample.

@@ -155,6 +155,10 @@ pub(crate) struct SubGrid {
     pub vd: Vec<f64>,
     /// `ns` zeros: the start of the sub-grid's sums ([`combine`]).
     zeros: Vec<f64>,
+    /// η̈ and its rate of every mode at the sub-grid's points, `[k·modes + n]` (set by
+    /// [`SubGrid::accelerations`]).
+    etadd: Vec<f64>,
+    etaddd: Vec<f64>,
 }
 
 impl SubGrid {
@@ -183,6 +187,8 @@ impl SubGrid {
             v: Vec::new(),
             vd: Vec::new(),
             zeros: Vec::new(),
+            etadd: Vec::new(),
+            etaddd: Vec::new(),
         }
     }
 
@@ -402,6 +408,119 @@ impl SubGrid {
             stations(&mut self.v);
             stations(&mut self.vd);
             combine(etas, rows, dims, &self.zeros, &mut self.v, &mut self.vd);
+        }
+    }
+
+    /// Per station, for a quantity `Q = Σ_n c_n η̈_n` (+ parts linear over the interval) with
+    /// per-mode weights `coeff` (`[n·stations + station]`) and `abs_weight` (≥ 0, e.g. `|φ_n|
+    /// ω_n²`: the ringing part of a fast mode's η̈ is `R̈_n`, `|R̈_n| ≤ ω_n² ρ_n`): the fast
+    /// modes' ringing `Σ_fast abs_weight ρ_n` into `ring`, and their part of Q at both ends of
+    /// the interval, `Σ_fast c_n η̈_n(0)` and `Σ_fast c_n η̈_n(h)` (η̈ from the mode's equation
+    /// at the observed states), into `ends` (`[0..ns]` and `[ns..2ns]`).
+    pub(crate) fn fast_parts(
+        &self,
+        (coeff, abs_weight): (&[f64], &[f64]),
+        (omega, c): (&[f64], &[f64]),
+        ns: usize,
+        ring: &mut [f64],
+        ends: &mut [f64],
+    ) {
+        ring[..ns].fill(0.0);
+        ends[..2 * ns].fill(0.0);
+        let (e0, e1) = ends[..2 * ns].split_at_mut(ns);
+        for &n in &self.fast {
+            let (w2, r, l) = (
+                omega[n] * omega[n],
+                self.weight[n],
+                &self.lin[6 * n..6 * n + 6],
+            );
+            let a0 = self.prev_f[n] - c[n] * l[1] - w2 * l[0];
+            let a1 = self.now_f[n] - c[n] * l[3] - w2 * l[2];
+            let (cf, aw) = (
+                &coeff[n * ns..(n + 1) * ns],
+                &abs_weight[n * ns..(n + 1) * ns],
+            );
+            for f in 0..ns {
+                ring[f] += aw[f] * r;
+                e0[f] += cf[f] * a0;
+                e1[f] += cf[f] * a1;
+            }
+        }
+    }
+
+    /// [`SubGrid::resolved_omega`] for any number of quantities: `cmax[k][n]` the largest
+    /// |c| of quantity k over the stations for mode n, `peak[k]` the structure's largest peak
+    /// of quantity k.
+    pub(crate) fn resolved_omega_for(
+        &mut self,
+        omega: &[f64],
+        cmax: &[&[f64]],
+        peak: &[f64],
+    ) -> f64 {
+        self.order.clear();
+        self.order.extend_from_slice(&self.fast);
+        self.order.sort_by(|&a, &b| omega[b].total_cmp(&omega[a]));
+        let mut dropped = [0.0; 8];
+        for &n in &self.order {
+            for (k, (c, p)) in cmax.iter().zip(peak).enumerate() {
+                if let Some(&c) = c.get(n) {
+                    dropped[k] += c * self.weight[n];
+                    if dropped[k] > NEGLIGIBLE * p {
+                        return omega[n];
+                    }
+                }
+            }
+        }
+        0.0
+    }
+
+    /// After [`SubGrid::evaluate`] over an interval of length `h`: every mode's acceleration
+    /// and its rate at the sub-grid's points from its equation of motion with the interval's
+    /// linear load, `η̈ = f(τ) − 2σ η̇ − ω² η` and `η⃛ = ḟ − 2σ η̈ − ω² η̇` (exact for the closed
+    /// form; at both ends, where the model meets the observed (η, η̇), η̈ is the observed
+    /// modal acceleration).
+    pub(crate) fn accelerations(&mut self, h: f64, omega: &[f64], c: &[f64]) {
+        let nm = self.prev_q.len();
+        let pts = self.parts + 1;
+        self.etadd.resize(pts * nm, 0.0);
+        self.etaddd.resize(pts * nm, 0.0);
+        for n in 0..nm {
+            let (w2, cn) = (omega[n] * omega[n], c[n]);
+            let slope = (self.now_f[n] - self.prev_f[n]) / h;
+            for k in 0..pts {
+                let i = k * nm + n;
+                let tau = k as f64 * self.delta;
+                let a = self.prev_f[n] + slope * tau - cn * self.etad[i] - w2 * self.eta[i];
+                self.etadd[i] = a;
+                self.etaddd[i] = slope - cn * a - w2 * self.etad[i];
+            }
+        }
+    }
+
+    /// At every sub-grid point k, `y[k] = Σ_n coeff[n·ns + f] η̈_n` and its rate (station
+    /// `f` of `ns`) after [`SubGrid::accelerations`], into `y` and `yd` (`parts + 1` each).
+    pub(crate) fn station_accelerations(
+        &self,
+        coeff: &[f64],
+        ns: usize,
+        f: usize,
+        y: &mut [f64],
+        yd: &mut [f64],
+    ) {
+        let nm = self.prev_q.len();
+        for k in 0..=self.parts {
+            let (a, j) = (
+                &self.etadd[k * nm..(k + 1) * nm],
+                &self.etaddd[k * nm..(k + 1) * nm],
+            );
+            let (mut s, mut sd) = (0.0, 0.0);
+            for n in 0..nm {
+                let c = coeff[n * ns + f];
+                s += c * a[n];
+                sd += c * j[n];
+            }
+            y[k] = s;
+            yd[k] = sd;
         }
     }
 

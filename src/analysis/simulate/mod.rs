@@ -164,6 +164,9 @@ pub fn simulate_with_floor_resolution(
             f.peak_displacement = p.displacement;
             f.peak_drift = p.drift;
             f.peak_shear = p.shear;
+            f.peak_acceleration = p.acceleration;
+            f.peak_acceleration_time = p.acceleration_time;
+            f.peak_shear_with_damping = p.shear_with_damping;
         }
     }
     report.with_contact.floors = with.floors;

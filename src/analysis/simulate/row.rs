@@ -337,6 +337,8 @@ fn simulate_row_phases(
         (Phase::WithContact, Phase::WithoutContact)
     };
     let stations = (!check).then_some(scenario.floor_stations);
+    // (the self-check's run with contact records the floors too: its check compares them,
+    // as a pair's does)
     let (with, stats, history) = run_row_phase(
         &system,
         &scenario.solver,
@@ -344,7 +346,7 @@ fn simulate_row_phases(
         interval,
         sink,
         p1,
-        stations,
+        Some(scenario.floor_stations),
         check,
     )?;
     let (without, history_no_contact) = match reuse {

@@ -7,18 +7,37 @@
 //! required separation. The same threshold ([`CHECK_THRESHOLD`], 1 %) and the same warning
 //! ("self-check NOT converged: …", naming the quantities and the setting to tighten).
 //!
+//! With the floors (every row run records them), each structure's floor peaks are compared as
+//! a pair's are ([`super::accuracy::floor_change`]): the largest relative change at a station of
+//! the displacement, drift, storey force, absolute acceleration and equilibrium shear (the
+//! self-check's run with contact records the floors too).
+//!
 //! The quantities are named after the structures and pairs: `peak_displacement_B8`,
-//! `peak_force_A3_B8`, … (the names of summary.json's `accuracy.quantities` of a row).
+//! `floor_shear_B8`, `peak_force_A3_B8`, … (the names of summary.json's
+//! `accuracy.quantities` of a row).
 
 use serde::Serialize;
 use serde::ser::SerializeMap;
 
 use super::RowReport;
 use super::accuracy::{
-    CHECK_THRESHOLD, CheckSettings, count_change, not_converged_warning, percent, relative_change,
-    setting_to_tighten,
+    CHECK_THRESHOLD, CheckSettings, FLOOR_QUANTITIES, count_change, floor_change,
+    not_converged_warning, percent, relative_change, setting_to_tighten,
 };
 use crate::integrate::{SolveError, SolverSettings};
+
+/// The floor quantities of a row's structures, in the order of a pair's
+/// [`FLOOR_QUANTITIES`]: the key's stem (the structure's name follows) and what it is.
+const FLOOR_NAMES: [(&str, &str); 5] = [
+    ("floor_displacement", "peak floor displacement"),
+    ("floor_drift", "peak drift"),
+    ("floor_shear", "peak storey/section shear"),
+    ("floor_acceleration", "peak absolute floor acceleration"),
+    (
+        "floor_shear_with_damping",
+        "peak storey/section shear with damping (equilibrium)",
+    ),
+];
 
 /// One checked quantity of a row.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -192,6 +211,29 @@ impl RowAccuracyCheck {
                         relative_change(e, e_t)
                     },
                 });
+            }
+        }
+        // the responses over the heights with pounding, where both runs recorded them: per
+        // structure the largest relative change at a station of each floor quantity, as a
+        // pair's (`floor_displacement_B8`, …, `floor_shear_with_damping_B8`)
+        let floors = report.with_contact.floors.iter();
+        for ((a, b), s) in floors
+            .zip(&tight.with_contact.floors)
+            .zip(&report.structures)
+        {
+            let n = &s.name;
+            for ((_, peak), (key, label)) in FLOOR_QUANTITIES[0].iter().zip(FLOOR_NAMES) {
+                if let Some(c) = floor_change(key, a, b, *peak) {
+                    q.push(RowQuantityChange {
+                        name: format!("{key}_{n}"),
+                        label: format!(
+                            "{label} of {n} with pounding (largest relative change at a floor)"
+                        ),
+                        value: c.value,
+                        tight: c.tight,
+                        change: c.change,
+                    });
+                }
             }
         }
         for (a, b) in report.pairs.iter().zip(&tight.pairs) {
