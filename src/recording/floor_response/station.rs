@@ -1,47 +1,19 @@
-//! Responses over a structure's height (issue 11): at every floor of a building (at stations
-//! of a cantilever: every tenth of its height and each contact height), the peaks of the
-//! displacement relative to the ground, the **absolute** acceleration, the storey drift and the
-//! storey force.
-//!
-//! At every observation the modal accelerations come from the equations of motion
-//! (docs/model.md §2.4), `η̈ = −Γ a_g − a v_g − 2ζω η̇ − ω² η + Σ_k c_k F_k`, so that the
-//! absolute acceleration `ü + a_g = Σ φ η̈ + a_g` includes each impact's spike (the integrators
-//! observe every contact step).
-//!
-//! The **storey shear** (`shear`) is the force the storey's structure carries, its restoring
-//! force without damping forces, the same quantity for every kind (docs/model.md §2.6c): `k_j
-//! d_j` of a shear building's storey spring, the Bouc–Wen force `V_j` of a yielding storey, the
-//! modes' equivalent static forces `K u = M Φ Ω² η` summed over the floors above for a building
-//! given by its modes, and the section shear `−EI w‴ = m Σ_n ω_n² η_n ∫_x^L φ_n dx` of a
-//! cantilever. Floors whose modes are those of a chain of storey springs (every shear
-//! building, and a `modal` structure built from one) are recognised once, and their storey
-//! force is `k_j` times the drift's peak: nothing is added to the time loop. The equilibrium
-//! of everything above, `V_j = Σ_{f ≥ j} (F_f − m_f a_f)` (a cantilever's `Σ_{h_k ≥ x} F_k −
-//! m ∫_x^L a dx`, [`crate::model::cantilever::Mode::integral_above`]), is the storey force plus the
-//! damping forces above: `shear_with_damping`.
-//!
-//! Displacements, drifts and storey forces (elastic or Bouc–Wen) are refined between
-//! observations on the cubic Hermite interpolant, as the contact-height peaks are, and where
-//! modes too fast for it (`ω h > 0.5`) ring enough to matter (after a stiff impact), on a
-//! sub-grid of each mode's closed form ([`crate::recording::subgrid`]). The absolute
-//! accelerations and the equilibrium value are taken at the observations and, where the fast
-//! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
-//! form and its equation with the interval's linear load, [`Between`]); inside an impact pulse
-//! the observations are the contact sub-steps.
+//! One structure's stations through a run ([`Stations`]): the per-observation update of their
+//! displacements, drifts, storey forces, accelerations and equilibrium shear, refined between
+//! observations on the Hermite interpolant or the sub-grid of the fast modes' closed forms (the
+//! parent module's documentation says what each quantity is).
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
 
-use serde::Serialize;
-
-use crate::integrate::StepView;
+use super::FloorPeaks;
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
-use crate::numerics::hermite::{Basis, hermite_abs_max, hermite_max};
-use crate::recording::subgrid::{DEFAULT_RESOLUTION, NEGLIGIBLE, SubGrid, modal_sums};
+use crate::numerics::hermite::{hermite_abs_max, hermite_max};
+use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
-fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
+pub(super) fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
     dst.clear();
     dst.extend_from_slice(src);
 }
@@ -263,31 +235,9 @@ fn between_on_subgrid(
     }
 }
 
-/// Peaks at one floor (station) of one run.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-pub struct FloorPeaks {
-    /// Height above the base, m.
-    pub height: f64,
-    /// Peak |u| relative to the ground, m.
-    pub displacement: f64,
-    /// Peak |ü + a_g|, absolute, m/s².
-    pub acceleration: f64,
-    /// The time of that peak, s (the observation it was taken at, or the point between two
-    /// where the sub-grid found it).
-    pub acceleration_time: f64,
-    /// Peak |u_j − u_{j−1}| of the storey below (the first relative to the base), m.
-    pub drift: f64,
-    /// Peak |V| of the storey below: the force its structure carries (its restoring force,
-    /// without damping forces; see the module documentation), N.
-    pub shear: f64,
-    /// Peak |V| of the storey below from the equilibrium of everything above it (inertia and
-    /// contact forces): the storey force plus the damping forces above, N.
-    pub shear_with_damping: f64,
-}
-
 /// How the equilibrium shear of one structure is formed.
 #[derive(Debug, Clone)]
-enum Equilibrium {
+pub(super) enum Equilibrium {
     /// Lumped floor masses, kg.
     Lumped(Vec<f64>),
     /// A continuous cantilever: mass per length (kg/m) and, per station, `∫_x^L φ_n dx` of
@@ -302,7 +252,7 @@ enum Equilibrium {
 
 /// How the storey force (restoring, without damping) of one structure is formed.
 #[derive(Debug, Clone)]
-enum StoreyForce {
+pub(super) enum StoreyForce {
     /// Storey springs k_j, N/m: `V_j = k_j d_j`, so its peak is `k_j` times the (refined) peak
     /// drift, formed at the end.
     Springs(Vec<f64>),
@@ -347,60 +297,60 @@ fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec
 
 /// The stations of one structure.
 #[derive(Debug, Clone)]
-struct Stations {
-    heights: Vec<f64>,
+pub(super) struct Stations {
+    pub(super) heights: Vec<f64>,
     /// Modes of the structure.
-    modes: usize,
+    pub(super) modes: usize,
     /// φ_n at every station: `[n·stations + station]`.
-    phi: Vec<f64>,
-    equilibrium: Equilibrium,
-    force: StoreyForce,
+    pub(super) phi: Vec<f64>,
+    pub(super) equilibrium: Equilibrium,
+    pub(super) force: StoreyForce,
     /// Stations whose storey yields (Bouc–Wen), with the storey's index in the system's
     /// hysteresis: its force comes from the law.
-    yields: Vec<Option<usize>>,
+    pub(super) yields: Vec<Option<usize>>,
     /// Which contact levels load the part above each station: `[station·levels + k]` (for
     /// floors: the level acts at that very floor).
-    above: Vec<bool>,
-    levels: usize,
+    pub(super) above: Vec<bool>,
+    pub(super) levels: usize,
     /// Offset of this structure's modes in the system.
-    offset: usize,
+    pub(super) offset: usize,
     /// The sign of each contact level's force on this structure: −1 where it is the left one
     /// of the level's pair, +1 the right one, 0 a level of another pair (a row).
-    signs: Vec<f64>,
+    pub(super) signs: Vec<f64>,
     /// (u, u̇) at every station at the previous observation, and at the one before (for
     /// the samples between them).
-    prev: Vec<(f64, f64)>,
-    before: Vec<(f64, f64)>,
+    pub(super) prev: Vec<(f64, f64)>,
+    pub(super) before: Vec<(f64, f64)>,
     /// (V, V̇) of the storey force (`StoreyForce::Rows`, or a yielding storey's) at the
     /// previous observation.
-    prev_force: Vec<(f64, f64)>,
+    pub(super) prev_force: Vec<(f64, f64)>,
     /// Per station u, u̇, ü + … (modal part), V, V̇ and the inertia integral (scratch).
-    work: Vec<f64>,
+    pub(super) work: Vec<f64>,
     /// Absolute acceleration at the current observation, and the one of largest size since
     /// the last sample (signed).
-    abs_now: Vec<f64>,
-    hold: Vec<f64>,
-    peaks: Vec<FloorPeaks>,
+    pub(super) abs_now: Vec<f64>,
+    pub(super) hold: Vec<f64>,
+    pub(super) peaks: Vec<FloorPeaks>,
     /// The time of this structure's last observation and the interval before it, s (a row's
     /// passive structure is observed on the grid only: see [`FloorRecorder::observe_part`]).
-    last_t: Option<f64>,
-    h: Option<f64>,
+    pub(super) last_t: Option<f64>,
+    pub(super) h: Option<f64>,
     /// Whether the current observation saw this structure.
-    fresh: bool,
+    pub(super) fresh: bool,
     /// The modes' closed forms between observations ([`crate::recording::subgrid`]), the
     /// largest ω (1/s), |φ|, |φ(j) − φ(j−1)| and |storey-force rows| (`[n·stations +
     /// station]`), and the stations that take the sub-grid at this observation (scratch).
-    grid: SubGrid,
-    omega_max: f64,
-    abs_phi: Vec<f64>,
-    abs_drift: Vec<f64>,
-    abs_rows: Vec<f64>,
+    pub(super) grid: SubGrid,
+    pub(super) omega_max: f64,
+    pub(super) abs_phi: Vec<f64>,
+    pub(super) abs_drift: Vec<f64>,
+    pub(super) abs_rows: Vec<f64>,
     /// Per mode, the largest of |φ|, |φ(j) − φ(j−1)| and |storey-force row| over the stations.
-    cmax: [Vec<f64>; 3],
-    flagged: Vec<usize>,
+    pub(super) cmax: [Vec<f64>; 3],
+    pub(super) flagged: Vec<usize>,
     /// The absolute acceleration and the equilibrium shear between observations
     /// ([`Between`]).
-    between: Between,
+    pub(super) between: Between,
 }
 
 /// What the absolute acceleration and the equilibrium shear (`shear_with_damping`) of one
@@ -408,46 +358,46 @@ struct Stations {
 /// station `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n η̈_n − M a_g`, with the contact forces
 /// above `C` and the ground's `a_g` linear over the interval (as the modal loads have them).
 #[derive(Debug, Clone)]
-struct Between {
+pub(super) struct Between {
     /// `E_n` per station, kg·kg^−½ (`Σ_{g ≥ f} m_g φ_n(g)` of floors, `m ∫_x^L φ_n dx` of a
     /// cantilever), `[n·stations + station]`, and the mass above M, kg.
-    eq_rows: Vec<f64>,
-    mass_above: Vec<f64>,
+    pub(super) eq_rows: Vec<f64>,
+    pub(super) mass_above: Vec<f64>,
     /// `|φ_n| ω_n²` and `|E_n| ω_n²` (`[n·stations + station]`): the weights of the modes'
     /// ringing `|R̈_n| ≤ ω_n² ρ_n` ([`crate::recording::subgrid`]), and per mode their
     /// largest over the stations.
-    abs_acc: Vec<f64>,
-    abs_eq: Vec<f64>,
-    cmax: [Vec<f64>; 2],
+    pub(super) abs_acc: Vec<f64>,
+    pub(super) abs_eq: Vec<f64>,
+    pub(super) cmax: [Vec<f64>; 2],
     /// At the previous observation: per station the acceleration, the equilibrium shear and
     /// the contact forces above, and the ground's acceleration (m/s²).
-    prev_acc: Vec<f64>,
-    prev_eq: Vec<f64>,
-    prev_contact: Vec<f64>,
-    prev_ag: f64,
+    pub(super) prev_acc: Vec<f64>,
+    pub(super) prev_eq: Vec<f64>,
+    pub(super) prev_contact: Vec<f64>,
+    pub(super) prev_ag: f64,
     /// At the current observation (scratch): the equilibrium shear and the contact forces
     /// above, per station.
-    eq_now: Vec<f64>,
-    contact_now: Vec<f64>,
+    pub(super) eq_now: Vec<f64>,
+    pub(super) contact_now: Vec<f64>,
     /// The fast modes' ringing of both quantities per station (`[k·stations + station]`),
     /// the stations that take the sub-grid, and the values and rates at its points (scratch).
-    rings: Vec<f64>,
-    flagged: Vec<usize>,
-    y: Vec<f64>,
-    yd: Vec<f64>,
+    pub(super) rings: Vec<f64>,
+    pub(super) flagged: Vec<usize>,
+    pub(super) y: Vec<f64>,
+    pub(super) yd: Vec<f64>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
 /// accelerations, the ground's acceleration (m/s²), the levels' states and the yielding
 /// storeys' z.
-struct At<'v> {
-    t: f64,
-    q: &'v [f64],
-    v: &'v [f64],
-    accel: &'v [f64],
-    ag: f64,
-    levels: &'v [LevelState],
-    z: &'v [f64],
+pub(super) struct At<'v> {
+    pub(super) t: f64,
+    pub(super) q: &'v [f64],
+    pub(super) v: &'v [f64],
+    pub(super) accel: &'v [f64],
+    pub(super) ag: f64,
+    pub(super) levels: &'v [LevelState],
+    pub(super) z: &'v [f64],
 }
 
 /// A copy of the last observation at which a row's structures were left unobserved (valid:
@@ -455,19 +405,24 @@ struct At<'v> {
 /// step carries under contact forces is observed at it first, so that its interpolants never
 /// span a step with forces and the free flight before it.
 #[derive(Debug, Clone, Default)]
-struct Saved {
-    valid: bool,
-    t: f64,
-    ag: f64,
-    q: Vec<f64>,
-    v: Vec<f64>,
-    accel: Vec<f64>,
-    levels: Vec<LevelState>,
-    z: Vec<f64>,
+pub(super) struct Saved {
+    pub(super) valid: bool,
+    pub(super) t: f64,
+    pub(super) ag: f64,
+    pub(super) q: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) accel: Vec<f64>,
+    pub(super) levels: Vec<LevelState>,
+    pub(super) z: Vec<f64>,
 }
 
 impl Stations {
-    fn new(m: &ModalModel, contact_heights: &[f64], signs: &[f64], offset: usize) -> Stations {
+    pub(super) fn new(
+        m: &ModalModel,
+        contact_heights: &[f64],
+        signs: &[f64],
+        offset: usize,
+    ) -> Stations {
         let nm = m.len();
         let (heights, equilibrium) = match &m.shapes {
             Shapes::Floors {
@@ -678,7 +633,13 @@ impl Stations {
     /// Observe this structure at `at` (its interval: since its last observation); `full`:
     /// every station takes the full update (tests).
     #[inline]
-    fn observe(&mut self, system: &System, at: &At, full: bool, resolution: Option<f64>) {
+    pub(super) fn observe(
+        &mut self,
+        system: &System,
+        at: &At,
+        full: bool,
+        resolution: Option<f64>,
+    ) {
         let h = self.last_t.map(|t0| at.t - t0).filter(|h| *h > 0.0);
         self.last_t = Some(at.t);
         self.h = h;
@@ -970,7 +931,7 @@ impl Stations {
     }
 
     /// The accelerations of its last observation count towards the next history sample.
-    fn hold_now(&mut self) {
+    pub(super) fn hold_now(&mut self) {
         for f in 0..self.heights.len() {
             if self.abs_now[f].abs() > self.hold[f].abs() {
                 self.hold[f] = self.abs_now[f];
@@ -979,7 +940,7 @@ impl Stations {
     }
 
     /// The peaks, with the springs' storey forces formed from the peak drifts.
-    fn finish(mut self) -> Vec<FloorPeaks> {
+    pub(super) fn finish(mut self) -> Vec<FloorPeaks> {
         if let StoreyForce::Springs(k) = &self.force {
             for ((p, k), y) in self.peaks.iter_mut().zip(k).zip(&self.yields) {
                 if y.is_none() {
@@ -988,436 +949,5 @@ impl Stations {
             }
         }
         self.peaks
-    }
-}
-
-/// Tracks [`FloorPeaks`] of both structures through a run (an addition to the recorder).
-#[derive(Debug, Clone)]
-pub struct FloorRecorder {
-    /// One per structure, in row order.
-    stations: Vec<Stations>,
-    /// Sampling of the floor history (s) and the next sample's index.
-    interval: f64,
-    next_sample: usize,
-    /// One row of the floor history (scratch).
-    row: Vec<f64>,
-    /// Modal accelerations at the current observation (scratch).
-    accel: Vec<f64>,
-    /// The last observation that left structures unobserved (a row's passive ones).
-    saved: Saved,
-    /// Every station takes the full update at every observation (tests: the skip changes
-    /// nothing).
-    full: bool,
-    /// The resolution Θ of the sub-grid ([`crate::recording::subgrid`]; `None`: the cubic
-    /// Hermite between observations only).
-    resolution: Option<f64>,
-}
-
-impl FloorRecorder {
-    /// Stations for both structures of a pair `system`; `contact_heights` are the contact
-    /// levels' heights (the levels of `system`, or for a run without contact those of the run
-    /// with).
-    pub fn new(system: &System, contact_heights: &[f64], interval: f64) -> FloorRecorder {
-        FloorRecorder::for_row(
-            system,
-            contact_heights,
-            &vec![0; contact_heights.len()],
-            interval,
-        )
-    }
-
-    /// Stations for every structure of a row `system`: contact level k is at
-    /// `contact_heights[k]` between structures `pairs[k]` and `pairs[k] + 1`.
-    pub fn for_row(
-        system: &System,
-        contact_heights: &[f64],
-        pairs: &[usize],
-        interval: f64,
-    ) -> FloorRecorder {
-        let mut stations: Vec<Stations> = (system.structures.iter().enumerate())
-            .map(|(i, m)| {
-                let signs: Vec<f64> = pairs
-                    .iter()
-                    .map(|&p| match i {
-                        _ if i == p => -1.0,
-                        _ if i == p + 1 => 1.0,
-                        _ => 0.0,
-                    })
-                    .collect();
-                Stations::new(m, contact_heights, &signs, system.modes_of(i).start)
-            })
-            .collect();
-        for (k, st) in system.hysteresis.storeys().iter().enumerate() {
-            if let Some(y) = stations[st.structure].yields.get_mut(st.storey) {
-                *y = Some(k);
-            }
-        }
-        let cols = 2 * stations.iter().map(|s| s.heights.len()).sum::<usize>();
-        FloorRecorder {
-            stations,
-            interval,
-            next_sample: 0,
-            row: vec![0.0; cols],
-            accel: vec![0.0; system.len()],
-            saved: Saved::default(),
-            full: false,
-            resolution: Some(DEFAULT_RESOLUTION),
-        }
-    }
-
-    /// The resolution Θ of the peaks between observations: modes with `ω h > Θ` are followed
-    /// on a sub-grid of their closed forms with parts `≤ Θ/ω_max`
-    /// ([`crate::recording::subgrid`]); `None`: the cubic Hermite only.
-    pub fn with_resolution(mut self, resolution: Option<f64>) -> FloorRecorder {
-        self.resolution = resolution;
-        self
-    }
-
-    /// The heights of the stations of every structure (m, lowest first), in the order of
-    /// [`FloorRecorder::columns`].
-    pub fn station_heights(&self) -> Vec<&[f64]> {
-        self.stations.iter().map(|s| s.heights.as_slice()).collect()
-    }
-
-    /// The names of a floor history row's values: for structure i and every station (height
-    /// h, m), `w{i}_{h}` (displacement, m) and `a{i}_{h}` (absolute acceleration, m/s²).
-    pub fn columns(&self) -> Vec<String> {
-        let mut out = Vec::new();
-        for (i, st) in self.stations.iter().enumerate() {
-            for h in &st.heights {
-                out.push(format!("w{}_{h}", i + 1));
-                out.push(format!("a{}_{h}", i + 1));
-            }
-        }
-        out
-    }
-
-    /// Record one observation; with a `sink`, every floor history sample due by then (times
-    /// `k·interval`, as history.csv): displacements on the cubic Hermite interpolant between
-    /// observations, and for the acceleration the value of largest size since the previous
-    /// sample (so that an impact's spike shows at the sample after it, at its true size).
-    pub fn observe(
-        &mut self,
-        system: &System,
-        s: &StepView,
-        sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
-    ) {
-        self.observe_part(system, s, sink, None);
-    }
-
-    /// [`FloorRecorder::observe`] of a row's contact step that carried the structures
-    /// `stepped.active` only (`None`: every structure). A passive structure moved in exact
-    /// free flight: it is observed at the grid points (`stepped.grid`) and wherever a history
-    /// sample is due, so that its peaks between them come from the cubic Hermite interpolant
-    /// over the free flight, as a pair's free flight has them; one that a step carries again,
-    /// or whose history sample falls inside the interval since the last observation, is first
-    /// observed at the last observation it skipped ([`Saved`]: the samples are then
-    /// interpolated over the same interval as every structure's). Its peak accelerations are
-    /// sampled where it is observed.
-    pub(crate) fn observe_part(
-        &mut self,
-        system: &System,
-        s: &StepView,
-        sink: Option<&mut (dyn crate::recording::history::HistorySink + '_)>,
-        stepped: Option<&crate::integrate::Stepped>,
-    ) {
-        let n = system.len();
-        let (tau, eps) = (
-            self.next_sample as f64 * self.interval,
-            1e-9 * self.interval,
-        );
-        let due = sink.is_some() && tau <= s.t + eps;
-        // (a sample inside the interval since the last observation: every structure is
-        // interpolated over that interval, as history.csv's sampler does)
-        let inside = due && tau < s.t - eps;
-        let active = stepped.filter(|p| !p.grid && !due).map(|p| p.active);
-        let (full, resolution) = (self.full, self.resolution);
-        if self.saved.valid {
-            let sv = &self.saved;
-            let at = At {
-                t: sv.t,
-                q: &sv.q,
-                v: &sv.v,
-                accel: &sv.accel,
-                ag: sv.ag,
-                levels: &sv.levels,
-                z: &sv.z,
-            };
-            for (i, st) in self.stations.iter_mut().enumerate() {
-                let carried = stepped.is_some_and(|p| p.active[i]);
-                if (carried || inside) && st.last_t.is_some_and(|t| t < sv.t) {
-                    st.observe(system, &at, full, resolution);
-                    st.hold_now();
-                }
-            }
-        }
-        let (ag, vg) = system.ground.accel_velocity(s.t);
-        {
-            // (every slice cut to the modes once: no bounds check per mode)
-            let (la, lv) = (&system.ground_load()[..n], &system.air_load()[..n]);
-            let (damp, w) = (&system.damping_coefficients()[..n], &system.omega()[..n]);
-            let (q, v, accel) = (&s.q[..n], &s.v[..n], &mut self.accel[..n]);
-            for j in 0..n {
-                accel[j] = la[j] * ag + lv[j] * vg - damp[j] * v[j] - w[j] * w[j] * q[j];
-            }
-            for (k, st) in s.levels.iter().enumerate() {
-                if st.force != 0.0 {
-                    for (a, c) in accel.iter_mut().zip(system.coupling(k)) {
-                        *a += c * st.force;
-                    }
-                }
-            }
-            // yielding storeys: the pseudo-forces −e_s ΔV_s (crate::model::hysteresis)
-            let hy = &system.hysteresis;
-            for (k, st) in hy.storeys().iter().enumerate() {
-                let (d, _) = hy.drift(k, s.q, s.v);
-                let z = s.z.get(k).copied().unwrap_or(0.0);
-                let f = st.pseudo_force(d, z);
-                if f != 0.0 {
-                    for (a, e) in self.accel.iter_mut().zip(hy.row(k)) {
-                        *a -= e * f;
-                    }
-                }
-            }
-        }
-        let at = At {
-            t: s.t,
-            q: s.q,
-            v: s.v,
-            accel: &self.accel,
-            ag,
-            levels: s.levels,
-            z: s.z,
-        };
-        for (i, st) in self.stations.iter_mut().enumerate() {
-            st.fresh = active.is_none_or(|a| a[i]);
-            if st.fresh {
-                st.observe(system, &at, full, resolution);
-            }
-        }
-        match active {
-            // (a copy of this observation for the structures it skipped)
-            Some(_) => {
-                let sv = &mut self.saved;
-                sv.valid = true;
-                (sv.t, sv.ag) = (s.t, ag);
-                copy_into(&mut sv.q, s.q);
-                copy_into(&mut sv.v, s.v);
-                copy_into(&mut sv.accel, &self.accel);
-                sv.levels.clear();
-                sv.levels.extend_from_slice(s.levels);
-                copy_into(&mut sv.z, s.z);
-            }
-            None => self.saved.valid = false,
-        }
-        if let Some(sink) = sink {
-            self.emit(s.t, sink);
-        }
-    }
-
-    /// The floor history samples due by time `t` (the current observation; `h` since the
-    /// previous one).
-    fn emit(&mut self, t: f64, sink: &mut (dyn crate::recording::history::HistorySink + '_)) {
-        let eps = 1e-9 * self.interval;
-        let mut consumed = false;
-        loop {
-            let tau = self.next_sample as f64 * self.interval;
-            if tau > t + eps {
-                break;
-            }
-            // a sample strictly before this observation holds the accelerations up to the
-            // previous one; one at this observation includes it
-            let here = tau >= t - eps;
-            let mut k = 0;
-            // (every structure was observed now, a sample being due; each over its own
-            // interval: a row's passive ones since their last observation)
-            let mut last: Option<(Option<f64>, f64, Basis)> = None;
-            for st in &mut self.stations {
-                let h = st.h;
-                let (hh, basis) = match last {
-                    Some((lh, hh, b)) if lh == h => (hh, b),
-                    _ => {
-                        let th = match h {
-                            Some(h) if h > 0.0 && !here => ((tau - (t - h)) / h).clamp(0.0, 1.0),
-                            _ => 1.0,
-                        };
-                        // h01 = 3θ² − 2θ³ was written −2θ³ + 3θ² here: the same sum (addition
-                        // commutes exactly), so the rows are unchanged bit for bit
-                        let b = Basis::at(th);
-                        let hh = h.unwrap_or(0.0);
-                        last = Some((h, hh, b));
-                        (hh, b)
-                    }
-                };
-                for f in 0..st.heights.len() {
-                    let ((u0, d0), (u1, d1)) = (st.before[f], st.prev[f]);
-                    self.row[k] = basis.combine(u0, d0, u1, d1, hh);
-                    if here && st.abs_now[f].abs() > st.hold[f].abs() {
-                        st.hold[f] = st.abs_now[f];
-                    }
-                    self.row[k + 1] = st.hold[f];
-                    st.hold[f] = 0.0;
-                    k += 2;
-                }
-            }
-            sink.floor_row(tau, &self.row);
-            self.next_sample += 1;
-            consumed |= here;
-        }
-        if consumed {
-            return;
-        }
-        // this observation's accelerations count towards the next sample (of the structures
-        // it saw)
-        for st in &mut self.stations {
-            if st.fresh {
-                st.hold_now();
-            }
-        }
-    }
-
-    /// The peaks of every structure (row order), lowest station first.
-    pub fn finish(self) -> Vec<Vec<FloorPeaks>> {
-        self.stations.into_iter().map(Stations::finish).collect()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::building::{FloorDamping, Floors, ShearBuilding};
-
-    fn shear_building(modes: usize) -> ModalModel {
-        ShearBuilding {
-            floors: Floors {
-                heights: vec![3.0, 6.0, 9.0, 12.0],
-                masses: vec![2.0e5, 2.0e5, 1.8e5, 1.5e5],
-            },
-            storey_stiffnesses: vec![4.0e8, 3.5e8, 3.0e8, 2.0e8],
-            modes,
-            damping: FloorDamping::Modal(vec![0.05]),
-        }
-        .modal()
-        .expect("building")
-        .truncated(modes)
-    }
-
-    /// The bound of the stations' skip ([`reach`]) against the largest |y| of the cubic
-    /// Hermite interpolant over [0, h], computed in the test from its own closed form: the
-    /// cubic `y(θ) = y0 + m0 θ + (3Δ − 2m0 − m1) θ² + (m0 + m1 − 2Δ) θ³` (Δ = y1 − y0,
-    /// m = h·d: the power form of the basis), at 2 001 points and at the roots of its
-    /// derivative (a quadratic solved here), for random data over many orders of magnitude.
-    #[test]
-    fn the_skip_bound_holds_for_every_hermite_cubic() {
-        use proptest::prelude::*;
-        let mag = || (-6.0f64..2.0, -1.0f64..1.0).prop_map(|(e, s)| s * 10f64.powf(e));
-        let data = (mag(), mag(), mag(), mag(), -4.0f64..0.0)
-            .prop_map(|(y0, d0, y1, d1, e)| (y0, d0 * 1e2, y1, d1 * 1e2, 10f64.powf(e)));
-        proptest!(ProptestConfig::with_cases(4000), |((y0, d0, y1, d1, h) in data)| {
-            let (m0, m1, dy) = (h * d0, h * d1, y1 - y0);
-            let (c2, c3) = (3.0 * dy - 2.0 * m0 - m1, m0 + m1 - 2.0 * dy);
-            let y = |t: f64| y0 + t * (m0 + t * (c2 + t * c3));
-            let mut top = y0.abs().max(y1.abs());
-            for i in 0..=2000 {
-                top = top.max(y(i as f64 / 2000.0).abs());
-            }
-            // y' = m0 + 2c2 θ + 3c3 θ²: its roots in [0, 1]
-            let (a, b, c) = (3.0 * c3, 2.0 * c2, m0);
-            let disc = b * b - 4.0 * a * c;
-            if a != 0.0 && disc >= 0.0 {
-                for r in [(-b + disc.sqrt()) / (2.0 * a), (-b - disc.sqrt()) / (2.0 * a)] {
-                    if (0.0..=1.0).contains(&r) {
-                        top = top.max(y(r).abs());
-                    }
-                }
-            }
-            let bound = reach(y0, d0, y1, d1, h);
-            // (the power form rounds differently from the bound's terms: a few ulps of the
-            // largest term, |y| + |m0| + |c2| + |c3|, are allowed)
-            let scale = y0.abs() + m0.abs() + c2.abs() + c3.abs();
-            prop_assert!(
-                top <= bound + 1e-14 * scale,
-                "max |y| {top:e} above the bound {bound:e}"
-            );
-        });
-    }
-
-    /// The stations' skip changes no peak: two floor recorders observe the same runs, one
-    /// with the skip and one with the full update of every station at every observation
-    /// ([`FloorRecorder::full`]), and their peaks are equal to the last bit — two cantilevers
-    /// pounding under a harmonic motion, and two shear buildings (storey springs) under it
-    /// too, with `exact-modal` (contact sub-steps and free steps) and `rk4`.
-    #[test]
-    fn the_skip_changes_no_peak() {
-        use crate::integrate::{InitialState, Method, Observer, SolverSettings, integrate};
-        use crate::model::contact::ContactLaw;
-        use crate::model::ground_motion::{GroundMotion, Harmonic};
-        use crate::model::structure::{Cantilever, Damping, Stiffness};
-        use crate::model::system::ContactLevel;
-        struct Both(FloorRecorder, FloorRecorder);
-        impl Observer for Both {
-            fn observe(&mut self, system: &System, s: &StepView) {
-                self.0.observe(system, s, None);
-                self.1.observe(system, s, None);
-            }
-        }
-        let cantilever = |period: f64| {
-            Cantilever {
-                name: "c".into(),
-                length: 10.0,
-                mass: 2.0e6,
-                stiffness: Stiffness::Period(period),
-                modes: 3,
-                damping: Damping::Modal(vec![0.05]),
-            }
-            .modal()
-        };
-        let law = ContactLaw::Hertz { stiffness: 2.8e10 };
-        let ground = GroundMotion::Harmonic(Harmonic::from_pga_g(0.5, 0.5));
-        let level = |height: f64| ContactLevel { height, gap: 0.01 };
-        let pairs = [
-            ([cantilever(0.4), cantilever(0.7)], 10.0),
-            ([shear_building(4), shear_building(2)], 12.0),
-        ];
-        for ([a, b], height) in pairs {
-            let sys = System::new([a, b], &law, &[level(height)], ground.clone());
-            for (method, dt) in [(Method::ExactModal, 0.01), (Method::Rk4, 0.001)] {
-                let mut both = Both(
-                    FloorRecorder::new(&sys, &[height], 0.01),
-                    FloorRecorder::new(&sys, &[height], 0.01),
-                );
-                both.1.full = true;
-                let settings = SolverSettings::new(method, dt, 6.0);
-                integrate(&sys, &settings, &InitialState::default(), &mut both).unwrap();
-                let (skip, full) = (both.0.finish(), both.1.finish());
-                assert!(skip[0][0].displacement > 0.0, "the run moved");
-                assert_eq!(skip, full, "{method:?}, pair at {height} m");
-            }
-        }
-    }
-
-    /// A shear building's modes, all of them or the first two, are recognised as storey
-    /// springs with its own stiffnesses (to 1e-9), and the modes' equivalent static forces
-    /// `Σ_{g ≥ j} m_g φ_n(g) ω_n²` are `k_j (φ_n(j) − φ_n(j−1))` mode by mode; a structure whose
-    /// modes are not a chain's (the second mode's shape altered, so K φ ≠ ω² M φ for a chain)
-    /// keeps the modal rows.
-    #[test]
-    fn a_shear_buildings_modes_are_its_storey_springs() {
-        for modes in [4, 2] {
-            let m = shear_building(modes);
-            let st = Stations::new(&m, &[], &[], 0);
-            let StoreyForce::Springs(k) = &st.force else {
-                panic!("{modes} modes: not recognised as springs");
-            };
-            for (got, want) in k.iter().zip([4.0e8, 3.5e8, 3.0e8, 2.0e8]) {
-                assert!((got - want).abs() <= 1e-9 * want, "{got} vs {want}");
-            }
-        }
-        let mut m = shear_building(4);
-        if let Shapes::Floors { values, .. } = &mut m.shapes {
-            values[1][2] *= 1.01;
-        }
-        let st = Stations::new(&m, &[], &[], 0);
-        assert!(matches!(st.force, StoreyForce::Rows(_)));
     }
 }
