@@ -611,17 +611,7 @@ fn forty_modes_scenario(method: &str) -> Scenario {
 /// (each relative to its own reference peak, or to 10 % of the largest when below it: how the
 /// self-check measures a floor quantity), of `r` against the reference `shear`.
 fn shear_error(r: &Report, structure: usize, shear: &[f64; 10]) -> f64 {
-    let top = shear.iter().fold(0.0f64, |a, &b| a.max(b));
-    (1..=10)
-        .map(|k| {
-            let f = r.structures[structure]
-                .floors
-                .iter()
-                .find(|f| (f.height - k as f64).abs() < 1e-9)
-                .expect("a station every tenth of the height");
-            (f.peak_shear - shear[k - 1]).abs() / shear[k - 1].max(0.1 * top)
-        })
-        .fold(0.0, f64::max)
+    station_error(r, structure, shear, |f| f.peak_shear)
 }
 
 /// A cantilever's section shear is dominated by its highest modes (weighted by ω_n²), which a

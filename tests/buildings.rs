@@ -8,7 +8,7 @@ use pounding::analysis::simulate::{Report, simulate};
 use pounding::input::scenario::Scenario;
 
 mod common;
-use common::{Case, Physical, integrate_physical, physical};
+use common::{BUILDING_A as A, BUILDING_B as B, Case, Physical, integrate_physical, physical};
 
 fn scenario(text: &str) -> Result<Scenario, String> {
     common::scenario_named(text, "b.toml")
@@ -19,17 +19,6 @@ fn run(text: &str) -> Report {
 }
 
 const GROUND: &str = "[ground_motion]\nkind = \"harmonic\"\npga = 0.3\nperiod = 0.5\n";
-
-/// Building A: 3 storeys, Rayleigh-damped (classical damping C = a₀M + a₁K, so that the
-/// physical-coordinate integration below has exactly the modal model's damping).
-const A: &str = "[[structure]]\nname = \"A\"\nkind = \"shear-building\"\n\
-floor_heights = [3.0, 6.0, 9.0]\nfloor_masses = [2.0e5, 2.0e5, 1.5e5]\n\
-storey_stiffnesses = [3.0e8, 2.5e8, 2.0e8]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
-
-/// Building B: 2 storeys at the same floor heights, more flexible.
-const B: &str = "[[structure]]\nname = \"B\"\nkind = \"shear-building\"\n\
-floor_heights = [3.0, 6.0]\nfloor_masses = [1.8e5, 1.8e5]\n\
-storey_stiffnesses = [6.0e7, 5.0e7]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
 
 fn pair(contact: &str, solver: &str) -> String {
     format!("{A}{B}{contact}{GROUND}[solver]\n{solver}\n")

@@ -7,17 +7,7 @@
 use pounding::analysis::simulate::{Report, simulate, simulate_with_floor_resolution};
 
 mod common;
-use common::{Case, physical};
-
-/// Building A: 3 storeys, Rayleigh-damped (classical damping, so that the physical
-/// integration has exactly the modal model's damping), and building B: 2 storeys, more
-/// flexible (as tests/buildings.rs).
-const A: &str = "[[structure]]\nname = \"A\"\nkind = \"shear-building\"\n\
-floor_heights = [3.0, 6.0, 9.0]\nfloor_masses = [2.0e5, 2.0e5, 1.5e5]\n\
-storey_stiffnesses = [3.0e8, 2.5e8, 2.0e8]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
-const B: &str = "[[structure]]\nname = \"B\"\nkind = \"shear-building\"\n\
-floor_heights = [3.0, 6.0]\nfloor_masses = [1.8e5, 1.8e5]\n\
-storey_stiffnesses = [6.0e7, 5.0e7]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
+use common::{BUILDING_A as A, BUILDING_B as B, Case, physical};
 
 fn pair(dt: f64) -> String {
     format!(

@@ -417,3 +417,15 @@ pub fn model_json(script: &str) -> serde_json::Value {
     let end = script[start..].find("''')").expect("end of MODEL") + start;
     serde_json::from_str(&script[start..end]).expect("MODEL is JSON")
 }
+
+/// Building A of the floor-response tests (`tests/buildings.rs`, `tests/floors_between.rs`):
+/// 3 storeys, Rayleigh-damped (classical damping C = a₀M + a₁K, so that the physical-coordinate
+/// integration [`physical`] has exactly the modal model's damping).
+pub const BUILDING_A: &str = "[[structure]]\nname = \"A\"\nkind = \"shear-building\"\n\
+floor_heights = [3.0, 6.0, 9.0]\nfloor_masses = [2.0e5, 2.0e5, 1.5e5]\n\
+storey_stiffnesses = [3.0e8, 2.5e8, 2.0e8]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
+
+/// Building B of the same tests: 2 storeys at A's lower floor heights, more flexible.
+pub const BUILDING_B: &str = "[[structure]]\nname = \"B\"\nkind = \"shear-building\"\n\
+floor_heights = [3.0, 6.0]\nfloor_masses = [1.8e5, 1.8e5]\n\
+storey_stiffnesses = [6.0e7, 5.0e7]\nrayleigh = { damping_ratio = 0.03, modes = [1, 2] }\n";
