@@ -32,6 +32,7 @@
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
 
+mod pulse;
 mod station;
 #[cfg(test)]
 mod tests;
@@ -81,6 +82,8 @@ pub struct FloorRecorder {
     accel: Vec<f64>,
     /// The last observation that left structures unobserved (a row's passive ones).
     saved: Saved,
+    /// The previous observation, for the accelerations inside an impact pulse.
+    last: pulse::Last,
     /// Every station takes the full update at every observation (tests: the skip changes
     /// nothing).
     full: bool,
@@ -136,6 +139,7 @@ impl FloorRecorder {
             row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
             saved: Saved::default(),
+            last: pulse::Last::default(),
             full: false,
             resolution: Some(DEFAULT_RESOLUTION),
         }
@@ -256,6 +260,12 @@ impl FloorRecorder {
                 }
             }
         }
+        // the accelerations inside an impact pulse since the previous observation (of the
+        // stations last observed there)
+        // (with the sub-grid's resolution: `None` keeps the observations alone)
+        if self.resolution.is_some() {
+            self.last.pulse(system, s, &self.accel, &mut self.stations);
+        }
         let at = At {
             t: s.t,
             q: s.q,
@@ -285,6 +295,10 @@ impl FloorRecorder {
                 copy_into(&mut sv.z, s.z);
             }
             None => self.saved.valid = false,
+        }
+        match active {
+            None => self.last.keep(s, &self.accel),
+            Some(_) => self.last.valid = false,
         }
         if let Some(sink) = sink {
             self.emit(s.t, sink);
