@@ -1005,7 +1005,8 @@ fn damped_hertz_laws_match_an_independent_integration() {
 /// (`exact-modal` at dt = 10 ms, 6 s, as in `paper_case_c_floors_between_coarse_observations`)
 /// run as a row of two named structures gives every floor quantity's change of the pair's
 /// check, under the structure's name (`floor_acceleration_left`, …); and its accelerations'
-/// error in the impact pulses (1.2 % against the independent integration) is flagged NOT
+/// error (1.2 % against the independent integration at the observations alone, 1.7e-4 with the
+/// accelerations inside the impact pulses) is below the check's threshold, which says
 /// converged with an estimate within a factor 1.5 of the true error.
 #[test]
 fn a_rows_self_check_compares_its_floors() {
@@ -1060,20 +1061,20 @@ fn a_rows_self_check_compares_its_floors() {
             );
         }
     }
-    assert!(!row.accuracy.is_converged(), "{:?}", row.accuracy);
     let truth = station_error(&pair, 0, &reference.accel[0], |f| f.peak_acceleration);
     let estimate = change("floor_acceleration_left");
     eprintln!(
         "row: floor_acceleration_left: error {truth:.3e}, the check's estimate {estimate:.3e}"
     );
+    // (the accelerations inside the impact pulses, evaluated between the contact sub-steps,
+    // left the 1.2 % this run had at the observations alone; the check says converged only
+    // where the true error is below its threshold)
+    assert!(truth < 0.01, "{truth:.3e}");
+    assert!(row.accuracy.is_converged(), "{:?}", row.accuracy);
+    // (measured 1.7e-4 against an estimate of 1.4e-4: the check still names the error)
     assert!(
         estimate > truth / 1.5 && estimate < 1.5 * truth,
         "{estimate:.3e} vs {truth:.3e}"
-    );
-    let warning = row.accuracy.warning(&s.solver).expect("a warning");
-    assert!(
-        warning.contains("peak absolute floor acceleration of left"),
-        "{warning}"
     );
 }
 
