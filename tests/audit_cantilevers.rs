@@ -1152,8 +1152,9 @@ fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
         );
     }
     // The pulse's peaks (at 9 and 10 m, inside the impact at 4.303 s) now agree with the
-    // reference to 1e-4 (measured 9e-5 and 3e-6; the reference's own RK4 error at 10 µs and
-    // its sampling every 10 µs are below 1e-5). What is left (measured 0.62 %) is the peak at
+    // reference to 3e-4 (measured 2.1e-4 and 3e-6: sampled at quarters of each contact
+    // sub-step, a peak between them is off by at most 1/16 of the ends' 1 %, ≤ 6.5e-4; the
+    // reference's own RK4 error at 10 µs and its sampling every 10 µs are below 1e-5). What is left (measured 0.62 %) is the peak at
     // 6–7 m at 4.4205 s, just before an observation on the grid (4.421 s) after the impact:
     // no level carries force over that interval, and the check run has the same observation,
     // so its estimate does not see it; it is below the check's 1 % threshold, so "converged"
@@ -1165,7 +1166,7 @@ fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
             .find(|f| (f.height - k as f64).abs() < 1e-9)
             .expect("station");
         let e = (f.peak_acceleration - reference.accel[0][k - 1]).abs() / reference.accel[0][k - 1];
-        assert!(e < 1e-4, "{k} m: {e:.3e}");
+        assert!(e < 3e-4, "{k} m: {e:.3e}");
     }
     assert!(truth < 0.0065, "{truth:.3e}");
     assert!(truth < pounding::analysis::simulate::accuracy::CHECK_THRESHOLD);
