@@ -27,7 +27,8 @@
 //! accelerations and the equilibrium value are taken at the observations and, where the fast
 //! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
 //! form and its equation with the interval's linear load, [`Between`]); inside an impact pulse
-//! the observations are the contact sub-steps.
+//! the observations are the contact sub-steps, and the accelerations are also evaluated at the
+//! quarters of each sub-step where a level carries force (`pulse`).
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
