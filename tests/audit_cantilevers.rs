@@ -428,6 +428,8 @@ struct ModalReference {
     /// left structure, +1 the right one; the contact at the top loads every section).
     accel: [[f64; 10]; 2],
     shear_eq: [[f64; 10]; 2],
+    /// The time of each `accel` peak (s).
+    accel_time: [[f64; 10]; 2],
 }
 
 /// The independent integration of a [`ModalCase`]: the modal equations of docs/model.md §2.4
@@ -528,6 +530,7 @@ fn modal_reference(c: &ModalCase) -> ModalReference {
         peak: [0.0; 2],
         accel: [[0.0; 10]; 2],
         shear_eq: [[0.0; 10]; 2],
+        accel_time: [[0.0; 10]; 2],
     };
     for i in 0..steps {
         let t = i as f64 * h;
@@ -544,7 +547,9 @@ fn modal_reference(c: &ModalCase) -> ModalReference {
                 let v = sign * f
                     - (0..nm).map(|n| inertia[s][k][n] * etadd[n]).sum::<f64>()
                     - m * (L - x) * ag;
-                r.accel[s][k] = r.accel[s][k].max(a.abs());
+                if a.abs() > r.accel[s][k] {
+                    (r.accel[s][k], r.accel_time[s][k]) = (a.abs(), t);
+                }
                 r.shear_eq[s][k] = r.shear_eq[s][k].max(v.abs());
             }
         }
@@ -1000,7 +1005,8 @@ fn damped_hertz_laws_match_an_independent_integration() {
 /// (`exact-modal` at dt = 10 ms, 6 s, as in `paper_case_c_floors_between_coarse_observations`)
 /// run as a row of two named structures gives every floor quantity's change of the pair's
 /// check, under the structure's name (`floor_acceleration_left`, …); and its accelerations'
-/// error in the impact pulses (1.2 % against the independent integration) is flagged NOT
+/// error (1.2 % against the independent integration at the observations alone, 1.7e-4 with the
+/// accelerations inside the impact pulses) is below the check's threshold, which says
 /// converged with an estimate within a factor 1.5 of the true error.
 #[test]
 fn a_rows_self_check_compares_its_floors() {
@@ -1055,28 +1061,30 @@ fn a_rows_self_check_compares_its_floors() {
             );
         }
     }
-    assert!(!row.accuracy.is_converged(), "{:?}", row.accuracy);
     let truth = station_error(&pair, 0, &reference.accel[0], |f| f.peak_acceleration);
     let estimate = change("floor_acceleration_left");
     eprintln!(
         "row: floor_acceleration_left: error {truth:.3e}, the check's estimate {estimate:.3e}"
     );
+    // (the accelerations inside the impact pulses, evaluated between the contact sub-steps,
+    // left the 1.2 % this run had at the observations alone; the check says converged only
+    // where the true error is below its threshold)
+    assert!(truth < 0.01, "{truth:.3e}");
+    assert!(row.accuracy.is_converged(), "{:?}", row.accuracy);
+    // (measured 1.7e-4 against an estimate of 1.4e-4: the check still names the error)
     assert!(
         estimate > truth / 1.5 && estimate < 1.5 * truth,
         "{estimate:.3e} vs {truth:.3e}"
     );
-    let warning = row.accuracy.warning(&s.solver).expect("a warning");
-    assert!(
-        warning.contains("peak absolute floor acceleration of left"),
-        "{warning}"
-    );
 }
 
-/// The paper's case c (3 modes, ζ = 0.01, 20 s) with `exact-modal` at its default settings: its
-/// self-check now says NOT converged on structure 1's floor acceleration, and that is no false
-/// alarm: the peak acceleration in an impact pulse (sampled at the contact sub-steps, the force
-/// linear between them) is 1.03 % off the independent integration (RK4 at 10 µs), and the
-/// check's estimate is that error within a factor 1.5 (measured 1.01 %).
+/// The paper's case c (3 modes, ζ = 0.01, 20 s) with `exact-modal` at its default settings. The
+/// peak acceleration at the contact height falls inside an impact pulse, between observations
+/// (the reference's peak at 4.30285 s, the observations' largest at 4.303345 s). Taken at the
+/// observations alone (`simulate_with_floor_resolution(…, None)`) it is 1.03 % off the
+/// independent integration (RK4 at 10 µs) and the self-check says NOT converged with an
+/// estimate within a factor 1.5 of that error (1.01 %); with the accelerations evaluated inside
+/// the pulse (docs/model.md §2.6c) the run as it is agrees with the reference and its check.
 #[test]
 fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
     let reference = modal_reference(&ModalCase {
@@ -1097,7 +1105,27 @@ fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
          [solver]\nmethod = \"exact-modal\"\nduration = 20.0\n",
         PERIODS[0], PERIODS[1]
     );
+    use pounding::analysis::simulate::accuracy::{AccuracyCheck, floor_resolution, tightened};
+    use pounding::analysis::simulate::simulate_with_floor_resolution;
     let s = Scenario::from_toml(&text, "c.toml", Path::new(".")).expect("valid");
+    // the observations alone: flagged, the estimate within a factor 1.5 of the true error
+    let before = simulate_with_floor_resolution(&s, None).expect("runs");
+    let mut t = s.clone();
+    t.solver = tightened(&s.solver);
+    let tight = simulate_with_floor_resolution(&t, Some(floor_resolution())).expect("runs");
+    let check = AccuracyCheck::compare(&before, &tight, &s.solver);
+    let truth = station_error(&before, 0, &reference.accel[0], |f| f.peak_acceleration);
+    let estimate = check.change_of("floor_acceleration_1").expect("compared");
+    eprintln!(
+        "at the observations: floor_acceleration_1: error {truth:.3e}, the check's estimate {estimate:.3e}"
+    );
+    assert!(truth > 0.01, "premise: {truth:.3e}");
+    assert!(!check.is_converged());
+    assert!(
+        estimate > truth / 1.5 && estimate < 1.5 * truth,
+        "{estimate:.3e} vs {truth:.3e}"
+    );
+    // the run as it is, with its own self-check
     let r = simulate_checked(&s, true).expect("runs");
     let truth = station_error(&r, 0, &reference.accel[0], |f| f.peak_acceleration);
     let estimate = r
@@ -1107,10 +1135,40 @@ fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
     eprintln!(
         "default: floor_acceleration_1: error {truth:.3e}, the check's estimate {estimate:.3e}"
     );
-    assert!(truth > 0.01, "premise: {truth:.3e}");
-    assert!(!r.accuracy.is_converged());
-    assert!(
-        estimate > truth / 1.5 && estimate < 1.5 * truth,
-        "{estimate:.3e} vs {truth:.3e}"
-    );
+    for (k, f) in r.structures[0]
+        .floors
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.height >= 1.0)
+    {
+        let i = f.height.round() as usize - 1;
+        eprintln!(
+            "station {k} at {} m: reference {:.6} at {:.6} s, run {:.6} at {:.6} s",
+            f.height,
+            reference.accel[0][i],
+            reference.accel_time[0][i],
+            f.peak_acceleration,
+            f.peak_acceleration_time
+        );
+    }
+    // The pulse's peaks (at 9 and 10 m, inside the impact at 4.303 s) now agree with the
+    // reference to 3e-4 (measured 2.1e-4 and 3e-6: sampled at quarters of each contact
+    // sub-step, a peak between them is off by at most 1/16 of the ends' 1 %, ≤ 6.5e-4; the
+    // reference's own RK4 error at 10 µs and its sampling every 10 µs are below 1e-5). What is left (measured 0.62 %) is the peak at
+    // 6–7 m at 4.4205 s, just before an observation on the grid (4.421 s) after the impact:
+    // no level carries force over that interval, and the check run has the same observation,
+    // so its estimate does not see it; it is below the check's 1 % threshold, so "converged"
+    // is honest (0.65 % allows the 0.62 % measured).
+    for k in [9, 10] {
+        let f = r.structures[0]
+            .floors
+            .iter()
+            .find(|f| (f.height - k as f64).abs() < 1e-9)
+            .expect("station");
+        let e = (f.peak_acceleration - reference.accel[0][k - 1]).abs() / reference.accel[0][k - 1];
+        assert!(e < 3e-4, "{k} m: {e:.3e}");
+    }
+    assert!(truth < 0.0065, "{truth:.3e}");
+    assert!(truth < pounding::analysis::simulate::accuracy::CHECK_THRESHOLD);
+    assert!(r.accuracy.is_converged(), "{:?}", r.accuracy);
 }

@@ -27,11 +27,13 @@
 //! accelerations and the equilibrium value are taken at the observations and, where the fast
 //! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
 //! form and its equation with the interval's linear load, [`Between`]); inside an impact pulse
-//! the observations are the contact sub-steps.
+//! the observations are the contact sub-steps, and the accelerations are also evaluated at the
+//! quarters of each sub-step where a level carries force (`pulse`).
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
 
+mod pulse;
 mod station;
 #[cfg(test)]
 mod tests;
@@ -81,6 +83,8 @@ pub struct FloorRecorder {
     accel: Vec<f64>,
     /// The last observation that left structures unobserved (a row's passive ones).
     saved: Saved,
+    /// The previous observation, for the accelerations inside an impact pulse.
+    last: pulse::Last,
     /// Every station takes the full update at every observation (tests: the skip changes
     /// nothing).
     full: bool,
@@ -136,6 +140,7 @@ impl FloorRecorder {
             row: vec![0.0; cols],
             accel: vec![0.0; system.len()],
             saved: Saved::default(),
+            last: pulse::Last::default(),
             full: false,
             resolution: Some(DEFAULT_RESOLUTION),
         }
@@ -256,6 +261,12 @@ impl FloorRecorder {
                 }
             }
         }
+        // the accelerations inside an impact pulse since the previous observation (of the
+        // stations last observed there)
+        // (with the sub-grid's resolution: `None` keeps the observations alone)
+        if self.resolution.is_some() {
+            self.last.pulse(system, s, &self.accel, &mut self.stations);
+        }
         let at = At {
             t: s.t,
             q: s.q,
@@ -285,6 +296,10 @@ impl FloorRecorder {
                 copy_into(&mut sv.z, s.z);
             }
             None => self.saved.valid = false,
+        }
+        match active {
+            None => self.last.keep(s, &self.accel),
+            Some(_) => self.last.valid = false,
         }
         if let Some(sink) = sink {
             self.emit(s.t, sink);

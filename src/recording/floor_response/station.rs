@@ -930,6 +930,21 @@ impl Stations {
         bt.prev_ag = ag;
     }
 
+    /// Raise the peak absolute accelerations with those at time `t` (s) between two
+    /// observations: the system's modal accelerations `accel` and the ground's `ag` (m/s²).
+    pub(super) fn raise_accelerations(&mut self, t: f64, accel: &[f64], ag: f64) {
+        let (nm, ns) = (self.modes, self.heights.len());
+        let a = &accel[self.offset..self.offset + nm];
+        for (f, p) in self.peaks.iter_mut().enumerate() {
+            // (`phi` is mode-major: `[n·stations + station]`)
+            let x = (0..nm).map(|n| self.phi[n * ns + f] * a[n]).sum::<f64>() + ag;
+            if x.abs() > p.acceleration {
+                p.acceleration = x.abs();
+                p.acceleration_time = t;
+            }
+        }
+    }
+
     /// The accelerations of its last observation count towards the next history sample.
     pub(super) fn hold_now(&mut self) {
         for f in 0..self.heights.len() {
