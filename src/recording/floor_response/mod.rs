@@ -297,10 +297,9 @@ impl FloorRecorder {
             }
             None => self.saved.valid = false,
         }
-        match active {
-            None => self.last.keep(s, &self.accel),
-            Some(_) => self.last.valid = false,
-        }
+        // (a partial observation of a row too: every mode is carried to each step's end, and
+        // only the stations observed at both ends are raised)
+        self.last.keep(s, &self.accel);
         if let Some(sink) = sink {
             self.emit(s.t, sink);
         }
