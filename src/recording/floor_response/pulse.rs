@@ -3,11 +3,12 @@
 //! a pulse peaks between them, and a floor's acceleration with it (at the contact height of
 //! paper case c at the default settings of `exact-modal` the observations alone missed the
 //! peak by 1 %). Over an interval where a level carries force at either end, the accelerations
-//! are also evaluated at [`PARTS`]` − 1` interior points: the modes' (η, η̇) from the cubic
-//! Hermite of (η, η̇) and (η̇, η̈) at the ends, each level's force from its law at the cubic
-//! Hermite of (δ, δ̇) — as the contact recorder finds the peak force — and the ground's
-//! motion where it is. Only rate-independent laws and structures without yielding storeys
+//! are also evaluated at [`PARTS`]` − 1` interior points: the modes' (η, η̇) from the quintic
+//! Hermite through (η, η̇, η̈) at both ends, each loaded level's force from its law at the
+//! (δ, δ̇) those give, and the ground's motion where it is. Only rate-independent laws and structures without yielding storeys
 //! take it (a damped law needs its approach speed, a Bouc–Wen storey its z).
+
+use std::ops::Range;
 
 use crate::integrate::StepView;
 use crate::model::system::{LevelState, System};
@@ -65,6 +66,9 @@ pub(super) struct Last {
     /// Scratch: the modes' (η, η̇) at an interior point.
     pub(super) qi: Vec<f64>,
     pub(super) vi: Vec<f64>,
+    /// Scratch: the mode ranges of the loaded levels' pairs sampled and left out.
+    usable: Vec<Range<usize>>,
+    excluded: Vec<Range<usize>>,
 }
 
 impl Last {
@@ -111,16 +115,22 @@ impl Last {
         // a mode with `ω h ≤ MAX_OMEGA_H` closely; a longer interval, a grid step of free
         // flight, is left to the observations and the sub-grid). Decided per pair, so that a
         // row's pair is sampled exactly as the same pair alone (tests/fragility_row.rs).
-        let (mut usable, mut excluded) = (Vec::new(), Vec::new());
+        let (mut usable, mut excluded) = (
+            std::mem::take(&mut self.usable),
+            std::mem::take(&mut self.excluded),
+        );
+        usable.clear();
+        excluded.clear();
         for k in (0..s.levels.len()).filter(|&k| loaded(k)) {
             let r = system.coupling_modes(k);
             let fast = w[r.clone()].iter().fold(0.0f64, |m, &x| m.max(x)) * h > MAX_OMEGA_H;
             if fast { &mut excluded } else { &mut usable }.push(r);
         }
         if usable.is_empty() {
+            (self.usable, self.excluded) = (usable, excluded);
             return;
         }
-        let within = |rs: &[std::ops::Range<usize>], st: &Stations| {
+        let within = |rs: &[Range<usize>], st: &Stations| {
             rs.iter()
                 .any(|r| r.start <= st.offset && st.offset + st.modes <= r.end)
         };
@@ -179,5 +189,6 @@ impl Last {
                 }
             }
         }
+        (self.usable, self.excluded) = (usable, excluded);
     }
 }

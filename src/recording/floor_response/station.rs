@@ -931,7 +931,8 @@ impl Stations {
     }
 
     /// Raise the peak absolute accelerations with those at time `t` (s) between two
-    /// observations: the system's modal accelerations `accel` and the ground's `ag` (m/s²).
+    /// observations: the system's modal accelerations `accel` and the ground's `ag` (m/s²);
+    /// they count towards the next floor history sample too.
     pub(super) fn raise_accelerations(&mut self, t: f64, accel: &[f64], ag: f64) {
         let (nm, ns) = (self.modes, self.heights.len());
         let a = &accel[self.offset..self.offset + nm];
@@ -941,6 +942,10 @@ impl Stations {
             if x.abs() > p.acceleration {
                 p.acceleration = x.abs();
                 p.acceleration_time = t;
+            }
+            // (and towards the next floor history sample, as the sub-grid's values)
+            if x.abs() > self.hold[f].abs() {
+                self.hold[f] = x;
             }
         }
     }
