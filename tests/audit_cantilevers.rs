@@ -720,11 +720,10 @@ fn accelerations_and_equilibrium_shear_of_forty_modes_after_stiff_impacts() {
     }
 }
 
-/// The paper's case c (3 modes, ζ = 0.01, Hertz 2.808e10, 0.6 g at 0.65 s) with
-/// `exact-modal` at dt = 10 ms (the guarded `run-paper-c` benchmark's setting), 6 s: modes 2
-/// and 3 (ω h = 0.9, 2.6) ring between the observations of the free flight.
-#[test]
-fn paper_case_c_floors_between_coarse_observations() {
+/// The paper's case c (3 modes, ζ = 0.01, Hertz 2.808e10, 0.6 g at 0.65 s) over `duration` s:
+/// its independent reference (RK4 at 10 µs) and its scenario with `exact-modal` and the
+/// `[solver]` lines `solver` (each ending in a newline).
+fn paper_case_c(solver: &str, duration: f64) -> (ModalReference, String) {
     let reference = modal_reference(&ModalCase {
         modes: 3,
         zeta: 0.01,
@@ -732,7 +731,7 @@ fn paper_case_c_floors_between_coarse_observations() {
         gap: 0.0127,
         pga_g: 0.6,
         tg: 0.65,
-        duration: 6.0,
+        duration,
         h: 1e-5,
     });
     let text = format!(
@@ -740,9 +739,18 @@ fn paper_case_c_floors_between_coarse_observations() {
          [[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 3\ndamping_ratio = 0.01\n\
          [contact]\nlaw = \"hertz\"\nstiffness = 2.808e10\ngap = 0.0127\n\
          [ground_motion]\nkind = \"harmonic\"\npga = 0.6\nperiod = 0.65\n\
-         [solver]\nmethod = \"exact-modal\"\ndt = 0.01\nduration = 6.0\n",
+         [solver]\nmethod = \"exact-modal\"\n{solver}duration = {duration:.1}\n",
         PERIODS[0], PERIODS[1]
     );
+    (reference, text)
+}
+
+/// The paper's case c (3 modes, ζ = 0.01, Hertz 2.808e10, 0.6 g at 0.65 s) with
+/// `exact-modal` at dt = 10 ms (the guarded `run-paper-c` benchmark's setting), 6 s: modes 2
+/// and 3 (ω h = 0.9, 2.6) ring between the observations of the free flight.
+#[test]
+fn paper_case_c_floors_between_coarse_observations() {
+    let (reference, text) = paper_case_c("dt = 0.01\n", 6.0);
     let s = Scenario::from_toml(&text, "c.toml", Path::new(".")).expect("valid");
     let now = simulate(&s).expect("runs");
     let before =
@@ -1087,24 +1095,7 @@ fn a_rows_self_check_compares_its_floors() {
 /// the pulse (docs/model.md §2.6c) the run as it is agrees with the reference and its check.
 #[test]
 fn paper_case_c_at_the_default_flags_its_pulse_accelerations() {
-    let reference = modal_reference(&ModalCase {
-        modes: 3,
-        zeta: 0.01,
-        kh: 2.808e10,
-        gap: 0.0127,
-        pga_g: 0.6,
-        tg: 0.65,
-        duration: 20.0,
-        h: 1e-5,
-    });
-    let text = format!(
-        "[[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 3\ndamping_ratio = 0.01\n\
-         [[structure]]\nlength = {L}\nmass = {M}\nperiod = {}\nmodes = 3\ndamping_ratio = 0.01\n\
-         [contact]\nlaw = \"hertz\"\nstiffness = 2.808e10\ngap = 0.0127\n\
-         [ground_motion]\nkind = \"harmonic\"\npga = 0.6\nperiod = 0.65\n\
-         [solver]\nmethod = \"exact-modal\"\nduration = 20.0\n",
-        PERIODS[0], PERIODS[1]
-    );
+    let (reference, text) = paper_case_c("", 20.0);
     use pounding::analysis::simulate::accuracy::{AccuracyCheck, floor_resolution, tightened};
     use pounding::analysis::simulate::simulate_with_floor_resolution;
     let s = Scenario::from_toml(&text, "c.toml", Path::new(".")).expect("valid");
