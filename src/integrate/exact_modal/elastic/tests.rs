@@ -108,17 +108,6 @@ fn deepest(sys: &System) -> StepTrace {
         .expect("contact steps")
 }
 
-/// The observed order of the local error of both schemes: one step of ω_c·h = 1, ½, ¼
-/// (⅛ for the companion) from the same state inside an impact, against 4000 RK4 steps of
-/// the full right-hand side over the same interval (its own error < 1e-15 of δ here). The
-/// propagated scheme's local error goes like h⁹ (order 8; Lobatto IIIA, 5 nodes) and the
-/// companion's like h⁷ (order 6): mean observed exponents in [8, 10] and [6, 8.5] on
-/// linear, Kelvin, Hertz (the paper's stiffness) and damped Hertz contact (measured 8.4,
-/// 8.8, 9.4, 9.3 and 7.1, 8.1, 7.4, 6.6: the Hertz law's δ^{3/2} and the damped laws' rate
-/// terms are not polynomials, so the asymptotic exponents come later than on the linear
-/// law's 7.0–7.2), and the propagated error at least 10× below the companion's from ω_c·h
-/// = ½ on (measured 30–800×). Without this gap the estimate would not bound the kept
-/// solution's error.
 /// Every level's (δ, δ̇) at the end of `tr` by `m` equal steps of the propagated scheme.
 fn substepped(sys: &System, tr: &StepTrace, m: usize) -> Vec<(f64, f64)> {
     let settings = SolverSettings::new(Method::ExactModal, 1e-3, 10.0);
@@ -208,6 +197,17 @@ fn a_trials_free_flight_to_the_nodes_is_each_modes_exact_motion() {
     }
 }
 
+/// The observed order of the local error of both schemes: one step of ω_c·h = 1, ½, ¼
+/// (⅛ for the companion) from the same state inside an impact, against 4000 RK4 steps of
+/// the full right-hand side over the same interval (its own error < 1e-15 of δ here). The
+/// propagated scheme's local error goes like h⁹ (order 8; Lobatto IIIA, 5 nodes) and the
+/// companion's like h⁷ (order 6): mean observed exponents in [8, 10] and [6, 8.5] on
+/// linear, Kelvin, Hertz (the paper's stiffness) and damped Hertz contact (measured 8.4,
+/// 8.8, 9.4, 9.3 and 7.1, 8.1, 7.4, 6.6: the Hertz law's δ^{3/2} and the damped laws' rate
+/// terms are not polynomials, so the asymptotic exponents come later than on the linear
+/// law's 7.0–7.2), and the propagated error at least 10× below the companion's from ω_c·h
+/// = ½ on (measured 30–800×). Without this gap the estimate would not bound the kept
+/// solution's error.
 #[test]
 fn local_errors_are_of_orders_eight_and_six() {
     for (name, contact) in [
