@@ -37,7 +37,13 @@ const L_M: f64 = 2.273e6;
 /// Hertz stiffness, N/m^1.5: the paper's, times `STIFF` from the environment (1000: the stiff case).
 fn kh() -> f64 {
     static K: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
-    *K.get_or_init(|| 2.808e10 * std::env::var("STIFF").ok().and_then(|s| s.parse().ok()).unwrap_or(1.0))
+    *K.get_or_init(|| {
+        2.808e10
+            * std::env::var("STIFF")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(1.0)
+    })
 }
 const GAP: f64 = 0.0127;
 const DT: f64 = 0.01;
@@ -51,8 +57,16 @@ struct Mode {
 }
 
 fn modes() -> [Mode; N] {
-    let lam: [f64; 3] = [1.875_104_068_711_961, 4.694_091_132_974_175, 7.854_757_438_237_613];
-    let mut out = [Mode { w: 0.0, z: 0.01, c: 0.0 }; N];
+    let lam: [f64; 3] = [
+        1.875_104_068_711_961,
+        4.694_091_132_974_175,
+        7.854_757_438_237_613,
+    ];
+    let mut out = [Mode {
+        w: 0.0,
+        z: 0.01,
+        c: 0.0,
+    }; N];
     for (s, t1) in [0.4203, 0.600_428_571_428_571_4].iter().enumerate() {
         let w1 = 2.0 * std::f64::consts::PI / t1;
         for i in 0..3 {
@@ -419,7 +433,12 @@ impl Model {
     /// The peak of the step's force σ·Σ g ℓ (sampled).
     fn peak(sc: Scheme, sg: Sing, g: &[f64]) -> f64 {
         let th = lobatto(sc.s);
-        let f = |x: f64| -> f64 { sigma(sg, x) * (0..th.len()).map(|p| g[p] * lagrange(&th, p, x)).sum::<f64>() };
+        let f = |x: f64| -> f64 {
+            sigma(sg, x)
+                * (0..th.len())
+                    .map(|p| g[p] * lagrange(&th, p, x))
+                    .sum::<f64>()
+        };
         let (mut m, mut at) = (f64::NEG_INFINITY, 0);
         for i in 0..=64 {
             let v = f(i as f64 / 64.0);
@@ -429,7 +448,10 @@ impl Model {
             }
         }
         // golden-section refinement around the best sample (the sampling alone is ~1e-6 off)
-        let (mut a, mut b) = (((at as f64) - 1.0).max(0.0) / 64.0, ((at as f64) + 1.0).min(64.0) / 64.0);
+        let (mut a, mut b) = (
+            ((at as f64) - 1.0).max(0.0) / 64.0,
+            ((at as f64) + 1.0).min(64.0) / 64.0,
+        );
         let r = 0.5 * (5f64.sqrt() - 1.0);
         for _ in 0..80 {
             let (c, d) = (b - r * (b - a), a + r * (b - a));
@@ -443,7 +465,8 @@ impl Model {
         let (d2, dd2) = delta(&self.md, b);
         let atol = rtol * 0.01;
         let w1 = self.md[0].w.max(self.md[3].w);
-        ((d1 - d2).abs() / (atol + rtol * w)).max((dd1 - dd2).abs() / (atol * w1 + rtol * rate.max(v0)))
+        ((d1 - d2).abs() / (atol + rtol * w))
+            .max((dd1 - dd2).abs() / (atol * w1 + rtol * rate.max(v0)))
     }
 
     fn quantise(&self, h: f64) -> usize {
@@ -455,7 +478,15 @@ impl Model {
 
     /// One impact from `st0` (δ = 0, δ̇ > 0 at t = 0), `k_on`: the first step's index;
     /// `t_eval`: when the state is compared (free flight after the release).
-    fn impact(&mut self, st0: &State, sc: Scheme, rtol: f64, k_on: &mut usize, t_eval: f64, dur: f64) -> Count {
+    fn impact(
+        &mut self,
+        st0: &State,
+        sc: Scheme,
+        rtol: f64,
+        k_on: &mut usize,
+        t_eval: f64,
+        dur: f64,
+    ) -> Count {
         let sorder = 2.0 * sc.s as f64 - 4.0 + 1.0; // companion's order + 1
         let mut st = *st0;
         let mut t = 0.0;
@@ -482,7 +513,11 @@ impl Model {
             let w = (d + GAP).abs();
             let onset = first && sc.onset;
             let sg = if onset { Sing::Onset } else { Sing::Poly };
-            let g0 = if onset { kh() * (dd * self.lengths[k]).powf(1.5) } else { law(d) };
+            let g0 = if onset {
+                kh() * (dd * self.lengths[k]).powf(1.5)
+            } else {
+                law(d)
+            };
             // a last step on the release
             if sc.release && !first && dd < 0.0 {
                 // δ̈ from the modes' equations
@@ -499,7 +534,11 @@ impl Model {
                 } else {
                     let r1 = (-dd - disc.sqrt()) / dda;
                     let r2 = (-dd + disc.sqrt()) / dda;
-                    [r1, r2].iter().copied().filter(|&x| x > 0.0).fold(f64::INFINITY, f64::min)
+                    [r1, r2]
+                        .iter()
+                        .copied()
+                        .filter(|&x| x > 0.0)
+                        .fold(f64::INFINITY, f64::min)
                 };
                 if tau.is_finite() && tau < 1.5 * self.lengths[k] {
                     let mut evals = 0;
@@ -512,7 +551,13 @@ impl Model {
                             c.accepted += 1;
                             c.release_steps += 1;
                             let part = ((t + 0.5 * h) / dur * 5.0).floor();
-                            c.parts[if part < 1.0 { 0 } else if part >= 4.0 { 2 } else { 1 }] += 1;
+                            c.parts[if part < 1.0 {
+                                0
+                            } else if part >= 4.0 {
+                                2
+                            } else {
+                                1
+                            }] += 1;
                             st = e8;
                             t += h;
                             break;
@@ -527,7 +572,11 @@ impl Model {
             let h = self.lengths[k];
             let tr = self.trial(&st, sc, sg, Some(k), h, g0);
             let (mut e, mut tri, mut hh) = match tr {
-                Some((e8, e6, nod, g)) => (self.err(&e8, &e6, w, v0, dd.abs(), rtol), Some((e8, nod, g)), h),
+                Some((e8, e6, nod, g)) => (
+                    self.err(&e8, &e6, w, v0, dd.abs(), rtol),
+                    Some((e8, nod, g)),
+                    h,
+                ),
                 None => (f64::INFINITY, None, h),
             };
             let mut kk = k;
@@ -564,7 +613,11 @@ impl Model {
             if e > 1.0 {
                 c.rejected += 1;
                 rejected = true;
-                let fac = if e.is_finite() { (0.9 * e.powf(-0.25)).clamp(0.1, 0.9) } else { 0.5 };
+                let fac = if e.is_finite() {
+                    (0.9 * e.powf(-0.25)).clamp(0.1, 0.9)
+                } else {
+                    0.5
+                };
                 k = self.quantise(self.lengths[kk] * fac).max(k + 1);
                 assert!(k < 160, "unreachable");
                 continue;
@@ -577,7 +630,13 @@ impl Model {
             first = false;
             c.accepted += 1;
             let part = ((t + 0.5 * hh) / dur * 5.0).floor();
-            c.parts[if part < 1.0 { 0 } else if part >= 4.0 { 2 } else { 1 }] += 1;
+            c.parts[if part < 1.0 {
+                0
+            } else if part >= 4.0 {
+                2
+            } else {
+                1
+            }] += 1;
             st = e8;
             t += hh;
             let mut fac = (0.9 * e.max(1e-12).powf(-1.0 / sorder)).clamp(0.2, 3.0);
@@ -600,7 +659,15 @@ impl Model {
 
     /// The last step, σ = (1 − θ)^{3/2}, its length solved so that δ(h) = 0 (secant, from the
     /// prediction τ). Returns both ends, h and the kept scheme's coefficients.
-    fn release_step(&mut self, st: &State, sc: Scheme, tau: f64, f0: f64, tol_d: f64, evals: &mut usize) -> Option<(State, State, f64, Vec<f64>)> {
+    fn release_step(
+        &mut self,
+        st: &State,
+        sc: Scheme,
+        tau: f64,
+        f0: f64,
+        tol_d: f64,
+        evals: &mut usize,
+    ) -> Option<(State, State, f64, Vec<f64>)> {
         let th8 = lobatto(sc.s);
         let th6 = lobatto(sc.s - 1);
         let mut run = |me: &Model, h: f64| -> Option<(State, Vec<f64>, f64, f64)> {
@@ -643,7 +710,10 @@ fn main() {
     let cases: Vec<(f64, f64)> = vec![(0.3, 0.0), (1.0, 0.0), (1.0, 0.3), (2.0, 0.1), (0.6, 0.5)];
     let make = |v: f64, hm: f64| -> State {
         // at the tops: u1 − u2 = gap, u̇1 − u̇2 = v; structure 1 carries ⅔ of it
-        let mut s = State { y: [0.0; N], v: [0.0; N] };
+        let mut s = State {
+            y: [0.0; N],
+            v: [0.0; N],
+        };
         let tip = 2.0 / L_M.sqrt();
         // displacements in first modes: u1 = 0.6 gap + …, u2 = −0.4 gap
         s.y[0] = 0.6 * GAP / tip;
@@ -656,14 +726,70 @@ fn main() {
         s
     };
     let schemes = [
-        ("poly5", Scheme { s: 5, onset: false, release: false }),
-        ("poly6", Scheme { s: 6, onset: false, release: false }),
-        ("onset5", Scheme { s: 5, onset: true, release: false }),
-        ("onset6", Scheme { s: 6, onset: true, release: false }),
-        ("rel5", Scheme { s: 5, onset: false, release: true }),
-        ("rel6", Scheme { s: 6, onset: false, release: true }),
-        ("both5", Scheme { s: 5, onset: true, release: true }),
-        ("both6", Scheme { s: 6, onset: true, release: true }),
+        (
+            "poly5",
+            Scheme {
+                s: 5,
+                onset: false,
+                release: false,
+            },
+        ),
+        (
+            "poly6",
+            Scheme {
+                s: 6,
+                onset: false,
+                release: false,
+            },
+        ),
+        (
+            "onset5",
+            Scheme {
+                s: 5,
+                onset: true,
+                release: false,
+            },
+        ),
+        (
+            "onset6",
+            Scheme {
+                s: 6,
+                onset: true,
+                release: false,
+            },
+        ),
+        (
+            "rel5",
+            Scheme {
+                s: 5,
+                onset: false,
+                release: true,
+            },
+        ),
+        (
+            "rel6",
+            Scheme {
+                s: 6,
+                onset: false,
+                release: true,
+            },
+        ),
+        (
+            "both5",
+            Scheme {
+                s: 5,
+                onset: true,
+                release: true,
+            },
+        ),
+        (
+            "both6",
+            Scheme {
+                s: 6,
+                onset: true,
+                release: true,
+            },
+        ),
     ];
     let args: Vec<String> = std::env::args().collect();
     let only: Option<&str> = args.get(1).map(|s| s.as_str());
@@ -731,8 +857,12 @@ fn main() {
     }
     // trials at equal error: per case, the error of today's scheme (poly5) at rtol 1e-8; each
     // scheme's trials interpolated log-log over its rtol sweep to that error
-    println!("\nsummary over the cases (trials summed; at equal error: interpolated to poly5's error at rtol 1e-8)");
-    println!("scheme   trials@1e-8  accepted@1e-8  state err@1e-8 / poly5's (geo. mean / max)  peak err / poly5's (geo. mean)  trials at poly5's state error  trials at poly5's peak error (rtol 1e-7)");
+    println!(
+        "\nsummary over the cases (trials summed; at equal error: interpolated to poly5's error at rtol 1e-8)"
+    );
+    println!(
+        "scheme   trials@1e-8  accepted@1e-8  state err@1e-8 / poly5's (geo. mean / max)  peak err / poly5's (geo. mean)  trials at poly5's state error  trials at poly5's peak error (rtol 1e-7)"
+    );
     let base = &all[0];
     if base.is_empty() {
         return;
