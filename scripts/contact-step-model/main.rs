@@ -1,4 +1,4 @@
-//! A throw-away model of one Hertz impact of the paper's case c (issue 25, brief `impactstep`):
+//! A throw-away model of one Hertz impact of the paper's case c (issue 25):
 //! how many contact sub-steps per impact each contact scheme needs at the same error.
 //!
 //! Not part of the crate (no dependency, not built by cargo): `rustc -O main.rs -o /tmp/ism && /tmp/ism`.
