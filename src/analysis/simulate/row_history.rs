@@ -93,6 +93,9 @@ pub(super) struct RowSampler<'p> {
     prev_t: Option<f64>,
     prev_q: Vec<f64>,
     prev_v: Vec<f64>,
+    /// Whether `before` already holds the previous observation's projections (it was
+    /// projected: a sample fell at or before it), so that `prev_q`, `prev_v` are not read.
+    before_kept: bool,
     /// Scratch: (w, ẇ) of every track at the previous and at this observation, and a sample.
     before: Vec<(f64, f64)>,
     now: Vec<(f64, f64)>,
@@ -145,6 +148,7 @@ impl<'p> RowSampler<'p> {
             prev_t: None,
             prev_q: vec![0.0; n],
             prev_v: vec![0.0; n],
+            before_kept: false,
             before: vec![(0.0, 0.0); nt],
             now: vec![(0.0, 0.0); nt],
             row: vec![0.0; nt],
@@ -186,7 +190,9 @@ impl<'p> RowSampler<'p> {
                 for (k, tr) in self.tracks.iter().enumerate() {
                     let r = tr.span.clone();
                     self.now[k] = project(&tr.phi, &s.q[r.clone()], &s.v[r.clone()]);
-                    self.before[k] = project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
+                    if !self.before_kept {
+                        self.before[k] = project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
+                    }
                 }
                 projected = true;
             }
@@ -211,9 +217,16 @@ impl<'p> RowSampler<'p> {
             self.next_sample += 1;
         }
         self.prev_t = Some(s.t);
-        let n = self.prev_q.len();
-        self.prev_q.copy_from_slice(&s.q[..n]);
-        self.prev_v.copy_from_slice(&s.v[..n]);
+        // (an observation that was projected is the next one's `before` as it stands, the
+        // same sums of the same state: no copy of the state needed then)
+        self.before_kept = projected;
+        if projected {
+            std::mem::swap(&mut self.before, &mut self.now);
+        } else {
+            let n = self.prev_q.len();
+            self.prev_q.copy_from_slice(&s.q[..n]);
+            self.prev_v.copy_from_slice(&s.v[..n]);
+        }
     }
 
     /// The sample in `row` into the in-memory history.

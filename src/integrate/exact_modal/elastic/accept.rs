@@ -263,6 +263,10 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 for j in 0..n {
                     let (gi, gt) = if pair {
                         PairLevel::moments(lanes, &self.cpl_t[j * nl..(j + 1) * nl])
+                    } else if !self.mode_act[j] {
+                        // (a row's passive mode: its levels carry no force over the step, so
+                        // every moment is 0 and the sums below are +0 exactly)
+                        (0.0, 0.0)
                     } else {
                         let holding = if row {
                             self.sys.levels_of_mode(j)
@@ -354,6 +358,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // whose state is known: the law against the force quartic between the nodes)
         let mut modal = 0.0;
         let mut law = 0.0;
+        // (the levels whose five nodal forces are all zero: a row's edge and passive levels,
+        // and solved ones out of contact over the step; their terms below subtract products
+        // with zeros, which leave the sums as they are)
+        for (l, live) in self.live.iter_mut().enumerate() {
+            *live = self.f8[l * 5..l * 5 + 5].iter().any(|&f| f != 0.0);
+        }
         // (a row's passive levels: no force, δ ≤ 0 along the step, no work)
         for &kk in &self.lv_seen {
             let f = &self.f8[kk * 5..kk * 5 + 5];
@@ -380,6 +390,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     0..nl
                 };
                 for l in band {
+                    if !self.live[l] {
+                        continue;
+                    }
                     let base = (self.sys.band_slot(kk, l) * 2 + slot) * 5;
                     for p in 0..5 {
                         let (a, b) = tab.w86[base + p];

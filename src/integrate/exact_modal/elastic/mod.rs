@@ -256,6 +256,8 @@ pub(super) struct Elastic<'a, O: Observer> {
     cabs_t: Vec<f64>,
     /// Per level, the contact quartic's (∫F dτ, ∫τF dτ) over the step being accepted.
     moments: Vec<(f64, f64)>,
+    /// Per level, whether any of its nodal forces over the step being accepted is non-zero.
+    live: Vec<bool>,
     /// Per level, the coefficients of the ground's extra work under a load along it
     /// ([`HarmonicTally::row_extra`]; harmonic motion).
     kextra: Vec<(f64, f64)>,
@@ -480,6 +482,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 .flat_map(|k| sys.coupling(k).iter().map(|c| c.abs()))
                 .collect(),
             moments: vec![(0.0, 0.0); nl],
+            live: vec![false; nl],
             kextra,
             dense_q: vec![0.0; 3 * n],
             dense_v: vec![0.0; 3 * n],
