@@ -96,9 +96,50 @@ pub struct Dofs {
     pub load: Vec<f64>,
     pub k: Vec<Vec<(usize, f64)>>,
     pub c: Vec<Vec<(usize, f64)>>,
+    /// Yielding storeys of a shear building (then `k` is empty: the storeys' forces restore).
+    pub bouc_wen: Option<BoucWen>,
+}
+
+/// Bouc–Wen storeys (README, Yielding storeys): `V_j = α k_j d_j + (1 − α) k_j d_y z_j`,
+/// `ż_j = (ḋ_j/d_y)[1 − |z_j|ⁿ(β sign(ḋ_j z_j) + γ)]`, one d_y, α, n, β, γ for every storey.
+#[derive(Clone, Debug)]
+pub struct BoucWen {
+    /// Initial storey stiffnesses k_j, N/m.
+    pub k: Vec<f64>,
+    /// m.
+    pub dy: f64,
+    pub alpha: f64,
+    pub n: f64,
+    pub beta: f64,
+    pub gamma: f64,
+}
+
+impl BoucWen {
+    /// The storey force (N) and ż at drift `d`, drift rate `dd`, state `z`.
+    fn force(&self, j: usize, d: f64, dd: f64, z: f64) -> (f64, f64) {
+        let s = if dd * z == 0.0 {
+            0.0
+        } else {
+            (dd * z).signum()
+        };
+        let zd = dd / self.dy * (1.0 - z.abs().powf(self.n) * (self.beta * s + self.gamma));
+        let k = self.k[j];
+        (
+            self.alpha * k * d + (1.0 - self.alpha) * k * self.dy * z,
+            zd,
+        )
+    }
 }
 
 impl Dofs {
+    /// A shear building's floors with yielding storeys `bw` (the damping of `p` kept).
+    pub fn yielding(p: &Physical, bw: BoucWen) -> Dofs {
+        let mut d = Dofs::of(p);
+        d.k = vec![Vec::new(); p.m.len()];
+        d.bouc_wen = Some(bw);
+        d
+    }
+
     /// A building's floors from its physical matrices.
     pub fn of(p: &Physical) -> Dofs {
         let sparse = |a: &Vec<Vec<f64>>| -> Vec<Vec<(usize, f64)>> {
@@ -117,6 +158,7 @@ impl Dofs {
             load: p.m.clone(),
             k: sparse(&p.k),
             c: sparse(&p.c),
+            bouc_wen: None,
         }
     }
 }
@@ -188,58 +230,110 @@ pub fn integrate_dofs(
         o += s.mass.len();
     }
     let n = mass.len();
+    // the yielding storeys: (building's Bouc–Wen, offset, storey) per dof
+    let mut yielding: Vec<Option<(&BoucWen, usize, usize)>> = Vec::new();
+    let mut o = 0;
+    for s in structures {
+        for j in 0..s.mass.len() {
+            yielding.push(s.bouc_wen.as_ref().map(|b| (b, o, j)));
+        }
+        o += s.mass.len();
+    }
+    let any_yielding = yielding.iter().any(|y| y.is_some());
+    // y = [x (n), ẋ (n), z (n)]
+    let m3 = 3 * n;
     let dot = |w: &[(usize, f64)], x: &[f64]| w.iter().map(|&(i, a)| a * x[i]).sum::<f64>();
-    let deriv =
-        |t: f64, y: &[f64], v0: &[f64], out: &mut [f64], fext: &mut [f64], fl: &mut [f64]| {
-            let a_g = -pga * (omega * t).sin();
-            let (u, v) = y.split_at(n);
-            fext.iter_mut().for_each(|x| *x = 0.0);
-            for (k, l) in levels.iter().enumerate() {
-                let d = dot(&l.left, u) - dot(&l.right, u) - l.gap;
-                fl[k] = if d > 0.0 {
-                    l.law.force(d, dot(&l.left, v) - dot(&l.right, v), v0[k])
-                } else {
-                    0.0
-                };
-                for &(i, a) in &l.left {
-                    fext[i] -= a * fl[k];
-                }
-                for &(i, a) in &l.right {
-                    fext[i] += a * fl[k];
-                }
+    let deriv = |t: f64,
+                 y: &[f64],
+                 v0: &[f64],
+                 out: &mut [f64],
+                 fext: &mut [f64],
+                 fl: &mut [f64],
+                 vst: &mut [f64]| {
+        let a_g = -pga * (omega * t).sin();
+        let (u, v) = (&y[..n], &y[n..2 * n]);
+        fext.iter_mut().for_each(|x| *x = 0.0);
+        for (k, l) in levels.iter().enumerate() {
+            let d = dot(&l.left, u) - dot(&l.right, u) - l.gap;
+            fl[k] = if d > 0.0 {
+                l.law.force(d, dot(&l.left, v) - dot(&l.right, v), v0[k])
+            } else {
+                0.0
+            };
+            for &(i, a) in &l.left {
+                fext[i] -= a * fl[k];
             }
+            for &(i, a) in &l.right {
+                fext[i] += a * fl[k];
+            }
+        }
+        if any_yielding {
             for r in 0..n {
-                let mut s = fext[r] - load[r] * a_g;
-                for &(c, a) in &kr[r] {
-                    s -= a * u[c];
+                out[2 * n + r] = 0.0;
+                if let Some((bw, o, j)) = yielding[r] {
+                    let below = |x: &[f64]| if j == 0 { 0.0 } else { x[o + j - 1] };
+                    let (vj, zd) = bw.force(j, u[r] - below(u), v[r] - below(v), y[2 * n + r]);
+                    out[2 * n + r] = zd;
+                    vst[r] = vj;
                 }
-                for &(c, a) in &cr[r] {
-                    s -= a * v[c];
-                }
-                out[r] = v[r];
-                out[n + r] = s / mass[r];
             }
-        };
-    let mut k = vec![vec![0.0; 2 * n]; 4];
-    let mut tmp = vec![0.0; 2 * n];
-    let (mut fe, mut f) = (vec![0.0; n], vec![0.0; levels.len()]);
+        }
+        for r in 0..n {
+            let mut s = fext[r] - load[r] * a_g;
+            // a yielding storey pushes its floor back and the floor below forward (`fext`
+            // keeps the contact forces alone: the equilibrium shear's external forces)
+            if let Some((_, o, _)) = yielding[r] {
+                s -= vst[r];
+                if r + 1 < n && yielding[r + 1].is_some_and(|(_, o2, _)| o2 == o) {
+                    s += vst[r + 1];
+                }
+            }
+            for &(c, a) in &kr[r] {
+                s -= a * u[c];
+            }
+            for &(c, a) in &cr[r] {
+                s -= a * v[c];
+            }
+            out[r] = v[r];
+            out[n + r] = s / mass[r];
+        }
+    };
+    let mut k = vec![vec![0.0; m3]; 4];
+    let mut tmp = vec![0.0; m3];
+    let (mut fe, mut f, mut vs) = (vec![0.0; n], vec![0.0; levels.len()], vec![0.0; n]);
     // one RK4 step of size h from (t, y) into `out`
     let mut step = |t: f64, y: &[f64], v0: &[f64], h: f64, out: &mut [f64]| {
-        deriv(t, y, v0, &mut k[0], &mut fe, &mut f);
-        for i in 0..2 * n {
+        deriv(t, y, v0, &mut k[0], &mut fe, &mut f, &mut vs);
+        for i in 0..m3 {
             tmp[i] = y[i] + 0.5 * h * k[0][i];
         }
         let (k0, rest) = k.split_at_mut(1);
-        deriv(t + 0.5 * h, &tmp, v0, &mut rest[0], &mut fe, &mut f);
-        for i in 0..2 * n {
+        deriv(
+            t + 0.5 * h,
+            &tmp,
+            v0,
+            &mut rest[0],
+            &mut fe,
+            &mut f,
+            &mut vs,
+        );
+        for i in 0..m3 {
             tmp[i] = y[i] + 0.5 * h * rest[0][i];
         }
-        deriv(t + 0.5 * h, &tmp, v0, &mut rest[1], &mut fe, &mut f);
-        for i in 0..2 * n {
+        deriv(
+            t + 0.5 * h,
+            &tmp,
+            v0,
+            &mut rest[1],
+            &mut fe,
+            &mut f,
+            &mut vs,
+        );
+        for i in 0..m3 {
             tmp[i] = y[i] + h * rest[1][i];
         }
-        deriv(t + h, &tmp, v0, &mut rest[2], &mut fe, &mut f);
-        for i in 0..2 * n {
+        deriv(t + h, &tmp, v0, &mut rest[2], &mut fe, &mut f, &mut vs);
+        for i in 0..m3 {
             out[i] = y[i] + h / 6.0 * (k0[0][i] + 2.0 * rest[0][i] + 2.0 * rest[1][i] + rest[2][i]);
         }
     };
@@ -261,9 +355,10 @@ pub fn integrate_dofs(
         impacts: vec![0; levels.len()],
         watched: vec![0.0; watch.len()],
     };
-    let (mut acc, mut fext, mut fl) = (vec![0.0; 2 * n], vec![0.0; n], vec![0.0; levels.len()]);
+    let (mut acc, mut fext, mut fl) = (vec![0.0; m3], vec![0.0; n], vec![0.0; levels.len()]);
+    let mut vst = vec![0.0; n];
     let mut observe = |t: f64, y: &[f64], v0: &[f64], peaks: &mut Peaks| {
-        deriv(t, y, v0, &mut acc, &mut fext, &mut fl);
+        deriv(t, y, v0, &mut acc, &mut fext, &mut fl, &mut vst);
         let a_g = -pga * (omega * t).sin();
         for (k, f) in fl.iter().enumerate() {
             peaks.force[k] = peaks.force[k].max(*f);
@@ -281,20 +376,24 @@ pub fn integrate_dofs(
                 above += fext[o + f] - p.m[f] * a;
                 let below = if f == 0 { 0.0 } else { y[o + f - 1] };
                 let springs = p.springs.as_ref().expect("shear buildings");
+                let storey = match structures[b].bouc_wen {
+                    Some(_) => vst[o + f],
+                    None => springs[f] * (y[o + f] - below),
+                };
                 pk.disp[f] = pk.disp[f].max(y[o + f].abs());
                 pk.acc[f] = pk.acc[f].max(a.abs());
                 pk.drift[f] = pk.drift[f].max((y[o + f] - below).abs());
-                pk.force[f] = pk.force[f].max((springs[f] * (y[o + f] - below)).abs());
+                pk.force[f] = pk.force[f].max(storey.abs());
                 pk.shear[f] = pk.shear[f].max(above.abs());
             }
             o += nn;
         }
     };
     let delta = |y: &[f64], l: &Level| dot(&l.left, y) - dot(&l.right, y) - l.gap;
-    let rate = |y: &[f64], l: &Level| dot(&l.left, &y[n..]) - dot(&l.right, &y[n..]);
-    let mut y = vec![0.0; 2 * n];
+    let rate = |y: &[f64], l: &Level| dot(&l.left, &y[n..2 * n]) - dot(&l.right, &y[n..2 * n]);
+    let mut y = vec![0.0; m3];
     let mut v0 = vec![1.0; levels.len()];
-    let mut trial = vec![0.0; 2 * n];
+    let mut trial = vec![0.0; m3];
     let steps = (duration / dt).round() as usize;
     observe(0.0, &y, &v0, &mut peaks);
     for s in 0..steps {
@@ -410,6 +509,7 @@ pub fn cantilever(
         load: lam.iter().map(|&l| m * length * nrm * simpson(l)).collect(),
         k: (0..modes).map(|i| vec![(i, om[i] * om[i])]).collect(),
         c: (0..modes).map(|i| vec![(i, 2.0 * zeta * om[i])]).collect(),
+        bouc_wen: None,
     };
     (dofs, lam.iter().map(|&l| shape(l, 1.0) * nrm).collect())
 }
