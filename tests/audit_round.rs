@@ -374,6 +374,8 @@ fn as_peaks(r: &Report) -> Peaks {
         force: r.levels.iter().map(|l| l.peak_force).collect(),
         impacts: vec![r.contact.impacts],
         watched: vec![],
+        watched_acc: vec![],
+        watched_acc_time: vec![],
     }
 }
 
@@ -511,6 +513,7 @@ fn cantilever_lines(
     h: f64,
     laws: &[(&str, String, fn(f64) -> Law)],
     shears: bool,
+    methods: &[&str],
 ) -> Vec<(String, Line)> {
     let (mass, length, periods, zeta, gap) = (2.273e6, 10.0, [0.3, 0.6], 0.01, 0.0127);
     let (pga_g, tg) = (0.5, 0.8);
@@ -552,8 +555,18 @@ fn cantilever_lines(
             law: law(mstar),
         }];
         let om = 2.0 * std::f64::consts::PI / tg;
-        let want = integrate_dofs(&dofs, &[], &level, &watch, pga_g * G, om, duration, h);
-        for method in ["exact-modal", "adaptive"] {
+        let want = integrate_dofs(
+            &dofs,
+            &[],
+            &level,
+            &watch,
+            &watch[..2],
+            pga_g * G,
+            om,
+            duration,
+            h,
+        );
+        for method in methods {
             let text = format!(
                 "[[structure]]\nlength = {length}\nmass = {mass}\nperiod = {}\nmodes = {modes}\n\
                  damping_ratio = {zeta}\n[[structure]]\nlength = {length}\nmass = {mass}\n\
@@ -578,6 +591,15 @@ fn cantilever_lines(
                     "peak force".to_string(),
                 ),
             ];
+            // the absolute acceleration at the top (the contact point)
+            for s in 0..2 {
+                let top = r.structures[s].floors.last().expect("stations");
+                assert_eq!(top.height, length, "the top station");
+                errs.push((
+                    rel(top.peak_acceleration, want.watched_acc[s]),
+                    format!("structure {} acceleration at the top", s + 1),
+                ));
+            }
             if shears {
                 for s in 0..2 {
                     let ws = &want.watched[2 + 9 * s..2 + 9 * (s + 1)];
@@ -607,11 +629,23 @@ fn cantilever_lines(
                 impacts_ref: want.impacts[0],
             };
             line.print(&format!("cantilevers, {modes} modes, {name}"), method);
+            let top = r.structures[0].floors.last().expect("stations");
+            eprintln!(
+                "  top acceleration {} at {:?} s (reference {} at {} s); first impact at {:?} s",
+                top.peak_acceleration,
+                top.peak_acceleration_time,
+                want.watched_acc[0],
+                want.watched_acc_time[0],
+                r.impact_log.first().map(|i| i.start)
+            );
             out.push((format!("{name} {method}"), line));
         }
     }
     out
 }
+
+/// Both error-controlled methods.
+const BOTH: &[&str] = &["exact-modal", "adaptive"];
 
 const E: f64 = 0.6;
 const KH: f64 = 2.808e13;
@@ -664,7 +698,7 @@ fn damped_laws_on_stiff_cantilevers_with_3_modes_at_the_default() {
             jankowski,
         ),
     ];
-    for (what, line) in cantilever_lines(3, 6.0, 1e-5, &laws, true) {
+    for (what, line) in cantilever_lines(3, 6.0, 1e-5, &laws, true, BOTH) {
         line.assert_within(5e-3, &what, "");
     }
     let damped: Vec<(&str, String, fn(f64) -> Law)> = vec![(
@@ -672,7 +706,7 @@ fn damped_laws_on_stiff_cantilevers_with_3_modes_at_the_default() {
         format!("law = \"hertzdamp\"\nstiffness = {KH:e}\nrestitution = {E}\n"),
         hertzdamp,
     )];
-    for (what, line) in cantilever_lines(3, 6.0, 1e-5, &damped, false) {
+    for (what, line) in cantilever_lines(3, 6.0, 1e-5, &damped, false, BOTH) {
         line.assert_within(5e-3, &what, "");
     }
 }
@@ -693,7 +727,7 @@ fn damped_hertz_on_stiff_cantilevers_with_40_modes_at_the_default() {
         format!("law = \"hertzdamp\"\nstiffness = {KH:e}\nrestitution = {E}\n"),
         hertzdamp,
     )];
-    for (what, line) in cantilever_lines(40, 1.2, 2e-6, &damped, true) {
+    for (what, line) in cantilever_lines(40, 1.2, 2e-6, &damped, true, BOTH) {
         assert!(line.impacts_ref >= 5, "premise: they pound");
         line.assert_within(5e-3, &what, "");
     }
@@ -771,7 +805,7 @@ fn yielding_case(case: &str, bw_a: BoucWenKeys, bw_b: BoucWenKeys) {
         },
     ];
     let om = 2.0 * std::f64::consts::PI / TG;
-    let reference = |h| integrate_dofs(&dofs, &phys, &levels, &[], PGA_G * G, om, DURATION, h);
+    let reference = |h| integrate_dofs(&dofs, &phys, &levels, &[], &[], PGA_G * G, om, DURATION, h);
     let want = reference(4e-6);
     let spread = reference_spread(&want, &reference(8e-6));
     let mu: Vec<f64> = want
@@ -799,5 +833,44 @@ fn yielding_case(case: &str, bw_a: BoucWenKeys, bw_b: BoucWenKeys) {
         let line = pair_line(&text, &want);
         line.print(&format!("{case}, {name}"), m);
         line.assert_within(5e-3, case, m);
+    }
+}
+
+/// The Kelvin law (k = 1e11 N/m, e = 0.6) with 40 modes per cantilever, 0.6 s (the first
+/// impacts): its force jumps to `c δ̇₀` at each onset and the top's absolute acceleration peaks
+/// 4.4 µs later (the reference, RK4 at 1 µs: 1002.7 m/s² at 0.509456 s, the first onset at
+/// 0.5094516 s), while the highest modes ring. `exact-modal` at its default is within the bar
+/// on the top peaks, the force, the section shears and the top accelerations (measured 5.2e-4,
+/// check 3.4e-4).
+#[test]
+fn kelvin_on_stiff_cantilevers_with_40_modes_exact_modal() {
+    for (what, line) in cantilever_lines(40, 0.6, 1e-6, &kelvin_law(), true, &["exact-modal"]) {
+        assert!(line.impacts_ref >= 3, "premise: they pound");
+        line.assert_within(5e-3, &what, "");
+    }
+}
+
+fn kelvin_law() -> Vec<(&'static str, String, fn(f64) -> Law)> {
+    vec![(
+        "kelvin",
+        format!("law = \"kelvin\"\nstiffness = {KL:e}\nrestitution = {E}\n"),
+        kelvin,
+    )]
+}
+
+/// FINDING (src/recording/floor_response/, not this audit's code): the same case with
+/// `adaptive` at its default reports the top's peak absolute acceleration 5.7 % low (945.9
+/// m/s² at 0.5094647 s against 1002.7 at 0.509456 s; its check run at rtol 1e-12 gets 1002.2).
+/// The check flags it (NOT CONVERGED, floor_acceleration_1 changed by 5.6 %): honest, but above
+/// the 0.5 % bar. The peak falls inside the first adaptive step after the onset (≈ 13 µs), where
+/// the recorder has no observation: the accelerations inside an impact pulse
+/// (floor_response/pulse.rs) are skipped for rate-dependent laws, Kelvin among them (its force
+/// needs δ and δ̇ only, not an onset speed). Everything else of this run is within 1.5e-5.
+#[test]
+#[ignore = "finding: adaptive misses the top's peak acceleration right after a Kelvin onset with 40 modes (5.7 % low; pulse sampling skips rate-dependent laws)"]
+fn kelvin_on_stiff_cantilevers_with_40_modes_adaptive() {
+    for (what, line) in cantilever_lines(40, 0.6, 1e-6, &kelvin_law(), true, &["adaptive"]) {
+        assert!(line.impacts_ref >= 3, "premise: they pound");
+        line.assert_within(5e-3, &what, "");
     }
 }

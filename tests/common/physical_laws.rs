@@ -189,6 +189,10 @@ pub struct Peaks {
     pub force: Vec<f64>,
     pub impacts: Vec<usize>,
     pub watched: Vec<f64>,
+    /// The peak |ẍ·w + a_g| of each `watch_acc` functional (an absolute acceleration, m/s²).
+    pub watched_acc: Vec<f64>,
+    /// When each `watched_acc` peak occurred (s).
+    pub watched_acc_time: Vec<f64>,
 }
 
 /// RK4 at step `dt` over `duration` of the `structures` (in row order) with the contact
@@ -202,6 +206,7 @@ pub fn integrate_dofs(
     buildings: &[Physical],
     levels: &[Level],
     watch: &[Vec<(usize, f64)>],
+    watch_acc: &[Vec<(usize, f64)>],
     pga: f64,
     omega: f64,
     duration: f64,
@@ -354,6 +359,8 @@ pub fn integrate_dofs(
         force: vec![0.0; levels.len()],
         impacts: vec![0; levels.len()],
         watched: vec![0.0; watch.len()],
+        watched_acc: vec![0.0; watch_acc.len()],
+        watched_acc_time: vec![0.0; watch_acc.len()],
     };
     let (mut acc, mut fext, mut fl) = (vec![0.0; m3], vec![0.0; n], vec![0.0; levels.len()]);
     let mut vst = vec![0.0; n];
@@ -365,6 +372,13 @@ pub fn integrate_dofs(
         }
         for (w, p) in watch.iter().zip(peaks.watched.iter_mut()) {
             *p = p.max(dot(w, y).abs());
+        }
+        for (i, w) in watch_acc.iter().enumerate() {
+            let a = (dot(w, &acc[n..2 * n]) + a_g).abs();
+            if a > peaks.watched_acc[i] {
+                peaks.watched_acc[i] = a;
+                peaks.watched_acc_time[i] = t;
+            }
         }
         let mut o = 0;
         for (b, p) in buildings.iter().enumerate() {
@@ -444,7 +458,7 @@ pub fn integrate(
     dt: f64,
 ) -> Peaks {
     let dofs: Vec<Dofs> = buildings.iter().map(Dofs::of).collect();
-    integrate_dofs(&dofs, buildings, levels, &[], pga, omega, duration, dt)
+    integrate_dofs(&dofs, buildings, levels, &[], &[], pga, omega, duration, dt)
 }
 
 /// Cantilever mode shape φ·√(mL) at ξ = x/L (docs/model.md §2.3, in decaying exponentials).
