@@ -511,7 +511,7 @@ fn cantilever_lines(
     modes: usize,
     duration: f64,
     h: f64,
-    laws: &[(&str, String, fn(f64) -> Law)],
+    laws: &[NamedLaw],
     shears: bool,
     methods: &[&str],
 ) -> Vec<(String, Line)> {
@@ -644,6 +644,9 @@ fn cantilever_lines(
     out
 }
 
+/// A law's name, its TOML lines and the law given m* (kg).
+type NamedLaw = (&'static str, String, fn(f64) -> Law);
+
 /// Both error-controlled methods.
 const BOTH: &[&str] = &["exact-modal", "adaptive"];
 
@@ -686,7 +689,7 @@ fn hertzdamp(_: f64) -> Law {
 /// 2.5 and 1.25 µs and cannot judge them.
 #[test]
 fn damped_laws_on_stiff_cantilevers_with_3_modes_at_the_default() {
-    let laws: Vec<(&str, String, fn(f64) -> Law)> = vec![
+    let laws: Vec<NamedLaw> = vec![
         (
             "kelvin",
             format!("law = \"kelvin\"\nstiffness = {KL:e}\nrestitution = {E}\n"),
@@ -701,7 +704,7 @@ fn damped_laws_on_stiff_cantilevers_with_3_modes_at_the_default() {
     for (what, line) in cantilever_lines(3, 6.0, 1e-5, &laws, true, BOTH) {
         line.assert_within(5e-3, &what, "");
     }
-    let damped: Vec<(&str, String, fn(f64) -> Law)> = vec![(
+    let damped: Vec<NamedLaw> = vec![(
         "hertzdamp",
         format!("law = \"hertzdamp\"\nstiffness = {KH:e}\nrestitution = {E}\n"),
         hertzdamp,
@@ -722,7 +725,7 @@ fn damped_laws_on_stiff_cantilevers_with_3_modes_at_the_default() {
 /// true error of 2.2e-6 on peaks: a false alarm, not measured on the shears.)
 #[test]
 fn damped_hertz_on_stiff_cantilevers_with_40_modes_at_the_default() {
-    let damped: Vec<(&str, String, fn(f64) -> Law)> = vec![(
+    let damped: Vec<NamedLaw> = vec![(
         "hertzdamp",
         format!("law = \"hertzdamp\"\nstiffness = {KH:e}\nrestitution = {E}\n"),
         hertzdamp,
@@ -850,7 +853,7 @@ fn kelvin_on_stiff_cantilevers_with_40_modes_exact_modal() {
     }
 }
 
-fn kelvin_law() -> Vec<(&'static str, String, fn(f64) -> Law)> {
+fn kelvin_law() -> Vec<NamedLaw> {
     vec![(
         "kelvin",
         format!("law = \"kelvin\"\nstiffness = {KL:e}\nrestitution = {E}\n"),
