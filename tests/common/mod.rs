@@ -15,6 +15,7 @@
 // (each test file uses part of it)
 #![allow(dead_code)]
 
+pub mod audit_line;
 pub mod physical_laws;
 
 use std::path::Path;
