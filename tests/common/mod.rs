@@ -15,6 +15,9 @@
 // (each test file uses part of it)
 #![allow(dead_code)]
 
+pub mod audit_line;
+pub mod physical_laws;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
