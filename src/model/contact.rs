@@ -256,6 +256,13 @@ impl ContactForce {
         }
     }
 
+    /// Whether the force depends on the episode's approach speed v₀ (the damped Hertz law), which
+    /// a state taken on its own (δ, δ̇) does not carry.
+    #[inline]
+    pub fn needs_approach_speed(&self) -> bool {
+        matches!(self, ContactForce::HertzDamp { .. })
+    }
+
     /// Whether the force depends on the penetration rate δ̇ (the damped laws): its peak over an
     /// impact then comes before the largest penetration, not with it.
     #[inline]

@@ -5,8 +5,9 @@
 //! peak by 1 %). Over an interval where a level carries force at either end, the accelerations
 //! are also evaluated at [`PARTS`]` − 1` interior points: the modes' (η, η̇) from the quintic
 //! Hermite through (η, η̇, η̈) at both ends, each loaded level's force from its law at the
-//! (δ, δ̇) those give, and the ground's motion where it is. Only rate-independent laws and structures without yielding storeys
-//! take it (a damped law needs its approach speed, a Bouc–Wen storey its z).
+//! (δ, δ̇) those give, and the ground's motion where it is. Laws whose force is a function of
+//! (δ, δ̇) alone (Hertz, linear, Kelvin, Jankowski) and structures without yielding storeys take
+//! it (the damped Hertz law needs its episode's approach speed, a Bouc–Wen storey its z).
 
 use std::ops::Range;
 
@@ -105,7 +106,7 @@ impl Last {
         if !(0..s.levels.len()).any(loaded) {
             return;
         }
-        if (0..s.levels.len()).any(|k| loaded(k) && system.levels[k].force.rate_dependent()) {
+        if (0..s.levels.len()).any(|k| loaded(k) && system.levels[k].force.needs_approach_speed()) {
             return;
         }
         let (la, lv) = (&system.ground_load()[..n], &system.air_load()[..n]);
