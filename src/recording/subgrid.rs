@@ -535,6 +535,7 @@ impl SubGrid {
     /// coefficients `c`): every mode's rate of acceleration at both ends under the interval's
     /// linear forcing, `η⃛ = ḟ − 2σ η̈ − ω² η̇` with `ḟ = (f₁ − f₀)/h` (the closed form's, as
     /// [`SubGrid::accelerations`]), returned as (start, end). `None` before the first interval.
+    #[inline(never)]
     pub(crate) fn jerks(
         &mut self,
         h: f64,
