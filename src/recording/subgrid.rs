@@ -159,6 +159,10 @@ pub(crate) struct SubGrid {
     /// [`SubGrid::accelerations`]).
     etadd: Vec<f64>,
     etaddd: Vec<f64>,
+    /// η⃛ of every mode at both ends of the interval under its linear forcing (set by
+    /// [`SubGrid::jerks`]).
+    jerk0: Vec<f64>,
+    jerk1: Vec<f64>,
 }
 
 impl SubGrid {
@@ -189,6 +193,8 @@ impl SubGrid {
             zeros: Vec::new(),
             etadd: Vec::new(),
             etaddd: Vec::new(),
+            jerk0: vec![0.0; modes],
+            jerk1: vec![0.0; modes],
         }
     }
 
@@ -522,6 +528,42 @@ impl SubGrid {
             y[k] = s;
             yd[k] = sd;
         }
+    }
+
+    /// Before [`SubGrid::advance`], over the interval of length `h` ending at this observation
+    /// (modal velocities `v` and accelerations `a`, the structure's `omega` and damping
+    /// coefficients `c`): every mode's rate of acceleration at both ends under the interval's
+    /// linear forcing, `η⃛ = ḟ − 2σ η̈ − ω² η̇` with `ḟ = (f₁ − f₀)/h` (the closed form's, as
+    /// [`SubGrid::accelerations`]), returned as (start, end). `None` before the first interval.
+    #[inline(never)]
+    pub(crate) fn jerks(
+        &mut self,
+        h: f64,
+        (v, a): (&[f64], &[f64]),
+        omega: &[f64],
+        c: &[f64],
+    ) -> Option<(&[f64], &[f64])> {
+        if !self.have_prev {
+            return None;
+        }
+        let nm = self.prev_q.len();
+        let (v, a, omega, c) = (&v[..nm], &a[..nm], &omega[..nm], &c[..nm]);
+        let (j0, j1) = (&mut self.jerk0[..nm], &mut self.jerk1[..nm]);
+        let (q0, v0, f0, f1) = (
+            &self.prev_q[..nm],
+            &self.prev_v[..nm],
+            &self.prev_f[..nm],
+            &self.now_f[..nm],
+        );
+        for n in 0..nm {
+            let w2 = omega[n] * omega[n];
+            let slope = (f1[n] - f0[n]) / h;
+            // η̈ at the start from the mode's equation (the previous observation's)
+            let a0 = f0[n] - c[n] * v0[n] - w2 * q0[n];
+            j0[n] = slope - c[n] * a0 - w2 * v0[n];
+            j1[n] = slope - c[n] * a[n] - w2 * v[n];
+        }
+        Some((&self.jerk0[..nm], &self.jerk1[..nm]))
     }
 
     /// Keep this observation's state for the next interval.
