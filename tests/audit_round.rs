@@ -119,10 +119,11 @@ fn two_level_pair(law: &str, solver: &str) -> String {
     )
 }
 
-/// The independent reference of [`two_level_pair`] with `laws` at 6 m and 3 m, RK4 at `dt`.
-fn reference_pair(laws: [Law; 2], dt: f64) -> Peaks {
+/// The two contact levels of [`two_level_pair`] in the reference: `laws` at 6 m and 3 m
+/// (building A's floors 2 and 1 against B's 2 and 1), gap 10 mm.
+fn pair_levels(laws: [Law; 2]) -> [Level; 2] {
     let sizes = [3, 2];
-    let levels = [
+    [
         Level {
             left: floor(&sizes, 0, 1),
             right: floor(&sizes, 1, 1),
@@ -135,7 +136,12 @@ fn reference_pair(laws: [Law; 2], dt: f64) -> Peaks {
             gap: 0.01,
             law: laws[1],
         },
-    ];
+    ]
+}
+
+/// The independent reference of [`two_level_pair`] with `laws` at 6 m and 3 m, RK4 at `dt`.
+fn reference_pair(laws: [Law; 2], dt: f64) -> Peaks {
+    let levels = pair_levels(laws);
     integrate(
         &physical_pair(),
         &levels,
@@ -431,21 +437,7 @@ fn yielding_case(case: &str, bw_a: BoucWenKeys, bw_b: BoucWenKeys) {
             )
         })
         .collect();
-    let sizes = [3, 2];
-    let levels = [
-        Level {
-            left: floor(&sizes, 0, 1),
-            right: floor(&sizes, 1, 1),
-            gap: 0.01,
-            law: laws[0],
-        },
-        Level {
-            left: floor(&sizes, 0, 0),
-            right: floor(&sizes, 1, 0),
-            gap: 0.01,
-            law: laws[1],
-        },
-    ];
+    let levels = pair_levels(laws);
     let om = 2.0 * std::f64::consts::PI / TG;
     let reference = |h| integrate_dofs(&dofs, &phys, &levels, &[], &[], PGA_G * G, om, DURATION, h);
     let want = reference(4e-6);
