@@ -12,7 +12,7 @@
 use std::path::Path;
 
 mod common;
-use common::physical_laws::kelvin_xi;
+use common::physical_laws::{kelvin_xi, roots, shape};
 
 use pounding::analysis::simulate::{Report, simulate, simulate_checked};
 use pounding::input::scenario::Scenario;
@@ -88,19 +88,6 @@ fn record() -> (f64, Vec<f64>) {
     (dt, a)
 }
 
-/// Cantilever mode shape φ·√(mL) at ξ = x/L (docs/model.md §2.3, decaying exponentials).
-fn shape(lam: f64, xi: f64) -> f64 {
-    let e = f64::exp;
-    let d = 1.0 + e(-2.0 * lam) + 2.0 * lam.cos() * e(-lam);
-    let s = (1.0 - e(-2.0 * lam) - 2.0 * lam.sin() * e(-lam)) / d;
-    let ch_sh = (e(-lam * xi)
-        + e(-lam * (2.0 - xi))
-        + lam.cos() * (e(-lam * (1.0 - xi)) + e(-lam * (1.0 + xi)))
-        + lam.sin() * (e(-lam * (1.0 - xi)) - e(-lam * (1.0 + xi))))
-        / d;
-    ch_sh - (lam * xi).cos() + s * (lam * xi).sin()
-}
-
 /// Simpson's rule for ∫_a^b f with `n` (even) panels.
 fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
     let h = (b - a) / n as f64;
@@ -109,26 +96,6 @@ fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
         s += if i % 2 == 1 { 4.0 } else { 2.0 } * f(a + i as f64 * h);
     }
     s * h / 3.0
-}
-
-/// Roots of cos λ + 1/cosh λ = 0 near (2n−1)π/2, by bisection.
-fn roots(n: usize) -> Vec<f64> {
-    (1..=n)
-        .map(|k| {
-            let f = |x: f64| x.cos() + 1.0 / x.cosh();
-            let c = (2 * k - 1) as f64 * std::f64::consts::FRAC_PI_2;
-            let (mut a, mut b) = (c - 0.5, c + 0.5);
-            for _ in 0..200 {
-                let m = 0.5 * (a + b);
-                if (f(a) > 0.0) == (f(m) > 0.0) {
-                    a = m
-                } else {
-                    b = m
-                }
-            }
-            0.5 * (a + b)
-        })
-        .collect()
 }
 
 struct Reference {

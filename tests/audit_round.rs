@@ -214,27 +214,7 @@ fn every_law_on_two_levels_of_shear_buildings_at_the_default() {
 /// normalisation) and ζ.
 fn modal_a() -> String {
     let sc = common::scenario_named(&two_level_pair(&stiff_laws()[0].1, ""), "a.toml").unwrap();
-    let m = sc.structures[0].modal();
-    let heights = [3.0, 6.0, 9.0];
-    let periods: Vec<String> = m.periods().iter().map(|t| format!("{t:?}")).collect();
-    let shapes: Vec<String> = (0..m.len())
-        .map(|n| {
-            let v: Vec<String> = heights
-                .iter()
-                .map(|&h| format!("{:?}", -3.0 * m.shape(n, h) * 1e3))
-                .collect();
-            format!("[{}]", v.join(", "))
-        })
-        .collect();
-    let zeta: Vec<String> = m.zeta.iter().map(|z| format!("{z:?}")).collect();
-    format!(
-        "[[structure]]\nname = \"A\"\nkind = \"modal\"\nfloor_heights = [3.0, 6.0, 9.0]\n\
-         floor_masses = [2.0e5, 2.0e5, 1.5e5]\nperiods = [{}]\nmode_shapes = [{}]\n\
-         damping_ratio = [{}]\n",
-        periods.join(", "),
-        shapes.join(", "),
-        zeta.join(", ")
-    )
+    common::modal_building_a(&sc.structures[0].modal())
 }
 
 /// A report's floor peaks and level forces in the reference's form.

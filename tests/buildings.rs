@@ -148,26 +148,7 @@ fn modal_kind_from_a_shear_buildings_modes_gives_the_same_results() {
         let sc = scenario(&shear).unwrap();
         let m = sc.structures[0].modal();
         assert_eq!(m.len(), kept);
-        let heights = [3.0, 6.0, 9.0];
-        let periods: Vec<String> = m.periods().iter().map(|t| format!("{t:?}")).collect();
-        let shapes: Vec<String> = (0..kept)
-            .map(|n| {
-                let v: Vec<String> = heights
-                    .iter()
-                    .map(|&h| format!("{:?}", -3.0 * m.shape(n, h) * 1e3))
-                    .collect();
-                format!("[{}]", v.join(", "))
-            })
-            .collect();
-        let zeta: Vec<String> = m.zeta.iter().map(|z| format!("{z:?}")).collect();
-        let modal_a = format!(
-            "[[structure]]\nname = \"A\"\nkind = \"modal\"\nfloor_heights = [3.0, 6.0, 9.0]\n\
-             floor_masses = [2.0e5, 2.0e5, 1.5e5]\nperiods = [{}]\nmode_shapes = [{}]\n\
-             damping_ratio = [{}]\n",
-            periods.join(", "),
-            shapes.join(", "),
-            zeta.join(", ")
-        );
+        let modal_a = common::modal_building_a(&m);
         let modal = format!("{modal_a}{B}{contact}{GROUND}[solver]\n{solver}\n");
         let (a, b) = (run(&shear), run(&modal));
         for i in 0..2 {

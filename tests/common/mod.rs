@@ -421,6 +421,33 @@ pub fn model_json(script: &str) -> serde_json::Value {
     serde_json::from_str(&script[start..end]).expect("MODEL is JSON")
 }
 
+/// Building A ([`BUILDING_A`]: floors at 3, 6, 9 m, masses 2e5, 2e5, 1.5e5 kg) as the
+/// engineer's modes (`kind = "modal"`) given the modes `m` (its periods, ζ and shapes read at
+/// the floors, scaled by −3e3 to show the normalisation does not matter, printed to full
+/// precision): the same structure through the other door.
+pub fn modal_building_a(m: &pounding::model::modal::ModalModel) -> String {
+    let heights = [3.0, 6.0, 9.0];
+    let periods: Vec<String> = m.periods().iter().map(|t| format!("{t:?}")).collect();
+    let shapes: Vec<String> = (0..m.len())
+        .map(|n| {
+            let v: Vec<String> = heights
+                .iter()
+                .map(|&h| format!("{:?}", -3.0 * m.shape(n, h) * 1e3))
+                .collect();
+            format!("[{}]", v.join(", "))
+        })
+        .collect();
+    let zeta: Vec<String> = m.zeta.iter().map(|z| format!("{z:?}")).collect();
+    format!(
+        "[[structure]]\nname = \"A\"\nkind = \"modal\"\nfloor_heights = [3.0, 6.0, 9.0]\n\
+         floor_masses = [2.0e5, 2.0e5, 1.5e5]\nperiods = [{}]\nmode_shapes = [{}]\n\
+         damping_ratio = [{}]\n",
+        periods.join(", "),
+        shapes.join(", "),
+        zeta.join(", ")
+    )
+}
+
 /// Building A of the floor-response tests (`tests/buildings.rs`, `tests/floors_between.rs`):
 /// 3 storeys, Rayleigh-damped (classical damping C = a₀M + a₁K, so that the physical-coordinate
 /// integration [`physical`] has exactly the modal model's damping).

@@ -462,7 +462,7 @@ pub fn integrate(
 }
 
 /// Cantilever mode shape φ·√(mL) at ξ = x/L (docs/model.md §2.3, in decaying exponentials).
-fn shape(lam: f64, xi: f64) -> f64 {
+pub fn shape(lam: f64, xi: f64) -> f64 {
     let e = f64::exp;
     let d = 1.0 + e(-2.0 * lam) + 2.0 * lam.cos() * e(-lam);
     let s = (1.0 - e(-2.0 * lam) - 2.0 * lam.sin() * e(-lam)) / d;
@@ -475,7 +475,7 @@ fn shape(lam: f64, xi: f64) -> f64 {
 }
 
 /// Roots of cos λ + 1/cosh λ = 0 near (2n−1)π/2, by bisection.
-fn roots(n: usize) -> Vec<f64> {
+pub fn roots(n: usize) -> Vec<f64> {
     (1..=n)
         .map(|k| {
             let f = |x: f64| x.cos() + 1.0 / x.cosh();
