@@ -1114,6 +1114,41 @@ impl Stations {
         }
     }
 
+    /// Raise the peak equilibrium shears (`shear_with_damping`, N) with those at a point
+    /// between two observations: `V = C − Σ E_n η̈_n − M a_g` from the system's modal
+    /// accelerations `accel`, the ground's `ag` (m/s²) and every contact level's force there
+    /// `forces` (N, in the system's level order), as [`Stations::observe`] forms it at an
+    /// observation.
+    pub(super) fn raise_equilibrium(&mut self, accel: &[f64], ag: f64, forces: &[f64]) {
+        let (nm, ns) = (self.modes, self.heights.len());
+        let a = &accel[self.offset..self.offset + nm];
+        let (nl, stride) = (self.levels.min(forces.len()), self.levels);
+        let (signs, forces) = (&self.signs[..nl], &forces[..nl]);
+        let bt = &self.between;
+        // (floors: a level acts at its floor, and what is above a storey sums from the top; a
+        // cantilever's `above` already marks every level above the section)
+        let lumped = matches!(self.equilibrium, Equilibrium::Lumped(_));
+        let mut c_above = 0.0;
+        for f in (0..ns).rev() {
+            let row = &self.above[f * stride..f * stride + nl];
+            let mut c = 0.0;
+            for k in 0..nl {
+                if row[k] {
+                    c += signs[k] * forces[k];
+                }
+            }
+            if lumped {
+                c_above += c;
+                c = c_above;
+            }
+            let mut v = c - bt.mass_above[f] * ag;
+            for n in 0..nm {
+                v -= bt.eq_rows[n * ns + f] * a[n];
+            }
+            raise(&mut self.peaks[f].shear_with_damping, v.abs());
+        }
+    }
+
     /// The accelerations of its last observation count towards the next history sample.
     pub(super) fn hold_now(&mut self) {
         for f in 0..self.heights.len() {
