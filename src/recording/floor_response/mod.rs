@@ -35,6 +35,8 @@
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
 
+mod between;
+mod bounds;
 mod pulse;
 mod station;
 #[cfg(test)]
@@ -42,7 +44,7 @@ mod tests;
 
 use serde::Serialize;
 
-pub(crate) use station::refine;
+pub(crate) use bounds::refine;
 use station::{At, Saved, Stations, copy_into};
 
 use crate::integrate::StepView;
