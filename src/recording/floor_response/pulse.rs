@@ -202,8 +202,7 @@ impl Last {
         let raise_at = |stations: &mut [Stations], t: f64, accel: &[f64], ag: f64, f: &[f64]| {
             for st in stations.iter_mut() {
                 if st.last_t == Some(self.t) && within(&usable, st) && !within(&excluded, st) {
-                    st.raise_accelerations(t, accel, ag);
-                    st.raise_equilibrium(accel, ag, f);
+                    st.raise_at(t, accel, ag, f);
                 }
             }
         };

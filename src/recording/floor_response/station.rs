@@ -692,44 +692,29 @@ impl Stations {
         bt.prev_ag = ag;
     }
 
-    /// Raise the peak absolute accelerations with those at time `t` (s) between two
-    /// observations: the system's modal accelerations `accel` and the ground's `ag` (m/s²);
-    /// they count towards the next floor history sample too.
-    pub(super) fn raise_accelerations(&mut self, t: f64, accel: &[f64], ag: f64) {
-        let (nm, ns) = (self.modes, self.heights.len());
-        let a = &accel[self.offset..self.offset + nm];
-        for (f, p) in self.peaks.iter_mut().enumerate() {
-            // (`phi` is mode-major: `[n·stations + station]`)
-            let x = (0..nm).map(|n| self.phi[n * ns + f] * a[n]).sum::<f64>() + ag;
-            if x.abs() > p.acceleration {
-                p.acceleration = x.abs();
-                p.acceleration_time = t;
-            }
-            // (and towards the next floor history sample, as the sub-grid's values)
-            if x.abs() > self.hold[f].abs() {
-                self.hold[f] = x;
-            }
-        }
-    }
-
-    /// Raise the peak equilibrium shears (`shear_with_damping`, N) with those at a point
-    /// between two observations: `V = C − Σ E_n η̈_n − M a_g` from the system's modal
+    /// Raise the peak absolute accelerations and equilibrium shears (`shear_with_damping`, N)
+    /// with those at time `t` (s) between two observations, from the system's modal
     /// accelerations `accel`, the ground's `ag` (m/s²) and every contact level's force there
-    /// `forces` (N, in the system's level order), as [`Stations::observe`] forms it at an
-    /// observation.
-    pub(super) fn raise_equilibrium(&mut self, accel: &[f64], ag: f64, forces: &[f64]) {
+    /// `forces` (N, in the system's level order): `a = Σ φ_n η̈_n + a_g` (which counts towards
+    /// the next floor history sample too) and `V = C − Σ E_n η̈_n − M a_g`, as
+    /// [`Stations::observe`] forms them at an observation.
+    pub(super) fn raise_at(&mut self, t: f64, accel: &[f64], ag: f64, forces: &[f64]) {
         let (nm, ns) = (self.modes, self.heights.len());
         let a = &accel[self.offset..self.offset + nm];
         let (nl, stride) = (self.levels.min(forces.len()), self.levels);
         let (signs, forces) = (&self.signs[..nl], &forces[..nl]);
-        let bt = &self.between;
+        // (every slice cut once: no bounds check per mode; `phi` and `eq_rows` are mode-major,
+        // `[n·stations + station]`)
+        let (phi, eq_rows) = (&self.phi[..nm * ns], &self.between.eq_rows[..nm * ns]);
+        let (mass_above, above) = (&self.between.mass_above[..ns], &self.above[..ns * stride]);
+        let (peaks, hold) = (&mut self.peaks[..ns], &mut self.hold[..ns]);
         // (floors: a level acts at its floor, and what is above a storey sums from the top; a
         // cantilever's `above` already marks every level above the section)
         let lumped = matches!(self.equilibrium, Equilibrium::Lumped(_));
         let mut c_above = 0.0;
         for f in (0..ns).rev() {
-            let row = &self.above[f * stride..f * stride + nl];
             let mut c = 0.0;
+            let row = &above[f * stride..f * stride + nl];
             for k in 0..nl {
                 if row[k] {
                     c += signs[k] * forces[k];
@@ -739,11 +724,22 @@ impl Stations {
                 c_above += c;
                 c = c_above;
             }
-            let mut v = c - bt.mass_above[f] * ag;
+            let (mut x, mut v) = (0.0, c - mass_above[f] * ag);
             for n in 0..nm {
-                v -= bt.eq_rows[n * ns + f] * a[n];
+                x += phi[n * ns + f] * a[n];
+                v -= eq_rows[n * ns + f] * a[n];
             }
-            raise(&mut self.peaks[f].shear_with_damping, v.abs());
+            let x = x + ag;
+            let p = &mut peaks[f];
+            if x.abs() > p.acceleration {
+                p.acceleration = x.abs();
+                p.acceleration_time = t;
+            }
+            // (and towards the next floor history sample, as the sub-grid's values)
+            if x.abs() > hold[f].abs() {
+                hold[f] = x;
+            }
+            raise(&mut p.shear_with_damping, v.abs());
         }
     }
 
