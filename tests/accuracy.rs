@@ -251,6 +251,58 @@ fn a_check_that_changed_nothing_is_not_a_pass() {
     assert_eq!(acc.converged, Some(true));
 }
 
+/// At the smallest tolerances a scenario accepts (rtol 1e-12, atol 1e-14 m) the check run cannot
+/// be tighter: it integrates exactly as the run did. With impacts its report says so, is not
+/// converged, and its `max_change` is only that of what it could verify (the floor peaks, which
+/// it refines more finely), not a 0 from peaks and forces it merely repeated; the warning that
+/// the tightening fell short of 100× is not added beside it.
+#[test]
+fn a_check_that_cannot_tighten_says_what_it_could_verify() {
+    let text = paper_c(2.0).replace(
+        "method = \"rk4\"",
+        "method = \"exact-modal\"\nrtol = 1e-12\natol = 1e-14",
+    );
+    let sc = scenario(&text);
+    assert_eq!(sc.solver.rtol, 1e-12, "premise: the smallest rtol");
+    let tight = pounding::analysis::simulate::accuracy::tightened(&sc.solver);
+    assert_eq!(tight, sc.solver, "premise: nothing to tighten");
+    let r = simulate_checked(&sc, true).unwrap();
+    assert!(r.contact.impacts > 0);
+    let acc = &r.accuracy;
+    assert_eq!(acc.converged, Some(false));
+    let failure = acc.failure.as_deref().unwrap();
+    assert!(
+        failure.contains("smallest tolerances") && failure.contains("not verified"),
+        "{failure}"
+    );
+    assert!(!failure.contains("has no effect"), "{failure}");
+    // what it compared: the floors only (their change, refined more finely, may be 0)
+    let q = acc.max_change_quantity.expect("the floors were compared");
+    assert!(q.starts_with("floor_"), "{q}");
+    let floors = acc
+        .quantities
+        .iter()
+        .filter(|x| x.name.starts_with("floor_"))
+        .map(|x| x.change)
+        .fold(0.0, f64::max);
+    assert_eq!(acc.max_change, Some(floors));
+    let checks: Vec<_> = r
+        .warnings
+        .iter()
+        .filter(|w| w.contains("self-check"))
+        .collect();
+    assert_eq!(checks.len(), 1, "{checks:?}");
+    assert!(checks[0].contains("not verified"), "{}", checks[0]);
+    // one notch above the smallest the check run is tighter, and verifies the run
+    let r = simulate_checked(
+        &scenario(&text.replace("rtol = 1e-12", "rtol = 1e-10")),
+        true,
+    )
+    .unwrap();
+    assert!(r.accuracy.failure.is_none(), "{:?}", r.accuracy.failure);
+    assert!(r.accuracy.is_converged(), "{:?}", r.accuracy);
+}
+
 /// The self-check of `exact-modal` and `adaptive` does not redo the run without contact
 /// (`simulate::free_run_is_exact`): without contact both propagate every mode exactly on the
 /// grid of `dt` and no step depends on the tolerance, so that run is bit-identical at rtol and

@@ -29,12 +29,15 @@
 //! form and its equation with the interval's linear load, [`Between`]); where no mode is too
 //! fast for the cubic Hermite, on the Hermite of their values and rates between the
 //! observations of a free flight (`between_on_hermite`); inside an impact pulse
-//! the observations are the contact sub-steps, and the accelerations are also evaluated at the
-//! quarters of each sub-step where a level carries force (`pulse`).
+//! the observations are the contact sub-steps, and the accelerations and the equilibrium value
+//! are also evaluated at the quarters of each sub-step where a level carries force (`pulse`;
+//! a law whose force jumps at the onset, Kelvin's, from the acceleration just after the jump).
 
 // Index loops over parallel per-mode slices read like the sums they form.
 #![allow(clippy::needless_range_loop)]
 
+mod between;
+mod bounds;
 mod pulse;
 mod station;
 #[cfg(test)]
@@ -42,7 +45,7 @@ mod tests;
 
 use serde::Serialize;
 
-pub(crate) use station::refine;
+pub(crate) use bounds::refine;
 use station::{At, Saved, Stations, copy_into};
 
 use crate::integrate::StepView;

@@ -5,9 +5,13 @@
 //! peak by 1 %). Over an interval where a level carries force at either end, the accelerations
 //! are also evaluated at [`PARTS`]` − 1` interior points: the modes' (η, η̇) from the quintic
 //! Hermite through (η, η̇, η̈) at both ends, each loaded level's force from its law at the
-//! (δ, δ̇) those give, and the ground's motion where it is. Laws whose force is a function of
-//! (δ, δ̇) alone (Hertz, linear, Kelvin, Jankowski) and structures without yielding storeys take
-//! it (the damped Hertz law needs its episode's approach speed, a Bouc–Wen storey its z).
+//! (δ, δ̇) those give, and the ground's motion where it is; the equilibrium shear
+//! `V = C − Σ E_n η̈_n − M a_g` is raised at the same points, with those forces in `C`. Laws
+//! whose force is a function of (δ, δ̇) alone (Hertz, linear, Kelvin, Jankowski) and structures
+//! without yielding storeys take it (the damped Hertz law needs its episode's approach speed, a
+//! Bouc–Wen storey its z). Where a law's force jumps at δ = 0 (Kelvin's `c δ̇`), the quintic
+//! starts from the acceleration just after the jump at an onset (an observation there has the
+//! force before it), and that limit is raised too.
 
 use std::ops::Range;
 
@@ -63,7 +67,13 @@ pub(super) struct Last {
     pub(super) levels: Vec<LevelState>,
     /// Scratch: the modal accelerations at an interior point, the loaded levels' forces there.
     pub(super) inner: Vec<f64>,
-    pub(super) lf: Vec<f64>,
+    /// Scratch: every level's force at an interior point (0 where it carries none), N.
+    forces: Vec<f64>,
+    /// Scratch: the modal accelerations at both ends as limits from inside the interval.
+    a0: Vec<f64>,
+    a1: Vec<f64>,
+    /// Scratch: every level's force in those limits, at the start then at the end, N.
+    limits: Vec<f64>,
     /// Scratch: the modes' (η, η̇) at an interior point.
     pub(super) qi: Vec<f64>,
     pub(super) vi: Vec<f64>,
@@ -84,8 +94,9 @@ impl Last {
         self.levels.extend_from_slice(s.levels);
     }
 
-    /// Raise the stations' peak accelerations with those inside the interval from the kept
-    /// observation to `s` (modal accelerations `accel`) where a level carries force.
+    /// Raise the stations' peak accelerations and equilibrium shears with those inside the
+    /// interval from the kept observation to `s` (modal accelerations `accel`) where a level
+    /// carries force.
     pub(super) fn pulse(
         &mut self,
         system: &System,
@@ -138,8 +149,73 @@ impl Last {
         self.inner.resize(n, 0.0);
         self.qi.resize(n, 0.0);
         self.vi.resize(n, 0.0);
-        let (q0, v0, a0) = (&self.q[..n], &self.v[..n], &self.accel[..n]);
-        let (q1, v1, a1) = (&s.q[..n], &s.v[..n], &accel[..n]);
+        let nl = s.levels.len();
+        self.forces.clear();
+        self.forces.resize(nl, 0.0);
+        // The ends' accelerations as limits from inside the interval: a law whose force jumps
+        // where contact begins (Kelvin: `c δ̇` at δ = 0⁺) is observed at an onset with the force
+        // before the jump, and at a release (were its force to jump there) with the force
+        // after it. The quintic starts from the right-hand limit at an onset and ends at the
+        // left-hand one at a release, and those limits are values of the pulse itself.
+        copy_into(&mut self.a0, &self.accel[..n]);
+        copy_into(&mut self.a1, &accel[..n]);
+        self.limits.clear();
+        for k in 0..nl {
+            self.limits.push(self.levels[k].force);
+        }
+        for k in 0..nl {
+            self.limits.push(s.levels[k].force);
+        }
+        let mut jumps = [false; 2];
+        for k in (0..nl).filter(|&k| loaded(k)) {
+            let law = &system.levels[k].force;
+            let scale = self.levels[k].force.abs().max(s.levels[k].force.abs());
+            for (end, lv, a) in [
+                (0, &self.levels[k], &mut self.a0),
+                (1, &s.levels[k], &mut self.a1),
+            ] {
+                // an onset (approaching) at the start, a release (separating) at the end
+                let moving_in = if end == 0 {
+                    lv.delta_dot > 0.0
+                } else {
+                    lv.delta_dot < 0.0
+                };
+                if lv.delta > 0.0 || !moving_in {
+                    continue;
+                }
+                // the law's force just inside contact: `δ = 0⁺` as the smallest positive δ
+                // (the continuous laws give ~1e-297 N there, their round-off, left out
+                // below 1e-12 of the interval's force)
+                let inside = law.force(f64::MIN_POSITIVE, lv.delta_dot, lv.delta_dot);
+                let jump = inside - lv.force;
+                if jump.abs() > 1e-12 * scale {
+                    for (x, c) in a[..n].iter_mut().zip(system.coupling(k)) {
+                        *x += c * jump;
+                    }
+                    self.limits[end * nl + k] = inside;
+                    jumps[end] = true;
+                }
+            }
+        }
+        let (q0, v0, a0) = (&self.q[..n], &self.v[..n], &self.a0[..n]);
+        let (q1, v1, a1) = (&s.q[..n], &s.v[..n], &self.a1[..n]);
+        let raise_at = |stations: &mut [Stations], t: f64, accel: &[f64], ag: f64, f: &[f64]| {
+            for st in stations.iter_mut() {
+                if st.last_t == Some(self.t) && within(&usable, st) && !within(&excluded, st) {
+                    st.raise_at(t, accel, ag, f);
+                }
+            }
+        };
+        // the ends' limits where they differ from the observations
+        for (end, (on, t, a)) in [(jumps[0], self.t, a0), (jumps[1], s.t, a1)]
+            .into_iter()
+            .enumerate()
+        {
+            if on {
+                let ag = system.ground.accel_velocity(t).0;
+                raise_at(stations, t, a, ag, &self.limits[end * nl..(end + 1) * nl]);
+            }
+        }
         for j in 1..PARTS {
             let th = j as f64 / PARTS as f64;
             let t = self.t + th * h;
@@ -159,9 +235,11 @@ impl Last {
                 (qi[m], vi[m]) = (q, v);
                 inner[m] = la[m] * ag + lv[m] * vg - damp[m] * v - w[m] * w[m] * q;
             }
-            // each loaded level's force from its law at the interpolated state
-            for k in 0..s.levels.len() {
-                if self.levels[k].force == 0.0 && s.levels[k].force == 0.0 {
+            // each loaded level's force from its law at the interpolated state (the others
+            // carry none)
+            for k in 0..nl {
+                if !loaded(k) {
+                    self.forces[k] = 0.0;
                     continue;
                 }
                 let c = system.coupling(k);
@@ -170,25 +248,18 @@ impl Last {
                     cq += c[m] * qi[m];
                     cv += c[m] * vi[m];
                 }
-                self.lf.push(system.levels[k].state(cq, cv, 0.0).force);
+                self.forces[k] = system.levels[k].state(cq, cv, 0.0).force;
             }
-            let mut i = 0;
-            for k in 0..s.levels.len() {
-                if self.levels[k].force == 0.0 && s.levels[k].force == 0.0 {
+            for k in 0..nl {
+                let f = self.forces[k];
+                if !loaded(k) {
                     continue;
                 }
-                let f = self.lf[i];
-                i += 1;
                 for (a, c) in inner.iter_mut().zip(system.coupling(k)) {
                     *a += c * f;
                 }
             }
-            self.lf.clear();
-            for st in stations.iter_mut() {
-                if st.last_t == Some(self.t) && within(&usable, st) && !within(&excluded, st) {
-                    st.raise_accelerations(t, inner, ag);
-                }
-            }
+            raise_at(stations, t, inner, ag, &self.forces);
         }
         (self.usable, self.excluded) = (usable, excluded);
     }

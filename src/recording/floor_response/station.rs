@@ -7,9 +7,10 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::FloorPeaks;
+use super::between::{Between, between_on_hermite, between_on_subgrid};
+use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
-use crate::numerics::hermite::{hermite_abs_max, hermite_bound, hermite_max};
 use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
@@ -18,337 +19,10 @@ pub(super) fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
     dst.extend_from_slice(src);
 }
 
-/// The largest of the cubic Hermite slope basis functions θ(1−θ)², θ²(1−θ) on [0, 1].
-const HERMITE_REACH: f64 = 4.0 / 27.0;
-
 /// How closely (relative to the row's largest term) a floor's storey-force row must be `k_j`
 /// times its drift row for the floors to be taken as storey springs: far above the round-off
 /// of an eigen-solution (~1e-13) and far below any real departure from a chain of springs.
 const SPRING_MATCH: f64 = 1e-9;
-
-/// `peak = max(peak, x)` as a plain comparison (no NaN handling: a NaN state has already
-/// stopped the run as diverged).
-#[inline(always)]
-fn raise(peak: &mut f64, x: f64) {
-    if x > *peak {
-        *peak = x;
-    }
-}
-
-/// An upper bound of |y(θ)| over the cubic Hermite interpolant y of (y0, d0), (y1, d1) over a
-/// step `h` (module [`crate::numerics::hermite`]): its value weights h00, h01 are ≥ 0 and sum
-/// to 1, so they give at most the larger |end value|; its slope weights θ(1−θ)² and θ²(1−θ)
-/// are at most 4/27 (at θ = 1/3 and 2/3: the roots of their derivatives), so the slope terms
-/// add at most (4/27)·h·(|d0| + |d1|). The same expression, evaluated in the same order, is
-/// the test of [`refine`] and of the stations' skip in [`FloorRecorder::observe`]: a station
-/// whose bounds do not exceed its peaks is one where `refine` and `raise` change nothing.
-#[inline(always)]
-pub(crate) fn reach(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
-    // (a plain comparison, not f64::max: one instruction, and the values are finite)
-    let ends = if y0.abs() > y1.abs() {
-        y0.abs()
-    } else {
-        y1.abs()
-    };
-    ends + HERMITE_REACH * h * (d0.abs() + d1.abs())
-}
-
-/// Refine `peak` on the cubic Hermite interpolant of (y0, d0), (y1, d1) over a step `h`, only
-/// where it could beat the peak ([`reach`]).
-#[inline(always)]
-pub(crate) fn refine(peak: &mut f64, y0: f64, d0: f64, y1: f64, d1: f64, h: f64) {
-    if reach(y0, d0, y1, d1, h) > *peak {
-        raise(peak, hermite_abs_max(y0, d0, y1, d1, h));
-    }
-}
-
-/// The full update of one station's peaks at an observation at time `t` (`h` since the
-/// previous one): displacement and drift (`ends`: (y, ẏ) at the previous observation and at
-/// this one, of the displacement then of the drift) raised to this observation's values and
-/// refined between the observations, the absolute acceleration `a`, and the storey force
-/// `force` (V, V̇; `None`: formed at the end from the drift, storey springs) with its value at
-/// the previous observation in `prev_force`, which becomes this one's.
-#[inline(never)]
-fn update_station(
-    p: &mut FloorPeaks,
-    prev_force: &mut (f64, f64),
-    (t, h): (f64, Option<f64>),
-    [(up, udp), (u, ud), (dp, ddp), (d, dd)]: [(f64, f64); 4],
-    a: f64,
-    force: Option<(f64, f64)>,
-) {
-    raise(&mut p.displacement, u.abs());
-    raise(&mut p.drift, d.abs());
-    if let Some(h) = h {
-        refine(&mut p.displacement, up, udp, u, ud, h);
-        refine(&mut p.drift, dp, ddp, d, dd, h);
-    }
-    if a.abs() > p.acceleration {
-        p.acceleration = a.abs();
-        p.acceleration_time = t;
-    }
-    if let Some((v1, vd1)) = force {
-        raise(&mut p.shear, v1.abs());
-        if let Some(h) = h {
-            let (v0, vd0) = *prev_force;
-            refine(&mut p.shear, v0, vd0, v1, vd1, h);
-        }
-        *prev_force = (v1, vd1);
-    }
-}
-
-/// A bound of |Q| over an interval of length `h` for a station quantity `Q = Σ c_n η_n` with
-/// (Q, Q̇) at its ends `ends`, from the fast modes' sums `s` (`Σ c_n [η₀, η̇₀, η₁, η̇₁, α, β]`)
-/// and their ringing `ring = Σ |c_n| ρ_n` ([`crate::recording::subgrid`]): the Hermite bound
-/// of the slow modes' part ([`reach`]), the fast modes' linear part at its larger end, and
-/// their ringing.
-#[inline(always)]
-fn ring_bound(ends: (f64, f64, f64, f64), s: &[f64; 6], ring: f64, h: f64) -> f64 {
-    let slow = reach(
-        ends.0 - s[0],
-        ends.1 - s[1],
-        ends.2 - s[2],
-        ends.3 - s[3],
-        h,
-    );
-    // (a plain comparison for f64::max: the values are finite)
-    let (l0, l1) = (s[4].abs(), (s[4] + s[5] * h).abs());
-    let linear = if l0 > l1 { l0 } else { l1 };
-    slow + linear + ring
-}
-
-/// The peaks of displacement, drift and (`rows`) storey force of the stations `flagged` (of
-/// `ns`) refined on the sub-grid's parts (values and rates from the modes' closed forms).
-fn refine_on_subgrid(
-    g: &SubGrid,
-    flagged: &[usize],
-    ns: usize,
-    rows: bool,
-    peaks: &mut [FloorPeaks],
-) {
-    let dl = g.delta;
-    for &f in flagged {
-        let p = &mut peaks[f];
-        for k in 0..g.parts {
-            let (i0, i1) = (k * ns + f, (k + 1) * ns + f);
-            let (u0, ud0, u1, ud1) = (g.u[i0], g.ud[i0], g.u[i1], g.ud[i1]);
-            refine(&mut p.displacement, u0, ud0, u1, ud1, dl);
-            let (b0, bd0, b1, bd1) = if f > 0 {
-                (g.u[i0 - 1], g.ud[i0 - 1], g.u[i1 - 1], g.ud[i1 - 1])
-            } else {
-                (0.0, 0.0, 0.0, 0.0)
-            };
-            refine(&mut p.drift, u0 - b0, ud0 - bd0, u1 - b1, ud1 - bd1, dl);
-            if rows {
-                refine(&mut p.shear, g.v[i0], g.vd[i0], g.v[i1], g.vd[i1], dl);
-            }
-        }
-    }
-}
-
-/// The absolute accelerations and the equilibrium shears of the stations that need them
-/// (`st.between.flagged`) between the observations at `t − h` and `t`, on a sub-grid of the
-/// modes' closed forms with parts `≤ theta/ω` of the fastest mode whose ringing matters
-/// ([`SubGrid::resolved_omega_for`]): at its points `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n
-/// η̈_n − M a_g` with their rates (η⃛ from the modes' equations, `C` and `a_g` linear between
-/// their values `(ag0, ag1)` at both ends), refined on each part's cubic Hermite. The
-/// interval's largest |a| (signed) also counts towards the next floor history sample.
-fn between_on_subgrid(
-    st: &mut Stations,
-    (t, h, theta): (f64, f64, f64),
-    (q, v): (&[f64], &[f64]),
-    (omega, damp): (&[f64], &[f64]),
-    (ag0, ag1): (f64, f64),
-) {
-    let ns = st.heights.len();
-    let largest = |x: fn(&FloorPeaks) -> f64| -> f64 { st.peaks.iter().map(x).fold(0.0, f64::max) };
-    let peak = [
-        largest(|p| p.acceleration),
-        largest(|p| p.shear_with_damping),
-    ];
-    let bt = &mut st.between;
-    let resolve = st
-        .grid
-        .resolved_omega_for(omega, &[&bt.cmax[0], &bt.cmax[1]], &peak);
-    // the modes only (no station: the displacements are not needed here)
-    st.grid
-        .evaluate(h, theta, (q, v), omega, damp, resolve, &st.phi, None, 0);
-    st.grid.accelerations(h, omega, damp);
-    let g = &st.grid;
-    let (parts, dl, t0) = (g.parts, g.delta, t - h);
-    let (y, yd) = (&mut bt.y, &mut bt.yd);
-    y.resize(parts + 1, 0.0);
-    yd.resize(parts + 1, 0.0);
-    let sg = (ag1 - ag0) / h;
-    for &f in &bt.flagged {
-        let p = &mut st.peaks[f];
-        // the absolute acceleration: its signed largest over the interval, and where
-        g.station_accelerations(&st.phi, ns, f, y, yd);
-        for k in 0..=parts {
-            y[k] += ag0 + sg * (k as f64 * dl);
-            yd[k] += sg;
-        }
-        let (mut top, mut when) = (st.abs_now[f], t);
-        for k in 0..parts {
-            if reach(y[k], yd[k], y[k + 1], yd[k + 1], dl) > top.abs() {
-                let (hi, th_hi) = hermite_max(y[k], yd[k], y[k + 1], yd[k + 1], dl);
-                let (lo, th_lo) = hermite_max(-y[k], -yd[k], -y[k + 1], -yd[k + 1], dl);
-                let t_k = t0 + k as f64 * dl;
-                if hi > top.abs() {
-                    (top, when) = (hi, t_k + th_hi * dl);
-                }
-                if lo > top.abs() {
-                    (top, when) = (-lo, t_k + th_lo * dl);
-                }
-            }
-        }
-        if top.abs() > p.acceleration {
-            p.acceleration = top.abs();
-            p.acceleration_time = when;
-        }
-        if top.abs() > st.hold[f].abs() {
-            st.hold[f] = top;
-        }
-        // the equilibrium shear: the contact forces above and the ground linear, less the
-        // inertia of the modes
-        g.station_accelerations(&bt.eq_rows, ns, f, y, yd);
-        let (c0, sc, mass) = (
-            bt.prev_contact[f],
-            (bt.contact_now[f] - bt.prev_contact[f]) / h,
-            bt.mass_above[f],
-        );
-        for k in 0..=parts {
-            let tau = k as f64 * dl;
-            y[k] = c0 + sc * tau - y[k] - mass * (ag0 + sg * tau);
-            yd[k] = sc - yd[k] - mass * sg;
-        }
-        for k in 0..parts {
-            refine(
-                &mut p.shear_with_damping,
-                y[k],
-                yd[k],
-                y[k + 1],
-                yd[k + 1],
-                dl,
-            );
-        }
-    }
-}
-
-/// The absolute accelerations and the equilibrium shears of every station between the
-/// observations at `t − h` and `t` of an interval where no mode rings too fast for the cubic
-/// Hermite (`ω h ≤ Θ` for every mode that rings, [`crate::recording::subgrid`]) and no contact
-/// level of the structure carries force at either end: each refined on the cubic Hermite of
-/// its values and rates at both ends, the rates `ȧ = Σ φ_n η⃛_n + ȧ_g` and `V̇ = Ċ − Σ E_n η⃛_n
-/// − M ȧ_g` from the modes' `jerks` (η⃛ at both ends under the interval's linear forcing,
-/// [`SubGrid::jerks`]) with the ground's `a_g` (its value `ag` at `t`) and the contact forces
-/// above linear over the interval. The Hermite's error on a mode is `(ω h)⁴/384` of its
-/// swing (≤ 1.6e-4 at Θ = 0.5), where the observations alone miss a crest by up to `1 −
-/// cos(ω h/2)` (3 % at Θ). Most intervals change no peak: a station's rates are formed only
-/// where a bound from the modes' largest coefficients ([`Between::coeff_max`]) can beat its
-/// peak, then each sign's [`hermite_bound`] with its own rates decides; an acceleration raised
-/// also counts towards the next floor history sample.
-#[inline(never)]
-fn between_on_hermite(
-    (peaks, hold): (&mut [FloorPeaks], &mut [f64]),
-    bt: &Between,
-    (abs_now, phi): (&[f64], &[f64]),
-    (j0, j1, la): (&[f64], &[f64], &[f64]),
-    (t, h, ag): (f64, f64, f64),
-) {
-    let ns = peaks.len();
-    let nm = j0.len();
-    let sg = (ag - bt.prev_ag) / h;
-    // the largest |rate| of any station's modal part at either end less the ground's jerk
-    // (`η⃛_n = ĵ_n + l_n ȧ_g`, l_n the mode's ground load: a record's jerk, large, cancels
-    // between the modes and ȧ_g in `ȧ`, and between them and M ȧ_g in `V̇`):
-    // Σ_n max_f |c_n(f)| · max(|ĵ_n(0)|, |ĵ_n(h)|); the ground's part per station is
-    // `ȧ_g (1 + Σ φ_n l_n)` and `−ȧ_g (M + Σ E_n l_n)` ([`Between::ground_gain`])
-    let (mut ra, mut re) = (0.0, 0.0);
-    let (cphi, ceq, la) = (&bt.coeff_max[0][..nm], &bt.coeff_max[1][..nm], &la[..nm]);
-    for n in 0..nm {
-        let (x, y) = ((j0[n] - la[n] * sg).abs(), (j1[n] - la[n] * sg).abs());
-        let j = if x > y { x } else { y };
-        ra += cphi[n] * j;
-        re += ceq[n] * j;
-    }
-    let (gain_a, gain_v) = bt.ground_gain[..2 * ns].split_at(ns);
-    // (both ends' slope terms, 4/27 each: [`reach`] with the rates bounded)
-    let slack = 2.0 * HERMITE_REACH * h;
-    let t0 = t - h;
-    let (prev_acc, prev_eq) = (&bt.prev_acc[..ns], &bt.prev_eq[..ns]);
-    let (eq_now, contact_now, prev_contact) = (
-        &bt.eq_now[..ns],
-        &bt.contact_now[..ns],
-        &bt.prev_contact[..ns],
-    );
-    let (mass_above, eq_rows) = (&bt.mass_above[..ns], &bt.eq_rows[..nm * ns]);
-    let rates = |c: &[f64], f: usize| -> (f64, f64) {
-        let (mut d0, mut d1) = (0.0, 0.0);
-        for n in 0..nm {
-            let c = c[n * ns + f];
-            d0 += c * j0[n];
-            d1 += c * j1[n];
-        }
-        (d0, d1)
-    };
-    for f in 0..ns {
-        let p = &mut peaks[f];
-        let (a0, a1) = (prev_acc[f], abs_now[f]);
-        let ends = if a0.abs() > a1.abs() {
-            a0.abs()
-        } else {
-            a1.abs()
-        };
-        if ends + slack * (ra + (sg * gain_a[f]).abs()) > p.acceleration {
-            let (d0, d1) = rates(phi, f);
-            let (d0, d1) = (d0 + sg, d1 + sg);
-            // each sign's Hermite only where its bound beats the peak (the ends cannot:
-            // both were raised at their observations)
-            let mut top = (0.0, 0.0);
-            if hermite_bound(a0, d0, a1, d1, h) > p.acceleration {
-                top = hermite_max(a0, d0, a1, d1, h);
-            }
-            if hermite_bound(-a0, -d0, -a1, -d1, h) > p.acceleration {
-                let (lo, th) = hermite_max(-a0, -d0, -a1, -d1, h);
-                if lo > top.0.abs() {
-                    top = (-lo, th);
-                }
-            }
-            let (top, th) = top;
-            if top.abs() > p.acceleration {
-                p.acceleration = top.abs();
-                p.acceleration_time = t0 + th * h;
-            }
-            if top.abs() > hold[f].abs() {
-                hold[f] = top;
-            }
-        }
-        // V = C − Σ E_n η̈_n − M a_g, C and a_g linear
-        let (v0, v1) = (prev_eq[f], eq_now[f]);
-        let ends = if v0.abs() > v1.abs() {
-            v0.abs()
-        } else {
-            v1.abs()
-        };
-        let sc = (contact_now[f] - prev_contact[f]) / h;
-        let mass = mass_above[f];
-        let lin = sc - mass * sg;
-        if ends + slack * (re + (sc - sg * gain_v[f]).abs()) > p.shear_with_damping {
-            let (d0, d1) = rates(eq_rows, f);
-            let (d0, d1) = (lin - d0, lin - d1);
-            if hermite_bound(v0, d0, v1, d1, h) > p.shear_with_damping {
-                raise(&mut p.shear_with_damping, hermite_max(v0, d0, v1, d1, h).0);
-            }
-            if hermite_bound(-v0, -d0, -v1, -d1, h) > p.shear_with_damping {
-                raise(
-                    &mut p.shear_with_damping,
-                    hermite_max(-v0, -d0, -v1, -d1, h).0,
-                );
-            }
-        }
-    }
-}
 
 /// How the equilibrium shear of one structure is formed.
 #[derive(Debug, Clone)]
@@ -466,49 +140,6 @@ pub(super) struct Stations {
     /// The absolute acceleration and the equilibrium shear between observations
     /// ([`Between`]).
     pub(super) between: Between,
-}
-
-/// What the absolute acceleration and the equilibrium shear (`shear_with_damping`) of one
-/// structure need between observations where fast modes ring (docs/model.md §2.6c): per
-/// station `a = Σ φ_n η̈_n + a_g` and `V = C − Σ E_n η̈_n − M a_g`, with the contact forces
-/// above `C` and the ground's `a_g` linear over the interval (as the modal loads have them).
-#[derive(Debug, Clone)]
-pub(super) struct Between {
-    /// `E_n` per station, kg·kg^−½ (`Σ_{g ≥ f} m_g φ_n(g)` of floors, `m ∫_x^L φ_n dx` of a
-    /// cantilever), `[n·stations + station]`, and the mass above M, kg.
-    pub(super) eq_rows: Vec<f64>,
-    pub(super) mass_above: Vec<f64>,
-    /// `|φ_n| ω_n²` and `|E_n| ω_n²` (`[n·stations + station]`): the weights of the modes'
-    /// ringing `|R̈_n| ≤ ω_n² ρ_n` ([`crate::recording::subgrid`]), and per mode their
-    /// largest over the stations.
-    pub(super) abs_acc: Vec<f64>,
-    pub(super) abs_eq: Vec<f64>,
-    pub(super) cmax: [Vec<f64>; 2],
-    /// At the previous observation: per station the acceleration, the equilibrium shear and
-    /// the contact forces above, and the ground's acceleration (m/s²).
-    pub(super) prev_acc: Vec<f64>,
-    pub(super) prev_eq: Vec<f64>,
-    pub(super) prev_contact: Vec<f64>,
-    pub(super) prev_ag: f64,
-    /// At the current observation (scratch): the equilibrium shear and the contact forces
-    /// above, per station.
-    pub(super) eq_now: Vec<f64>,
-    pub(super) contact_now: Vec<f64>,
-    /// The fast modes' ringing of both quantities per station (`[k·stations + station]`),
-    /// the stations that take the sub-grid, and the values and rates at its points (scratch).
-    pub(super) rings: Vec<f64>,
-    pub(super) flagged: Vec<usize>,
-    pub(super) y: Vec<f64>,
-    pub(super) yd: Vec<f64>,
-    /// Whether a contact level of this structure carried force at the previous observation.
-    pub(super) prev_loaded: bool,
-    /// Per mode the largest |φ_n| and |E_n| over the stations (the bound of
-    /// [`between_on_hermite`]).
-    pub(super) coeff_max: [Vec<f64>; 2],
-    /// Per station `1 + Σ_n φ_n l_n` then `M + Σ_n E_n l_n` (`l_n` the modes' ground loads,
-    /// kg^½: the ground's jerk's weight in ȧ and V̇ beyond the modes'), filled at the first
-    /// use (the ground loads are the system's).
-    pub(super) ground_gain: Vec<f64>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -693,34 +324,7 @@ impl Stations {
                 above.iter().map(|x| m * x).collect(),
             ),
         };
-        let weigh = |x: &[f64]| -> Vec<f64> {
-            (0..nm)
-                .flat_map(|n| (0..ns).map(move |f| (x[n * ns + f] * m.omega[n] * m.omega[n]).abs()))
-                .collect()
-        };
-        let (abs_acc, abs_eq) = (weigh(&phi), weigh(&eq_rows));
-        let abs_of = |x: &[f64]| -> Vec<f64> { x.iter().map(|x| x.abs()).collect() };
-        let coeff_max = [largest(&abs_of(&phi)), largest(&abs_of(&eq_rows))];
-        let between = Between {
-            cmax: [largest(&abs_acc), largest(&abs_eq)],
-            abs_acc,
-            abs_eq,
-            eq_rows,
-            mass_above,
-            prev_acc: vec![0.0; ns],
-            prev_eq: vec![0.0; ns],
-            prev_contact: vec![0.0; ns],
-            prev_ag: 0.0,
-            eq_now: vec![0.0; ns],
-            contact_now: vec![0.0; ns],
-            rings: vec![0.0; 6 * ns],
-            flagged: Vec::with_capacity(ns),
-            y: Vec::new(),
-            yd: Vec::new(),
-            prev_loaded: false,
-            coeff_max,
-            ground_gain: Vec::new(),
-        };
+        let between = Between::new(&phi, (eq_rows, mass_above), &m.omega, (ns, nm));
         Stations {
             cmax,
             grid: SubGrid::new(nm),
@@ -1040,12 +644,19 @@ impl Stations {
             refine_on_subgrid(&st.grid, &st.flagged, ns, rows.is_some(), &mut st.peaks);
         }
         if let (false, Some(theta), Some(h)) = (st.between.flagged.is_empty(), resolution, h) {
+            let prev_ag = st.between.prev_ag;
             between_on_subgrid(
-                st,
+                (&mut st.grid, &mut st.between),
+                (
+                    &mut st.peaks[..],
+                    &mut st.hold[..],
+                    &st.abs_now[..],
+                    &st.phi[..],
+                ),
                 (at.t, h, theta),
                 (q, v),
                 (omega, damp),
-                (st.between.prev_ag, ag),
+                (prev_ag, ag),
             );
         }
         // the accelerations and the equilibrium shear between the observations of a free flight
@@ -1060,20 +671,7 @@ impl Stations {
         {
             let la = &system.ground_load()[st.offset..st.offset + nm];
             let bt = &mut st.between;
-            if bt.ground_gain.is_empty() {
-                // (once per run: the ground loads are the system's)
-                for (c, base) in [(&st.phi, 1.0), (&bt.eq_rows, f64::NAN)] {
-                    for f in 0..ns {
-                        let start = if base.is_nan() {
-                            bt.mass_above[f]
-                        } else {
-                            base
-                        };
-                        let g = (0..nm).fold(start, |g, n| g + c[n * ns + f] * la[n]);
-                        bt.ground_gain.push(g);
-                    }
-                }
-            }
+            bt.fill_ground_gain(&st.phi, la, (ns, nm));
             between_on_hermite(
                 (&mut st.peaks[..ns], &mut st.hold[..ns]),
                 &st.between,
@@ -1094,23 +692,54 @@ impl Stations {
         bt.prev_ag = ag;
     }
 
-    /// Raise the peak absolute accelerations with those at time `t` (s) between two
-    /// observations: the system's modal accelerations `accel` and the ground's `ag` (m/s²);
-    /// they count towards the next floor history sample too.
-    pub(super) fn raise_accelerations(&mut self, t: f64, accel: &[f64], ag: f64) {
+    /// Raise the peak absolute accelerations and equilibrium shears (`shear_with_damping`, N)
+    /// with those at time `t` (s) between two observations, from the system's modal
+    /// accelerations `accel`, the ground's `ag` (m/s²) and every contact level's force there
+    /// `forces` (N, in the system's level order): `a = Σ φ_n η̈_n + a_g` (which counts towards
+    /// the next floor history sample too) and `V = C − Σ E_n η̈_n − M a_g`, as
+    /// [`Stations::observe`] forms them at an observation.
+    pub(super) fn raise_at(&mut self, t: f64, accel: &[f64], ag: f64, forces: &[f64]) {
         let (nm, ns) = (self.modes, self.heights.len());
         let a = &accel[self.offset..self.offset + nm];
-        for (f, p) in self.peaks.iter_mut().enumerate() {
-            // (`phi` is mode-major: `[n·stations + station]`)
-            let x = (0..nm).map(|n| self.phi[n * ns + f] * a[n]).sum::<f64>() + ag;
+        let (nl, stride) = (self.levels.min(forces.len()), self.levels);
+        let (signs, forces) = (&self.signs[..nl], &forces[..nl]);
+        // (every slice cut once: no bounds check per mode; `phi` and `eq_rows` are mode-major,
+        // `[n·stations + station]`)
+        let (phi, eq_rows) = (&self.phi[..nm * ns], &self.between.eq_rows[..nm * ns]);
+        let (mass_above, above) = (&self.between.mass_above[..ns], &self.above[..ns * stride]);
+        let (peaks, hold) = (&mut self.peaks[..ns], &mut self.hold[..ns]);
+        // (floors: a level acts at its floor, and what is above a storey sums from the top; a
+        // cantilever's `above` already marks every level above the section)
+        let lumped = matches!(self.equilibrium, Equilibrium::Lumped(_));
+        let mut c_above = 0.0;
+        for f in (0..ns).rev() {
+            let mut c = 0.0;
+            let row = &above[f * stride..f * stride + nl];
+            for k in 0..nl {
+                if row[k] {
+                    c += signs[k] * forces[k];
+                }
+            }
+            if lumped {
+                c_above += c;
+                c = c_above;
+            }
+            let (mut x, mut v) = (0.0, c - mass_above[f] * ag);
+            for n in 0..nm {
+                x += phi[n * ns + f] * a[n];
+                v -= eq_rows[n * ns + f] * a[n];
+            }
+            let x = x + ag;
+            let p = &mut peaks[f];
             if x.abs() > p.acceleration {
                 p.acceleration = x.abs();
                 p.acceleration_time = t;
             }
             // (and towards the next floor history sample, as the sub-grid's values)
-            if x.abs() > self.hold[f].abs() {
-                self.hold[f] = x;
+            if x.abs() > hold[f].abs() {
+                hold[f] = x;
             }
+            raise(&mut p.shear_with_damping, v.abs());
         }
     }
 

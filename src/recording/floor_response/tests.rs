@@ -1,4 +1,5 @@
-use super::station::{StoreyForce, reach};
+use super::bounds::reach;
+use super::station::StoreyForce;
 use super::*;
 use crate::model::building::{FloorDamping, Floors, ShearBuilding};
 use crate::model::modal::{ModalModel, Shapes};
