@@ -196,6 +196,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     psums: PolySums,
     psums_ok: bool,
     fpsums: PolySums,
+    /// `Σ η̇² + ω²η²` at the current state (when `psums_ok`) and at the free pass's end, as
+    /// the pass sums it (what bounds the next step's contact-test margins).
+    pe2: f64,
+    fe2: f64,
     fground: (f64, f64, f64),
     /// Each mode's ground load over the current step (records), and its particular solution's
     /// coefficients.
@@ -412,6 +416,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             psums: PolySums::default(),
             psums_ok: false,
             fpsums: PolySums::default(),
+            pe2: 0.0,
+            fe2: 0.0,
             fground: (0.0, 0.0, 0.0),
             cpoly: vec![[0.0; 3]; n],
             pcoef: vec![[0.0; 3]; n],
