@@ -21,8 +21,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
         if self.free.get(self.free_hit).is_some_and(|e| e.h == h) {
             return Some(self.free_hit);
         }
+        let key = free_key(h);
+        let slot = usize::from(self.free_slot[key]).wrapping_sub(1);
+        if self.free.get(slot).is_some_and(|e| e.h == h) {
+            self.free_hit = slot;
+            return Some(slot);
+        }
         if let Some(i) = self.free.iter().position(|e| e.h == h) {
             self.free_hit = i;
+            self.free_slot[key] = (i + 1) as u8;
             return Some(i);
         }
         if !keep {
@@ -32,15 +39,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
             return None;
         }
         let d = FreeData::new(self.sys, self.big, h);
-        if self.free.len() < FREE_CACHE {
+        let i = if self.free.len() < FREE_CACHE {
             self.free.push(d);
-            Some(self.free.len() - 1)
+            self.free.len() - 1
         } else {
             let i = self.free_next;
             self.free[i] = d;
             self.free_next = (i + 1) % FREE_CACHE;
-            Some(i)
-        }
+            i
+        };
+        self.free_slot[key] = (i + 1) as u8;
+        Some(i)
     }
 
     /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
