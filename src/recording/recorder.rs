@@ -431,6 +431,16 @@ fn hermite_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, h: f64) -> f64 {
     big(y0.abs(), y1.abs()) + HERMITE_REACH * h * big(up, down)
 }
 
+/// An upper bound of [`hermite_abs_bound`] (`reach` = [`HERMITE_REACH`]·h): the end slopes'
+/// term `max(d0⁺ + d1⁻, d1⁺ + d0⁻)` is at most `|d0| + |d1|`, and rounding is monotone, so
+/// each rounded sum and product here is at least the tighter one's (`reach` is the same
+/// product `HERMITE_REACH · h` it forms first): where this bound does not beat a peak, the
+/// tighter one does not either, and the decision is the same.
+#[inline(always)]
+fn loose_abs_bound(y0: f64, d0: f64, y1: f64, d1: f64, reach: f64) -> f64 {
+    big(y0.abs(), y1.abs()) + reach * (d0.abs() + d1.abs())
+}
+
 /// A sink that passes on the floor rows' values at `keep` only.
 struct Picked<'a, 'b> {
     sink: &'a mut (dyn HistorySink + 'b),
@@ -474,19 +484,34 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
     // shuffled every product into place (29 instructions per four modes); the same products
     // in the same lanes, added in the same order: the same bits
     let z = F2::zero();
-    let (mut w01, mut w23, mut d01, mut d23) = (z, z, z, z);
+    let mut acc = [z; 4];
     let (cp, _) = phi.as_chunks::<4>();
     let (cq, _) = q.as_chunks::<4>();
     let (cv, _) = v.as_chunks::<4>();
     for ((p, q), v) in cp.iter().zip(cq).zip(cv) {
-        let (p01, p23) = (F2::new(p[0], p[1]), F2::new(p[2], p[3]));
-        w01 = w01 + p01 * F2::new(q[0], q[1]);
-        w23 = w23 + p23 * F2::new(q[2], q[3]);
-        d01 = d01 + p01 * F2::new(v[0], v[1]);
-        d23 = d23 + p23 * F2::new(v[2], v[3]);
+        lanes4(&mut acc, p, q, v);
     }
-    let ([w0, w1], [w2, w3]) = (w01.get(), w23.get());
-    let ([d0, d1], [d2, d3]) = (d01.get(), d23.get());
+    lanes_end(acc, phi, q, v)
+}
+
+/// One group of four modes of [`project`]'s lanes: `acc` = (w lanes 0–1, w lanes 2–3, ẇ lanes
+/// 0–1, ẇ lanes 2–3).
+#[inline(always)]
+fn lanes4(acc: &mut [F2; 4], p: &[f64; 4], q: &[f64; 4], v: &[f64; 4]) {
+    let (p01, p23) = (F2::new(p[0], p[1]), F2::new(p[2], p[3]));
+    acc[0] = acc[0] + p01 * F2::new(q[0], q[1]);
+    acc[1] = acc[1] + p23 * F2::new(q[2], q[3]);
+    acc[2] = acc[2] + p01 * F2::new(v[0], v[1]);
+    acc[3] = acc[3] + p23 * F2::new(v[2], v[3]);
+}
+
+/// [`project`]'s end: the modes after the last group of four, each into its lane, and the
+/// lanes added as (0 + 1) + (2 + 3).
+#[inline(always)]
+fn lanes_end(acc: [F2; 4], phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
+    let n = phi.len().min(q.len()).min(v.len());
+    let ([w0, w1], [w2, w3]) = (acc[0].get(), acc[1].get());
+    let ([d0, d1], [d2, d3]) = (acc[2].get(), acc[3].get());
     let (mut w, mut wd) = ([w0, w1, w2, w3], [d0, d1, d2, d3]);
     let r = n / 4 * 4;
     for l in 0..n - r {
@@ -497,6 +522,41 @@ fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
         (w[0] + w[1]) + (w[2] + w[3]),
         (wd[0] + wd[1]) + (wd[2] + wd[3]),
     )
+}
+
+/// [`project`] of a tracked height's two structures, `(φ₁, η₁, η̇₁)` and `(φ₂, η₂, η̇₂)`: where
+/// both have as many modes (from [`LANES_FROM`] on), in one loop over both (each sum's lanes
+/// take the same products in the same order: the same bits); else one after the other.
+#[inline(always)]
+fn project_pair(
+    (p1, q1, v1): (&[f64], &[f64], &[f64]),
+    (p2, q2, v2): (&[f64], &[f64], &[f64]),
+) -> ((f64, f64), (f64, f64)) {
+    let n = p1.len().min(q1.len()).min(v1.len());
+    if n < LANES_FROM || p2.len().min(q2.len()).min(v2.len()) != n {
+        return (project(p1, q1, v1), project(p2, q2, v2));
+    }
+    let (p1, q1, v1) = (&p1[..n], &q1[..n], &v1[..n]);
+    let (p2, q2, v2) = (&p2[..n], &q2[..n], &v2[..n]);
+    let z = F2::zero();
+    let (mut a1, mut a2) = ([z; 4], [z; 4]);
+    let one = p1
+        .as_chunks::<4>()
+        .0
+        .iter()
+        .zip(q1.as_chunks::<4>().0)
+        .zip(v1.as_chunks::<4>().0);
+    let two = p2
+        .as_chunks::<4>()
+        .0
+        .iter()
+        .zip(q2.as_chunks::<4>().0)
+        .zip(v2.as_chunks::<4>().0);
+    for (((p, q), v), ((pp, qq), vv)) in one.zip(two) {
+        lanes4(&mut a1, p, q, v);
+        lanes4(&mut a2, pp, qq, vv);
+    }
+    (lanes_end(a1, p1, q1, v1), lanes_end(a2, p2, q2, v2))
 }
 
 /// The modal energy `Σ ½(η̇² + ω²η²)` (J; `w2`: ω² of every mode), as
@@ -590,13 +650,14 @@ impl Recorder<'_> {
         // where the steps happen to fall).
         let h = s.t - self.last_t;
         let refine = self.prev.is_some() && h > 0.0;
+        let reach = HERMITE_REACH * h;
         let tracks = self.phi1.iter().zip(&self.phi2).zip(&mut self.prev_w);
         let tracks = tracks.zip(&self.spans);
         for (k, ((((phi1, phi2), prev_w), &[a, b, c]), l)) in
             tracks.zip(&mut self.levels).enumerate()
         {
-            let (w1, w1d) = project(phi1, &q[a..b], &s.v[a..b]);
-            let (w2, w2d) = project(phi2, &q[b..c], &s.v[b..c]);
+            let ((w1, w1d), (w2, w2d)) =
+                project_pair((phi1, &q[a..b], &s.v[a..b]), (phi2, &q[b..c], &s.v[b..c]));
             raise(&mut l.peak_w1, w1.abs());
             raise(&mut l.peak_w2, w2.abs());
             raise(&mut l.max_closing, w1 - w2);
@@ -604,10 +665,16 @@ impl Recorder<'_> {
                 // (every step: an interior extremum does not need the slope to change sign;
                 // the root solve only where the interpolant's bound could beat the peak)
                 let [a1, a1d, a2, a2d] = *prev_w;
-                if hermite_abs_bound(a1, a1d, w1, w1d, h) > l.peak_w1 {
+                // (first a looser bound, with |ẇ₀| + |ẇ₁| ≥ either end-slope term: most steps
+                // stay below the peak by it and skip the tighter one)
+                if loose_abs_bound(a1, a1d, w1, w1d, reach) > l.peak_w1
+                    && hermite_abs_bound(a1, a1d, w1, w1d, h) > l.peak_w1
+                {
                     raise(&mut l.peak_w1, hermite_abs_max(a1, a1d, w1, w1d, h));
                 }
-                if hermite_abs_bound(a2, a2d, w2, w2d, h) > l.peak_w2 {
+                if loose_abs_bound(a2, a2d, w2, w2d, reach) > l.peak_w2
+                    && hermite_abs_bound(a2, a2d, w2, w2d, h) > l.peak_w2
+                {
                     raise(&mut l.peak_w2, hermite_abs_max(a2, a2d, w2, w2d, h));
                 }
                 let (c0, c0d, c1, c1d) = (a1 - a2, a1d - a2d, w1 - w2, w1d - w2d);

@@ -240,3 +240,26 @@ fn impulses_without_penetration() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].impulse, 80.0);
 }
+
+/// A tracked height's two projections in one loop ([`project_pair`]) are [`project`]'s, bit
+/// for bit: every pair of lengths from 0 to 29 (equal ones in the fused loop from
+/// [`LANES_FROM`] on, every remainder; unequal ones one after the other), on values that round.
+#[test]
+fn paired_projections_are_the_single_ones_bit_for_bit() {
+    let vals = |n: usize, a: f64, b: f64| -> Vec<f64> {
+        (0..n)
+            .map(|j| ((j as f64) * a + b).sin() / (j as f64 + b))
+            .collect()
+    };
+    for n1 in 0..30 {
+        for n2 in [n1, n1 / 2, n1 + 3] {
+            let (p1, q1, v1) = (vals(n1, 1.1, 0.3), vals(n1, 0.7, 1.9), vals(n1, 2.3, 0.8));
+            let (p2, q2, v2) = (vals(n2, 0.4, 2.2), vals(n2, 1.7, 0.6), vals(n2, 0.9, 1.3));
+            let (a, b) = project_pair((&p1, &q1, &v1), (&p2, &q2, &v2));
+            let (x, y) = (project(&p1, &q1, &v1), project(&p2, &q2, &v2));
+            let bits = |p: (f64, f64)| (p.0.to_bits(), p.1.to_bits());
+            assert_eq!(bits(a), bits(x), "{n1} and {n2} modes");
+            assert_eq!(bits(b), bits(y), "{n1} and {n2} modes");
+        }
+    }
+}

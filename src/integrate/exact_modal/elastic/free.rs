@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::kernel::{
-    HarmonicWave, ModeLoads, PolyMap, dots, harmonic_pass, poly_margins, poly_pass,
+    HarmonicWave, ModeLoads, PolyMap, dots, harmonic_pass, poly_margins, poly_pass, start_energy2,
 };
 use super::*;
 use crate::numerics::hermite::hermite_bound;
@@ -21,8 +21,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
         if self.free.get(self.free_hit).is_some_and(|e| e.h == h) {
             return Some(self.free_hit);
         }
+        let key = free_key(h);
+        let slot = usize::from(self.free_slot[key]).wrapping_sub(1);
+        if self.free.get(slot).is_some_and(|e| e.h == h) {
+            self.free_hit = slot;
+            return Some(slot);
+        }
         if let Some(i) = self.free.iter().position(|e| e.h == h) {
             self.free_hit = i;
+            self.free_slot[key] = (i + 1) as u8;
             return Some(i);
         }
         if !keep {
@@ -32,15 +39,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
             return None;
         }
         let d = FreeData::new(self.sys, self.big, h);
-        if self.free.len() < FREE_CACHE {
+        let i = if self.free.len() < FREE_CACHE {
             self.free.push(d);
-            Some(self.free.len() - 1)
+            self.free.len() - 1
         } else {
             let i = self.free_next;
             self.free[i] = d;
             self.free_next = (i + 1) % FREE_CACHE;
-            Some(i)
-        }
+            i
+        };
+        self.free_slot[key] = (i + 1) as u8;
+        Some(i)
     }
 
     /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
@@ -157,15 +166,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 let map = fd.poly.as_ref().expect("the map is built before the pass");
                 let out = (qb, vb, amp);
                 let (ps, e) = if margin {
-                    let (ps, e, _) = poly_pass::<true>(map, g, q, v, out);
-                    (ps, e)
+                    poly_pass::<true>(map, g, q, v, out)
                 } else {
-                    let (ps, e, s0) = poly_pass::<false>(map, g, q, v, out);
-                    map.margin_bounds(g, s0, &mut self.fmargin);
+                    let (ps, e) = poly_pass::<false>(map, g, q, v, out);
+                    if nl > 0 {
+                        // the start state's Σ η̇² + ω²η²: the previous pass's end sum where the
+                        // current state is that pass's end (`psums_ok`: nothing moved it since)
+                        let s0 = if !from_search && self.psums_ok {
+                            self.pe2
+                        } else {
+                            start_energy2(map, q, v)
+                        };
+                        debug_assert_eq!(s0.to_bits(), start_energy2(map, q, v).to_bits());
+                        map.margin_bounds(g, s0, &mut self.fmargin);
+                    }
                     bounded = true;
                     (ps, e)
                 };
                 self.fpsums = ps;
+                self.fe2 = e;
                 self.fground = g;
                 energy = Some(0.5 * e);
             }
@@ -331,6 +350,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     .ptally
                     .input(h, self.fground, &self.psums, &self.fpsums);
                 self.psums = self.fpsums;
+                self.pe2 = self.fe2;
                 w
             }
             (Piece::Zero, _, _) => 0.0,

@@ -74,7 +74,9 @@ pub(super) fn harmonic_pass<const MARGIN: bool>(
 /// particular solution's size per unit of each ground factor.
 #[derive(Debug, Clone)]
 pub(super) struct PolyMap {
-    pairs: Vec<[[f64; 2]; COEFS]>,
+    /// (as [`F2`], 16-byte aligned: each coefficient pair is an operand of its vector
+    /// multiplication straight from memory, without a load of its own)
+    pairs: Vec<[F2; COEFS]>,
     /// Per contact level k, `G_k = √(Σ_j c_kj² (H0_j²/ω_j² + H1_j²))` (∞ where a mode with
     /// ω = 0 has a margin): empty until [`PolyMap::set_gains`].
     gain: Vec<f64>,
@@ -140,7 +142,7 @@ impl PolyMap {
         h: f64,
     ) -> PolyMap {
         let n = props.len();
-        let mut pairs = vec![[[0.0; 2]; COEFS]; n.div_ceil(2)];
+        let mut cols = vec![[[0.0; 2]; COEFS]; n.div_ceil(2)];
         let mut part = [0.0; 3];
         for j in 0..n {
             let (la, lv, d, i) = (la[j], lv[j], damp[j], inv_w2[j]);
@@ -183,9 +185,10 @@ impl PolyMap {
             part[1] += w2[j] * av * av;
             part[2] += w2[j] * a1 * a1 + b1 * b1;
             for (k, x) in c.into_iter().enumerate() {
-                pairs[j / 2][k][j % 2] = x;
+                cols[j / 2][k][j % 2] = x;
             }
         }
+        let pairs = cols.iter().map(|c| c.map(|x| F2::load(&x))).collect();
         PolyMap {
             pairs,
             gain: Vec::new(),
@@ -199,7 +202,8 @@ impl PolyMap {
             let mut s = 0.0;
             for (j, &ckj) in c.iter().enumerate() {
                 let m = &self.pairs[j / 2];
-                let (h0, h1, w2) = (m[H0][j % 2], m[H1][j % 2], m[W2][j % 2]);
+                let c = |i: usize| m[i].get()[j % 2];
+                let (h0, h1, w2) = (c(H0), c(H1), c(W2));
                 if ckj == 0.0 || (h0 == 0.0 && h1 == 0.0) {
                     continue;
                 }
@@ -244,7 +248,7 @@ impl PolyMap {
         e: f64,
         v: f64,
     ) -> (f64, f64) {
-        let c = |k: usize| self.pairs[j / 2][k][j % 2];
+        let c = |k: usize| self.pairs[j / 2][k].get()[j % 2];
         (
             c(P11) * e + c(P12) * v + (c(QA) * ag + c(QV) * vg + c(Q1) * a1),
             c(P21) * e + c(P22) * v + (c(VA) * ag + c(VV) * vg + c(V1) * a1),
@@ -253,10 +257,12 @@ impl PolyMap {
 }
 
 /// The free flight of every mode under a recorded motion's piece (ground factors `g`):
-/// (q, v) → `out` = (qb, vb, amp), the Hermite margin in `amp` when `MARGIN` (else 0).
-/// Returns the end state's ground-work sums, `Σ η̇² + ω²η²` (twice the modal energy) and,
-/// without margins, the same of the start state (0 with them: see [`PolyMap::margin_bounds`]),
-/// each summed in two lanes (even and odd modes, added at the end).
+/// (q, v) → (qb, vb) in `out`, and each mode's Hermite margin in its `amp` when `MARGIN`
+/// (untouched without: nothing reads it before a pass with margins or [`poly_margins`]
+/// writes it). Returns the end state's ground-work sums and `Σ η̇² + ω²η²` (twice the modal
+/// energy), each summed in two lanes (even and odd modes, added at the end). The start
+/// state's same sum, which [`PolyMap::margin_bounds`] needs, is the previous pass's end sum
+/// (or [`start_energy2`]): not formed again here.
 #[inline(always)]
 pub(super) fn poly_pass<const MARGIN: bool>(
     m: &PolyMap,
@@ -264,21 +270,29 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     q: &[f64],
     v: &[f64],
     (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
-) -> (PolySums, f64, f64) {
+) -> (PolySums, f64) {
     let n = qb.len();
     // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
-    // Σ η̇² + ω²η² at the end and (without margins) at the start
-    let mut acc = [F2::zero(); 8];
+    // Σ η̇² + ω²η² at the end
+    let mut acc = [F2::zero(); 7];
     let g = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     let (qp, _) = q[..n].as_chunks::<2>();
     let (vp, _) = v[..n].as_chunks::<2>();
     let (xp, _) = qb.as_chunks_mut::<2>();
     let (yp, _) = vb[..n].as_chunks_mut::<2>();
-    let (ap, _) = amp[..n].as_chunks_mut::<2>();
     let full = qp.len();
     let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
-    for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
-        (*xb, *yb, *ab) = pair::<MARGIN>(c, g, F2::load(qj), F2::load(vj), &mut acc);
+    if MARGIN {
+        let (ap, _) = amp[..n].as_chunks_mut::<2>();
+        for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
+            let (x, y, a) = pair::<true>(c, g, F2::load(qj), F2::load(vj), &mut acc);
+            (*xb, *yb, *ab) = (x.get(), y.get(), a.get());
+        }
+    } else {
+        for ((c, (qj, vj)), (xb, yb)) in rows.zip(xp.iter_mut().zip(yp.iter_mut())) {
+            let (x, y, _) = pair::<false>(c, g, F2::load(qj), F2::load(vj), &mut acc);
+            (*xb, *yb) = (x.get(), y.get());
+        }
     }
     if n % 2 == 1 {
         // the last odd mode in lane 0 (lane 1's coefficients are zeros: it adds nothing)
@@ -290,12 +304,31 @@ pub(super) fn poly_pass<const MARGIN: bool>(
             F2::new(v[j], 0.0),
             &mut acc,
         );
-        (qb[j], vb[j], amp[j]) = (x[0], y[0], a[0]);
+        (qb[j], vb[j]) = (x.get()[0], y.get()[0]);
+        if MARGIN {
+            amp[j] = a.get()[0];
+        }
     }
     let acc = acc.map(F2::get);
     let sum = |k: usize| acc[k][0] + acc[k][1];
     let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
-    (ps, sum(6), sum(7))
+    (ps, sum(6))
+}
+
+/// `Σ η̇² + ω²η²` of the state (q, v) with the arithmetic of [`poly_pass`]'s end sum (two
+/// lanes, even and odd modes, added at the end): the same bits that sum gives for the state
+/// a pass ends in.
+pub(super) fn start_energy2(m: &PolyMap, q: &[f64], v: &[f64]) -> f64 {
+    let n = q.len().min(v.len()).min(2 * m.pairs.len());
+    let mut acc = F2::zero();
+    for j in (0..n).step_by(2) {
+        let two = j + 1 < n;
+        let qj = F2::new(q[j], if two { q[j + 1] } else { 0.0 });
+        let vj = F2::new(v[j], if two { v[j + 1] } else { 0.0 });
+        acc = acc + (vj * vj + m.pairs[j / 2][W2] * qj * qj);
+    }
+    let [a, b] = acc.get();
+    a + b
 }
 
 /// The contact test's margins of [`poly_pass`] alone (the same arithmetic, so the same bits):
@@ -311,7 +344,7 @@ pub(super) fn poly_margins(
     let (g_a, g_v, g_1) = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     for j in (0..n).step_by(2) {
         let c = &m.pairs[j / 2];
-        let k = |i: usize| F2::load(&c[i]);
+        let k = |i: usize| c[i];
         let two = j + 1 < n;
         let qj = F2::new(q[j], if two { q[j + 1] } else { 0.0 });
         let vj = F2::new(v[j], if two { v[j + 1] } else { 0.0 });
@@ -368,16 +401,16 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
 }
 
 /// A pair of modes of [`poly_pass`] (coefficients `c`, ground factors `g` in both lanes) from
-/// (η, η̇): (η', η̇', margin), the sums added to `acc`.
+/// (η, η̇): (η', η̇', margin; zero without `MARGIN`), the sums added to `acc`.
 #[inline(always)]
 fn pair<const MARGIN: bool>(
-    c: &[[f64; 2]; COEFS],
+    c: &[F2; COEFS],
     (g_a, g_v, g_1): (F2, F2, F2),
     qj: F2,
     vj: F2,
-    acc: &mut [F2; 8],
-) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let k = |i: usize| F2::load(&c[i]);
+    acc: &mut [F2; 7],
+) -> (F2, F2, F2) {
+    let k = |i: usize| c[i];
     let x = k(P11) * qj + k(P12) * vj + (k(QA) * g_a + k(QV) * g_v + k(Q1) * g_1);
     let y = k(P21) * qj + k(P22) * vj + (k(VA) * g_a + k(VV) * g_v + k(V1) * g_1);
     let a = if MARGIN {
@@ -385,7 +418,6 @@ fn pair<const MARGIN: bool>(
         let pb = k(BA) * g_a + k(B1) * g_1;
         k(H0) * (qj - pa).abs() + k(H1) * (vj - pb).abs()
     } else {
-        acc[7] = acc[7] + (vj * vj + k(W2) * qj * qj);
         F2::zero()
     };
     let u = y + k(DD) * x;
@@ -396,7 +428,7 @@ fn pair<const MARGIN: bool>(
     acc[4] = acc[4] + k(LVI) * x;
     acc[5] = acc[5] + k(LVD) * u;
     acc[6] = acc[6] + (y * y + k(W2) * x * x);
-    (x.get(), y.get(), a.get())
+    (x, y, a)
 }
 
 #[cfg(test)]
@@ -528,8 +560,11 @@ mod tests {
             let v: Vec<f64> = st[..n].iter().map(|s| s.1).collect();
             let (mut qa, mut va, mut aa) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
             let (mut qb, mut vb, mut ab) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-            let (sa, ea, _) = poly_pass::<true>(&map, g, &q, &v, (&mut qa, &mut va, &mut aa));
-            let (sb, eb, s0) = poly_pass::<false>(&map, g, &q, &v, (&mut qb, &mut vb, &mut ab));
+            let (sa, ea) = poly_pass::<true>(&map, g, &q, &v, (&mut qa, &mut va, &mut aa));
+            let (sb, eb) = poly_pass::<false>(&map, g, &q, &v, (&mut qb, &mut vb, &mut ab));
+            let s0 = start_energy2(&map, &q, &v);
+            // (the start sum is the end sum of a pass that ended in (q, v): the same bits)
+            prop_assert_eq!(start_energy2(&map, &qa, &va).to_bits(), ea.to_bits());
             let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
             prop_assert_eq!(bits(&qa), bits(&qb));
             prop_assert_eq!(bits(&va), bits(&vb));

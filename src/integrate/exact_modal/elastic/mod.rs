@@ -77,6 +77,14 @@ const DYADIC: usize = MAX_K + 1;
 const MAX_LEVEL: usize = 48;
 /// Free-flight step lengths kept (grid steps and their dyadic parts).
 const FREE_CACHE: usize = 24;
+const _: () = assert!(FREE_CACHE < u8::MAX as usize);
+
+/// The slot of `free_slot` for a step length h: its bits' Fibonacci hash (every bit moves
+/// the top six; the grid's lengths differ by ulps of the time, anywhere in the mantissa).
+#[inline(always)]
+fn free_key(h: f64) -> usize {
+    (h.to_bits().wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 58) as usize
+}
 /// Located stereomechanical impacts per grid step before the rest of the step is taken whole.
 const ZENO: u32 = 16;
 /// Depth of the dyadic search for an onset inside a free step.
@@ -173,6 +181,12 @@ pub(super) struct Elastic<'a, O: Observer> {
     free_next: usize,
     /// The cache entry found last (checked first: a run of grid steps hits it every time).
     free_hit: usize,
+    /// Per hash of a step length's bits ([`free_key`]), 1 + the cache entry last found or made
+    /// for a length with that hash (0: none): the grid's steps differ by an ulp or two of the
+    /// time (t_{i+1} − t_i of rounded grid points), a few lengths in turn, which the last hit
+    /// alone misses. Checked against the entry's length: a stale slot only falls back to the
+    /// scan.
+    free_slot: [u8; 64],
     scratch_free: Option<FreeData>,
     qb: Vec<f64>,
     vb: Vec<f64>,
@@ -196,6 +210,10 @@ pub(super) struct Elastic<'a, O: Observer> {
     psums: PolySums,
     psums_ok: bool,
     fpsums: PolySums,
+    /// `Σ η̇² + ω²η²` at the current state (when `psums_ok`) and at the free pass's end, as
+    /// the pass sums it (what bounds the next step's contact-test margins).
+    pe2: f64,
+    fe2: f64,
     fground: (f64, f64, f64),
     /// Each mode's ground load over the current step (records), and its particular solution's
     /// coefficients.
@@ -394,6 +412,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             free: Vec::with_capacity(FREE_CACHE),
             free_next: 0,
             free_hit: 0,
+            free_slot: [0; 64],
             scratch_free: None,
             qb: vec![0.0; n],
             vb: vec![0.0; n],
@@ -412,6 +431,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
             psums: PolySums::default(),
             psums_ok: false,
             fpsums: PolySums::default(),
+            pe2: 0.0,
+            fe2: 0.0,
             fground: (0.0, 0.0, 0.0),
             cpoly: vec![[0.0; 3]; n],
             pcoef: vec![[0.0; 3]; n],
