@@ -500,3 +500,133 @@ fn fixed_size_lu_is_the_general_one_bit_for_bit() {
         assert!(!lu_solve(&mut z, &mut y, n), "singular, n = {n}");
     }
 }
+
+/// Each mode's response to the onset's loads (τ/h)^{m+3/2} (`singular::half_responses`,
+/// both branches: the series where s(ω + damp) < 1, the Gauss rule after τ = su² beyond)
+/// against an RK4 integration of η̈ + damp·η̇ + ω²η = (τ/h)^{m+3/2} from rest written here,
+/// at 2·10⁵ steps (its error ~(ωΔτ)⁴ and the load's τ^{3/2} start, below 1e-9 relative).
+#[test]
+fn half_responses_match_a_direct_integration() {
+    use super::singular::half_responses;
+    let rk4 = |omega: f64, damp: f64, h: f64, alpha: f64, s: f64| -> (f64, f64) {
+        let steps = 200_000;
+        let dt = s / steps as f64;
+        let acc =
+            |t: f64, x: f64, v: f64| (t / h).max(0.0).powf(alpha) - damp * v - omega * omega * x;
+        let (mut x, mut v) = (0.0f64, 0.0f64);
+        for i in 0..steps {
+            let t = i as f64 * dt;
+            let (k1x, k1v) = (v, acc(t, x, v));
+            let (k2x, k2v) = (
+                v + 0.5 * dt * k1v,
+                acc(t + 0.5 * dt, x + 0.5 * dt * k1x, v + 0.5 * dt * k1v),
+            );
+            let (k3x, k3v) = (
+                v + 0.5 * dt * k2v,
+                acc(t + 0.5 * dt, x + 0.5 * dt * k2x, v + 0.5 * dt * k2v),
+            );
+            let (k4x, k4v) = (v + dt * k3v, acc(t + dt, x + dt * k3x, v + dt * k3v));
+            x += dt / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
+            v += dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        }
+        (x, v)
+    };
+    // (ω h: 0.05 and 0.8 take the series at every node, 6 and 40 the Gauss rule at most)
+    for (omega, zeta, h) in [
+        (21.0, 0.01, 2.5e-3),
+        (370.0, 0.05, 2e-3),
+        (600.0, 0.01, 1e-2),
+        (4.0e4, 0.02, 1e-3),
+    ] {
+        let damp = 2.0 * zeta * omega;
+        let mut out = [[(0.0, 0.0); 5]; 6];
+        half_responses(omega, damp, h, &NODES, &mut out);
+        for (i, &th) in NODES.iter().enumerate() {
+            for m in [0usize, 2, 4] {
+                let (x, v) = rk4(omega, damp, h, m as f64 + 1.5, th * h);
+                let (a, b) = out[i][m];
+                // (scales: the static response 1/ω² and its rate 1/ω at the load's size)
+                let (sx, sv) = (
+                    x.abs().max(1e-3 / (omega * omega)),
+                    v.abs().max(1e-3 / omega),
+                );
+                assert!(
+                    (a - x).abs() <= 1e-8 * sx && (b - v).abs() <= 1e-8 * sv,
+                    "ω {omega} h {h} node {i} m {m}: ({a}, {b}) against ({x}, {v})"
+                );
+            }
+        }
+    }
+}
+
+/// The onset shape's weights against their definitions by a fine midpoint rule on
+/// ψ_p(θ) = (θ/θ_p)^{3/2}ℓ_p(θ) (θ^{3/2}ℓ₀ for the start): the basis is cardinal at the nodes
+/// after the start, its integrals and first moments, its values at A1, A2.
+#[test]
+fn onset_shape_weights_match_their_definitions() {
+    let shape = onset_shape();
+    let b = bases();
+    let psi = |p: usize, x: f64| {
+        let l: f64 = (0..5).map(|m| b.l8[m][p] * x.powi(m as i32)).sum();
+        x.powf(1.5) * l * shape.s8[p]
+    };
+    for p in 1..5 {
+        for (i, &x) in THETA8.iter().enumerate().skip(1) {
+            let want = if i == p { 1.0 } else { 0.0 };
+            assert!((psi(p, x) - want).abs() < 1e-13, "ψ_{p}({x})");
+        }
+    }
+    let n = 400_000;
+    for p in 0..5 {
+        let (mut mean, mut first) = (0.0, 0.0);
+        let mut partial = [0.0; 3];
+        for k in 0..n {
+            let x = (k as f64 + 0.5) / n as f64;
+            let y = psi(p, x) / n as f64;
+            mean += y;
+            first += x * y;
+            for (i, pa) in partial.iter_mut().enumerate() {
+                if x < THETA8[i + 1] {
+                    *pa += y;
+                }
+            }
+        }
+        // (midpoint rule: error ~1e-11 on these smooth integrands; the partial sums' cut
+        // between two midpoints ~|ψ|/n)
+        assert!((mean - shape.mean[p]).abs() < 1e-9, "mean {p}");
+        assert!((first - shape.first[p]).abs() < 1e-9, "first {p}");
+        for i in 0..3 {
+            assert!(
+                (partial[i] - shape.partial[i][p]).abs() < 1e-4,
+                "partial {i} {p}"
+            );
+        }
+        for (i, &x) in [A1, A2].iter().enumerate() {
+            assert!((psi(p, x) - shape.at6[i][p]).abs() < 1e-13, "at6 {i} {p}");
+        }
+    }
+}
+
+/// `singular::half_trig_moments` (series below |a| = 2, Gauss rule after x = u² above)
+/// against a fine midpoint rule of x^{m+3/2}(cos ax, sin ax) (error ~1e-11).
+#[test]
+fn half_trig_moments_match_quadrature() {
+    let n = 400_000;
+    for a in [0.3, -1.9, 2.1, 7.5, -40.0] {
+        let got = super::singular::half_trig_moments(a);
+        for m in 0..5 {
+            let (mut c, mut s) = (0.0, 0.0);
+            for k in 0..n {
+                let x = (k as f64 + 0.5) / n as f64;
+                let y = x.powf(m as f64 + 1.5) / n as f64;
+                c += y * (a * x).cos();
+                s += y * (a * x).sin();
+            }
+            assert!(
+                (got[m].0 - c).abs() < 1e-9 && (got[m].1 - s).abs() < 1e-9,
+                "a {a} m {m}: {:?} against ({c}, {s})",
+                got[m]
+            );
+        }
+    }
+}
