@@ -29,12 +29,10 @@
 
 mod newton;
 mod nodes;
-mod singular;
 mod table;
 #[cfg(test)]
 mod tests;
 
 pub(super) use newton::{Newton, NoConvergence, nodal_states, solve, solve_single, start_force};
 pub(super) use nodes::{NODES, NODES6, NODES8, THETA8, WEIGHTS8, bases};
-pub(super) use singular::onset_shape;
 pub(super) use table::Table;

@@ -2,7 +2,6 @@
 //! mode's propagators to the nodes and responses to the Lagrange loads, the level tables).
 
 use super::nodes::{Bases, END, NODES, NODES6, NODES8, bases};
-use super::singular::{half_responses, half_trig_moments, onset_shape};
 use crate::integrate::linear::{Prop, propagator};
 use crate::model::system::System;
 
@@ -180,9 +179,6 @@ pub(in crate::integrate) struct Table {
     /// Whether every level, structure and interior node is filled (a pair's table, always):
     /// [`Table::ensure`] has nothing to do.
     complete: bool,
-    /// Whether the loads are the onset's shape `(θ/θ_p)^{3/2}ℓ_p(θ)` (the start's slot
-    /// `θ^{3/2}ℓ₀`, see `collocation::singular`) instead of the Lagrange polynomials.
-    singular: bool,
 }
 
 impl Table {
@@ -201,23 +197,6 @@ impl Table {
         h: f64,
         active: &[bool],
     ) -> Table {
-        Table::new_shaped(sys, big, h, active, false)
-    }
-
-    /// The table of step length `h` for the first step of an impact, with the onset's shape
-    /// (`collocation::singular`): a pair's, every structure filled.
-    pub(in crate::integrate) fn new_onset(sys: &System, big: Option<f64>, h: f64) -> Table {
-        Table::new_shaped(sys, big, h, &[true, true], true)
-    }
-
-    /// [`Table::new_for`] with the loads' shape chosen.
-    fn new_shaped(
-        sys: &System,
-        big: Option<f64>,
-        h: f64,
-        active: &[bool],
-        singular: bool,
-    ) -> Table {
         let mut t = Table {
             h: f64::NAN,
             n: 0,
@@ -235,7 +214,6 @@ impl Table {
             seen: Vec::new(),
             mid_ok: Vec::new(),
             complete: false,
-            singular,
         };
         t.fill_for(sys, big, h, active);
         t
@@ -375,22 +353,14 @@ impl Table {
         let Bases { l8, .. } = bases();
         if let Some(big) = big {
             self.rot = NODES.map(|x| (big * x * h).sin_cos());
-            let (moments, scale) = if self.singular {
-                (half_trig_moments(big * h), onset_shape().s8)
-            } else {
-                (trig_moments(big * h), [1.0; 5])
-            };
+            let moments = trig_moments(big * h);
             self.hmom = std::array::from_fn(|p| {
                 let (mut a, mut b) = (0.0, 0.0);
                 for m in 0..5 {
                     a += l8[m][p] * moments[m].0;
                     b += l8[m][p] * moments[m].1;
                 }
-                if self.singular {
-                    (h * a * scale[p], h * b * scale[p])
-                } else {
-                    (h * a, h * b)
-                }
+                (h * a, h * b)
             });
         }
         // (every entry of `cprop`, `modes`, `gammas` and the level tables is written below:
@@ -461,18 +431,7 @@ impl Table {
         let Bases { l8, l6, .. } = bases();
         {
             let mut mono = [[(0.0, 0.0); 5]; 6];
-            if self.singular {
-                half_responses(omega, damp, h, &NODES, &mut mono);
-            } else {
-                monomial_responses(omega, damp, h, props, &mut mono);
-            }
-            let shape = onset_shape();
-            // (the onset's shape: each column scaled to its node's force, see `singular`)
-            let (s8, s6) = if self.singular {
-                (shape.s8, shape.s6)
-            } else {
-                ([1.0; 5], [1.0; 4])
-            };
+            monomial_responses(omega, damp, h, props, &mut mono);
             // this mode's responses to the Lagrange loads: the 5-node scheme's at its 4 nodes
             // and at the companion's 2 interior ones, the companion's at its 3
             let lagrange8 = |node: usize| -> [(f64, f64); 5] {
@@ -482,11 +441,7 @@ impl Table {
                         a += l8[m][p] * mono[node][m].0;
                         b += l8[m][p] * mono[node][m].1;
                     }
-                    if self.singular {
-                        (a * s8[p], b * s8[p])
-                    } else {
-                        (a, b)
-                    }
+                    (a, b)
                 })
             };
             let g8: [[(f64, f64); 5]; 4] = NODES8.map(lagrange8);
@@ -498,11 +453,7 @@ impl Table {
                         a += l6[m][p] * mono[node][m].0;
                         b += l6[m][p] * mono[node][m].1;
                     }
-                    if self.singular {
-                        (a * s6[p], b * s6[p])
-                    } else {
-                        (a, b)
-                    }
+                    (a, b)
                 })
             });
             self.modes[j] = ModeStep {

@@ -13,23 +13,16 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// the states the accepted pass left in `dense_q`, `dense_v` and the nodal (δ, δ̇); the
     /// impulses integrated exactly up to each node (the force quartic), the energy flows
     /// (`flows`: the step's ground work, dissipation and contact work) in proportion.
-    /// `partial`: the force's integrals from the start to the interior nodes per coefficient
-    /// (`Bases::partial`, or the onset shape's).
-    pub(super) fn observe_dense(
-        &mut self,
-        h: f64,
-        t0: f64,
-        flows: (f64, f64, f64),
-        partial: &[[f64; 5]; 3],
-    ) {
+    pub(super) fn observe_dense(&mut self, h: f64, t0: f64, flows: (f64, f64, f64)) {
         let (n, nl) = (self.n, self.nl);
+        let bases = collocation::bases();
         for i in 0..3 {
             let x = THETA8[i + 1];
             self.dense_tally.input = self.tally.input + x * flows.0;
             self.dense_tally.damping = self.tally.damping + x * flows.1;
             self.dense_tally.contact = self.tally.contact + x * flows.2;
             for k in 0..nl {
-                let w = &partial[i];
+                let w = &bases.partial[i];
                 let imp: f64 = (0..5).map(|p| w[p] * self.f8[k * 5 + p]).sum();
                 self.dense_tally.impulse[k] = self.tally.impulse[k] + h * imp;
                 let p = self.sys.levels[k].pair;
@@ -414,7 +407,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let damping = input + modal - d_energy;
         self.energy += d_energy;
         if dense {
-            self.observe_dense(h, t0, (input, damping, law), &collocation::bases().partial);
+            self.observe_dense(h, t0, (input, damping, law));
         }
         self.tally.input += input;
         self.tally.damping += damping;

@@ -110,21 +110,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         slot.as_deref().expect("table")
     }
 
-    /// The onset-shaped table of step length h (`k`: its quantised index, or `None` for a
-    /// one-off length, refilled in place), see [`Table::new_onset`]: a pair's.
-    pub(super) fn onset_table(&mut self, k: Option<usize>, h: f64) {
-        let (sys, big) = (self.sys, self.big);
-        let slot = match k {
-            Some(k) => &mut self.onset_tables[k],
-            None => &mut self.onset_scratch,
-        };
-        match slot {
-            Some(t) if k.is_some() || t.h == h => {}
-            Some(t) => t.fill_for(sys, big, h, &[true, true]),
-            None => *slot = Some(Box::new(Table::new_onset(sys, big, h))),
-        }
-    }
-
     /// One trial of a contact step of length h from the current state (`k`: its quantised
     /// index): the free flight to the nodes, both collocations, the estimate. Of a row, a trial
     /// that reaches a level at the edge of the active structures is redone with that level's
@@ -393,12 +378,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         if !err.is_finite() {
             return Err(NoConvergence);
         }
-        Ok(Trial {
-            err,
-            h,
-            k,
-            singular: false,
-        })
+        Ok(Trial { err, h, k })
     }
 
     /// The failure of the contact steps at the shortest length.
@@ -439,9 +419,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             for t in &mut self.tables[DYADIC..] {
                 *t = None;
             }
-            for t in &mut self.onset_tables[DYADIC..] {
-                *t = None;
-            }
         }
         // the first step of an episode starts near the size the last onset needed
         let starting = self.last_h == 0.0;
@@ -451,11 +428,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         if starting && let Some(m) = self.m_onset {
             self.m_step = m.saturating_sub(1);
         }
-        // (a pair's one level at an onset under a Hertz-family law: the first step takes the
-        // onset's force shape, `collocation::singular`)
-        let st = &self.states[0];
-        self.shape_now =
-            self.shape_law && starting && st.delta.abs() <= EVENT_TOL && st.delta_dot > 0.0;
         let mut rejected = false;
         loop {
             // (a recorded motion: where the walk stands, and where a one-off step takes it)
@@ -480,7 +452,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 err: f64::INFINITY,
                 h,
                 k,
-                singular: false,
             });
             // a level's δ changes sign inside (an onset, a release): the estimate sees the
             // kink of the law there, so a step that passes is kept; one that fails is redone
@@ -513,7 +484,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     err: f64::INFINITY,
                     h: s,
                     k: Some(kq),
-                    singular: false,
                 });
                 self.stats.events += 1;
                 self.kink = true;
@@ -580,7 +550,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 .accepting(self.sys, &self.states, self.t, t_end, trial.h)?;
             self.force_contact = false;
             self.accept(&piece, trial, t_end);
-            self.shape_now = false;
             self.walk = after.map(|w| GridWalk { t: self.t, ..w });
             // next length from the estimate (err ∝ h⁷); no growth right after a rejection.
             // (A PI controller's damped factors, mostly below 2^(1/4), would be rounded away
@@ -604,11 +573,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     self.m_step = m;
                 } else {
                     self.k_step = self.quantise(trial.h * fac);
-                    if trial.singular && starting {
-                        // (the onset's shape: the next impact's first step starts at the
-                        // length this one's estimate asks for, see above)
-                        self.k_onset = Some(self.k_step + 1);
-                    }
                 }
             }
             return self.check_finite();

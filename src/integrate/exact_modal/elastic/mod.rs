@@ -146,9 +146,6 @@ struct Trial {
     h: f64,
     /// Its table: quantised index, or `None` for the scratch table (a one-off length).
     k: Option<usize>,
-    /// Whether it took the onset's force shape (`collocation::singular`; its tables are
-    /// `onset_tables`).
-    singular: bool,
 }
 
 pub(super) struct Elastic<'a, O: Observer> {
@@ -207,15 +204,6 @@ pub(super) struct Elastic<'a, O: Observer> {
     // --- contact
     tables: Vec<Option<Box<Table>>>,
     scratch_table: Option<Box<Table>>,
-    /// The tables of the first steps of impacts with the onset's force shape
-    /// (`collocation::singular`), indexed as `tables`, and their one-off length's.
-    onset_tables: Vec<Option<Box<Table>>>,
-    onset_scratch: Option<Box<Table>>,
-    /// Whether the one-level path's first step of an impact takes the onset's shape: a pair,
-    /// one level, a law whose force from an onset goes as δ^{3/2} (Hertz, damped Hertz).
-    shape_law: bool,
-    /// Whether the current contact step starts at an onset and takes that shape.
-    shape_now: bool,
     k_step: usize,
     k_onset: Option<usize>,
     /// Recorded motion: the grid step the dyadic tables were made for, the current level and
@@ -433,16 +421,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
             m_onset: None,
             walk: None,
             scratch_table: None,
-            onset_tables: (0..DYADIC + MAX_LEVEL + 1).map(|_| None).collect(),
-            onset_scratch: None,
-            shape_law: nl == 1
-                && sys.structures.len() == 2
-                && matches!(
-                    sys.levels[0].force,
-                    crate::model::contact::ContactForce::Hertz { .. }
-                        | crate::model::contact::ContactForce::HertzDamp { .. }
-                ),
-            shape_now: false,
             k_step: 8,
             k_onset: None,
             dfree: vec![(0.0, 0.0); 6 * nl],

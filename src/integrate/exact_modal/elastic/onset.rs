@@ -287,14 +287,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             err: f64::INFINITY,
             h: s,
             k: None,
-            singular: false,
         };
         for _ in 0..8 {
             last = self.trial(None, s, piece).unwrap_or(Trial {
                 err: f64::INFINITY,
                 h: s,
                 k: None,
-                singular: false,
             });
             let fs = g_end(self);
             if !last.err.is_finite()

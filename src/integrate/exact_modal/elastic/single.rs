@@ -42,20 +42,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let sys = self.sys;
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
-        // (the first step of an impact: the onset's force shape, its own tables)
-        let singular = self.shape_now;
-        if singular {
-            self.onset_table(k, h);
-        } else {
-            self.table(k, h);
-        }
-        let tab: &Table = match (singular, k) {
-            (false, Some(k)) => self.tables[k].as_deref(),
-            (false, None) => self.scratch_table.as_deref(),
-            (true, Some(k)) => self.onset_tables[k].as_deref(),
-            (true, None) => self.onset_scratch.as_deref(),
-        }
-        .expect("table");
+        self.table(k, h);
+        let tab: &Table = match k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
         debug_assert_eq!(tab.modes(), n);
         self.stats.evaluations += 1;
         // the free flight's particular solution projected on the level at the six nodes
@@ -135,16 +126,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let onset = self.onset[0];
         let f0 = collocation::start_force(sys, 0, &self.states[0], onset, EVENT_TOL);
         let mut f8 = [f0; 5];
-        let shape = collocation::onset_shape();
-        if singular {
-            // the start's slot holds g(0) = lim F/θ^{3/2} = F(δ̇₀h) (the law is homogeneous
-            // of degree 3/2 in δ); the first guess g constant
-            let st = &self.states[0];
-            let v0 = if onset > 0.0 { onset } else { st.delta_dot };
-            let g0 = lv.force.force(st.delta_dot * h, st.delta_dot, v0);
-            f8 = shape.lift8.map(|x| g0 * x);
-            f8[0] = g0;
-        } else if self.last_h > 0.0 {
+        if self.last_h > 0.0 {
             let ratio = h / self.last_h;
             let prev: [f64; 5] = std::array::from_fn(|p| self.last_f8[p]);
             for p in 1..5 {
@@ -167,8 +149,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.nodal8[..4].copy_from_slice(&nodal8);
         solved?;
         // the companion, from the propagated quartic at its nodes
-        let at6 = if singular { &shape.at6 } else { &bases.at6 };
-        let at = |i: usize| (0..5).map(|p| at6[i][p] * f8[p]).sum::<f64>();
+        let at = |i: usize| (0..5).map(|p| bases.at6[i][p] * f8[p]).sum::<f64>();
         let mut f6 = [f8[0], at(0), at(1), f8[4]];
         let mut nodal6 = [(0.0, 0.0); 3];
         let solved = collocation::solve_single::<4>(
@@ -194,12 +175,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         if !err.is_finite() {
             return Err(NoConvergence);
         }
-        Ok(Trial {
-            err,
-            h,
-            k,
-            singular,
-        })
+        Ok(Trial { err, h, k })
     }
 
     /// [`Elastic::accept_general`] for one contact level of a pair ([`Self::single_level`]):
@@ -218,38 +194,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let bases = collocation::bases();
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
-        let singular = trial.singular;
-        let tab: &Table = match (singular, trial.k) {
-            (false, Some(k)) => self.tables[k].as_deref(),
-            (false, None) => self.scratch_table.as_deref(),
-            (true, Some(k)) => self.onset_tables[k].as_deref(),
-            (true, None) => self.onset_scratch.as_deref(),
-        }
-        .expect("table");
+        let tab: &Table = match trial.k {
+            Some(k) => self.tables[k].as_deref().expect("table"),
+            None => self.scratch_table.as_deref().expect("table"),
+        };
         let start = self.trace_start();
         let trs = self.node_trigs(tab, tr0, h);
-        // the force's coefficients (of the onset's shape: the start's is g(0), see
-        // `collocation::singular`) and its values at the nodes
         let f: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
-        let mut fv = f;
-        if singular {
-            fv[0] = 0.0;
-        }
-        let shape = collocation::onset_shape();
         // dense output where the nodal forces peak inside the step
-        let inner = fv[1].max(fv[2]).max(fv[3]);
-        let dense = inner > 0.0 && inner > fv[0].max(fv[4]);
-        // the contact force's integral and first moment
-        let (mean, first) = if singular {
-            (&shape.mean, &shape.first)
-        } else {
-            (&WEIGHTS8, &bases.first)
-        };
+        let inner = f[1].max(f[2]).max(f[3]);
+        let dense = inner > 0.0 && inner > f[0].max(f[4]);
+        // the contact quartic's integral and first moment
         let moment = {
             let (mut a, mut b) = (0.0, 0.0);
             for p in 0..5 {
-                a += mean[p] * f[p];
-                b += first[p] * f[p];
+                a += WEIGHTS8[p] * f[p];
+                b += bases.first[p] * f[p];
             }
             (h * a, h * h * b)
         };
@@ -382,9 +342,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
         // contact with the law along the motion (the 7-point rule)
         let st0 = self.states[0];
         let nodal8: [(f64, f64); 4] = std::array::from_fn(|i| self.nodal8[i]);
-        let mut pw = WEIGHTS8[0] * fv[0] * st0.delta_dot;
+        let mut pw = WEIGHTS8[0] * f[0] * st0.delta_dot;
         for p in 1..5 {
-            pw += WEIGHTS8[p] * fv[p] * nodal8[p - 1].1;
+            pw += WEIGHTS8[p] * f[p] * nodal8[p - 1].1;
         }
         let modal = 0.0 - h * pw;
         let sys = self.sys;
@@ -392,7 +352,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let onset = self.onset[0];
         let power = |(d, dd): (f64, f64)| lv.force.force(d, dd, episode_v0(onset, dd)) * dd;
         let w7 = &bases.seven;
-        let mut lw = w7[0] * fv[0] * st0.delta_dot;
+        let mut lw = w7[0] * f[0] * st0.delta_dot;
         for (i, node) in [(1, 0), (3, 1), (5, 2), (6, 3)] {
             lw += w7[i] * power(nodal8[node]);
         }
@@ -410,18 +370,13 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let damping = input + modal - d_energy;
         self.energy += d_energy;
         if dense {
-            let partial = if singular {
-                &shape.partial
-            } else {
-                &bases.partial
-            };
-            self.observe_dense(h, t0, (input, damping, law), partial);
+            self.observe_dense(h, t0, (input, damping, law));
         }
         self.tally.input += input;
         self.tally.damping += damping;
         self.tally.contact += law;
         self.tally.impulse[0] += moment.0;
-        self.last_f8[..5].copy_from_slice(&fv);
+        self.last_f8[..5].copy_from_slice(&f);
         self.t = t_end;
         self.prev_states[0] = st0;
         let (cq, cv) = proj;
