@@ -213,10 +213,7 @@ impl<'p> RowSampler<'p> {
             if !projected {
                 for (k, tr) in self.tracks.iter().enumerate() {
                     let r = tr.span.clone();
-                    self.now[k] = project(&tr.phi, &s.q[r.clone()], &s.v[r.clone()]);
-                    if !self.before_kept {
-                        self.before[k] = project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
-                    }
+                    self.now[k] = project(&tr.phi, &s.q[r.clone()], &s.v[r]);
                 }
                 projected = true;
             }
@@ -224,10 +221,29 @@ impl<'p> RowSampler<'p> {
                 Some(t0) if s.t > t0 => {
                     let h = s.t - t0;
                     let th = ((tau - t0) / h).clamp(0.0, 1.0);
-                    let b = Basis::at(th);
-                    for (k, w) in self.at.iter_mut().enumerate() {
-                        let ((a, ad), (c, cd)) = (self.before[k], self.now[k]);
-                        *w = b.combine(a, ad, c, cd, h);
+                    // (at θ = 1 the weights are 0, 0, 1, 0 exactly: the interpolant is the
+                    // observation's w bit for bit whatever (finite) values the previous one
+                    // holds, unless w = 0, where the zeros' signs could matter; the previous
+                    // observation is projected only where it is read)
+                    let end = th == 1.0 && self.now.iter().all(|n| n.0 != 0.0);
+                    if end {
+                        for (w, n) in self.at.iter_mut().zip(&self.now) {
+                            *w = n.0;
+                        }
+                    } else {
+                        if !self.before_kept {
+                            for (k, tr) in self.tracks.iter().enumerate() {
+                                let r = tr.span.clone();
+                                self.before[k] =
+                                    project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
+                            }
+                            self.before_kept = true;
+                        }
+                        let b = Basis::at(th);
+                        for (k, w) in self.at.iter_mut().enumerate() {
+                            let ((a, ad), (c, cd)) = (self.before[k], self.now[k]);
+                            *w = b.combine(a, ad, c, cd, h);
+                        }
                     }
                 }
                 _ => {
@@ -356,9 +372,9 @@ impl HistorySink for RowPhaseSink<'_> {
             let mut q = self.pending.borrow_mut();
             self.row.clear();
             // (the sampler queued this sample first; NaN should it ever not have)
-            for _ in 0..self.width {
-                self.row.push(q.pop_front().unwrap_or(f64::NAN));
-            }
+            let m = self.width.min(q.len());
+            self.row.extend(q.drain(..m));
+            self.row.resize(self.width, f64::NAN);
         }
         let w = &self.row[..self.structures.min(self.row.len())];
         match self.phase {

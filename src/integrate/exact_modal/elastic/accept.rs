@@ -82,6 +82,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// A pair with one contact level takes its own path (`single`), the same arithmetic.
     #[inline(never)]
     pub(super) fn accept(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        // (the next trial starts from the new state)
+        self.start.valid = false;
         if self.single_level() {
             return self.accept_one(piece, trial, t_end);
         }
