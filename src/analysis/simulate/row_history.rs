@@ -372,9 +372,9 @@ impl HistorySink for RowPhaseSink<'_> {
             let mut q = self.pending.borrow_mut();
             self.row.clear();
             // (the sampler queued this sample first; NaN should it ever not have)
-            let m = self.width.min(q.len());
-            self.row.extend(q.drain(..m));
-            self.row.resize(self.width, f64::NAN);
+            for _ in 0..self.width {
+                self.row.push(q.pop_front().unwrap_or(f64::NAN));
+            }
         }
         let w = &self.row[..self.structures.min(self.row.len())];
         match self.phase {
