@@ -42,6 +42,11 @@ pub struct Recorder<'s> {
     /// Per tracked height, where its pair's modes are in the state: the left structure's
     /// `[0]..[1]`, the right one's `[1]..[2]` (a pair: `[0, n₁, n]`).
     spans: Vec<[usize; 3]>,
+    /// Per tracked height, for its left and right structure: the earlier track (`2·k` for
+    /// level k's left structure, `2·k + 1` its right one) of the same structure at the same
+    /// height, whose projection an observation takes once (a row's building is tracked at
+    /// the same heights with both neighbours).
+    same: Vec<[Option<usize>; 2]>,
     /// Number of structures (the length of `RunRecord::floors`).
     structures: usize,
     levels: Vec<LevelRecord>,
@@ -146,6 +151,13 @@ impl<'s> Recorder<'s> {
                 [l.start, r.start, r.end]
             })
             .collect();
+        let key = |t: usize| {
+            let k = t / 2;
+            (pairs[k] + t % 2, heights[k].to_bits())
+        };
+        let same = (0..heights.len())
+            .map(|k| [0, 1].map(|side| (0..2 * k + side).find(|&t| key(t) == key(2 * k + side))))
+            .collect();
         let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
         let stride = if samples <= MAX_KEPT_SAMPLES {
             1
@@ -164,6 +176,7 @@ impl<'s> Recorder<'s> {
             phi1,
             phi2,
             spans,
+            same,
             structures: st.len(),
             levels: heights
                 .iter()
@@ -651,13 +664,31 @@ impl Recorder<'_> {
         let h = s.t - self.last_t;
         let refine = self.prev.is_some() && h > 0.0;
         let reach = HERMITE_REACH * h;
-        let tracks = self.phi1.iter().zip(&self.phi2).zip(&mut self.prev_w);
-        let tracks = tracks.zip(&self.spans);
-        for (k, ((((phi1, phi2), prev_w), &[a, b, c]), l)) in
-            tracks.zip(&mut self.levels).enumerate()
-        {
-            let ((w1, w1d), (w2, w2d)) =
-                project_pair((phi1, &q[a..b], &s.v[a..b]), (phi2, &q[b..c], &s.v[b..c]));
+        for k in 0..self.levels.len() {
+            let [a, b, c] = self.spans[k];
+            // (a structure at a height tracked before, at a lower level index: its projection,
+            // already taken at this observation, is the same sums of the same state)
+            let taken = |p: usize| {
+                let (x, o) = (self.prev_w[p / 2], 2 * (p % 2));
+                (x[o], x[o + 1])
+            };
+            let ((w1, w1d), (w2, w2d)) = match self.same[k] {
+                [None, None] => project_pair(
+                    (&self.phi1[k], &q[a..b], &s.v[a..b]),
+                    (&self.phi2[k], &q[b..c], &s.v[b..c]),
+                ),
+                [s1, s2] => (
+                    match s1 {
+                        Some(p) => taken(p),
+                        None => project(&self.phi1[k], &q[a..b], &s.v[a..b]),
+                    },
+                    match s2 {
+                        Some(p) => taken(p),
+                        None => project(&self.phi2[k], &q[b..c], &s.v[b..c]),
+                    },
+                ),
+            };
+            let (prev_w, l) = (&mut self.prev_w[k], &mut self.levels[k]);
             raise(&mut l.peak_w1, w1.abs());
             raise(&mut l.peak_w2, w2.abs());
             raise(&mut l.max_closing, w1 - w2);

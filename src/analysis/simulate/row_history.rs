@@ -96,10 +96,15 @@ pub(super) struct RowSampler<'p> {
     /// Whether `before` already holds the previous observation's projections (it was
     /// projected: a sample fell at or before it), so that `prev_q`, `prev_v` are not read.
     before_kept: bool,
-    /// Scratch: (w, ẇ) of every track at the previous and at this observation, and a sample.
+    /// Scratch: (w, ẇ) of every track at the previous and at this observation, and a sample
+    /// (`at`: per track; `row`: per column, see `slot`).
     before: Vec<(f64, f64)>,
     now: Vec<(f64, f64)>,
+    at: Vec<f64>,
     row: Vec<f64>,
+    /// Per column of a sample (every structure's headline, then both structures at every
+    /// level), its track (distinct (structure, height) pairs only).
+    slot: Vec<usize>,
     pending: &'p RefCell<VecDeque<f64>>,
     history: RowHistory,
     /// Envelope group being filled (stride > 1): count, first and last time, minima, maxima.
@@ -123,11 +128,27 @@ impl<'p> RowSampler<'p> {
             phi: st[i].shapes_at(h),
             span: system.modes_of(i),
         };
-        let mut tracks: Vec<Track> = (0..st.len()).map(|i| track(i, heights[i])).collect();
+        // the columns: every structure at its headline height, then both structures at every
+        // level; a (structure, height) met again (a headline height is one of its levels', and
+        // a building of a row is often at the same heights with both neighbours) is one track,
+        // projected once: the same φ and the same sums, so the same bits in every column
+        let mut columns: Vec<(usize, f64)> = (0..st.len()).map(|i| (i, heights[i])).collect();
         for (&h, &p) in level_heights.iter().zip(pairs) {
-            tracks.push(track(p, h));
-            tracks.push(track(p + 1, h));
+            columns.push((p, h));
+            columns.push((p + 1, h));
         }
+        let mut distinct: Vec<(usize, f64)> = Vec::new();
+        let slot: Vec<usize> = columns
+            .iter()
+            .map(|&(i, h)| {
+                let same = |&(j, x): &(usize, f64)| j == i && x.to_bits() == h.to_bits();
+                distinct.iter().position(same).unwrap_or_else(|| {
+                    distinct.push((i, h));
+                    distinct.len() - 1
+                })
+            })
+            .collect();
+        let tracks: Vec<Track> = distinct.iter().map(|&(i, h)| track(i, h)).collect();
         let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
         let stride = if samples <= MAX_KEPT_SAMPLES {
             1
@@ -141,6 +162,7 @@ impl<'p> RowSampler<'p> {
         };
         let n = system.len();
         let nt = tracks.len();
+        let width = slot.len();
         RowSampler {
             structures: st.len(),
             interval,
@@ -151,7 +173,9 @@ impl<'p> RowSampler<'p> {
             before_kept: false,
             before: vec![(0.0, 0.0); nt],
             now: vec![(0.0, 0.0); nt],
-            row: vec![0.0; nt],
+            at: vec![0.0; nt],
+            row: vec![0.0; width],
+            slot,
             pending,
             history: RowHistory {
                 stride,
@@ -166,8 +190,8 @@ impl<'p> RowSampler<'p> {
                 0,
                 0.0,
                 0.0,
-                vec![f64::INFINITY; nt],
-                vec![f64::NEG_INFINITY; nt],
+                vec![f64::INFINITY; width],
+                vec![f64::NEG_INFINITY; width],
             ),
             tracks,
         }
@@ -175,7 +199,7 @@ impl<'p> RowSampler<'p> {
 
     /// Values per queued sample: every track's w.
     pub(super) fn width(&self) -> usize {
-        self.tracks.len()
+        self.slot.len()
     }
 
     fn observe(&mut self, s: &StepView) {
@@ -189,10 +213,7 @@ impl<'p> RowSampler<'p> {
             if !projected {
                 for (k, tr) in self.tracks.iter().enumerate() {
                     let r = tr.span.clone();
-                    self.now[k] = project(&tr.phi, &s.q[r.clone()], &s.v[r.clone()]);
-                    if !self.before_kept {
-                        self.before[k] = project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
-                    }
+                    self.now[k] = project(&tr.phi, &s.q[r.clone()], &s.v[r]);
                 }
                 projected = true;
             }
@@ -200,17 +221,39 @@ impl<'p> RowSampler<'p> {
                 Some(t0) if s.t > t0 => {
                     let h = s.t - t0;
                     let th = ((tau - t0) / h).clamp(0.0, 1.0);
-                    let b = Basis::at(th);
-                    for (k, w) in self.row.iter_mut().enumerate() {
-                        let ((a, ad), (c, cd)) = (self.before[k], self.now[k]);
-                        *w = b.combine(a, ad, c, cd, h);
+                    // (at θ = 1 the weights are 0, 0, 1, 0 exactly: the interpolant is the
+                    // observation's w bit for bit whatever (finite) values the previous one
+                    // holds, unless w = 0, where the zeros' signs could matter; the previous
+                    // observation is projected only where it is read)
+                    let end = th == 1.0 && self.now.iter().all(|n| n.0 != 0.0);
+                    if end {
+                        for (w, n) in self.at.iter_mut().zip(&self.now) {
+                            *w = n.0;
+                        }
+                    } else {
+                        if !self.before_kept {
+                            for (k, tr) in self.tracks.iter().enumerate() {
+                                let r = tr.span.clone();
+                                self.before[k] =
+                                    project(&tr.phi, &self.prev_q[r.clone()], &self.prev_v[r]);
+                            }
+                            self.before_kept = true;
+                        }
+                        let b = Basis::at(th);
+                        for (k, w) in self.at.iter_mut().enumerate() {
+                            let ((a, ad), (c, cd)) = (self.before[k], self.now[k]);
+                            *w = b.combine(a, ad, c, cd, h);
+                        }
                     }
                 }
                 _ => {
-                    for (w, n) in self.row.iter_mut().zip(&self.now) {
+                    for (w, n) in self.at.iter_mut().zip(&self.now) {
                         *w = n.0;
                     }
                 }
+            }
+            for (w, &k) in self.row.iter_mut().zip(&self.slot) {
+                *w = self.at[k];
             }
             self.pending.borrow_mut().extend(self.row.iter().copied());
             self.keep(tau);

@@ -82,6 +82,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// A pair with one contact level takes its own path (`single`), the same arithmetic.
     #[inline(never)]
     pub(super) fn accept(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        // (the next trial starts from the new state, whichever path accepts this one)
+        self.start.valid = false;
         if self.single_level() {
             return self.accept_one(piece, trial, t_end);
         }
@@ -91,6 +93,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// [`Self::accept`] for any number of contact levels.
     #[inline(never)]
     pub(super) fn accept_general(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        // (the next trial starts from the new state: its start is formed again)
+        self.start.valid = false;
         let (n, nl) = (self.n, self.nl);
         let h = trial.h;
         let bases = collocation::bases();

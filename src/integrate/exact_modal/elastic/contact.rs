@@ -185,41 +185,52 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 }
             }
             (Piece::Poly { .. }, _) => {
-                // particular solution A + Bτ + Cτ² per mode, projected per level
-                let mut proj = [[0.0; 3]; 8];
-                let wide = nl > proj.len();
-                let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
-                let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
-                let cpl = &self.cpl_t[..n * nl];
-                for j in 0..n {
-                    let c = gm.poly_load(j, piece, t0);
-                    cpoly[j] = c;
-                    let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
-                    pcoef[j] = [pa, pb, pc];
-                    x0s[j] = q[j] - pa;
-                    y0s[j] = v[j] - pb;
-                    if !wide {
-                        for (pr, &ck) in proj.iter_mut().zip(&cpl[j * nl..(j + 1) * nl]) {
-                            pr[0] += ck * pa;
-                            pr[1] += ck * pb;
-                            pr[2] += ck * pc;
+                // particular solution A + Bτ + Cτ² per mode, projected per level (the trials
+                // of one step start from the same state at the same instant: what depends on
+                // the start alone is formed at its first trial and kept, see `start`)
+                let wide = nl > self.start.narrow.len();
+                if !self.start.valid {
+                    let proj = &mut self.start.narrow;
+                    *proj = [[0.0; 3]; 8];
+                    let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
+                    let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
+                    let cpl = &self.cpl_t[..n * nl];
+                    for j in 0..n {
+                        let c = gm.poly_load(j, piece, t0);
+                        cpoly[j] = c;
+                        let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
+                        pcoef[j] = [pa, pb, pc];
+                        x0s[j] = q[j] - pa;
+                        y0s[j] = v[j] - pb;
+                        if !wide {
+                            for (pr, &ck) in proj.iter_mut().zip(&cpl[j * nl..(j + 1) * nl]) {
+                                pr[0] += ck * pa;
+                                pr[1] += ck * pb;
+                                pr[2] += ck * pc;
+                            }
                         }
                     }
+                    self.start.wide_ok.iter_mut().for_each(|ok| *ok = false);
+                    self.start.valid = true;
                 }
                 for ki in 0..self.lv_seen.len() {
                     let k = self.lv_seen[ki];
                     let [a, b, c] = if wide {
-                        // (over the level's pair's modes: c_kj = 0 elsewhere)
-                        let ck = sys.coupling(k);
-                        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
-                        for j in sys.coupling_modes(k) {
-                            a += ck[j] * self.pcoef[j][0];
-                            b += ck[j] * self.pcoef[j][1];
-                            c += ck[j] * self.pcoef[j][2];
+                        if !self.start.wide_ok[k] {
+                            // (over the level's pair's modes: c_kj = 0 elsewhere)
+                            let ck = sys.coupling(k);
+                            let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+                            for j in sys.coupling_modes(k) {
+                                a += ck[j] * self.pcoef[j][0];
+                                b += ck[j] * self.pcoef[j][1];
+                                c += ck[j] * self.pcoef[j][2];
+                            }
+                            self.start.wide[k] = [a, b, c];
+                            self.start.wide_ok[k] = true;
                         }
-                        [a, b, c]
+                        self.start.wide[k]
                     } else {
-                        proj[k]
+                        self.start.narrow[k]
                     };
                     for i in 0..6 {
                         let tau = NODES[i] * h;
@@ -409,6 +420,8 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
         // (a row: the structures this step carries, see `active`)
         self.update_active(&piece, span_end);
+        // (this step's trials all start here: their common start is formed once)
+        self.start.valid = false;
         // a recorded motion: dyadic parts of the piece's grid step (see DYADIC)
         let dyadic = matches!(piece, Piece::Poly { .. });
         let plan = EqualSteps::new(pstart, span_end, self.dt);

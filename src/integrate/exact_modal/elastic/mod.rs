@@ -330,6 +330,27 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// The next grid point, at (or first past) which a row's observation sees every
     /// structure (see [`Observer::observe_stepped`]), s.
     obs_grid: f64,
+    /// What a recorded motion's contact trials take from their start alone, kept over the
+    /// trials of one step.
+    start: TrialStart,
+}
+
+/// A recorded motion's contact trial's start (see [`Elastic::trial_general`]): every mode's
+/// ground-load polynomial, particular solution and homogeneous part at the step's start
+/// (`cpoly`, `pcoef`, `x0`, `y0` of [`Elastic`]) and the particular solutions projected on
+/// the levels. The trials of one step (rejected, cut at an event, redone with an edge's
+/// structure) start from the same state at the same instant, so these are the same numbers
+/// at every trial: formed at the first, valid until the step is accepted.
+#[derive(Debug, Clone)]
+struct TrialStart {
+    /// Whether the modes' values (and `narrow`) are this step's.
+    valid: bool,
+    /// Of at most eight levels: every level's projection (A, B, C), summed over every mode.
+    narrow: [[f64; 3]; 8],
+    /// Of more levels: each level's projection over its pair's modes, and whether it is
+    /// formed for this step.
+    wide: Vec<[f64; 3]>,
+    wide_ok: Vec<bool>,
 }
 
 pub(super) fn run<O: Observer>(
@@ -493,6 +514,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
             passive_steps: 0,
             edge_redos: 0,
             obs_grid: 0.0,
+            start: TrialStart {
+                valid: false,
+                narrow: [[0.0; 3]; 8],
+                wide: vec![[0.0; 3]; nl],
+                wide_ok: vec![false; nl],
+            },
             zeno: 0,
             fproj: vec![(0.0, 0.0); nl],
             fmargin: vec![0.0; nl],
