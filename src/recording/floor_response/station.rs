@@ -711,35 +711,13 @@ impl Stations {
         // (floors: a level acts at its floor, and what is above a storey sums from the top; a
         // cantilever's `above` already marks every level above the section)
         let lumped = matches!(self.equilibrium, Equilibrium::Lumped(_));
-        // (the levels that carry a force, in order: a row's stations see all its levels, most
-        // of them unloaded, and a zero force adds nothing to `c` — which starts at +0 — so
-        // leaving it out gives the same bits)
-        let (mut live, mut nlive, mut many) = ([0usize; 8], 0, false);
-        for (k, &f) in forces.iter().enumerate() {
-            if f != 0.0 {
-                if nlive < live.len() {
-                    live[nlive] = k;
-                    nlive += 1;
-                } else {
-                    many = true;
-                }
-            }
-        }
         let mut c_above = 0.0;
         for f in (0..ns).rev() {
             let mut c = 0.0;
             let row = &above[f * stride..f * stride + nl];
-            if many {
-                for k in 0..nl {
-                    if row[k] {
-                        c += signs[k] * forces[k];
-                    }
-                }
-            } else {
-                for &k in &live[..nlive] {
-                    if row[k] {
-                        c += signs[k] * forces[k];
-                    }
+            for k in 0..nl {
+                if row[k] {
+                    c += signs[k] * forces[k];
                 }
             }
             if lumped {
