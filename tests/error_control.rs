@@ -359,12 +359,26 @@ fn stiff_case_at_rtol_1e_10_is_within_a_tenth_of_a_percent_with_both_methods() {
 /// `exact-modal`'s rtol controls its contact sub-steps: on the first impacts of the stiff case
 /// (before the sequence turns sensitive: from the fourth on, each impact inherits the earlier
 /// ones' errors amplified) the peak-force error against the converged run falls at least 5×
-/// for every 100× of rtol (rtol 1e-4, 1e-6, 1e-8: measured 3.6e-4, 3.2e-5, 1.4e-6),
+/// for every 100× of rtol (rtol 1e-4, 1e-6, 1e-8: measured 1.1e-4, 1.3e-6, 2.0e-7),
 /// while the sub-steps grow in number.
+///
+/// The converged run is `adaptive` at rtol 1e-12 and dt 0.01 ms. At dt 0.1 ms (this test's
+/// reference until issue 25) its first three peak forces were 5.3e-8, 7.9e-8 and 2.8e-8 below
+/// it: the recorder takes an impact's peak force from the cubic Hermite of δ between
+/// observations, and `adaptive`'s observations inside an impact are at most dt apart however
+/// small rtol is — a floor of the reference that does not follow rtol, as large as half of
+/// `exact-modal`'s error at rtol 1e-8. At dt 0.01 ms the reference agrees with `exact-modal`
+/// at rtol 1e-12 (another scheme, whose peaks come from its own sub-steps' dense output) to
+/// 2e-9, asserted below within 1e-8: 20× below the smallest error this test compares.
 #[test]
 fn exact_modal_rtol_controls_its_error() {
-    let reference = run(&stiff(0.5, 1.0, "adaptive", 1e-4, "rtol = 1e-12"));
+    let reference = run(&stiff(0.5, 1.0, "adaptive", 1e-5, "rtol = 1e-12"));
     assert_eq!(reference.contact.impacts, 10);
+    let confirm = run(&stiff(0.5, 1.0, "exact-modal", 1e-3, "rtol = 1e-12"));
+    for (a, b) in confirm.impact_log.iter().zip(&reference.impact_log).take(3) {
+        let d = rel(a.peak_force, b.peak_force);
+        assert!(d < 1e-8, "reference not converged: {d:.3e}");
+    }
     let mut last = (f64::INFINITY, 0);
     for rtol in [1e-4, 1e-6, 1e-8] {
         let r = run(&stiff(
@@ -559,17 +573,29 @@ fn shear_building_floors_on_stiff_contacts_at_the_default() {
 
 /// `exact-modal` converges monotonically as rtol shrinks, on whole runs: the shear buildings on
 /// the stiff Jankowski contact (44 impacts at four floors) at rtol 1e-4 … 1e-7, the largest
-/// error of the headline numbers against the converged run (`adaptive`, rtol 1e-12) falls at
-/// least 5× per decade of rtol (measured 2.6e-5, 2.1e-6, 1.9e-7, 1.0e-8: one order per order,
-/// as a tolerance should act) — so the self-check's rerun at rtol/100 and `pounding
-/// convergence` see the error they report.
+/// error of the headline numbers against the converged run falls at least 5× per decade of
+/// rtol (measured 2.6e-5, 2.1e-6, 1.8e-7, 2.3e-8: one order per order, as a tolerance should
+/// act) — so the self-check's rerun at rtol/100 and `pounding convergence` see the error they
+/// report.
+///
+/// The converged run is `adaptive` at rtol 1e-12 and dt 0.01 ms. At the record's step (this
+/// test's reference until issue 25) its peak force was 1.3e-8 below it (the damped law's peak
+/// is searched between observations, which `adaptive` takes at most dt apart: at dt 0.5 ms it is
+/// 4.0e-8 below, at 0.05 ms 0.9e-8 above, at 2 µs 0.03e-8 above), as large as `exact-modal`'s
+/// error at rtol 1e-7. At dt 0.01 ms it agrees with `exact-modal` at rtol 1e-12 (another
+/// scheme) to 2.6e-9, asserted below within 1e-8.
 #[test]
 fn exact_modal_converges_monotonically_in_rtol() {
     let reference = run(&shear(
         "jankowski",
         "2.75e11",
-        "method = \"adaptive\"\nrtol = 1e-12",
+        "method = \"adaptive\"\nrtol = 1e-12\ndt = 1e-5",
     ));
+    let confirm = run(&shear("jankowski", "2.75e11", "rtol = 1e-12"));
+    for ((name, a), (_, b)) in headline(&confirm).iter().zip(headline(&reference)) {
+        let d = rel(*a, b);
+        assert!(d < 1e-8, "reference not converged: {name} {d:.3e}");
+    }
     let mut last = f64::INFINITY;
     for rtol in ["1e-4", "1e-5", "1e-6", "1e-7"] {
         let r = run(&shear("jankowski", "2.75e11", &format!("rtol = {rtol}")));
