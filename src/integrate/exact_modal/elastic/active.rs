@@ -348,7 +348,7 @@ mod tests {
 
     /// A row's accepted steps under a recorded motion take one pass over the modes,
     /// structure by structure, the passive structures' modes two at a time
-    /// (`accept::row_poly_pass`): the row of four (4, 5, 3 and 4 modes: odd structures leave
+    /// (`row_pass::row_poly_pass`): the row of four (4, 5, 3 and 4 modes: odd structures leave
     /// a mode to the scalar tail) under the first 4 s of Loma Prieta at 0.4 g with gaps that
     /// close (A–B and C–D pound while the other pair is passive, B–C too at times) gives every
     /// observation — time, every modal coordinate and velocity, every level's force — and

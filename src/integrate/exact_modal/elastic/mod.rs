@@ -39,6 +39,7 @@ mod contact;
 mod free;
 mod kernel;
 mod onset;
+mod row_pass;
 mod single;
 
 use super::super::collocation::{
@@ -300,7 +301,7 @@ pub(super) struct Elastic<'a, O: Observer> {
     /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
     kink_floor_ulps: f64,
     /// A row's accepted steps under a recorded motion take the one pass over the modes
-    /// (`accept::row_poly_pass`; a test sets false for the general loops it must equal).
+    /// (`row_pass::row_poly_pass`; a test sets false for the general loops it must equal).
     row_pass: bool,
     /// The quantised contact step lengths `dt·2^(−k/4)`, k = 0..=MAX_K.
     lengths: Vec<f64>,
