@@ -35,4 +35,4 @@ mod tests;
 
 pub(super) use newton::{Newton, NoConvergence, nodal_states, solve, solve_single, start_force};
 pub(super) use nodes::{NODES, NODES6, NODES8, THETA8, WEIGHTS8, bases};
-pub(super) use table::Table;
+pub(super) use table::{ModeStep, Table};

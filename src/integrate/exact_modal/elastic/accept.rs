@@ -5,6 +5,7 @@
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use super::row_pass::row_poly_pass;
 use super::*;
 use crate::numerics::lanes::F2;
 
@@ -148,194 +149,213 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (x0s, y0s) = (&self.x0[..n], &self.y0[..n]);
         let (w2s, damp, iw2) = (&gm.w2[..n], &gm.damp[..n], &gm.inv_w2[..n]);
         let modes = &tab.modes[..n];
-        // the particular solutions at the end (and at the interior nodes for dense output),
-        // in a loop of their own: the piece's kind is the same for every mode
-        let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
-        for j in 0..n {
-            let pcoef = &self.pcoef[j];
-            pend[j] = particular_at(gm, piece, harmonic, pcoef, j, h, &trs[4]);
-            if dense {
-                pmid[j] = std::array::from_fn(|i| {
-                    particular_at(
-                        gm,
-                        piece,
-                        harmonic,
-                        pcoef,
-                        j,
-                        THETA8[i + 1] * h,
-                        &trs[i + 1],
-                    )
-                });
-            }
-        }
-        // the end state (and the dense output's), each level's projections of it
-        let (q1s, v1s) = (&mut self.q1s[..n], &mut self.v1s[..n]);
-        let proj = &mut self.proj;
-        proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
         // (a row's levels couple to few modes and levels: see `levels_of_mode`)
         let row = self.sys.structures.len() > 2;
-        let dense_out = (&mut self.dense_q[..3 * n], &mut self.dense_v[..3 * n]);
-        let one = nl == 1;
-        let f1: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
-        for j in 0..n {
-            // mode j's contact load's Lagrange weights g, Σ_k c_kj F_k (one level: c_j·F)
-            // (the levels whose coupling can be non-zero at mode j: of a row, its structure's
-            // pairs; the others' terms are exact zeros)
-            let holding = if row {
-                self.sys.levels_of_mode(j)
-            } else {
-                0..nl
-            };
-            let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
-            // (a passive mode of a row: no contact force reaches it, its free flight is exact;
-            // the terms left out are products with zeros)
-            let forced = self.mode_act[j];
-            let g = if !forced {
-                [0.0; 5]
-            } else if pair {
-                PairLevel::weights(lanes, cj)
-            } else if one {
-                let c = cj[0];
-                f1.map(|x| c * x)
-            } else {
-                let mut g = [0.0; 5];
-                for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
-                    for p in 0..5 {
-                        g[p] += c * f[p];
-                    }
-                }
-                g
-            };
-            let ms = &modes[j];
-            let (x0, y0) = (x0s[j], y0s[j]);
-            let (xe, ye) = ms.end.apply(x0, y0);
-            let pe = pend[j];
-            let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
-            if forced {
-                for p in 0..5 {
-                    q1 += g[p] * ms.end8[p].0;
-                    v1 += g[p] * ms.end8[p].1;
+        // (a row under a recorded motion without dense output: one pass over the modes,
+        // structure by structure, see `row_poly_pass`)
+        if row && self.row_pass && !dense && matches!(piece, Piece::Poly { .. }) {
+            self.proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
+            (input, d_energy) = row_poly_pass(
+                self.sys,
+                gm,
+                modes,
+                (x0s, y0s, &self.q[..n], &self.v[..n]),
+                (&self.pcoef[..n], &self.cpoly[..n]),
+                &self.cpl_t,
+                &self.mode_act,
+                (&self.f8, &self.moments),
+                h,
+                (&mut self.q1s[..n], &mut self.v1s[..n]),
+                &mut self.proj,
+            );
+        } else {
+            // the particular solutions at the end (and at the interior nodes for dense output),
+            // in a loop of their own: the piece's kind is the same for every mode
+            let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
+            for j in 0..n {
+                let pcoef = &self.pcoef[j];
+                pend[j] = particular_at(gm, piece, harmonic, pcoef, j, h, &trs[4]);
+                if dense {
+                    pmid[j] = std::array::from_fn(|i| {
+                        particular_at(
+                            gm,
+                            piece,
+                            harmonic,
+                            pcoef,
+                            j,
+                            THETA8[i + 1] * h,
+                            &trs[i + 1],
+                        )
+                    });
                 }
             }
-            if dense {
-                for i in 0..3 {
-                    let (x, y) = ms.mid[i].apply(x0, y0);
-                    let pi = pmid[j][i];
-                    let (mut e, mut d) = (x + pi.0, y + pi.1);
-                    if forced {
-                        for p in 0..5 {
-                            e += g[p] * ms.mid8[i][p].0;
-                            d += g[p] * ms.mid8[i][p].1;
-                        }
-                    }
-                    dense_out.0[i * n + j] = e;
-                    dense_out.1[i * n + j] = d;
-                }
-            }
-            q1s[j] = q1;
-            v1s[j] = v1;
-            if row {
-                for (c, pr) in cj.iter().zip(&mut proj[holding]) {
-                    pr.0 += c * q1;
-                    pr.1 += c * v1;
-                }
-            }
-        }
-        if !row {
-            // (a pair: each level's projections as one sum over the modes, in the same order
-            // as the per-mode accumulation of a row above, so the same bits)
-            for (k, pr) in proj.iter_mut().enumerate() {
-                let c = &self.sys.coupling(k)[..n];
-                let (mut a, mut b) = (0.0, 0.0);
-                for j in 0..n {
-                    a += c[j] * q1s[j];
-                    b += c[j] * v1s[j];
-                }
-                *pr = (a, b);
-            }
-        }
-        // the tallies, one loop per kind of piece
-        let (q0s, v0s) = (&self.q[..n], &self.v[..n]);
-        let (q1s, v1s) = (&self.q1s[..n], &self.v1s[..n]);
-        match (piece, &self.htally) {
-            (Piece::Harmonic, Some(ht)) => {
-                for j in 0..n {
-                    ht.add(&mut sums, j, w2s[j], q1s[j], v1s[j]);
-                }
-            }
-            (Piece::Poly { .. }, _) => {
-                for j in 0..n {
-                    let (gi, gt) = if pair {
-                        PairLevel::moments(lanes, &self.cpl_t[j * nl..(j + 1) * nl])
-                    } else if !self.mode_act[j] {
-                        // (a row's passive mode: its levels carry no force over the step, so
-                        // every moment is 0 and the sums below are +0 exactly)
-                        (0.0, 0.0)
-                    } else {
-                        let holding = if row {
-                            self.sys.levels_of_mode(j)
-                        } else {
-                            0..nl
-                        };
-                        let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
-                        let (mut gi, mut gt) = (0.0, 0.0);
-                        for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
-                            gi += c * mo.0;
-                            gt += c * mo.1;
-                        }
-                        (gi, gt)
-                    };
-                    input += poly_ground_work(
-                        (damp[j], iw2[j]),
-                        h,
-                        (q0s[j], v0s[j]),
-                        (q1s[j], v1s[j]),
-                        &self.cpoly[j],
-                        gi,
-                        gt,
-                    );
-                }
-            }
-            (Piece::Zero, _) => {}
-            _ => {
-                // harmonic motion with a mode at undamped resonance: its exact work for the
-                // contact load's chord (rare; mode_work's own trapezoid at resonance)
-                let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
-                for j in 0..n {
-                    let holding = if row {
-                        self.sys.levels_of_mode(j)
-                    } else {
-                        0..nl
-                    };
-                    let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+            // the end state (and the dense output's), each level's projections of it
+            let (q1s, v1s) = (&mut self.q1s[..n], &mut self.v1s[..n]);
+            let proj = &mut self.proj;
+            proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
+            let dense_out = (&mut self.dense_q[..3 * n], &mut self.dense_v[..3 * n]);
+            let one = nl == 1;
+            let f1: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
+            for j in 0..n {
+                // mode j's contact load's Lagrange weights g, Σ_k c_kj F_k (one level: c_j·F)
+                // (the levels whose coupling can be non-zero at mode j: of a row, its structure's
+                // pairs; the others' terms are exact zeros)
+                let holding = if row {
+                    self.sys.levels_of_mode(j)
+                } else {
+                    0..nl
+                };
+                let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                // (a passive mode of a row: no contact force reaches it, its free flight is exact;
+                // the terms left out are products with zeros)
+                let forced = self.mode_act[j];
+                let g = if !forced {
+                    [0.0; 5]
+                } else if pair {
+                    PairLevel::weights(lanes, cj)
+                } else if one {
+                    let c = cj[0];
+                    f1.map(|x| c * x)
+                } else {
                     let mut g = [0.0; 5];
                     for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
                         for p in 0..5 {
                             g[p] += c * f[p];
                         }
                     }
-                    input += mode_work(
-                        gm,
-                        j,
-                        h,
-                        (q0s[j], v0s[j]),
-                        (q1s[j], v1s[j]),
-                        None,
-                        tm.as_ref(),
-                        g[0],
-                        g[4] - g[0],
-                    )
-                    .input;
+                    g
+                };
+                let ms = &modes[j];
+                let (x0, y0) = (x0s[j], y0s[j]);
+                let (xe, ye) = ms.end.apply(x0, y0);
+                let pe = pend[j];
+                let (mut q1, mut v1) = (xe + pe.0, ye + pe.1);
+                if forced {
+                    for p in 0..5 {
+                        q1 += g[p] * ms.end8[p].0;
+                        v1 += g[p] * ms.end8[p].1;
+                    }
+                }
+                if dense {
+                    for i in 0..3 {
+                        let (x, y) = ms.mid[i].apply(x0, y0);
+                        let pi = pmid[j][i];
+                        let (mut e, mut d) = (x + pi.0, y + pi.1);
+                        if forced {
+                            for p in 0..5 {
+                                e += g[p] * ms.mid8[i][p].0;
+                                d += g[p] * ms.mid8[i][p].1;
+                            }
+                        }
+                        dense_out.0[i * n + j] = e;
+                        dense_out.1[i * n + j] = d;
+                    }
+                }
+                q1s[j] = q1;
+                v1s[j] = v1;
+                if row {
+                    for (c, pr) in cj.iter().zip(&mut proj[holding]) {
+                        pr.0 += c * q1;
+                        pr.1 += c * v1;
+                    }
                 }
             }
-        }
-        // (harmonic motion: the change of energy from the harmonic sums, below)
-        let harmonic_sums =
-            matches!(piece, Piece::Harmonic) && self.htally.is_some() && self.big.is_some();
-        if !harmonic_sums {
-            for j in 0..n {
-                let (q0, v0, q1, v1) = (q0s[j], v0s[j], q1s[j], v1s[j]);
-                d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
+            if !row {
+                // (a pair: each level's projections as one sum over the modes, in the same order
+                // as the per-mode accumulation of a row above, so the same bits)
+                for (k, pr) in proj.iter_mut().enumerate() {
+                    let c = &self.sys.coupling(k)[..n];
+                    let (mut a, mut b) = (0.0, 0.0);
+                    for j in 0..n {
+                        a += c[j] * q1s[j];
+                        b += c[j] * v1s[j];
+                    }
+                    *pr = (a, b);
+                }
+            }
+            // the tallies, one loop per kind of piece
+            let (q0s, v0s) = (&self.q[..n], &self.v[..n]);
+            let (q1s, v1s) = (&self.q1s[..n], &self.v1s[..n]);
+            match (piece, &self.htally) {
+                (Piece::Harmonic, Some(ht)) => {
+                    for j in 0..n {
+                        ht.add(&mut sums, j, w2s[j], q1s[j], v1s[j]);
+                    }
+                }
+                (Piece::Poly { .. }, _) => {
+                    for j in 0..n {
+                        let (gi, gt) = if pair {
+                            PairLevel::moments(lanes, &self.cpl_t[j * nl..(j + 1) * nl])
+                        } else if !self.mode_act[j] {
+                            // (a row's passive mode: its levels carry no force over the step, so
+                            // every moment is 0 and the sums below are +0 exactly)
+                            (0.0, 0.0)
+                        } else {
+                            let holding = if row {
+                                self.sys.levels_of_mode(j)
+                            } else {
+                                0..nl
+                            };
+                            let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                            let (mut gi, mut gt) = (0.0, 0.0);
+                            for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
+                                gi += c * mo.0;
+                                gt += c * mo.1;
+                            }
+                            (gi, gt)
+                        };
+                        input += poly_ground_work(
+                            (damp[j], iw2[j]),
+                            h,
+                            (q0s[j], v0s[j]),
+                            (q1s[j], v1s[j]),
+                            &self.cpoly[j],
+                            gi,
+                            gt,
+                        );
+                    }
+                }
+                (Piece::Zero, _) => {}
+                _ => {
+                    // harmonic motion with a mode at undamped resonance: its exact work for the
+                    // contact load's chord (rare; mode_work's own trapezoid at resonance)
+                    let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
+                    for j in 0..n {
+                        let holding = if row {
+                            self.sys.levels_of_mode(j)
+                        } else {
+                            0..nl
+                        };
+                        let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                        let mut g = [0.0; 5];
+                        for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
+                            for p in 0..5 {
+                                g[p] += c * f[p];
+                            }
+                        }
+                        input += mode_work(
+                            gm,
+                            j,
+                            h,
+                            (q0s[j], v0s[j]),
+                            (q1s[j], v1s[j]),
+                            None,
+                            tm.as_ref(),
+                            g[0],
+                            g[4] - g[0],
+                        )
+                        .input;
+                    }
+                }
+            }
+            // (harmonic motion: the change of energy from the harmonic sums, below)
+            let harmonic_sums =
+                matches!(piece, Piece::Harmonic) && self.htally.is_some() && self.big.is_some();
+            if !harmonic_sums {
+                for j in 0..n {
+                    let (q0, v0, q1, v1) = (q0s[j], v0s[j], q1s[j], v1s[j]);
+                    d_energy += 0.5 * (v1 * v1 - v0 * v0) + 0.5 * w2s[j] * (q1 * q1 - q0 * q0);
+                }
             }
         }
         std::mem::swap(&mut self.q, &mut self.q1s);

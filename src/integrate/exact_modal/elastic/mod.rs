@@ -39,6 +39,7 @@ mod contact;
 mod free;
 mod kernel;
 mod onset;
+mod row_pass;
 mod single;
 
 use super::super::collocation::{
@@ -299,6 +300,9 @@ pub(super) struct Elastic<'a, O: Observer> {
     progress: Progress,
     /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
     kink_floor_ulps: f64,
+    /// A row's accepted steps under a recorded motion take the one pass over the modes
+    /// (`row_pass::row_poly_pass`; a test sets false for the general loops it must equal).
+    row_pass: bool,
     /// The quantised contact step lengths `dt·2^(−k/4)`, k = 0..=MAX_K.
     lengths: Vec<f64>,
     /// Contact steps since sin Ωt, cos Ωt were last evaluated directly.
@@ -495,6 +499,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             force_contact: false,
             progress: Progress::new(Method::ExactModal),
             kink_floor_ulps: KINK_FLOOR_ULPS,
+            row_pass: true,
             lengths: (0..=MAX_K)
                 .map(|k| settings.base_step() * (-(k as f64) / QUANT).exp2())
                 .collect(),
