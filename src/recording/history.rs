@@ -18,6 +18,11 @@ pub trait HistorySink {
     fn floor_row(&mut self, t: f64, values: &[f64]) {
         let _ = (t, values);
     }
+    /// Whether this sink uses [`HistorySink::floor_row`] (false: the recorder does not form
+    /// the floor rows at all — the self-check's runs, whose rows nobody writes).
+    fn wants_floor_rows(&self) -> bool {
+        true
+    }
 }
 
 /// Sampled time history: displacements at the main contact height and every level's force.

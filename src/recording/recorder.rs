@@ -66,6 +66,8 @@ pub struct Recorder<'s> {
     envelope: Envelope,
     /// Where every sample goes as it is taken.
     sink: Option<&'s mut dyn HistorySink>,
+    /// Whether the sink takes the floor rows ([`HistorySink::wants_floor_rows`]).
+    floor_rows: bool,
     /// Forces of the levels at the sample being taken (scratch, no allocation per sample).
     row_forces: Vec<f64>,
     last_impulse: Vec<f64>,
@@ -209,6 +211,7 @@ impl<'s> Recorder<'s> {
             },
             envelope: Envelope::new(2 + nl),
             sink: None,
+            floor_rows: false,
             row_forces: vec![0.0; nl],
             last_impulse: vec![0.0; nl],
             prev_force: vec![0.0; nl],
@@ -278,6 +281,7 @@ impl<'s> Recorder<'s> {
     /// Send every history sample to `sink` as it is taken (the in-memory history is kept as
     /// well, bounded: see [`History`]).
     pub fn with_sink(mut self, sink: &'s mut dyn HistorySink) -> Recorder<'s> {
+        self.floor_rows = sink.wants_floor_rows();
         self.sink = Some(sink);
         self
     }
@@ -636,7 +640,9 @@ impl Recorder<'_> {
             self.build_floors(system);
         }
         if let Some(f) = &mut self.floors {
-            match (&self.floor_keep, self.sink.as_deref_mut()) {
+            // (no floor rows formed for a sink that drops them)
+            let sink = self.sink.as_deref_mut().filter(|_| self.floor_rows);
+            match (&self.floor_keep, sink) {
                 (Some(keep), Some(sink)) => {
                     let mut picked = Picked {
                         sink,

@@ -253,3 +253,80 @@ fn free_runs_of_another_scenario_give_the_same_report() {
         key(&shear("exact-modal", 0.02, false).replace("scale_to_pga = 0.6", "scale_to_pga = 0.5"));
     assert!(r1 == r2 && r1 != r3);
 }
+
+/// The self-check's run with contact of `sc` (rtol/100, or dt/√10 for `rk4`), integrated, with
+/// the floors, as `simulate_run_reusing` integrates it when it does; and the result's report
+/// with its own check (the shortcut on).
+fn check_run_and_result(sc: &Scenario) -> (Report, Report) {
+    let (result, _) = simulate_run_reusing(sc, true, &mut NoSink, true, None, true).expect("runs");
+    let mut tight = sc.clone();
+    tight.solver = accuracy::tightened(&sc.solver);
+    let check = simulate_phases(&tight, &mut NoSink, true, true, None, false).expect("runs");
+    (result, check)
+}
+
+/// A run with contact that never touched (`exact-modal`, elastic) read no tolerance, so its
+/// self-check's run would repeat it: here that run is integrated anyway and its record (peaks,
+/// levels, floors, history, energy) is the run's bit for bit (`Debug` texts), its numbers
+/// without contact are the run's, and the check the result carries — taken from the run
+/// itself — says converged with every change exactly 0. Where the check run must be
+/// integrated it differs from the run: impacts (the contact steps follow rtol), `rk4` without
+/// impacts (dt/√10 changes every step), and it is not taken from the run for `adaptive`
+/// (a collocation step near a miss) nor for yielding storeys (their sub-steps follow rtol).
+#[test]
+fn the_check_of_a_run_that_never_touched_is_the_run() {
+    let served = |sc: &Scenario| {
+        let r = simulate(sc).expect("runs");
+        reuse::untouched(sc, &r.stats, &r.with_contact)
+    };
+    for sc in [
+        scenario(&cantilevers("exact-modal", 0.01, 5.0, 0.6, 3.0)),
+        scenario(&shear("exact-modal", 2.0, false)),
+    ] {
+        assert!(served(&sc), "{}", sc.title);
+        let (result, check) = check_run_and_result(&sc);
+        assert!(result.contact.impacts == 0 && check.contact.impacts == 0);
+        assert!(!result.with_contact.floors.is_empty());
+        assert!(
+            format!("{:?}", result.with_contact) == format!("{:?}", check.with_contact),
+            "{}: the check run did not repeat the run",
+            sc.title
+        );
+        // (the check integrated its own run without contact, which records no floors)
+        let mut free = result.without_contact.clone();
+        free.floors.iter_mut().for_each(Vec::clear);
+        assert!(
+            format!("{free:?}") == format!("{:?}", check.without_contact),
+            "{}: the check's run without contact differs",
+            sc.title
+        );
+        let a = &result.accuracy;
+        assert!(a.checked && a.converged == Some(true) && a.failure.is_none());
+        assert_eq!(a.max_change, Some(0.0), "{}", sc.title);
+        // (the floors compared too: five quantities per structure)
+        assert!(
+            a.quantities
+                .iter()
+                .filter(|q| q.name.starts_with("floor_"))
+                .count()
+                == 10
+        );
+    }
+    // must not be taken from the run: the check run differs, or may
+    let touching = scenario(&cantilevers("exact-modal", 0.01, 0.0127, 0.6, 3.0));
+    let rk4 = scenario(&cantilevers("rk4", 0.002, 5.0, 0.6, 3.0));
+    for sc in [&touching, &rk4] {
+        assert!(!served(sc), "{:?}", sc.solver.method);
+        let (result, check) = check_run_and_result(sc);
+        assert!(
+            format!("{:?}", result.with_contact) != format!("{:?}", check.with_contact),
+            "{:?}",
+            sc.solver.method
+        );
+        assert!(result.accuracy.max_change.is_some_and(|c| c > 0.0));
+    }
+    assert!(!served(&scenario(&cantilevers(
+        "adaptive", 0.005, 5.0, 0.6, 3.0
+    ))));
+    assert!(!served(&scenario(&shear("exact-modal", 2.0, true))));
+}

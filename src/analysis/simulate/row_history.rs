@@ -388,4 +388,9 @@ impl HistorySink for RowPhaseSink<'_> {
     fn floor_row(&mut self, t: f64, values: &[f64]) {
         self.phase.floor_row(self.sink, t, values);
     }
+
+    /// The self-check's floor rows are never written: not formed.
+    fn wants_floor_rows(&self) -> bool {
+        !self.phase.is_check()
+    }
 }

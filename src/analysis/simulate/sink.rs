@@ -29,6 +29,11 @@ impl Phase {
         }
     }
 
+    /// Whether this is one of the self-check's runs (whose samples are not written).
+    pub fn is_check(self) -> bool {
+        matches!(self, Phase::CheckWithContact | Phase::CheckWithoutContact)
+    }
+
     /// A floor history sample of this phase to `sink` (a pair's or a row's: the same files);
     /// the self-check's samples are not written.
     pub(super) fn floor_row(self, sink: &mut dyn RunSink, t: f64, values: &[f64]) {
@@ -277,5 +282,10 @@ impl HistorySink for PhaseSink<'_> {
 
     fn floor_row(&mut self, t: f64, values: &[f64]) {
         self.phase.floor_row(self.sink, t, values);
+    }
+
+    /// The self-check's floor rows are never written: not formed.
+    fn wants_floor_rows(&self) -> bool {
+        !self.phase.is_check()
     }
 }
