@@ -179,8 +179,9 @@ pub(super) struct Stations {
     /// The absolute acceleration and the equilibrium shear between observations
     /// ([`Between`]).
     pub(super) between: Between,
-    /// Scratch: the contact levels that carry force on this structure at an observation,
-    /// with their `sign·F` (N), in the levels' order.
+    /// Scratch: the contact levels that carry force on this structure at an observation (or
+    /// a pulse point of [`Stations::raise_at`]), with their `sign·F` (N), in the levels'
+    /// order.
     pub(super) loaded: Vec<(usize, f64)>,
     /// Scratch of [`Stations::raise_at`]: per station the modal part of the acceleration
     /// (m/s²), then the equilibrium shear (N).
@@ -607,7 +608,8 @@ impl Stations {
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
         // the levels that carry force on this structure, `sign_k F_k ≠ 0`, once per observation
-        // (the others add an exact zero: leaving them out changes no sum)
+        // (the others add an exact zero: leaving them out changes no sum but, at most, the sign
+        // of a sum that is exactly zero, which no |V| compared with a peak sees)
         st.loaded.clear();
         for (k, (&sign, level)) in st.signs[..nl].iter().zip(&at.levels[..nl]).enumerate() {
             let sf = sign * level.force;
