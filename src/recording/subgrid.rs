@@ -589,8 +589,9 @@ fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
 /// `out[k][f] = s_f + Σ_n c[n·ns + f] x[k][n]` for every station f (`c`: `[mode·stations +
 /// station]`), summed in the modes' order from `s_f = start.0 · start.1[f]` (`start`) or from
 /// the first mode's term: the same operations in the same order as the plain loops, two
-/// stations per operation ([`F2`]: each lane is the scalar operation, bit for bit), over
-/// slices cut into pairs once (no bounds check per element).
+/// stations per operation ([`F2`]: each lane is the scalar operation, bit for bit). Station
+/// pair by station pair, the `K` sums held in registers over the modes (each coefficient
+/// pair read once for all `K`, no sum stored and reloaded per mode).
 #[inline(always)]
 pub(crate) fn modal_sums<const K: usize>(
     c: &[f64],
@@ -602,32 +603,41 @@ pub(crate) fn modal_sums<const K: usize>(
     if ns == 0 {
         return;
     }
-    let pair = |s: &[f64; 2]| F2::new(s[0], s[1]);
-    for (k, out) in out.into_iter().enumerate() {
-        let (pairs, tail) = out[..ns].as_chunks_mut::<2>();
+    let nm = c.len() / ns;
+    let c = &c[..nm * ns];
+    // (every input cut to the modes once: no bounds check per term)
+    let x: [&[f64]; K] = std::array::from_fn(|k| &x[k][..nm]);
+    let m0 = usize::from(start.is_none());
+    let pairs = ns / 2;
+    for p in 0..pairs {
+        let i = 2 * p;
         // the first term: `s·w_f`, or the first mode's
-        let (scale, first) = match start {
-            Some((s, w)) => (s, &w[..ns]),
-            None => (x[k][0], &c[..ns]),
+        let mut acc: [F2; K] = match start {
+            Some((s, w)) => [F2::splat(s) * F2::new(w[i], w[i + 1]); K],
+            None => std::array::from_fn(|k| F2::splat(x[k][0]) * F2::new(c[i], c[i + 1])),
         };
-        let (fp, ft) = first.as_chunks::<2>();
-        let sp = F2::splat(scale);
-        for (o, w) in pairs.iter_mut().zip(fp) {
-            *o = (sp * pair(w)).get();
-        }
-        for (o, w) in tail.iter_mut().zip(ft) {
-            *o = scale * w;
-        }
-        let m0 = usize::from(start.is_none());
-        for (j, cj) in c.chunks_exact(ns).enumerate().skip(m0) {
-            let (xj, xs) = (x[k][j], F2::splat(x[k][j]));
-            let (cp, ct) = cj.as_chunks::<2>();
-            for (o, c) in pairs.iter_mut().zip(cp) {
-                *o = (pair(o) + pair(c) * xs).get();
+        for j in m0..nm {
+            let cj = F2::new(c[j * ns + i], c[j * ns + i + 1]);
+            for k in 0..K {
+                acc[k] = acc[k] + cj * F2::splat(x[k][j]);
             }
-            for (o, c) in tail.iter_mut().zip(ct) {
-                *o += c * xj;
+        }
+        for k in 0..K {
+            let [a, b] = acc[k].get();
+            (out[k][i], out[k][i + 1]) = (a, b);
+        }
+    }
+    if ns % 2 == 1 {
+        let i = ns - 1;
+        for k in 0..K {
+            let mut o = match start {
+                Some((s, w)) => s * w[i],
+                None => x[k][0] * c[i],
+            };
+            for j in m0..nm {
+                o += c[j * ns + i] * x[k][j];
             }
+            out[k][i] = o;
         }
     }
 }

@@ -11,6 +11,7 @@ use super::between::{Between, between_on_hermite, between_on_subgrid};
 use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
+use crate::numerics::lanes::F2;
 use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
@@ -84,6 +85,44 @@ fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec
     Some(ks)
 }
 
+/// `x_f = Σ_n φ_n(f) a_n` and `v_f −= Σ_n E_n(f) a_n` at every station f (`phi`, `eq`:
+/// `[n·stations + station]`), each sum in the modes' order: the scalar loop's, bit for bit,
+/// two stations per operation ([`F2`]: each lane the scalar operation), station pair by
+/// station pair with both sums held in registers over the modes. (`x` starts from the first
+/// mode's term, not from `0 +` it: the same value but for the sign of an exact zero, which no
+/// |x| compared with a peak sees.)
+#[inline(always)]
+fn accelerations_and_inertia((phi, eq): (&[f64], &[f64]), a: &[f64], x: &mut [f64], v: &mut [f64]) {
+    let (ns, nm) = (x.len(), a.len());
+    if ns == 0 || nm == 0 {
+        x.fill(0.0);
+        return;
+    }
+    let (phi, eq, v) = (&phi[..nm * ns], &eq[..nm * ns], &mut v[..ns]);
+    for p in 0..ns / 2 {
+        let i = 2 * p;
+        let s = F2::splat(a[0]);
+        let mut xs = F2::new(phi[i], phi[i + 1]) * s;
+        let mut vs = F2::new(v[i], v[i + 1]) - F2::new(eq[i], eq[i + 1]) * s;
+        for n in 1..nm {
+            let (j, s) = (n * ns + i, F2::splat(a[n]));
+            xs = xs + F2::new(phi[j], phi[j + 1]) * s;
+            vs = vs - F2::new(eq[j], eq[j + 1]) * s;
+        }
+        [x[i], x[i + 1]] = xs.get();
+        [v[i], v[i + 1]] = vs.get();
+    }
+    if ns % 2 == 1 {
+        let i = ns - 1;
+        let (mut xs, mut vs) = (phi[i] * a[0], v[i] - eq[i] * a[0]);
+        for n in 1..nm {
+            xs += phi[n * ns + i] * a[n];
+            vs -= eq[n * ns + i] * a[n];
+        }
+        (x[i], v[i]) = (xs, vs);
+    }
+}
+
 /// The stations of one structure.
 #[derive(Debug, Clone)]
 pub(super) struct Stations {
@@ -140,6 +179,17 @@ pub(super) struct Stations {
     /// The absolute acceleration and the equilibrium shear between observations
     /// ([`Between`]).
     pub(super) between: Between,
+    /// Scratch: the contact levels that carry force on this structure at an observation (or
+    /// a pulse point of [`Stations::raise_at`]), with their `sign·F` (N), in the levels'
+    /// order.
+    pub(super) loaded: Vec<(usize, f64)>,
+    /// Scratch of [`Stations::raise_at`]: per station the modal part of the acceleration
+    /// (m/s²), then the equilibrium shear (N).
+    pub(super) point: Vec<f64>,
+    /// The stations each contact level loads (those whose `above` marks it), level k's at
+    /// `level_stations[level_at[k]..level_at[k + 1]]`, lowest first.
+    pub(super) level_stations: Vec<usize>,
+    pub(super) level_at: Vec<usize>,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -267,7 +317,7 @@ impl Stations {
         };
         let phi = transpose(&phi);
         let lumped = matches!(equilibrium, Equilibrium::Lumped(_));
-        let above = heights
+        let above: Vec<bool> = heights
             .iter()
             .flat_map(|&x| {
                 contact_heights.iter().zip(signs).map(move |(&hk, &sign)| {
@@ -325,6 +375,13 @@ impl Stations {
             ),
         };
         let between = Between::new(&phi, (eq_rows, mass_above), &m.omega, (ns, nm));
+        let nl = contact_heights.len();
+        let mut level_at = vec![0];
+        let mut level_stations = Vec::new();
+        for k in 0..nl {
+            level_stations.extend((0..ns).filter(|&f| above[f * nl + k]));
+            level_at.push(level_stations.len());
+        }
         Stations {
             cmax,
             grid: SubGrid::new(nm),
@@ -360,6 +417,10 @@ impl Stations {
             last_t: None,
             h: None,
             fresh: false,
+            loaded: Vec::with_capacity(contact_heights.len()),
+            point: vec![0.0; 2 * ns],
+            level_stations,
+            level_at,
         }
     }
 
@@ -546,14 +607,24 @@ impl Stations {
         }
         // the equilibrium of what is above (storey force and damping forces)
         let nl = st.levels.min(at.levels.len());
+        // the levels that carry force on this structure, `sign_k F_k ≠ 0`, once per observation
+        // (the others add an exact zero: leaving them out changes no sum but, at most, the sign
+        // of a sum that is exactly zero, which no |V| compared with a peak sees)
+        st.loaded.clear();
+        for (k, (&sign, level)) in st.signs[..nl].iter().zip(&at.levels[..nl]).enumerate() {
+            let sf = sign * level.force;
+            if sf != 0.0 {
+                st.loaded.push((k, sf));
+            }
+        }
         // `v += Σ_k sign_k F_k` over the levels that load the part above station f, in order
-        let (signs, forces, stride) = (&st.signs[..nl], &at.levels[..nl], st.levels);
+        let (loaded, stride) = (&st.loaded[..], st.levels);
         let above_of = &st.above;
         let contact = |v: &mut f64, f: usize| {
             let row = &above_of[f * stride..f * stride + nl];
-            for ((&on, &sign), level) in row.iter().zip(signs).zip(forces) {
-                if on {
-                    *v += sign * level.force;
+            for &(k, sf) in loaded {
+                if row[k] {
+                    *v += sf;
                 }
             }
         };
@@ -662,8 +733,7 @@ impl Stations {
         // the accelerations and the equilibrium shear between the observations of a free flight
         // where no mode rings too fast for the cubic Hermite ([`between_on_hermite`]; inside an
         // impact pulse the forcing is not linear: `pulse`)
-        let loaded = (st.signs[..nl].iter().zip(&at.levels[..nl]))
-            .any(|(&sign, level)| sign != 0.0 && level.force != 0.0);
+        let loaded = !st.loaded.is_empty();
         if let (Some(h), Some(_), false) = (h, resolution, ringing)
             && !loaded
             && !st.between.prev_loaded
@@ -700,36 +770,51 @@ impl Stations {
     /// [`Stations::observe`] forms them at an observation.
     pub(super) fn raise_at(&mut self, t: f64, accel: &[f64], ag: f64, forces: &[f64]) {
         let (nm, ns) = (self.modes, self.heights.len());
+        if ns == 0 {
+            return;
+        }
         let a = &accel[self.offset..self.offset + nm];
-        let (nl, stride) = (self.levels.min(forces.len()), self.levels);
+        let nl = self.levels.min(forces.len());
         let (signs, forces) = (&self.signs[..nl], &forces[..nl]);
-        // (every slice cut once: no bounds check per mode; `phi` and `eq_rows` are mode-major,
-        // `[n·stations + station]`)
+        // the levels that carry force on this structure, `sign_k F_k ≠ 0`, once per call (the
+        // others add an exact zero to a sum that is never −0: leaving them out changes no bit)
+        self.loaded.clear();
+        for k in 0..nl {
+            let sf = signs[k] * forces[k];
+            if sf != 0.0 {
+                self.loaded.push((k, sf));
+            }
+        }
+        let loaded = &self.loaded[..];
+        let (x, c) = self.point[..2 * ns].split_at_mut(ns);
+        // `C − M a_g` per station, `C` the contact forces above it, a sum from 0 in the levels'
+        // order (floors: a level acts at its floor, and what is above a storey sums from the
+        // top; a cantilever's `above` already marks every level above the section)
+        c.fill(0.0);
+        for &(k, sf) in loaded {
+            for &f in &self.level_stations[self.level_at[k]..self.level_at[k + 1]] {
+                c[f] += sf;
+            }
+        }
+        let mass_above = &self.between.mass_above[..ns];
+        if matches!(self.equilibrium, Equilibrium::Lumped(_)) {
+            let mut c_above = 0.0;
+            for f in (0..ns).rev() {
+                c_above += c[f];
+                c[f] = c_above - mass_above[f] * ag;
+            }
+        } else {
+            for f in 0..ns {
+                c[f] -= mass_above[f] * ag;
+            }
+        }
+        // `Σ φ_n η̈_n` and `C − M a_g − Σ E_n η̈_n`, mode by mode over the stations (each
+        // station's sums in the modes' order, as a loop per station forms them)
         let (phi, eq_rows) = (&self.phi[..nm * ns], &self.between.eq_rows[..nm * ns]);
-        let (mass_above, above) = (&self.between.mass_above[..ns], &self.above[..ns * stride]);
+        accelerations_and_inertia((phi, eq_rows), a, x, c);
         let (peaks, hold) = (&mut self.peaks[..ns], &mut self.hold[..ns]);
-        // (floors: a level acts at its floor, and what is above a storey sums from the top; a
-        // cantilever's `above` already marks every level above the section)
-        let lumped = matches!(self.equilibrium, Equilibrium::Lumped(_));
-        let mut c_above = 0.0;
-        for f in (0..ns).rev() {
-            let mut c = 0.0;
-            let row = &above[f * stride..f * stride + nl];
-            for k in 0..nl {
-                if row[k] {
-                    c += signs[k] * forces[k];
-                }
-            }
-            if lumped {
-                c_above += c;
-                c = c_above;
-            }
-            let (mut x, mut v) = (0.0, c - mass_above[f] * ag);
-            for n in 0..nm {
-                x += phi[n * ns + f] * a[n];
-                v -= eq_rows[n * ns + f] * a[n];
-            }
-            let x = x + ag;
+        for f in 0..ns {
+            let x = x[f] + ag;
             let p = &mut peaks[f];
             if x.abs() > p.acceleration {
                 p.acceleration = x.abs();
@@ -739,7 +824,7 @@ impl Stations {
             if x.abs() > hold[f].abs() {
                 hold[f] = x;
             }
-            raise(&mut p.shear_with_damping, v.abs());
+            raise(&mut p.shear_with_damping, c[f].abs());
         }
     }
 
