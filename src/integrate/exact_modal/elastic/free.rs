@@ -9,7 +9,6 @@ use super::kernel::{
 };
 use super::*;
 use crate::numerics::hermite::hermite_bound;
-use crate::numerics::lanes::F2;
 
 impl<'a, O: Observer> Elastic<'a, O> {
     // ---------------------------------------------------------------- free flight
@@ -227,21 +226,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 }
             }
         } else {
-            // (two levels a pass where the rows are long enough for `dots`' four lanes: the
-            // state's lanes loaded once for both, each level's sums as `dots` forms them)
-            let mut first = 0;
-            if n >= 8 {
-                while first + 1 < nl {
-                    let (a, b) = (self.sys.coupling(first), self.sys.coupling(first + 1));
-                    let (pa, pb) = dots_two(a, b, &self.qb, &self.vb);
-                    (self.fproj[first], self.fproj[first + 1]) = (pa, pb);
-                    first += 2;
-                }
-            }
-            for k in first..nl {
-                self.fproj[k] = dots(self.sys.coupling(k), &self.qb, &self.vb);
-            }
             for k in 0..nl {
+                let c = self.sys.coupling(k);
+                self.fproj[k] = dots(c, &self.qb, &self.vb);
                 if margin {
                     self.fmargin[k] = dot(&self.cabs_t[k * n..(k + 1) * n], &self.amp);
                 } else if !bounded {
@@ -645,66 +632,9 @@ pub(super) fn dots_within(
     )
 }
 
-/// [`dots`]`(a, x, y)` and [`dots`]`(b, x, y)` in one pass that loads the state's lanes once
-/// for both rows (two levels' projections): each row's sums take the same products in the same
-/// lanes and order as `dots` (its four partial sums as two pairs of lanes, the modes after the
-/// last group of four into lanes 0, 1, 2, then (0 + 2) + (1 + 3)): the same bits. Below 8
-/// terms, or rows of different lengths, `dots` itself for each.
-#[inline(always)]
-fn dots_two(a: &[f64], b: &[f64], x: &[f64], y: &[f64]) -> ((f64, f64), (f64, f64)) {
-    let n = a.len().min(x.len()).min(y.len());
-    if n < 8 || b.len().min(x.len()).min(y.len()) != n {
-        return (dots(a, x, y), dots(b, x, y));
-    }
-    let (a, b, x, y) = (&a[..n], &b[..n], &x[..n], &y[..n]);
-    let z = F2::zero();
-    // per row: (x lanes 0–1, x lanes 2–3, y lanes 0–1, y lanes 2–3)
-    let (mut sa, mut sb) = ([z; 4], [z; 4]);
-    let rows = a.as_chunks::<4>().0.iter().zip(b.as_chunks::<4>().0);
-    let state = x.as_chunks::<4>().0.iter().zip(y.as_chunks::<4>().0);
-    for ((ca, cb), (xc, yc)) in rows.zip(state) {
-        let (x01, x23) = (F2::new(xc[0], xc[1]), F2::new(xc[2], xc[3]));
-        let (y01, y23) = (F2::new(yc[0], yc[1]), F2::new(yc[2], yc[3]));
-        let (a01, a23) = (F2::new(ca[0], ca[1]), F2::new(ca[2], ca[3]));
-        sa = [
-            sa[0] + a01 * x01,
-            sa[1] + a23 * x23,
-            sa[2] + a01 * y01,
-            sa[3] + a23 * y23,
-        ];
-        let (b01, b23) = (F2::new(cb[0], cb[1]), F2::new(cb[2], cb[3]));
-        sb = [
-            sb[0] + b01 * x01,
-            sb[1] + b23 * x23,
-            sb[2] + b01 * y01,
-            sb[3] + b23 * y23,
-        ];
-    }
-    (dots_end(sa, a, x, y), dots_end(sb, b, x, y))
-}
-
-/// [`dots_two`]'s end for one row `c`: the modes after the last group of four, each into its
-/// lane, and the lanes added as `dots` adds them.
-#[inline(always)]
-fn dots_end(acc: [F2; 4], c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
-    let n = c.len().min(x.len()).min(y.len());
-    let ([x0, x1], [x2, x3]) = (acc[0].get(), acc[1].get());
-    let ([y0, y1], [y2, y3]) = (acc[2].get(), acc[3].get());
-    let (mut ax, mut ay) = ([x0, x1, x2, x3], [y0, y1, y2, y3]);
-    let r = n / 4 * 4;
-    for i in 0..n - r {
-        ax[i] += c[r + i] * x[r + i];
-        ay[i] += c[r + i] * y[r + i];
-    }
-    (
-        (ax[0] + ax[2]) + (ax[1] + ax[3]),
-        (ay[0] + ay[2]) + (ay[1] + ay[3]),
-    )
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{dot_within, dots_two, dots_within, floor, round};
+    use super::{dot_within, dots_within, floor, round};
     use crate::integrate::exact_modal::elastic::kernel::dots;
     use crate::numerics::linalg::dot;
 
@@ -745,33 +675,6 @@ mod tests {
                     assert_eq!(p.0.to_bits(), q.0.to_bits(), "n {n} range {lo}..{hi}");
                     assert_eq!(p.1.to_bits(), q.1.to_bits(), "n {n} range {lo}..{hi}");
                 }
-            }
-        }
-    }
-
-    /// Two rows' projections in one pass ([`dots_two`]) are [`dots`]' for each, bit for bit:
-    /// every length from 0 to 40 (below and above the four-lane threshold of 8, every
-    /// remainder), rows of unequal lengths, values of mixed signs and magnitudes that round.
-    #[test]
-    fn two_rows_in_one_pass_are_dots_bit_for_bit() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
-            (u - 0.5) * 10f64.powi((seed % 9) as i32 - 4)
-        };
-        for n in 0..=40 {
-            for nb in [n, n.saturating_sub(1), n + 2] {
-                let a: Vec<f64> = (0..n).map(|_| next()).collect();
-                let b: Vec<f64> = (0..nb).map(|_| next()).collect();
-                let x: Vec<f64> = (0..n.max(nb)).map(|_| next()).collect();
-                let y: Vec<f64> = (0..n.max(nb)).map(|_| next()).collect();
-                let (p, q) = dots_two(&a, &b, &x, &y);
-                let bits = |v: (f64, f64)| (v.0.to_bits(), v.1.to_bits());
-                assert_eq!(bits(p), bits(dots(&a, &x, &y)), "n {n}, {nb}");
-                assert_eq!(bits(q), bits(dots(&b, &x, &y)), "n {n}, {nb}");
             }
         }
     }
