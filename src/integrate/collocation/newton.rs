@@ -26,7 +26,7 @@ pub(in crate::integrate) struct Newton {
     red_rhs: Vec<f64>,
     /// Of the level a pass is at, the levels of its band that carry force: their places in
     /// the band (their weights' block in the level table follows from the level's first
-    /// slot), and where their forces start.
+    /// slot), and the levels themselves.
     loaded: Vec<(usize, usize)>,
 }
 
@@ -103,7 +103,7 @@ pub(in crate::integrate) fn solve<const S: usize>(
             let first = sys.band_slot(k, band.start);
             // (the band's levels in order, those out of contact throughout skipped: the same
             // sums as over every level of the band, term for term; `loaded` holds each one's
-            // place in the band and where its forces start)
+            // place in the band and the level)
             let Newton {
                 rhs,
                 slopes,
@@ -116,7 +116,7 @@ pub(in crate::integrate) fn solve<const S: usize>(
                 loaded.clear();
                 for l in band.clone() {
                     if !quiet[l] {
-                        loaded.push((l - band.start, l * S));
+                        loaded.push((l - band.start, l));
                     }
                 }
                 listed = band.clone();
@@ -130,14 +130,14 @@ pub(in crate::integrate) fn solve<const S: usize>(
             let (df, nd) = (&dfree[rows.clone()], &mut nodal[rows]);
             let fk = &force[k * S + 1..(k + 1) * S];
             let ok = onset[k];
+            // (the weights' rows of S and the levels' forces as arrays: one bounds check each)
+            let (wrows, _) = w.as_chunks::<S>();
+            let (frows, _) = force.as_chunks::<S>();
             for p in 0..m {
                 let (mut d, mut dd) = df[p];
-                for &(rel, fat) in loaded.iter() {
-                    let at = (first + rel) * m * S;
-                    let row: &[(f64, f64); S] = w[at + p * S..at + (p + 1) * S]
-                        .try_into()
-                        .expect("S weights");
-                    let fl: &[f64; S] = force[fat..fat + S].try_into().expect("S forces");
+                for &(rel, l) in loaded.iter() {
+                    let row = &wrows[(first + rel) * m + p];
+                    let fl = &frows[l];
                     for q in 0..S {
                         d -= row[q].0 * fl[q];
                         dd -= row[q].1 * fl[q];
@@ -370,6 +370,8 @@ pub(super) fn solve_touching<const S: usize>(
     red.clear();
     red.resize(na * na, 0.0);
     red_rhs.resize(na, 0.0);
+    // (the weights' rows of S: one bounds check a row)
+    let (wrows, _) = w.as_chunks::<S>();
     for (i, &r) in act.iter().enumerate() {
         let (k, p) = (r / m, r % m);
         let (kd, kv) = slopes[r];
@@ -381,16 +383,16 @@ pub(super) fn solve_touching<const S: usize>(
         let mut b = rhs[r];
         let row = &mut red[i * na..(i + 1) * na];
         for (slot, l) in (first..).zip(band) {
-            let at = (slot * m + p) * S;
-            let ws = &w[at + 1..at + S];
+            let ws = &wrows[slot * m + p][1..];
+            let cols = l * m..(l + 1) * m;
+            let (fl, rl, pl) = (&free[cols.clone()], &rhs[cols.clone()], &pos[cols]);
             for (q, x) in ws.iter().enumerate() {
-                let c = l * m + q;
                 let e = kd * x.0 + kv * x.1;
-                let e = if c == r { e + 1.0 } else { e };
-                if free[c] {
-                    b -= e * rhs[c];
+                let e = if l * m + q == r { e + 1.0 } else { e };
+                if fl[q] {
+                    b -= e * rl[q];
                 } else {
-                    row[pos[c]] = e;
+                    row[pl[q]] = e;
                 }
             }
         }
