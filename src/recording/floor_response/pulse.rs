@@ -142,6 +142,13 @@ impl Last {
             (self.usable, self.excluded) = (usable, excluded);
             return;
         }
+        // The modes the interior points need: the loaded levels' pairs' (their forces read
+        // them, the stations raised are theirs); in a row, not the other structures' (zero
+        // coupling: the sums below skip only products with zeros).
+        let span = (0..s.levels.len())
+            .filter(|&k| loaded(k))
+            .map(|k| system.coupling_modes(k))
+            .fold(n..0, |acc, r| acc.start.min(r.start)..acc.end.max(r.end));
         let within = |rs: &[Range<usize>], st: &Stations| {
             rs.iter()
                 .any(|r| r.start <= st.offset && st.offset + st.modes <= r.end)
@@ -189,7 +196,8 @@ impl Last {
                 let inside = law.force(f64::MIN_POSITIVE, lv.delta_dot, lv.delta_dot);
                 let jump = inside - lv.force;
                 if jump.abs() > 1e-12 * scale {
-                    for (x, c) in a[..n].iter_mut().zip(system.coupling(k)) {
+                    let r = system.coupling_modes(k);
+                    for (x, c) in a[r.clone()].iter_mut().zip(&system.coupling(k)[r]) {
                         *x += c * jump;
                     }
                     self.limits[end * nl + k] = inside;
@@ -224,7 +232,7 @@ impl Last {
             // the modes' (η, η̇) on the quintic (kept in `qi`, `vi`), their equations' terms
             let (qi, vi) = (&mut self.qi[..n], &mut self.vi[..n]);
             let inner = &mut self.inner[..n];
-            for m in 0..n {
+            for m in span.clone() {
                 let q = hv[0] * q0[m]
                     + hv[3] * q1[m]
                     + (hv[1] * v0[m] + hv[4] * v1[m]) * h
@@ -255,7 +263,8 @@ impl Last {
                 if !loaded(k) {
                     continue;
                 }
-                for (a, c) in inner.iter_mut().zip(system.coupling(k)) {
+                let r = system.coupling_modes(k);
+                for (a, c) in inner[r.clone()].iter_mut().zip(&system.coupling(k)[r]) {
                     *a += c * f;
                 }
             }
