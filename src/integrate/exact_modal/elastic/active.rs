@@ -228,22 +228,27 @@ mod tests {
         }
     }
 
+    /// A shear building of the test rows: `n` storeys of 3.5 m and 2e5 kg, storey stiffness `k`
+    /// (N/m), every mode kept.
+    fn b(name: &str, n: usize, k: f64) -> String {
+        format!(
+            "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
+             storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\n\
+             damping_ratio = 0.05\nmodes = {n}\n"
+        )
+    }
+
+    /// A Hertz contact (2e10 N/m^1.5) between `a` and `bb` at height `h` (m) with `gap` (m).
+    fn c(a: &str, bb: &str, h: f64, gap: f64) -> String {
+        format!(
+            "[[contact]]\nbetween = [\"{a}\", \"{bb}\"]\nlaw = \"hertz\"\n\
+             stiffness = 2.0e10\nheight = {h}\ngap = {gap}\n"
+        )
+    }
+
     /// A row of four shear buildings A–B–C–D under harmonic motion: A–B at 14 m (gap 1 cm),
     /// B–C at 10.5 m with gap `middle`, C–D at 10.5 m with gap `last`.
     fn row(middle: f64, last: f64) -> System {
-        let b = |name: &str, n: usize, k: f64| {
-            format!(
-                "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
-                 storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\n\
-                 damping_ratio = 0.05\nmodes = {n}\n"
-            )
-        };
-        let c = |a: &str, bb: &str, h: f64, gap: f64| {
-            format!(
-                "[[contact]]\nbetween = [\"{a}\", \"{bb}\"]\nlaw = \"hertz\"\n\
-                 stiffness = 2.0e10\nheight = {h}\ngap = {gap}\n"
-            )
-        };
         let text = format!(
             "{}{}{}{}{}{}{}[ground_motion]\nkind = \"harmonic\"\npga = 0.35\nperiod = 0.8\n\
              [solver]\nmethod = \"exact-modal\"\ndt = 0.002\nduration = 6.0\n",
@@ -359,19 +364,6 @@ mod tests {
     fn the_row_pass_is_the_general_accepted_step_to_the_last_bit() {
         let record = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("examples/records/RSN753_LOMAP_CLS000.AT2");
-        let b = |name: &str, n: usize, k: f64| {
-            format!(
-                "[[structure]]\nname = \"{name}\"\nkind = \"shear-building\"\nstoreys = {n}\n\
-                 storey_height = 3.5\nfloor_mass = 2.0e5\nstorey_stiffness = {k:e}\n\
-                 damping_ratio = 0.05\nmodes = {n}\n"
-            )
-        };
-        let c = |a: &str, bb: &str, h: f64, gap: f64| {
-            format!(
-                "[[contact]]\nbetween = [\"{a}\", \"{bb}\"]\nlaw = \"hertz\"\n\
-                 stiffness = 2.0e10\nheight = {h}\ngap = {gap}\n"
-            )
-        };
         let text = format!(
             "{}{}{}{}{}{}{}[ground_motion]\nkind = \"record\"\nfile = \"{}\"\n\
              scale_to_pga = 0.4\n[solver]\nmethod = \"exact-modal\"\ndt = 0.005\n\
