@@ -200,12 +200,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 // mode j's contact load's Lagrange weights g, Σ_k c_kj F_k (one level: c_j·F)
                 // (the levels whose coupling can be non-zero at mode j: of a row, its structure's
                 // pairs; the others' terms are exact zeros)
-                let holding = if row {
-                    self.sys.levels_of_mode(j)
-                } else {
-                    0..nl
-                };
-                let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                let (holding, cj) = mode_couplings(self.sys, &self.cpl_t, nl, row, j);
                 // (a passive mode of a row: no contact force reaches it, its free flight is exact;
                 // the terms left out are products with zeros)
                 let forced = self.mode_act[j];
@@ -291,12 +286,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                             // every moment is 0 and the sums below are +0 exactly)
                             (0.0, 0.0)
                         } else {
-                            let holding = if row {
-                                self.sys.levels_of_mode(j)
-                            } else {
-                                0..nl
-                            };
-                            let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                            let (holding, cj) = mode_couplings(self.sys, &self.cpl_t, nl, row, j);
                             let (mut gi, mut gt) = (0.0, 0.0);
                             for (c, mo) in cj.iter().zip(&self.moments[holding.start..]) {
                                 gi += c * mo.0;
@@ -321,12 +311,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
                     // contact load's chord (rare; mode_work's own trapezoid at resonance)
                     let tm = gm.harmonic_omega().map(|big| TrigMoments::new(big, t0, h));
                     for j in 0..n {
-                        let holding = if row {
-                            self.sys.levels_of_mode(j)
-                        } else {
-                            0..nl
-                        };
-                        let cj = &self.cpl_t[j * nl + holding.start..j * nl + holding.end];
+                        let (holding, cj) = mode_couplings(self.sys, &self.cpl_t, nl, row, j);
                         let mut g = [0.0; 5];
                         for (c, f) in cj.iter().zip(self.f8[holding.start * 5..].chunks_exact(5)) {
                             for p in 0..5 {
@@ -616,6 +601,22 @@ impl PairLevel {
         let [gi, gt] = m.get();
         (gi, gt)
     }
+}
+
+/// Mode j's levels whose coupling can be non-zero (of a row, its structure's pairs, see
+/// [`System::levels_of_mode`]; otherwise every level) and those couplings, from the transposed
+/// coupling table `cpl_t` (`nl` levels per mode). The other levels' terms are exact zeros.
+#[inline]
+fn mode_couplings<'c>(
+    sys: &System,
+    cpl_t: &'c [f64],
+    nl: usize,
+    row: bool,
+    j: usize,
+) -> (std::ops::Range<usize>, &'c [f64]) {
+    let holding = if row { sys.levels_of_mode(j) } else { 0..nl };
+    let cj = &cpl_t[j * nl + holding.start..j * nl + holding.end];
+    (holding, cj)
 }
 
 #[cfg(test)]
