@@ -2,19 +2,28 @@
 """The README's table "Accuracy (paper case T1/T2 = 0.7, 3 modes, 20 s)", measured.
 
     cargo build --release && python3 scripts/accuracy-table.py
+    python3 scripts/accuracy-table.py --stiff
 
 (from the repository's root; `--bin PATH` runs another `pounding` binary, `--keep DIR` keeps
-the runs' outputs). About a minute of one core.
+the runs' outputs). Each takes well under a minute of one core. `--stiff` prints instead the
+numbers the README gives for issue 9's stiff Hertz case (1000x the paper's stiffness, 6 s):
+each method's largest relative error of both peaks, the peak force and the required
+separation against the converged run (`adaptive`, rtol 1e-12, dt 1e-4 s), at PGA 0.5 g over
+exact-modal's rtol ladder and at 0.4 g and 0.6 g; and how far a 1e-6 change of the gap moves
+the converged peak force (with `--keep DIR` it also leaves DIR/stiff-rk4.toml, the case with
+rk4 at dt 1 ms, on which the README runs `pounding convergence`).
 
 Each row is `pounding run … --no-check --no-plot -q` on examples/paper-c.toml with
 `solver.method` and `dt` replaced (and `rtol` added where the row names one). Every row is
-compared with a converged reference, `adaptive` at rtol 1e-11 with observations every 0.1 ms
-(dt = 1e-4 s), which is itself checked against an independent one, `rk4` at dt = 2e-5 s; their
-agreement is printed first. Columns: relative errors of the peaks w1, w2 (summary.json
-`structures[i].peak_displacement`) and of the peak force (`contact.peak_force`); the largest
-relative error of the peak force over the first eight impacts (impacts.csv, matched in order,
-their starts within 1 ms of the reference's); the run's own energy-balance error
-(`solver.energy_relative_error`, the run with contact); and its steps (`solver.steps`).
+compared with a converged reference, `adaptive` at rtol 1e-11 with observations every 0.1 ms (dt
+= 1e-4 s), which is itself checked against an independent one, `rk4` at dt = 2e-5 s, and the
+same method at a tenth of the step; their agreement is printed first, and how much the 20 s
+peaks move when the gap is 1 um wider (the sensitivity of a sequence of 81 impacts). Columns:
+relative errors of the peaks w1, w2 (summary.json `structures[i].peak_displacement`) and of the
+peak force (`contact.peak_force`); the largest relative error of the peak force over the first
+eight impacts (impacts.csv, matched in order, their starts within 1 ms of the reference's); the
+run's own energy-balance error (`solver.energy_relative_error`, the run with contact); and its
+steps (`solver.steps`).
 
 Python 3 standard library only.
 """
@@ -46,11 +55,16 @@ ROWS = [
 ]
 REFERENCE = ("reference", "adaptive", 1e-4, 1e-11)
 SECOND = ("rk4 dt = 2e-5 s", "rk4", 2e-5, None)
+FINER = ("adaptive rtol 1e-11 dt = 1e-5 s", "adaptive", 1e-5, 1e-11)
 
 
-def scenario(method, dt, rtol):
-    """paper-c.toml's text with the method, dt and rtol replaced."""
+def scenario(method, dt, rtol, gap=None):
+    """paper-c.toml's text with the method, dt and rtol (and the gap, m) replaced."""
     text = EXAMPLE.read_text()
+    if gap is not None:
+        text, n = re.subn(r"^gap = 0\.0127$", f"gap = {gap!r}", text, flags=re.MULTILINE)
+        if n != 1:
+            sys.exit(f"{EXAMPLE}: no line `gap = 0.0127`")
     solver = f'method = "{method}"\ndt = {dt!r}' + ("" if rtol is None else f"\nrtol = {rtol!r}")
     text, n = re.subn(r'^method = "rk4"\ndt = 0\.001$', solver, text, flags=re.MULTILINE)
     if n != 1:
@@ -58,12 +72,12 @@ def scenario(method, dt, rtol):
     return text
 
 
-def run(binary, work, row):
+def run(binary, work, row, gap=None):
     """Runs one row; returns its summary.json and impacts.csv rows."""
     label, method, dt, rtol = row
-    name = f"{method}-{dt!r}-{rtol!r}"
+    name = f"{method}-{dt!r}-{rtol!r}-{gap!r}"
     toml = work / f"{name}.toml"
-    toml.write_text(scenario(method, dt, rtol))
+    toml.write_text(scenario(method, dt, rtol, gap))
     out = work / name
     subprocess.run(
         [str(binary), "run", str(toml), "--out", str(out), "--no-check", "--no-plot", "-q"],
@@ -83,7 +97,10 @@ def rel(a, b):
 def errors(result, reference):
     """(peak w1, peak w2, peak force, per impact) relative errors of `result`."""
     (s, imp), (rs, rimp) = result, reference
-    peaks = [rel(s["structures"][i]["peak_displacement"], rs["structures"][i]["peak_displacement"]) for i in range(2)]
+    peaks = [
+        rel(s["structures"][i]["peak_displacement"], rs["structures"][i]["peak_displacement"])
+        for i in range(2)
+    ]
     force = rel(s["contact"]["peak_force"], rs["contact"]["peak_force"])
     if len(imp) < FIRST_IMPACTS or len(rimp) < FIRST_IMPACTS:
         sys.exit("fewer than eight impacts")
@@ -159,6 +176,17 @@ def stiff(binary, work):
     def solver(method, dt, rtol):
         return f'method = "{method}"\ndt = {dt!r}' + ("" if rtol is None else f"\nrtol = {rtol!r}")
 
+    # what `pounding convergence` is shown on in the README: the case with rk4 at dt = 1 ms
+    (work / "stiff-rk4.toml").write_text(STIFF.format(pga=0.5, solver=solver("rk4", 1e-3, None)))
+    converged = STIFF.format(pga=0.5, solver=solver("adaptive", 1e-4, 1e-12))
+    ref = run_text(binary, work, "stiff-0.5-ref", converged)
+    wider = converged.replace("gap = 0.0127", "gap = 0.0127000127")
+    moved = run_text(binary, work, "stiff-0.5-gap", wider)
+    print(
+        f"stiff Hertz, PGA 0.5 g: the converged run with the gap 1e-6 of it wider: peak force changes by "
+        f"{fmt(rel(moved['contact']['peak_force'], ref['contact']['peak_force']))}, impacts "
+        f"{ref['contact']['impacts']} -> {moved['contact']['impacts']}"
+    )
     for pga, rows in [
         (0.5, [
             ("adaptive", 1e-4, 3e-12),
@@ -173,11 +201,13 @@ def stiff(binary, work):
         (0.4, [("adaptive", 1e-3, None), ("exact-modal", 1e-3, None)]),
         (0.6, [("adaptive", 1e-4, 3e-12), ("adaptive", 1e-3, None), ("exact-modal", 1e-3, None)]),
     ]:
-        ref = run_text(binary, work, f"stiff-{pga}-ref", STIFF.format(pga=pga, solver=solver("adaptive", 1e-4, 1e-12)))
+        converged = STIFF.format(pga=pga, solver=solver("adaptive", 1e-4, 1e-12))
+        ref = run_text(binary, work, f"stiff-{pga}-ref", converged)
         print(f"stiff Hertz, PGA {pga} g, 6 s: converged (adaptive, rtol 1e-12, dt 1e-4 s): "
               f"{ref['contact']['impacts']} impacts, peak force {ref['contact']['peak_force']:.4e} N")
         for method, dt, rtol in rows:
-            s = run_text(binary, work, f"stiff-{pga}-{method}-{dt!r}-{rtol!r}", STIFF.format(pga=pga, solver=solver(method, dt, rtol)))
+            name = f"stiff-{pga}-{method}-{dt!r}-{rtol!r}"
+            s = run_text(binary, work, name, STIFF.format(pga=pga, solver=solver(method, dt, rtol)))
             e = [rel(a, b) for a, b in zip(headline(s), headline(ref))]
             print(f"  {method} dt {dt!r} rtol {'default' if rtol is None else repr(rtol)}: "
                   f"peak force {fmt(e[2])}, largest of peaks, force, separation {fmt(max(e))}, "
@@ -197,12 +227,20 @@ def main():
             return stiff(args.bin, work)
         reference = run(args.bin, work, REFERENCE)
         second = run(args.bin, work, SECOND)
-        agree = errors(second, reference)
+        for other, label in [(second, SECOND[0]), (run(args.bin, work, FINER), FINER[0])]:
+            agree = errors(other, reference)
+            print(
+                f"reference (adaptive, rtol 1e-11, dt 1e-4 s) against {label}: "
+                f"peak w1 {fmt(agree[0])}, peak w2 {fmt(agree[1])}, peak force {fmt(agree[2])}, "
+                f"first {FIRST_IMPACTS} impacts' peak force {fmt(agree[3])}; impacts "
+                f"{reference[0]['contact']['impacts']} and {other[0]['contact']['impacts']}"
+            )
+        # how sensitive the 20 s peaks are: the reference with the gap 1 um wider
+        moved = run(args.bin, work, REFERENCE, gap=0.012701)
+        e = errors(moved, reference)
         print(
-            f"reference (adaptive, rtol 1e-11, dt 1e-4 s) against {SECOND[0]}: "
-            f"peak w1 {fmt(agree[0])}, peak w2 {fmt(agree[1])}, peak force {fmt(agree[2])}, "
-            f"first {FIRST_IMPACTS} impacts' peak force {fmt(agree[3])}; impacts "
-            f"{reference[0]['contact']['impacts']} and {second[0]['contact']['impacts']}"
+            f"the reference with gap = 0.012701 m (+1 um): peaks change by {fmt(e[0])}, {fmt(e[1])}, "
+            f"peak force {fmt(e[2])}; impacts {moved[0]['contact']['impacts']}"
         )
         print()
         print("| run | peak w1 | peak w2 | peak force | per impact | energy | steps |")
