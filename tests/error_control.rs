@@ -328,8 +328,9 @@ fn assert_close(what: &str, r: &Report, reference: &Report, tol: f64, same_impac
 /// its own test above); at rtol = 1e-10 both accurate methods are within 0.1 %. The converged
 /// solution is `adaptive` at rtol 1e-12 and a tenth of the step, confirmed by the other
 /// method, `exact-modal` at rtol 1e-11, within 1e-5 (two schemes that share only the exact
-/// modal propagators). Measured: defaults within 2e-7 (`adaptive`) and 8.8e-4 (`exact-modal`,
-/// whose count of impacts may differ by one or two), rtol 1e-10 within 1.1e-7 and 4.1e-7.
+/// modal propagators). Measured (printed): defaults within 5.9e-6 (`adaptive`) and 1.5e-6
+/// (`exact-modal`, whose count of impacts may differ by one or two), rtol 1e-10 within 5.9e-6
+/// and 5.0e-7; the reference confirmed within 7.3e-7.
 #[test]
 fn defaults_and_rtol_1e_10_are_within_their_bounds_across_cases() {
     let reference = cases("adaptive", 0.1, "rtol = 1e-12");
@@ -368,9 +369,9 @@ fn defaults_and_rtol_1e_10_are_within_their_bounds_across_cases() {
 
 /// The stiff Hertz case of issue 9 (6 s, 54 impacts, at the PGA of its independent solution)
 /// at rtol = 1e-10 with either accurate method is within 0.1 % of the converged run (measured
-/// 4.7e-6 `adaptive`, 1.1e-4 `exact-modal`, on the peak force). This is not a bound for every
-/// case: at PGA 0.5 g exactly the same case is so sensitive that `adaptive` at 1e-10 is 0.22 %
-/// off and `exact-modal` 12 % (the self-check says so, see below).
+/// 4.7e-6 `adaptive`, 2.4e-7 `exact-modal`, printed). This is not a bound for every case: at
+/// PGA 0.5 g exactly the same case is so sensitive that `adaptive` at 1e-10 is 0.22 % off (and
+/// `exact-modal` 5.0e-5, see below).
 #[test]
 fn stiff_case_at_rtol_1e_10_is_within_a_tenth_of_a_percent_with_both_methods() {
     let pga = 0.5 * 9.81 / 9.80665;
@@ -475,7 +476,7 @@ fn exact_modal_does_not_miss_short_impacts_inside_a_long_step() {
 /// impacts amplifies every impact's error) `exact-modal` at rtol 5e-5 (its default while its
 /// contact steps were second order) is 10 % and 4.8 % off in peak force at dt 1 ms and 10 ms,
 /// and its self-check says NOT converged each time; at its default (1e-8) it is within 0.5 %
-/// (measured 2.1e-4, 5.9e-4) and the check says converged; at 1e-10 within 0.1 % (5.1e-5). (Before its sub-steps followed rtol, the check
+/// (measured 2.1e-4, 5.9e-4) and the check says converged; at 1e-10 within 0.1 % (5.0e-5). (Before its sub-steps followed rtol, the check
 /// run was bit-identical and could see nothing; before they were a collocation, the default
 /// was 1.6 % and 20 % off, flagged.)
 #[test]
@@ -600,7 +601,7 @@ fn shear(law: &str, stiffness: &str, solver: &str) -> Scenario {
 /// Shear buildings pounding at four floors (the bundled 4- and 8-storey buildings, Loma Prieta
 /// at 0.6 g, 15 s) on stiff contacts of every damped law: at the default (`exact-modal`) within
 /// 0.5 % of the converged run (`adaptive`, rtol 1e-12). Measured: Jankowski (2.75e11, 100× the
-/// example's) 1.7e-8, damped Hertz (2.75e12) 2e-7, Kelvin (1e10) 1.9e-5 on the peak force —
+/// example's) 1.7e-8, damped Hertz (2.75e12) 7.8e-7, Kelvin (1e10) 1.9e-5 on the peak force —
 /// the last not set by the tolerance but by how finely a damped law's peak between
 /// observations is found.
 #[test]
