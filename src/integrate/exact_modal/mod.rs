@@ -1,38 +1,38 @@
 //! `exact-modal`: every mode's linear dynamics and the ground load propagated exactly over each
-//! step (docs/model.md §2.4; see [`super::linear`]), the contact load `Σ_k c_kj F_k(t)` treated as an
-//! extra load that is linear in time over a sub-step, from the law's force at the sub-step start
-//! to a predicted force at its end (trapezoidal predictor–corrector, PECE):
+//! step (docs/model.md §2.4; see [`super::linear`]), with two ways of adding the contact load
+//! `Σ_k c_kj F_k(t)` and the storeys' pseudo-forces:
 //!
-//! 1. predict the end state with the contact force held at F₀, evaluate the law there: F₁*;
-//! 2. correct: the end state under the load varying linearly from F₀ to F₁* (exact for that load);
-//! 3. evaluate the law at the corrected state: F₁ starts the next sub-step.
+//! - **elastic structures** ([`elastic`], the default method's path): free flight in closed form
+//!   between impacts, onsets located on it, and contact integrated by the embedded Lobatto
+//!   collocation pair of [`super::collocation`] (the force a quartic over a step, order 8 kept,
+//!   its order-6 companion the error estimate), step lengths chosen by that estimate against
+//!   `rtol` ([`SubstepTolerance`]). See `elastic`'s own documentation.
+//! - **yielding storeys** ([`Run::base_step_yielding`], below): the second-order
+//!   predictor–corrector this file describes from here on.
 //!
-//! The scheme is second order in the sub-step (the load's linear interpolation has an O(h²)
-//! error and the predicted F₁* an O(h²) error); with no contact it is exact for any step and any
-//! number of modes. While a level is in contact, or may come into contact within the base step,
-//! the base step `dt` is walked in dyadic sub-steps dt/2^m, m ≥ 2. Whether a level may touch
-//! is decided on the cubic Hermite bound of δ over the step's free flight plus a margin for the
-//! modes that oscillate within it (each mode's distance from its own cubic is at most
-//! `(|λ|h)⁴/384` of its amplitude, capped at 2: without it a 1.8 ms impact inside a 10 ms base
-//! step was missed). Each sub-step meets two rules:
+//! The predictor–corrector (yielding storeys): over a sub-step each load is linear in time, from
+//! its value at the sub-step start to a predicted value at its end (PECE):
+//!
+//! 1. predict the end state with the loads held at their start values, evaluate them there;
+//! 2. correct: the end state under the loads varying linearly (exact for such a load);
+//! 3. evaluate the laws at the corrected state: they start the next sub-step.
+//!
+//! The scheme is second order in the sub-step; with no contact and no yielding it is exact for
+//! any step and any number of modes. While a level is in contact, or may come into contact
+//! within the base step, the base step `dt` is walked in dyadic sub-steps dt/2^m. Whether a
+//! level may touch is decided on the cubic Hermite bound of δ over the step's free flight plus a
+//! margin for the modes that oscillate within it (each mode's distance from its own cubic is at
+//! most `(|λ|h)⁴/384` of its amplitude, capped at 2: without it a 1.8 ms impact inside a 10 ms
+//! base step was missed). Each sub-step meets two rules:
 //!
 //! - **stability of the predictor:** `k_t·D(h_sub) ≤ α²/2` (α = [`SUBSTEP_ALPHA`]), k_t the
 //!   tangent stiffness at the penetration bound of the sub-step's own free flight and D(h) the
-//!   level's displacement under a unit force held for h. For a point mass D = h²/(2m*) and the
-//!   rule is `ω_c·h_sub ≤ α`, ω_c = √(k_t/m*); modes much stiffer than the contact add only
-//!   their static flexibility, so the sub-step does not shrink as modes are added. A sub-step in
-//!   which a level may start touching keeps `ω_c·h_sub ≤ α/4`.
-//! - **accuracy (issue 9):** its local error estimate ([`Run::estimate`]) within the tolerance
-//!   `rtol` (see [`SubstepTolerance`]): the response to the end-force correction and to the
-//!   force's curvature, exact per mode through per-level tables of the step length, and across
-//!   an onset or a release a bound (the force is zero over part of the sub-step there). Tested
-//!   against the true local error of every accepted contact sub-step (the sub-step redone in 256):
-//!   never more than 3× below it (measured ≤ 2.4×), median ratio 1.0–1.1 inside contact.
+//!   level's displacement under a unit force held for h (for a point mass `ω_c·h_sub ≤ α`).
+//! - **accuracy:** its local error estimate ([`Run::estimate_yielding`]) within the tolerance
+//!   `rtol` ([`SubstepTolerance`]).
 //!
-//! The walk refines when a rule fails (by as many levels as the estimate's h³ asks for) and
-//! coarsens by one level when aligned and both rules have room. The walk is logarithmic in its
-//! depth, so a force that jumps at an onset (Kelvin's c·δ̇) costs a few dozen sub-steps however
-//! tight the tolerance.
+//! The walk refines when a rule fails and coarsens by one level when aligned and both rules
+//! have room.
 
 //! Steps split at the samples of a recorded motion (its load is a different polynomial on each
 //! interval): each record interval is cut into equal steps ≤ dt.
@@ -51,8 +51,8 @@
 //! `estimate_sees_the_true_local_error_with_yielding_storeys` confirms against the true local
 //! error; the walk then refines around the kink on its own.
 //!
-//! Tallies: the work of the ground load and the dissipation are computed exactly for the
-//! propagated solution (moments of η from the equation of motion, see
+//! Tallies of the predictor–corrector (the collocation's are in [`elastic`]): the work of the
+//! ground load and the dissipation are computed exactly for the propagated solution (moments of η from the equation of motion, see
 //! [`super::linear::mode_work`]); the work into the contacts, `∫F(δ)δ̇ dt` with the law's force,
 //! by Simpson's rule on the cubic Hermite interpolant of δ, so that the energy balance measures
 //! the error of the contact scheme (the mismatch between the linearly interpolated load and the
