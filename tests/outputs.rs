@@ -234,3 +234,57 @@ fn floors_csv_keeps_the_contact_stations_by_default() {
         .sum();
     assert_eq!(pounding::output::run::floor_columns(&sc).len(), 2 * floors);
 }
+
+/// summary.json's `solver` section records the tolerances a run read: `rtol` and `atol` for
+/// `exact-modal` (its contact steps) and `adaptive`, as the scenario gave them (or their
+/// defaults), and none for `rk4`, which reads none.
+#[test]
+fn summary_records_the_tolerances_of_the_methods_that_read_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(scenario(dir.path())).unwrap();
+    for (method, dt, tols) in [
+        ("exact-modal", "0.01", Some((3e-7, 2e-9))),
+        ("adaptive", "0.01", Some((4e-9, 5e-11))),
+        ("rk4", "0.001", None),
+    ] {
+        let mut text = base
+            .replace(
+                "method = \"exact-modal\"",
+                &format!("method = \"{method}\""),
+            )
+            .replace("dt = 0.01", &format!("dt = {dt}"))
+            .replace("duration = 2.0", "duration = 0.3");
+        if let Some((r, a)) = tols {
+            text = text.replace("[solver]", &format!("[solver]\nrtol = {r:e}\natol = {a:e}"));
+        }
+        let path = dir.path().join(format!("{method}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let out = dir.path().join(method);
+        let run = Command::new(env!("CARGO_BIN_EXE_pounding"))
+            .args(["run", path.to_str().unwrap(), "--out"])
+            .arg(&out)
+            .args(["-q", "--no-check", "--no-plot"])
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        let solver = &summary["solver"];
+        assert_eq!(solver["method"], method);
+        match tols {
+            Some((r, a)) => {
+                assert_eq!(solver["rtol"].as_f64(), Some(r), "{method}: {solver}");
+                assert_eq!(solver["atol"].as_f64(), Some(a), "{method}: {solver}");
+            }
+            None => {
+                assert!(solver.get("rtol").is_none(), "{method}: {solver}");
+                assert!(solver.get("atol").is_none(), "{method}: {solver}");
+            }
+        }
+    }
+}

@@ -21,7 +21,8 @@ pub(crate) struct SolverInfo {
     output_interval: f64,
     steps: usize,
     max_contact_omega_dt: f64,
-    /// Relative and absolute (m) tolerances: only for `adaptive`.
+    /// Relative and absolute (m) tolerances: for the methods that read them (`adaptive`;
+    /// `exact-modal`'s contact steps and yielding sub-steps), not for `rk4`.
     #[serde(skip_serializing_if = "Option::is_none")]
     rtol: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -90,7 +91,7 @@ impl SolverInfo {
             &crate::recording::run_record::EnergyBalance,
         ),
     ) -> SolverInfo {
-        let adaptive = scenario.solver.method == Method::Adaptive;
+        let tolerant = scenario.solver.method != Method::Rk4;
         SolverInfo {
             method: scenario.solver.method.name(),
             dt: scenario.solver.dt,
@@ -98,8 +99,8 @@ impl SolverInfo {
             output_interval: scenario.output_interval,
             steps: stats.steps,
             max_contact_omega_dt: stats.max_contact_omega_dt,
-            rtol: adaptive.then_some(scenario.solver.rtol),
-            atol: adaptive.then_some(scenario.solver.atol),
+            rtol: tolerant.then_some(scenario.solver.rtol),
+            atol: tolerant.then_some(scenario.solver.atol),
             dt_meaning: scenario.solver.method.dt_meaning(),
             rejected_steps: stats.rejected,
             events: stats.events,
