@@ -1,23 +1,27 @@
 //! The progress bar of `pounding run` on a terminal.
 
 use pounding::analysis::simulate::{Phase, RunSink};
+use pounding::output::writer::RunWriter;
 
 /// Streams a run into its writer (`RunWriter`, a pair's or a row's) and shows a progress bar on a terminal when the run
 /// takes more than a second.
 pub struct RunProgress<'a> {
-    writer: &'a mut dyn RunSink,
+    writer: &'a mut RunWriter,
     enabled: bool,
     bar: Option<indicatif::ProgressBar>,
     started: std::time::Instant,
     duration: f64,
     phases: f64,
+    /// How far each phase has come, as a fraction of the duration (the self-check's phases
+    /// go on beside the result's, `simulate_streaming_beside`).
+    done: [f64; 4],
     ticks: u32,
 }
 
 impl<'a> RunProgress<'a> {
     /// A sink into `writer` for a run of `duration` s in `phases` phases (2, or 4 with the
     /// self-check); the bar shows only when `enabled` (stderr a terminal, not --quiet).
-    pub fn new(writer: &'a mut dyn RunSink, enabled: bool, duration: f64, phases: f64) -> Self {
+    pub fn new(writer: &'a mut RunWriter, enabled: bool, duration: f64, phases: f64) -> Self {
         RunProgress {
             writer,
             enabled,
@@ -25,8 +29,14 @@ impl<'a> RunProgress<'a> {
             started: std::time::Instant::now(),
             duration,
             phases,
+            done: [0.0; 4],
             ticks: 0,
         }
+    }
+
+    /// The writer the run streams into.
+    pub fn writer(&mut self) -> &mut RunWriter {
+        self.writer
     }
 
     /// Clears the bar.
@@ -66,6 +76,18 @@ impl RunSink for RunProgress<'_> {
         if !self.enabled {
             return;
         }
+        let index = match phase {
+            Phase::WithContact => 0,
+            Phase::WithoutContact => 1,
+            Phase::CheckWithContact => 2,
+            Phase::CheckWithoutContact => 3,
+        };
+        self.done[index] = (t / self.duration).clamp(0.0, 1.0);
+        // (a thread's runs come one after the other: a run without contact follows its run
+        // with contact's end)
+        if index % 2 == 1 {
+            self.done[index - 1] = 1.0;
+        }
         self.ticks = self.ticks.wrapping_add(1);
         if self.bar.is_none() {
             if !self.ticks.is_multiple_of(64) || self.started.elapsed().as_secs_f64() < 1.0 {
@@ -80,14 +102,8 @@ impl RunSink for RunProgress<'_> {
             bar.enable_steady_tick(std::time::Duration::from_millis(200));
             self.bar = Some(bar);
         }
-        let index = match phase {
-            Phase::WithContact => 0.0,
-            Phase::WithoutContact => 1.0,
-            Phase::CheckWithContact => 2.0,
-            Phase::CheckWithoutContact => 3.0,
-        };
         if let Some(b) = &self.bar {
-            let done = (index + t / self.duration) / self.phases;
+            let done = self.done.iter().sum::<f64>() / self.phases;
             b.set_position((1000.0 * done).clamp(0.0, 1000.0) as u64);
             if self.ticks.is_multiple_of(256) {
                 b.set_message(format!(

@@ -28,11 +28,16 @@ pub(super) fn run_scenario(a: args::RunArgs, quiet: bool) -> anyhow::Result<()> 
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
-    let result = simulate::simulate_streaming(&sc, !a.no_check, &mut sink);
+    // the self-check integrates on a second thread while this one writes the result's files
+    // and draws its pictures (none of which reads the check); summary.json waits for it
+    let result =
+        simulate::simulate_streaming_beside(&sc, !a.no_check, &mut sink, true, |sink, report| {
+            let draw = (!a.no_plot).then(|| pounding::figures::run::run_pictures(&sc, report));
+            sink.writer().finish_files(report, draw)
+        });
     sink.finish();
-    let report = result?;
-    let draw = (!a.no_plot).then(|| pounding::figures::run::run_pictures(&sc, &report));
-    let written = writer.finish(&sc, &report, draw)?;
+    let (report, files) = result?;
+    let written = writer.finish_summary(&sc, &report, files?)?;
     if !quiet {
         print!("{}", text::run_summary(&sc, &name, &report));
         println!("\nwrote {}", list_paths(&written));

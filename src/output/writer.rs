@@ -344,6 +344,21 @@ impl RunWriter {
         report: &R,
         draw: Option<Box<DrawPictures<'_>>>,
     ) -> Result<Vec<PathBuf>, OutputError> {
+        let written = self.finish_files(report, draw)?;
+        self.finish_summary(scenario, report, written)
+    }
+
+    /// [`RunWriter::finish`] but for `summary.json`: the history renamed into place,
+    /// `impacts.csv`, `floors.csv` and the pictures (`draw`) or the stale ones removed. For a
+    /// caller that writes them before the report is complete (`pounding run` while its
+    /// self-check goes on, [`crate::analysis::simulate::simulate_streaming_beside`]): none of
+    /// them reads the self-check. Returns the files written, in order;
+    /// [`RunWriter::finish_summary`] completes the run.
+    pub fn finish_files<R: RunOutput + ?Sized>(
+        &mut self,
+        report: &R,
+        draw: Option<Box<DrawPictures<'_>>>,
+    ) -> Result<Vec<PathBuf>, OutputError> {
         // samples with contact the run without contact did not match (none, normally)
         self.spool.rewind();
         while self.spool.next(&mut self.row) {
@@ -389,6 +404,17 @@ impl RunWriter {
                 }
             }
         }
+        Ok(written)
+    }
+
+    /// `summary.json` of the complete `report`, last, after [`RunWriter::finish_files`]
+    /// (which wrote the files `written`); returns them with it.
+    pub fn finish_summary<R: RunOutput + ?Sized>(
+        mut self,
+        scenario: &Scenario,
+        report: &R,
+        mut written: Vec<PathBuf>,
+    ) -> Result<Vec<PathBuf>, OutputError> {
         let summary = self.dir.join("summary.json");
         let json = report
             .summary_json(scenario, self.suite.as_ref())

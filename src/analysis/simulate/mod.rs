@@ -3,6 +3,9 @@
 //! `simulate_checked(&Scenario, true)` (see [`accuracy`]).
 
 pub mod accuracy;
+mod concurrent;
+#[cfg(test)]
+mod concurrent_tests;
 mod report;
 mod reuse;
 #[cfg(test)]
@@ -14,6 +17,7 @@ mod separation_only;
 mod sink;
 mod warnings;
 
+pub use concurrent::simulate_streaming_beside;
 pub use report::{
     ContactReport, FloorReport, ImpactPulse, LevelReport, Report, StructureReport, impact_at,
 };
@@ -208,49 +212,101 @@ fn simulate_phases(
     refuse_row(scenario)?;
     no_spectrum(scenario)?;
     let system = scenario.system();
-    let free = system.without_contact();
-    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
-    let pairs = vec![0; heights.len()];
-    let (p1, p2) = if check {
-        (Phase::CheckWithContact, Phase::CheckWithoutContact)
-    } else {
-        (Phase::WithContact, Phase::WithoutContact)
-    };
-    let interval = scenario.output_interval;
-    // (the self-check compares the floors with contact of a run that has them: its run
-    // without contact skips them)
-    let floors = floors.then_some(scenario.floor_stations);
-    let (with, stats) = run_phase(
-        &system,
-        &scenario.solver,
-        (&heights, &pairs),
-        interval,
-        sink,
-        p1,
-        floors,
-    )?;
-    let floors = floors.filter(|_| !check);
-    // a run with contact that never touched is the run without contact (bit for bit)
-    let derived = (shortcut && reuse.is_none() && (check || !sink.wants_rows()))
-        .then(|| free_run_of(scenario, &stats, &with))
-        .flatten();
-    let without = match (reuse, derived) {
-        (Some(r), _) => r.clone(),
-        (None, Some(r)) => r,
-        (None, None) => {
-            run_phase(
-                &free,
-                &scenario.solver,
-                (&heights, &pairs),
-                interval,
-                sink,
-                p2,
-                floors,
-            )?
-            .0
+    let (with, stats) = integrate_with(scenario, &system, sink, check, floors)?;
+    let without = match reuse {
+        Some(r) => r.clone(),
+        None => {
+            let w = (&with, &stats);
+            integrate_without(scenario, &system, sink, check, floors, w, shortcut)?
         }
     };
+    Ok(assemble(scenario, &system, with, stats, without))
+}
 
+/// The levels' heights (m) of a pair and the pair of each (all 0), as the recorder tracks them.
+fn tracked(scenario: &Scenario) -> (Vec<f64>, Vec<usize>) {
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
+    let pairs = vec![0; heights.len()];
+    (heights, pairs)
+}
+
+/// The run with contact of [`simulate_phases`] (of the result, or with `check` of the
+/// self-check) on `scenario`'s `system`, and its solver counters.
+fn integrate_with(
+    scenario: &Scenario,
+    system: &System,
+    sink: &mut dyn RunSink,
+    check: bool,
+    floors: bool,
+) -> Result<(RunRecord, Stats), SolveError> {
+    let (heights, pairs) = tracked(scenario);
+    let phase = if check {
+        Phase::CheckWithContact
+    } else {
+        Phase::WithContact
+    };
+    run_phase(
+        system,
+        &scenario.solver,
+        (&heights, &pairs),
+        scenario.output_interval,
+        sink,
+        phase,
+        floors.then_some(scenario.floor_stations),
+    )
+}
+
+/// The run without contact of [`simulate_phases`] after its run with contact `with` (and
+/// its counters): integrated, or taken from `with` when that never touched (`shortcut`).
+fn integrate_without(
+    scenario: &Scenario,
+    system: &System,
+    sink: &mut dyn RunSink,
+    check: bool,
+    floors: bool,
+    (with, stats): (&RunRecord, &Stats),
+    shortcut: bool,
+) -> Result<RunRecord, SolveError> {
+    // a run with contact that never touched is the run without contact (bit for bit)
+    if shortcut
+        && (check || !sink.wants_rows())
+        && let Some(r) = free_run_of(scenario, stats, with)
+    {
+        return Ok(r);
+    }
+    let (heights, pairs) = tracked(scenario);
+    let phase = if check {
+        Phase::CheckWithoutContact
+    } else {
+        Phase::WithoutContact
+    };
+    // (the self-check compares the floors with contact of a run that has them: its run
+    // without contact skips them)
+    let floors = (floors && !check).then_some(scenario.floor_stations);
+    let what = (&scenario.solver, (&heights[..], &pairs[..]));
+    let free = system.without_contact();
+    run_phase(
+        &free,
+        what.0,
+        what.1,
+        scenario.output_interval,
+        sink,
+        phase,
+        floors,
+    )
+    .map(|r| r.0)
+}
+
+/// The report of `scenario` (its `system`) from its runs with contact (`with`, its counters
+/// `stats`) and without.
+fn assemble(
+    scenario: &Scenario,
+    system: &System,
+    with: RunRecord,
+    stats: Stats,
+    without: RunRecord,
+) -> Report {
+    let heights: Vec<f64> = scenario.contact.levels.iter().map(|l| l.height).collect();
     let structures = [0, 1].map(|i| {
         structure_report(
             &scenario.structures[i],
@@ -290,7 +346,7 @@ fn simulate_phases(
     }
     level_warnings(&levels, &mut warnings);
     run_warnings(scenario, &stats, &with, &without, &mut warnings);
-    Ok(Report {
+    Report {
         title: scenario.title.clone(),
         structures,
         contact,
@@ -304,7 +360,7 @@ fn simulate_phases(
         warnings,
         with_contact: with,
         without_contact: without,
-    })
+    }
 }
 
 /// [`simulate`], and with `check` its self-check: the same scenario run again with the
@@ -383,7 +439,6 @@ fn simulate_run_reusing(
     } else {
         free.and_then(|f| f.check.as_ref())
     };
-    let mut check_run = None;
     // a run with contact that never touched read no tolerance: the check run would repeat it
     // bit for bit (and the run without contact is the run's own), so it is compared with
     // itself — every change exactly 0, which is the truth (`shortcut`: see `simulate_phases`)
@@ -394,11 +449,25 @@ fn simulate_run_reusing(
     } else {
         simulate_phases(&tight, sink, true, floors, reuse, shortcut).map(Some)
     };
+    let check_run = conclude_check(scenario, &mut report, check);
+    Ok((report, check_run))
+}
+
+/// The self-check's verdict on `report` (of `scenario`) from the `check` report at the
+/// tightened settings (`Ok(None)`: the run is its own check, it never touched; `Err`: the
+/// check run failed), with its warnings; returns the check's run without contact when it
+/// integrated its own (not [`free_run_is_exact`]).
+fn conclude_check(
+    scenario: &Scenario,
+    report: &mut Report,
+    check: Result<Option<Report>, SolveError>,
+) -> Option<RunRecord> {
+    let mut check_run = None;
     report.accuracy = match check {
-        Ok(None) => AccuracyCheck::compare(&report, &report, &scenario.solver),
+        Ok(None) => AccuracyCheck::compare(report, report, &scenario.solver),
         Ok(Some(t)) => {
-            let a = AccuracyCheck::compare(&report, &t, &scenario.solver);
-            if !exact {
+            let a = AccuracyCheck::compare(report, &t, &scenario.solver);
+            if !free_run_is_exact(scenario) {
                 check_run = Some(t.without_contact);
             }
             a
@@ -419,5 +488,5 @@ fn simulate_run_reusing(
             crate::analysis::simulate::accuracy::MIN_ATOL
         ));
     }
-    Ok((report, check_run))
+    check_run
 }

@@ -9,7 +9,7 @@ use std::path::Path;
 use super::*;
 
 /// A pair of uniform cantilevers (the paper's case c, 3 modes, harmonic 0.65 s) for `secs`.
-fn cantilevers(method: &str, dt: f64, gap: f64, pga: f64, secs: f64) -> String {
+pub(super) fn cantilevers(method: &str, dt: f64, gap: f64, pga: f64, secs: f64) -> String {
     format!(
         r#"
 title = "reuse"
@@ -46,7 +46,7 @@ output_interval = 0.01
 
 /// Two shear buildings under the bundled Loma Prieta record, storey 2 of B yielding when
 /// `yielding`, two contact levels.
-fn shear(method: &str, gap: f64, yielding: bool) -> String {
+pub(super) fn shear(method: &str, gap: f64, yielding: bool) -> String {
     let hysteresis = if yielding {
         "hysteresis = { model = \"bouc-wen\", yield_drifts = 0.0175, post_yield_ratio = 0.05, exponent = 2.0, beta = 0.5, gamma = 0.5 }"
     } else {
@@ -92,7 +92,7 @@ duration = 8.0
     )
 }
 
-fn scenario(text: &str) -> Scenario {
+pub(super) fn scenario(text: &str) -> Scenario {
     Scenario::from_toml(text, "reuse.toml", Path::new(env!("CARGO_MANIFEST_DIR")))
         .expect("valid scenario")
 }
