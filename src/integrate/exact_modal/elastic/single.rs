@@ -33,16 +33,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
         piece: &Piece,
     ) -> Result<Trial, NoConvergence> {
         debug_assert!(self.single_level());
-        let plain = self.gm.harmonic_plain().is_some();
-        match (piece, plain) {
-            (Piece::Harmonic, true) | (Piece::Poly { .. }, _) | (Piece::Zero, _) => {}
-            _ => return self.trial_general(k, h, piece),
-        }
         let n = self.n;
         let sys = self.sys;
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
+        // (the table first: a trial that takes the general path asks for it again and finds it
+        // made)
         self.table(k, h);
+        // (whether a harmonic motion has a mode at resonance: asked once a trial)
+        let plain = self.gm.harmonic_plain();
+        if matches!((piece, plain), (Piece::Harmonic, None)) {
+            return self.trial_general(k, h, piece);
+        }
         let tab: &Table = match k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -54,7 +56,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (q, v) = (&self.q[..n], &self.v[..n]);
         let (x0s, y0s) = (&mut self.x0[..n], &mut self.y0[..n]);
         let gm = &self.gm;
-        match (piece, gm.harmonic_plain()) {
+        match (piece, plain) {
             (Piece::Harmonic, Some((big, g_re, g_im))) => {
                 let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
                 for j in 0..n {
@@ -184,7 +186,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
     pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         debug_assert!(self.single_level());
-        let harmonic_piece = match (piece, &self.htally, self.gm.harmonic_plain().is_some()) {
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
+        // (whether a harmonic motion has a mode at resonance: asked once a step)
+        let plain = self.gm.harmonic_plain();
+        let harmonic_piece = match (piece, &self.htally, plain.is_some()) {
             (Piece::Harmonic, Some(_), true) => true,
             (Piece::Poly { .. }, _, _) | (Piece::Zero, _, _) => false,
             _ => return self.accept_general(piece, trial, t_end),
@@ -192,8 +198,6 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let n = self.n;
         let h = trial.h;
         let bases = collocation::bases();
-        let t0 = self.t;
-        let tr0 = self.exact_trig(t0);
         let tab: &Table = match trial.k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -221,7 +225,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let cs = &self.cpl_t[..n];
         // the particular solutions at the end (and at the interior nodes for dense output)
         let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
-        match gm.harmonic_plain() {
+        match plain {
             Some((big, g_re, g_im)) if harmonic_piece => {
                 let at = |j: usize, tr: &Trig| {
                     let (gr, gi) = (g_re[j], g_im[j]);
