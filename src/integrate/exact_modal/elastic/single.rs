@@ -58,12 +58,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let gm = &self.gm;
         match (piece, plain) {
             (Piece::Harmonic, Some((big, g_re, g_im))) => {
-                let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
-                for j in 0..n {
-                    let (gr, gi) = (g_re[j], g_im[j]);
-                    x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
-                    y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
-                }
+                harmonic_start(x0s, y0s, q, v, g_re, g_im, big, &tr0);
                 let (gre, gim) = self.gk[0];
                 for i in 0..6 {
                     let (sh, ch) = tab.rot[i];
@@ -118,11 +113,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
             d.0 = lv.delta(-(d.0 - s0));
             d.1 -= s1;
         }
+        // (the acceptance reads the companion's interior nodes' free flight from `dfree`; the
+        // schemes' own node lists stay local: no one-level step reads them from `self`)
         self.dfree[..6].copy_from_slice(&df);
         let d8free = NODES8.map(|node| df[node]);
         let d6free = NODES6.map(|node| df[node]);
-        self.d8free[..4].copy_from_slice(&d8free);
-        self.d6free[..3].copy_from_slice(&d6free);
         // the propagated scheme: the start force, a first guess from the last step's quartic
         let bases = collocation::bases();
         let onset = self.onset[0];
@@ -203,11 +198,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
             None => self.scratch_table.as_deref().expect("table"),
         };
         let start = self.trace_start();
-        let trs = self.node_trigs(tab, tr0, h);
         let f: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
         // dense output where the nodal forces peak inside the step
         let inner = f[1].max(f[2]).max(f[3]);
         let dense = inner > 0.0 && inner > f[0].max(f[4]);
+        // sin, cos at the end, and at the interior nodes only for dense output (`trs[1..4]`
+        // is read only then)
+        let end_trig = self.node_trig(tab, tr0, h, 4);
+        let trs: [Trig; 5] = if dense {
+            self.node_trigs(tab, tr0, h)
+        } else {
+            [tr0, end_trig, end_trig, end_trig, end_trig]
+        };
         // the contact quartic's integral and first moment
         let moment = {
             let (mut a, mut b) = (0.0, 0.0);
@@ -395,6 +397,31 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[0] * h * h);
         }
         self.close_contact_step(t0, h, t_end, trs[4], start, trial.err);
+    }
+}
+
+/// The free flight's start without its harmonic particular solution, per mode:
+/// `x0 = q − (g_re sin Ωt + g_im cos Ωt)`, `y0 = v − Ω(g_re cos Ωt − g_im sin Ωt)`. A function
+/// of its own so that the slices are known not to overlap (no run-time overlap tests before
+/// the vector loop).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn harmonic_start(
+    x0s: &mut [f64],
+    y0s: &mut [f64],
+    q: &[f64],
+    v: &[f64],
+    g_re: &[f64],
+    g_im: &[f64],
+    big: f64,
+    tr0: &Trig,
+) {
+    let n = x0s.len();
+    let (y0s, q, v, g_re, g_im) = (&mut y0s[..n], &q[..n], &v[..n], &g_re[..n], &g_im[..n]);
+    for j in 0..n {
+        let (gr, gi) = (g_re[j], g_im[j]);
+        x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
+        y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
     }
 }
 
