@@ -113,11 +113,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
             d.0 = lv.delta(-(d.0 - s0));
             d.1 -= s1;
         }
-        // (the acceptance reads the companion's interior nodes' free flight from `dfree`; the
-        // schemes' own node lists stay local: no one-level step reads them from `self`)
         self.dfree[..6].copy_from_slice(&df);
         let d8free = NODES8.map(|node| df[node]);
         let d6free = NODES6.map(|node| df[node]);
+        self.d8free[..4].copy_from_slice(&d8free);
+        self.d6free[..3].copy_from_slice(&d6free);
         // the propagated scheme: the start force, a first guess from the last step's quartic
         let bases = collocation::bases();
         let onset = self.onset[0];
