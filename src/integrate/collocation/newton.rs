@@ -309,8 +309,9 @@ fn solve_law<const S: usize, J: Fn(f64, f64, f64) -> (f64, f64, f64)>(
             scale = fmax(fmax(scale, phi.abs()), f.abs());
         }
         let residual = rhs[..m].iter().fold(0.0f64, |a, x| fmax(a, x.abs()));
-        // (`residual` is ≥ 0 or infinite, never NaN: `fmax` keeps the running maximum)
-        if !(residual < f64::INFINITY) {
+        // (`residual` is ≥ 0 or infinite, never NaN: `fmax` keeps the running maximum; so
+        // "not finite" is one comparison)
+        if residual == f64::INFINITY {
             return Err(NoConvergence);
         }
         if residual <= tol * scale || residual <= 1e-300 {
