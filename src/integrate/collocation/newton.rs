@@ -231,25 +231,37 @@ fn solve_one<const S: usize>(
     nodal: &mut [(f64, f64)],
     tol: f64,
 ) -> Result<usize, NoConvergence> {
-    let args = (w, dfree, onset[0], force, nodal, tol);
+    let onset = onset[0];
     match sys.levels[0].force {
-        ContactForce::Hertz { k } => solve_law::<S, _>(args, |d, dd, v0| {
-            ContactForce::Hertz { k }.force_jacobian(d, dd, v0)
-        }),
-        ContactForce::HertzDamp { k, chi } => solve_law::<S, _>(args, |d, dd, v0| {
-            ContactForce::HertzDamp { k, chi }.force_jacobian(d, dd, v0)
-        }),
-        ContactForce::Kelvin { k, c } => solve_law::<S, _>(args, |d, dd, v0| {
-            ContactForce::Kelvin { k, c }.force_jacobian(d, dd, v0)
-        }),
-        ContactForce::Linear { k } => solve_law::<S, _>(args, |d, dd, v0| {
-            ContactForce::Linear { k }.force_jacobian(d, dd, v0)
-        }),
-        ContactForce::Jankowski { k, c0 } => solve_law::<S, _>(args, |d, dd, v0| {
-            ContactForce::Jankowski { k, c0 }.force_jacobian(d, dd, v0)
-        }),
+        ContactForce::Hertz { k } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Hertz { k }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::HertzDamp { k, chi } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::HertzDamp { k, chi }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Kelvin { k, c } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Kelvin { k, c }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Linear { k } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Linear { k }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Jankowski { k, c0 } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Jankowski { k, c0 }.force_jacobian(d, dd, v0)
+            })
+        }
         law @ ContactForce::Impulsive { .. } => {
-            solve_law::<S, _>(args, |d, dd, v0| law.force_jacobian(d, dd, v0))
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                law.force_jacobian(d, dd, v0)
+            })
         }
     }
 }
@@ -264,14 +276,12 @@ fn usable_pivot(x: f64) -> bool {
 /// The iterations of [`solve_one`] with the law `jac` (δ, δ̇, v₀ ↦ (φ, ∂φ/∂δ, ∂φ/∂δ̇)).
 #[inline(always)]
 fn solve_law<const S: usize, J: Fn(f64, f64, f64) -> (f64, f64, f64)>(
-    (w, dfree, onset, force, nodal, tol): (
-        &[(f64, f64)],
-        &[(f64, f64)],
-        f64,
-        &mut [f64],
-        &mut [(f64, f64)],
-        f64,
-    ),
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: f64,
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
     jac_of: J,
 ) -> Result<usize, NoConvergence> {
     const MAX: usize = 4;
