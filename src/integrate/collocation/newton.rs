@@ -1,6 +1,7 @@
 //! Newton's method on the nodal forces over the contact levels, its banded and reduced LU
 //! update, and the law's force at a step's start.
 
+use crate::model::contact::ContactForce;
 use crate::model::system::{LevelState, System, episode_v0};
 
 /// Scratch of the Newton iterations on the nodal forces.
@@ -217,7 +218,10 @@ pub(in crate::integrate) fn nodal_states<const S: usize>(
 }
 
 /// [`solve`] for a single contact level (the common case): the same iterations on stack
-/// arrays, the elimination unrolled by the compiler for the scheme's S − 1 unknowns.
+/// arrays, the elimination unrolled by the compiler for the scheme's S − 1 unknowns. The law's
+/// kind is matched once per solve, not once per node and pass: [`solve_law`] is compiled per
+/// kind, each calling [`ContactForce::force_jacobian`] of a value of that kind (the same
+/// function on the same arguments: the same bits).
 fn solve_one<const S: usize>(
     sys: &System,
     w: &[(f64, f64)],
@@ -227,11 +231,73 @@ fn solve_one<const S: usize>(
     nodal: &mut [(f64, f64)],
     tol: f64,
 ) -> Result<usize, NoConvergence> {
+    let onset = onset[0];
+    match sys.levels[0].force {
+        ContactForce::Hertz { k } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Hertz { k }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::HertzDamp { k, chi } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::HertzDamp { k, chi }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Kelvin { k, c } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Kelvin { k, c }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Linear { k } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Linear { k }.force_jacobian(d, dd, v0)
+            })
+        }
+        ContactForce::Jankowski { k, c0 } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                ContactForce::Jankowski { k, c0 }.force_jacobian(d, dd, v0)
+            })
+        }
+        law @ ContactForce::Impulsive { .. } => {
+            solve_law::<S, _>(w, dfree, onset, force, nodal, tol, |d, dd, v0| {
+                law.force_jacobian(d, dd, v0)
+            })
+        }
+    }
+}
+
+/// Whether a pivot's magnitude (≥ 0, or NaN) can be divided by: not 0, NaN or infinite (two
+/// comparisons: `x == 0.0 || !x.is_finite()` negated, the same answer for every such x).
+#[inline(always)]
+fn usable_pivot(x: f64) -> bool {
+    x > 0.0 && x < f64::INFINITY
+}
+
+/// The iterations of [`solve_one`] with the law `jac` (δ, δ̇, v₀ ↦ (φ, ∂φ/∂δ, ∂φ/∂δ̇)).
+#[inline(always)]
+fn solve_law<const S: usize, J: Fn(f64, f64, f64) -> (f64, f64, f64)>(
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: f64,
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+    jac_of: J,
+) -> Result<usize, NoConvergence> {
     const MAX: usize = 4;
     let m = S - 1;
-    let law = &sys.levels[0].force;
     let w = &w[..m * S];
     let (dfree, nodal, force) = (&dfree[..m], &mut nodal[..m], &mut force[..S]);
+    // (each node's sum starts with the start force's term, which no iteration changes: formed
+    // once, the first operation of every pass's sum as before)
+    let mut base = [(0.0, 0.0); MAX];
+    for p in 0..m {
+        let row = &w[p * S..(p + 1) * S];
+        let (mut d, mut dd) = dfree[p];
+        d -= row[0].0 * force[0];
+        dd -= row[0].1 * force[0];
+        base[p] = (d, dd);
+    }
     let mut last = f64::INFINITY;
     for iter in 1..=30 {
         let mut rhs = [0.0; MAX];
@@ -239,21 +305,23 @@ fn solve_one<const S: usize>(
         let mut scale: f64 = 0.0;
         for p in 0..m {
             let row = &w[p * S..(p + 1) * S];
-            let (mut d, mut dd) = dfree[p];
-            for q in 0..S {
+            let (mut d, mut dd) = base[p];
+            for q in 1..S {
                 d -= row[q].0 * force[q];
                 dd -= row[q].1 * force[q];
             }
             nodal[p] = (d, dd);
-            let v0 = episode_v0(onset[0], dd);
-            let (phi, kd, kv) = law.force_jacobian(d, dd, v0);
+            let v0 = episode_v0(onset, dd);
+            let (phi, kd, kv) = jac_of(d, dd, v0);
             let f = force[p + 1];
             rhs[p] = phi - f;
             slopes[p] = (kd, kv);
             scale = fmax(fmax(scale, phi.abs()), f.abs());
         }
         let residual = rhs[..m].iter().fold(0.0f64, |a, x| fmax(a, x.abs()));
-        if !residual.is_finite() {
+        // (`residual` is ≥ 0 or infinite, never NaN: `fmax` keeps the running maximum; so
+        // "not finite" is one comparison)
+        if residual == f64::INFINITY {
             return Err(NoConvergence);
         }
         if residual <= tol * scale || residual <= 1e-300 {
@@ -280,7 +348,7 @@ fn solve_one<const S: usize>(
                     (piv, best) = (r, x);
                 }
             }
-            if best == 0.0 || !best.is_finite() {
+            if !usable_pivot(best) {
                 return Err(NoConvergence);
             }
             if piv != col {

@@ -458,21 +458,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// end) of a step of length h from `tr0`: rotations by the table's angles when the motion
     /// is harmonic, else direct.
     pub(super) fn node_trigs(&self, tab: &Table, tr0: Trig, h: f64) -> [Trig; 5] {
+        std::array::from_fn(|p| self.node_trig(tab, tr0, h, p))
+    }
+
+    /// [`Self::node_trigs`] at node p (0: start … 4: end) only.
+    #[inline(always)]
+    pub(super) fn node_trig(&self, tab: &Table, tr0: Trig, h: f64, p: usize) -> Trig {
         let t0 = tr0.t;
-        std::array::from_fn(|p| {
-            if p == 0 {
-                tr0
-            } else if self.big.is_some() {
-                let (sh, ch) = tab.rot[NODES8[p - 1]];
-                Trig {
-                    t: t0 + THETA8[p] * h,
-                    s: tr0.s * ch + tr0.c * sh,
-                    c: tr0.c * ch - tr0.s * sh,
-                }
-            } else {
-                self.gm.trig(t0 + THETA8[p] * h)
+        if p == 0 {
+            tr0
+        } else if self.big.is_some() {
+            let (sh, ch) = tab.rot[NODES8[p - 1]];
+            Trig {
+                t: t0 + THETA8[p] * h,
+                s: tr0.s * ch + tr0.c * sh,
+                c: tr0.c * ch - tr0.s * sh,
             }
-        })
+        } else {
+            self.gm.trig(t0 + THETA8[p] * h)
+        }
     }
 
     /// What every accepted contact step does last, whatever its path: the step's length kept

@@ -33,16 +33,18 @@ impl<'a, O: Observer> Elastic<'a, O> {
         piece: &Piece,
     ) -> Result<Trial, NoConvergence> {
         debug_assert!(self.single_level());
-        let plain = self.gm.harmonic_plain().is_some();
-        match (piece, plain) {
-            (Piece::Harmonic, true) | (Piece::Poly { .. }, _) | (Piece::Zero, _) => {}
-            _ => return self.trial_general(k, h, piece),
-        }
         let n = self.n;
         let sys = self.sys;
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
+        // (the table first: a trial that takes the general path asks for it again and finds it
+        // made)
         self.table(k, h);
+        // (whether a harmonic motion has a mode at resonance: asked once a trial)
+        let plain = self.gm.harmonic_plain();
+        if matches!((piece, plain), (Piece::Harmonic, None)) {
+            return self.trial_general(k, h, piece);
+        }
         let tab: &Table = match k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
@@ -54,14 +56,9 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let (q, v) = (&self.q[..n], &self.v[..n]);
         let (x0s, y0s) = (&mut self.x0[..n], &mut self.y0[..n]);
         let gm = &self.gm;
-        match (piece, gm.harmonic_plain()) {
+        match (piece, plain) {
             (Piece::Harmonic, Some((big, g_re, g_im))) => {
-                let (g_re, g_im) = (&g_re[..n], &g_im[..n]);
-                for j in 0..n {
-                    let (gr, gi) = (g_re[j], g_im[j]);
-                    x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
-                    y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
-                }
+                harmonic_start(x0s, y0s, q, v, g_re, g_im, big, &tr0);
                 let (gre, gim) = self.gk[0];
                 for i in 0..6 {
                     let (sh, ch) = tab.rot[i];
@@ -184,7 +181,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
     pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         debug_assert!(self.single_level());
-        let harmonic_piece = match (piece, &self.htally, self.gm.harmonic_plain().is_some()) {
+        let t0 = self.t;
+        let tr0 = self.exact_trig(t0);
+        // (whether a harmonic motion has a mode at resonance: asked once a step)
+        let plain = self.gm.harmonic_plain();
+        let harmonic_piece = match (piece, &self.htally, plain.is_some()) {
             (Piece::Harmonic, Some(_), true) => true,
             (Piece::Poly { .. }, _, _) | (Piece::Zero, _, _) => false,
             _ => return self.accept_general(piece, trial, t_end),
@@ -192,18 +193,23 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let n = self.n;
         let h = trial.h;
         let bases = collocation::bases();
-        let t0 = self.t;
-        let tr0 = self.exact_trig(t0);
         let tab: &Table = match trial.k {
             Some(k) => self.tables[k].as_deref().expect("table"),
             None => self.scratch_table.as_deref().expect("table"),
         };
         let start = self.trace_start();
-        let trs = self.node_trigs(tab, tr0, h);
         let f: [f64; 5] = std::array::from_fn(|p| self.f8[p]);
         // dense output where the nodal forces peak inside the step
         let inner = f[1].max(f[2]).max(f[3]);
         let dense = inner > 0.0 && inner > f[0].max(f[4]);
+        // sin, cos at the end, and at the interior nodes only for dense output (`trs[1..4]`
+        // is read only then)
+        let end_trig = self.node_trig(tab, tr0, h, 4);
+        let trs: [Trig; 5] = if dense {
+            self.node_trigs(tab, tr0, h)
+        } else {
+            [tr0, end_trig, end_trig, end_trig, end_trig]
+        };
         // the contact quartic's integral and first moment
         let moment = {
             let (mut a, mut b) = (0.0, 0.0);
@@ -221,7 +227,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let cs = &self.cpl_t[..n];
         // the particular solutions at the end (and at the interior nodes for dense output)
         let (pend, pmid) = (&mut self.pend[..n], &mut self.pmid[..n]);
-        match gm.harmonic_plain() {
+        match plain {
             Some((big, g_re, g_im)) if harmonic_piece => {
                 let at = |j: usize, tr: &Trig| {
                     let (gr, gi) = (g_re[j], g_im[j]);
@@ -391,6 +397,31 @@ impl<'a, O: Observer> Elastic<'a, O> {
             self.max_contact_w2h2 = self.max_contact_w2h2.max(kt * self.inv_mstar[0] * h * h);
         }
         self.close_contact_step(t0, h, t_end, trs[4], start, trial.err);
+    }
+}
+
+/// The free flight's start without its harmonic particular solution, per mode:
+/// `x0 = q − (g_re sin Ωt + g_im cos Ωt)`, `y0 = v − Ω(g_re cos Ωt − g_im sin Ωt)`. A function
+/// of its own so that the slices are known not to overlap (no run-time overlap tests before
+/// the vector loop).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn harmonic_start(
+    x0s: &mut [f64],
+    y0s: &mut [f64],
+    q: &[f64],
+    v: &[f64],
+    g_re: &[f64],
+    g_im: &[f64],
+    big: f64,
+    tr0: &Trig,
+) {
+    let n = x0s.len();
+    let (y0s, q, v, g_re, g_im) = (&mut y0s[..n], &q[..n], &v[..n], &g_re[..n], &g_im[..n]);
+    for j in 0..n {
+        let (gr, gi) = (g_re[j], g_im[j]);
+        x0s[j] = q[j] - (gr * tr0.s + gi * tr0.c);
+        y0s[j] = v[j] - big * (gr * tr0.c - gi * tr0.s);
     }
 }
 
