@@ -11,7 +11,6 @@ use super::between::{Between, between_on_hermite, between_on_subgrid};
 use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
-use crate::numerics::lanes::F2;
 use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
@@ -83,44 +82,6 @@ fn springs(rows: &[f64], phi: &[f64], floors: usize, modes: usize) -> Option<Vec
         ks.push(k);
     }
     Some(ks)
-}
-
-/// `x_f = Σ_n φ_n(f) a_n` and `v_f −= Σ_n E_n(f) a_n` at every station f (`phi`, `eq`:
-/// `[n·stations + station]`), each sum in the modes' order: the scalar loop's, bit for bit,
-/// two stations per operation ([`F2`]: each lane the scalar operation), station pair by
-/// station pair with both sums held in registers over the modes. (`x` starts from the first
-/// mode's term, not from `0 +` it: the same value but for the sign of an exact zero, which no
-/// |x| compared with a peak sees.)
-#[inline(always)]
-fn accelerations_and_inertia((phi, eq): (&[f64], &[f64]), a: &[f64], x: &mut [f64], v: &mut [f64]) {
-    let (ns, nm) = (x.len(), a.len());
-    if ns == 0 || nm == 0 {
-        x.fill(0.0);
-        return;
-    }
-    let (phi, eq, v) = (&phi[..nm * ns], &eq[..nm * ns], &mut v[..ns]);
-    for p in 0..ns / 2 {
-        let i = 2 * p;
-        let s = F2::splat(a[0]);
-        let mut xs = F2::new(phi[i], phi[i + 1]) * s;
-        let mut vs = F2::new(v[i], v[i + 1]) - F2::new(eq[i], eq[i + 1]) * s;
-        for n in 1..nm {
-            let (j, s) = (n * ns + i, F2::splat(a[n]));
-            xs = xs + F2::new(phi[j], phi[j + 1]) * s;
-            vs = vs - F2::new(eq[j], eq[j + 1]) * s;
-        }
-        [x[i], x[i + 1]] = xs.get();
-        [v[i], v[i + 1]] = vs.get();
-    }
-    if ns % 2 == 1 {
-        let i = ns - 1;
-        let (mut xs, mut vs) = (phi[i] * a[0], v[i] - eq[i] * a[0]);
-        for n in 1..nm {
-            xs += phi[n * ns + i] * a[n];
-            vs -= eq[n * ns + i] * a[n];
-        }
-        (x[i], v[i]) = (xs, vs);
-    }
 }
 
 /// The stations of one structure.
@@ -760,72 +721,6 @@ impl Stations {
         bt.prev_eq[..ns].copy_from_slice(&bt.eq_now[..ns]);
         bt.prev_contact[..ns].copy_from_slice(&bt.contact_now[..ns]);
         bt.prev_ag = ag;
-    }
-
-    /// Raise the peak absolute accelerations and equilibrium shears (`shear_with_damping`, N)
-    /// with those at time `t` (s) between two observations, from the system's modal
-    /// accelerations `accel`, the ground's `ag` (m/s²) and every contact level's force there
-    /// `forces` (N, in the system's level order): `a = Σ φ_n η̈_n + a_g` (which counts towards
-    /// the next floor history sample too) and `V = C − Σ E_n η̈_n − M a_g`, as
-    /// [`Stations::observe`] forms them at an observation.
-    pub(super) fn raise_at(&mut self, t: f64, accel: &[f64], ag: f64, forces: &[f64]) {
-        let (nm, ns) = (self.modes, self.heights.len());
-        if ns == 0 {
-            return;
-        }
-        let a = &accel[self.offset..self.offset + nm];
-        let nl = self.levels.min(forces.len());
-        let (signs, forces) = (&self.signs[..nl], &forces[..nl]);
-        // the levels that carry force on this structure, `sign_k F_k ≠ 0`, once per call (the
-        // others add an exact zero to a sum that is never −0: leaving them out changes no bit)
-        self.loaded.clear();
-        for k in 0..nl {
-            let sf = signs[k] * forces[k];
-            if sf != 0.0 {
-                self.loaded.push((k, sf));
-            }
-        }
-        let loaded = &self.loaded[..];
-        let (x, c) = self.point[..2 * ns].split_at_mut(ns);
-        // `C − M a_g` per station, `C` the contact forces above it, a sum from 0 in the levels'
-        // order (floors: a level acts at its floor, and what is above a storey sums from the
-        // top; a cantilever's `above` already marks every level above the section)
-        c.fill(0.0);
-        for &(k, sf) in loaded {
-            for &f in &self.level_stations[self.level_at[k]..self.level_at[k + 1]] {
-                c[f] += sf;
-            }
-        }
-        let mass_above = &self.between.mass_above[..ns];
-        if matches!(self.equilibrium, Equilibrium::Lumped(_)) {
-            let mut c_above = 0.0;
-            for f in (0..ns).rev() {
-                c_above += c[f];
-                c[f] = c_above - mass_above[f] * ag;
-            }
-        } else {
-            for f in 0..ns {
-                c[f] -= mass_above[f] * ag;
-            }
-        }
-        // `Σ φ_n η̈_n` and `C − M a_g − Σ E_n η̈_n`, mode by mode over the stations (each
-        // station's sums in the modes' order, as a loop per station forms them)
-        let (phi, eq_rows) = (&self.phi[..nm * ns], &self.between.eq_rows[..nm * ns]);
-        accelerations_and_inertia((phi, eq_rows), a, x, c);
-        let (peaks, hold) = (&mut self.peaks[..ns], &mut self.hold[..ns]);
-        for f in 0..ns {
-            let x = x[f] + ag;
-            let p = &mut peaks[f];
-            if x.abs() > p.acceleration {
-                p.acceleration = x.abs();
-                p.acceleration_time = t;
-            }
-            // (and towards the next floor history sample, as the sub-grid's values)
-            if x.abs() > hold[f].abs() {
-                hold[f] = x;
-            }
-            raise(&mut p.shear_with_damping, c[f].abs());
-        }
     }
 
     /// The accelerations of its last observation count towards the next history sample.
