@@ -602,7 +602,7 @@ fn start_poly_pass(
     (x0s, y0s): (&mut [f64], &mut [f64]),
 ) -> [[f64; 3]; 8] {
     let n = cpoly.len();
-    let nl = if n == 0 { 0 } else { cpl.len() / n };
+    let nl = cpl.len().checked_div(n).unwrap_or(0);
     let narrow = narrow.min(8);
     // (A and B of each level's sums in the two lanes of one register, C alone)
     let mut ab = [F2::zero(); 8];
