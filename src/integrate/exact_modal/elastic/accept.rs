@@ -151,9 +151,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
         let modes = &tab.modes[..n];
         // (a row's levels couple to few modes and levels: see `levels_of_mode`)
         let row = self.sys.structures.len() > 2;
-        // (a row under a recorded motion without dense output: one pass over the modes,
-        // structure by structure, see `row_poly_pass`)
-        if row && self.row_pass && !dense && matches!(piece, Piece::Poly { .. }) {
+        // (a row, or a pair with several levels, under a recorded motion without dense
+        // output: one pass over the modes, structure by structure, see `row_poly_pass`; a
+        // pair's every mode is forced and couples to every level, its projections summed in
+        // mode order as the pair's per-level sums below: the same bits)
+        if self.row_pass && !dense && matches!(piece, Piece::Poly { .. }) {
             self.proj.iter_mut().for_each(|p| *p = (0.0, 0.0));
             (input, d_energy) = row_poly_pass(
                 self.sys,

@@ -419,6 +419,73 @@ mod tests {
         assert_eq!(flows_g, flows_p);
     }
 
+    /// A pair with several contact levels under a recorded motion takes the row's one pass
+    /// over the modes too (`row_pass::row_poly_pass`: a pair is a row of two whose every
+    /// mode is forced and couples to every level): two buildings of 5 and 4 storeys (odd:
+    /// both structures leave a mode to the scalar tail) with Hertz contact at three floors,
+    /// under the first 4 s of Loma Prieta at 0.4 g, give every observation — time, every
+    /// modal coordinate and velocity, every level's force — and every tally equal to the last
+    /// bit to the same run on the pair's per-mode loops (`PairLevel`'s sums), while all three
+    /// levels pound.
+    #[test]
+    fn a_pairs_several_level_step_through_the_row_pass_is_the_pair_loops_to_the_last_bit() {
+        let record = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples/records/RSN753_LOMAP_CLS000.AT2");
+        let level = |h: f64| format!("[[contact.level]]\nheight = {h}\ngap = 0.002\n");
+        let text = format!(
+            "{}{}[contact]\nlaw = \"hertz\"\nstiffness = 2.0e10\n{}{}{}\
+             [ground_motion]\nkind = \"record\"\nfile = \"{}\"\nscale_to_pga = 0.4\n\
+             [solver]\nmethod = \"exact-modal\"\ndt = 0.005\nduration = 4.0\n",
+            b("A", 5, 1.6e8),
+            b("B", 4, 3.0e8),
+            level(14.0),
+            level(10.5),
+            level(7.0),
+            record.display(),
+        );
+        let sys = Scenario::from_toml(&text, "pair.toml", std::path::Path::new("."))
+            .unwrap_or_else(|e| panic!("{e}"))
+            .system();
+        assert_eq!((sys.structures.len(), sys.levels.len()), (2, 3));
+        let settings = SolverSettings::new(Method::ExactModal, 0.005, 4.0);
+        let go = |pass: bool| {
+            let (q0, v0) = InitialState::default().resolved(sys.len());
+            let mut log = Log::default();
+            let mut r = Elastic::new(&sys, &settings, &mut log, None, 0.0, q0, v0, None);
+            r.row_pass = pass;
+            let stats = r.drive_here().expect("runs");
+            let t = &r.tally;
+            let out = (
+                t.impulse.clone(),
+                [t.input, t.damping, t.contact].map(f64::to_bits),
+                stats.steps,
+            );
+            drop(r);
+            (log, out)
+        };
+        let (general, (imp_g, flows_g, steps_g)) = go(false);
+        let (pass, (imp_p, flows_p, steps_p)) = go(true);
+        eprintln!(
+            "{} observations, {steps_p} steps, impulses {imp_p:?}",
+            pass.0.len()
+        );
+        assert!(
+            imp_p.iter().all(|&i| i > 0.0),
+            "every level pounds: {imp_p:?}"
+        );
+        assert_eq!(steps_g, steps_p);
+        assert_eq!(general.0.len(), pass.0.len());
+        for (x, y) in general.0.iter().zip(&pass.0) {
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(x.0.to_bits(), y.0.to_bits());
+            assert_eq!(bits(&x.1), bits(&y.1), "q at t = {}", x.0);
+            assert_eq!(bits(&x.2), bits(&y.2), "q̇ at t = {}", x.0);
+            assert_eq!(bits(&x.3), bits(&y.3), "forces at t = {}", x.0);
+        }
+        assert_eq!(imp_g, imp_p);
+        assert_eq!(flows_g, flows_p);
+    }
+
     /// A row's step table filled for some active structures holds exactly what a step over
     /// them reads, and grown ([`Table::ensure`], [`Table::ensure_mid`]) it is the table filled
     /// for every structure, bit for bit: every mode's P(h), the coupled propagators of every

@@ -190,26 +190,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
                 // the start alone is formed at its first trial and kept, see `start`)
                 let wide = nl > self.start.narrow.len();
                 if !self.start.valid {
-                    let proj = &mut self.start.narrow;
-                    *proj = [[0.0; 3]; 8];
                     let (cpoly, pcoef) = (&mut self.cpoly[..n], &mut self.pcoef[..n]);
                     let (iw2, damp) = (&gm.inv_w2[..n], &gm.damp[..n]);
                     let cpl = &self.cpl_t[..n * nl];
-                    for j in 0..n {
-                        let c = gm.poly_load(j, piece, t0);
-                        cpoly[j] = c;
-                        let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
-                        pcoef[j] = [pa, pb, pc];
-                        x0s[j] = q[j] - pa;
-                        y0s[j] = v[j] - pb;
-                        if !wide {
-                            for (pr, &ck) in proj.iter_mut().zip(&cpl[j * nl..(j + 1) * nl]) {
-                                pr[0] += ck * pa;
-                                pr[1] += ck * pb;
-                                pr[2] += ck * pc;
-                            }
-                        }
-                    }
+                    self.start.narrow = start_poly_pass(
+                        (gm, piece, t0),
+                        (iw2, damp),
+                        (q, v),
+                        (cpl, if wide { 0 } else { nl }),
+                        (cpoly, pcoef),
+                        (x0s, y0s),
+                    );
                     self.start.wide_ok.iter_mut().for_each(|ok| *ok = false);
                     self.start.valid = true;
                 }
@@ -591,6 +582,82 @@ impl<'a, O: Observer> Elastic<'a, O> {
             return self.check_finite();
         }
     }
+}
+
+/// What a recorded motion's contact step formed from its start alone, at its first trial:
+/// each mode's ground load `c` (`cpoly`), its particular solution's coefficients (A, B, C)
+/// (`pcoef`) and its homogeneous start (x0, y0) = (η − A, η̇ − B), and the first `narrow`
+/// levels' projections Σ_j c_kj (A, B, C)_j (returned; `cpl`: the transposed couplings, `nl`
+/// levels a mode; `narrow` ≤ 8, 0 when the levels' sums are formed level by level instead).
+/// The modes two at a time in the lanes of [`F2`] (an odd one last, alone): each lane the
+/// scalar operations of `poly_coefficients`, each level's sums over the modes in mode order
+/// (lane 0's mode, then lane 1's), from zero: the same bits as one mode at a time.
+#[inline(always)]
+fn start_poly_pass(
+    (gm, piece, t0): (&GroundModes, &Piece, f64),
+    (iw2, damp): (&[f64], &[f64]),
+    (q, v): (&[f64], &[f64]),
+    (cpl, narrow): (&[f64], usize),
+    (cpoly, pcoef): (&mut [[f64; 3]], &mut [[f64; 3]]),
+    (x0s, y0s): (&mut [f64], &mut [f64]),
+) -> [[f64; 3]; 8] {
+    let n = cpoly.len();
+    let nl = cpl.len().checked_div(n).unwrap_or(0);
+    let narrow = narrow.min(8);
+    // (A and B of each level's sums in the two lanes of one register, C alone)
+    let mut ab = [F2::zero(); 8];
+    let mut cs = [0.0f64; 8];
+    let pairs = n / 2;
+    for jj in 0..pairs {
+        let j = 2 * jj;
+        let (ca, cb) = (gm.poly_load(j, piece, t0), gm.poly_load(j + 1, piece, t0));
+        (cpoly[j], cpoly[j + 1]) = (ca, cb);
+        let [c0, c1, c2] = [0, 1, 2].map(|i| F2::new(ca[i], cb[i]));
+        let (iw, d) = (F2::new(iw2[j], iw2[j + 1]), F2::new(damp[j], damp[j + 1]));
+        // (`poly_coefficients`, lane by lane)
+        let cc = c2 * iw;
+        let b = (c1 - F2::splat(2.0) * d * cc) * iw;
+        let a = (c0 - d * b - F2::splat(2.0) * cc) * iw;
+        let ([pa, qa], [pb, qb], [pc, qc]) = (a.get(), b.get(), cc.get());
+        pcoef[j] = [pa, pb, pc];
+        pcoef[j + 1] = [qa, qb, qc];
+        let x0 = F2::new(q[j], q[j + 1]) - a;
+        let y0 = F2::new(v[j], v[j + 1]) - b;
+        [x0s[j], x0s[j + 1]] = x0.get();
+        [y0s[j], y0s[j + 1]] = y0.get();
+        let (sa, sb) = (F2::new(pa, pb), F2::new(qa, qb));
+        let (ka, kb) = (
+            &cpl[j * nl..j * nl + narrow],
+            &cpl[(j + 1) * nl..(j + 1) * nl + narrow],
+        );
+        for (((s, c), &k1), &k2) in ab.iter_mut().zip(cs.iter_mut()).zip(ka).zip(kb) {
+            *s = *s + F2::splat(k1) * sa;
+            *s = *s + F2::splat(k2) * sb;
+            *c += k1 * pc;
+            *c += k2 * qc;
+        }
+    }
+    for j in 2 * pairs..n {
+        let c = gm.poly_load(j, piece, t0);
+        cpoly[j] = c;
+        let (pa, pb, pc) = poly_coefficients(iw2[j], damp[j], &c);
+        pcoef[j] = [pa, pb, pc];
+        x0s[j] = q[j] - pa;
+        y0s[j] = v[j] - pb;
+        let sa = F2::new(pa, pb);
+        for ((s, c), &k) in ab
+            .iter_mut()
+            .zip(cs.iter_mut())
+            .zip(&cpl[j * nl..j * nl + narrow])
+        {
+            *s = *s + F2::splat(k) * sa;
+            *c += k * pc;
+        }
+    }
+    std::array::from_fn(|k| {
+        let [a, b] = ab[k].get();
+        [a, b, cs[k]]
+    })
 }
 
 /// Where a recorded motion's contact steps stand on the piece's dyadic grid: grid step `base`

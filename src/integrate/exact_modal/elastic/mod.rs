@@ -300,8 +300,9 @@ pub(super) struct Elastic<'a, O: Observer> {
     progress: Progress,
     /// [`KINK_FLOOR_ULPS`] (a test sets 0 to bring back the defect it guards against).
     kink_floor_ulps: f64,
-    /// A row's accepted steps under a recorded motion take the one pass over the modes
-    /// (`row_pass::row_poly_pass`; a test sets false for the general loops it must equal).
+    /// A row's and a several-level pair's accepted steps under a recorded motion take the one
+    /// pass over the modes (`row_pass::row_poly_pass`; a test sets false for the general loops
+    /// it must equal).
     row_pass: bool,
     /// The quantised contact step lengths `dt·2^(−k/4)`, k = 0..=MAX_K.
     lengths: Vec<f64>,

@@ -1,6 +1,6 @@
-//! A row's accepted contact step under a recorded motion: the one pass over the modes of
-//! [`row_poly_pass`] (issue 29), the general loops' arithmetic structure by structure and two
-//! modes at a time.
+//! A row's accepted contact step under a recorded motion, and a pair's with several levels
+//! (a row of two): the one pass over the modes of [`row_poly_pass`] (issues 29, 25), the
+//! general loops' arithmetic structure by structure and two modes at a time.
 
 // Index loops over parallel per-mode arrays read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
@@ -9,8 +9,8 @@ use super::*;
 use crate::integrate::collocation::ModeStep;
 use crate::numerics::lanes::F2;
 
-/// The pass over the modes of a row's accepted step under a recorded motion without dense
-/// output ([`Elastic::accept_general`]): each mode's end state, its levels' projections of it,
+/// The pass over the modes of a row's (or a several-level pair's) accepted step under a
+/// recorded motion without dense output ([`Elastic::accept_general`]): each mode's end state, its levels' projections of it,
 /// its ground work and its change of energy in one pass, structure by structure — a
 /// structure's modes share their levels ([`System::levels_of_mode`]) and whether a contact
 /// force reaches them, so that the passive structures' modes (most of a row's) take the
