@@ -77,6 +77,10 @@ pub(super) struct PolyMap {
     /// (as [`F2`], 16-byte aligned: each coefficient pair is an operand of its vector
     /// multiplication straight from memory, without a load of its own)
     pairs: Vec<[F2; COEFS]>,
+    /// The same coefficients four modes at a time (`quads[i].0[c]` = the coefficient c of
+    /// modes 4i … 4i + 3), for the pass in 256-bit registers where the processor has AVX
+    /// ([`poly_pass`]); empty without AVX, off x86-64 and below four modes.
+    quads: Vec<Quad>,
     /// Per contact level k, `G_k = √(Σ_j c_kj² (H0_j²/ω_j² + H1_j²))` (∞ where a mode with
     /// ω = 0 has a margin): empty until [`PolyMap::set_gains`].
     gain: Vec<f64>,
@@ -113,6 +117,25 @@ const B1: usize = 21;
 const H0: usize = 22;
 const H1: usize = 23;
 const COEFS: usize = 24;
+
+/// Every coefficient of four modes side by side (32-byte aligned: each is one AVX operand
+/// straight from memory).
+#[derive(Debug, Clone)]
+#[repr(align(32))]
+struct Quad([[f64; 4]; COEFS]);
+
+/// Whether this processor runs the AVX pass of [`poly_pass`] (detected once per process by
+/// the standard library, then a load).
+fn wide_lanes() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
 
 /// Every mode's load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp` (2ζω,
 /// 1/s), `w2` (ω², 1/s²) and `inv_w2` (1/ω², s²), as [`GroundModes`] has them.
@@ -189,8 +212,20 @@ impl PolyMap {
             }
         }
         let pairs = cols.iter().map(|c| c.map(|x| F2::load(&x))).collect();
+        let quads = if wide_lanes() {
+            (0..n / 4)
+                .map(|i| {
+                    Quad(std::array::from_fn(|k| {
+                        std::array::from_fn(|l| cols[2 * i + l / 2][k][l % 2])
+                    }))
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         PolyMap {
             pairs,
+            quads,
             gain: Vec::new(),
             part: part.map(f64::sqrt),
         }
@@ -263,27 +298,50 @@ impl PolyMap {
 /// energy), each summed in two lanes (even and odd modes, added at the end). The start
 /// state's same sum, which [`PolyMap::margin_bounds`] needs, is the previous pass's end sum
 /// (or [`start_energy2`]): not formed again here.
-#[inline(always)]
 pub(super) fn poly_pass<const MARGIN: bool>(
+    m: &PolyMap,
+    g: (f64, f64, f64),
+    q: &[f64],
+    v: &[f64],
+    out: (&mut [f64], &mut [f64], &mut [f64]),
+) -> (PolySums, f64) {
+    #[cfg(target_arch = "x86_64")]
+    if !m.quads.is_empty() {
+        // SAFETY: `quads` is formed only where the processor has AVX (`PolyMap::new`)
+        return unsafe { wide::poly_pass_avx::<MARGIN>(m, g, q, v, out) };
+    }
+    pass_pairs::<MARGIN>(m, g, q, v, out, 0, [F2::zero(); 7])
+}
+
+/// [`poly_pass`] two modes at a time from the pair `from` on (modes 2·from …), onto the
+/// partial sums `acc` of the modes before it (even modes in lane 0, odd in lane 1).
+#[inline(always)]
+fn pass_pairs<const MARGIN: bool>(
     m: &PolyMap,
     (ag, vg, a1): (f64, f64, f64),
     q: &[f64],
     v: &[f64],
     (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+    from: usize,
+    mut acc: [F2; 7],
 ) -> (PolySums, f64) {
     let n = qb.len();
     // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
     // Σ η̇² + ω²η² at the end
-    let mut acc = [F2::zero(); 7];
     let g = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     let (qp, _) = q[..n].as_chunks::<2>();
     let (vp, _) = v[..n].as_chunks::<2>();
     let (xp, _) = qb.as_chunks_mut::<2>();
     let (yp, _) = vb[..n].as_chunks_mut::<2>();
     let full = qp.len();
-    let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
+    let from = from.min(full);
+    let rows = m.pairs[from..full]
+        .iter()
+        .zip(qp[from..].iter().zip(&vp[from..]));
+    let (xp, yp) = (&mut xp[from..], &mut yp[from..]);
     if MARGIN {
         let (ap, _) = amp[..n].as_chunks_mut::<2>();
+        let ap = &mut ap[from..];
         for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
             let (x, y, a) = pair::<true>(c, g, F2::load(qj), F2::load(vj), &mut acc);
             (*xb, *yb, *ab) = (x.get(), y.get(), a.get());
@@ -313,6 +371,125 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     let sum = |k: usize| acc[k][0] + acc[k][1];
     let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
     (ps, sum(6))
+}
+
+/// [`poly_pass`] four modes at a time in AVX's 256-bit registers: every lane does its mode's
+/// operations of [`pair`] in the same order, and each sum takes the quad's two pairs one
+/// after the other (its low half, then its high half, onto the two-lane partial sums), in
+/// the order of the two-lane pass: the same bits. The modes past the last full quad go on
+/// two at a time ([`pass_pairs`]).
+#[cfg(target_arch = "x86_64")]
+mod wide {
+    use super::*;
+    use std::arch::x86_64::{
+        __m128d, _mm_add_pd, _mm_setzero_pd, _mm_storeu_pd, _mm256_add_pd, _mm256_andnot_pd,
+        _mm256_castpd256_pd128, _mm256_extractf128_pd, _mm256_load_pd, _mm256_loadu_pd,
+        _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd, _mm256_sub_pd,
+    };
+
+    /// See the module. Safety: the processor has AVX.
+    #[target_feature(enable = "avx")]
+    pub(super) unsafe fn poly_pass_avx<const MARGIN: bool>(
+        m: &PolyMap,
+        g: (f64, f64, f64),
+        q: &[f64],
+        v: &[f64],
+        (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+    ) -> (PolySums, f64) {
+        let n = qb.len();
+        let (ga, gv, g1) = (
+            _mm256_set1_pd(g.0),
+            _mm256_set1_pd(g.1),
+            _mm256_set1_pd(g.2),
+        );
+        let sign = _mm256_set1_pd(-0.0);
+        let mut acc: [__m128d; 7] = [_mm_setzero_pd(); 7];
+        let (qc, _) = q[..n].as_chunks::<4>();
+        let (vc, _) = v[..n].as_chunks::<4>();
+        let (xc, _) = qb.as_chunks_mut::<4>();
+        let (yc, _) = vb[..n].as_chunks_mut::<4>();
+        let nq = qc.len().min(m.quads.len());
+        // (macros, not closures: every operation inlined in this function, with its AVX)
+        macro_rules! mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        macro_rules! add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        macro_rules! abs {
+            ($a:expr) => {
+                _mm256_andnot_pd(sign, $a)
+            };
+        }
+        for i in 0..nq {
+            let c = &m.quads[i].0;
+            // SAFETY: AVX (the caller); `Quad` is 32-byte aligned and every chunk holds four
+            // values
+            macro_rules! k {
+                ($j:expr) => {
+                    unsafe { _mm256_load_pd(c[$j].as_ptr()) }
+                };
+            }
+            let (qj, vj) = unsafe {
+                (
+                    _mm256_loadu_pd(qc[i].as_ptr()),
+                    _mm256_loadu_pd(vc[i].as_ptr()),
+                )
+            };
+            let x = add!(
+                add!(mul!(k!(P11), qj), mul!(k!(P12), vj)),
+                add!(add!(mul!(k!(QA), ga), mul!(k!(QV), gv)), mul!(k!(Q1), g1))
+            );
+            let y = add!(
+                add!(mul!(k!(P21), qj), mul!(k!(P22), vj)),
+                add!(add!(mul!(k!(VA), ga), mul!(k!(VV), gv)), mul!(k!(V1), g1))
+            );
+            if MARGIN {
+                let pa = add!(add!(mul!(k!(AA), ga), mul!(k!(AV), gv)), mul!(k!(A1), g1));
+                let pb = add!(mul!(k!(BA), ga), mul!(k!(B1), g1));
+                let a = add!(
+                    mul!(k!(H0), abs!(_mm256_sub_pd(qj, pa))),
+                    mul!(k!(H1), abs!(_mm256_sub_pd(vj, pb)))
+                );
+                let (ac, _) = amp[..n].as_chunks_mut::<4>();
+                // SAFETY: a chunk of four values
+                unsafe { _mm256_storeu_pd(ac[i].as_mut_ptr(), a) };
+            }
+            let u = add!(y, mul!(k!(DD), x));
+            let terms = [
+                mul!(k!(LA), x),
+                mul!(k!(LV), x),
+                mul!(k!(LAI), u),
+                mul!(k!(LVI), u),
+                mul!(k!(LVI), x),
+                mul!(k!(LVD), u),
+                add!(mul!(y, y), mul!(mul!(k!(W2), x), x)),
+            ];
+            for l in 0..7 {
+                // modes 4i, 4i + 1, then 4i + 2, 4i + 3: the two-lane pass's order
+                acc[l] = _mm_add_pd(acc[l], _mm256_castpd256_pd128(terms[l]));
+                acc[l] = _mm_add_pd(acc[l], _mm256_extractf128_pd::<1>(terms[l]));
+            }
+            // SAFETY: chunks of four values
+            unsafe {
+                _mm256_storeu_pd(xc[i].as_mut_ptr(), x);
+                _mm256_storeu_pd(yc[i].as_mut_ptr(), y);
+            }
+        }
+        let mut lanes = [F2::zero(); 7];
+        for l in 0..7 {
+            let mut two = [0.0; 2];
+            // SAFETY: two values
+            unsafe { _mm_storeu_pd(two.as_mut_ptr(), acc[l]) };
+            lanes[l] = F2::new(two[0], two[1]);
+        }
+        let acc = lanes;
+        pass_pairs::<MARGIN>(m, g, q, v, (qb, vb, amp), 2 * nq, acc)
+    }
 }
 
 /// `Σ η̇² + ω²η²` of the state (q, v) with the arithmetic of [`poly_pass`]'s end sum (two
