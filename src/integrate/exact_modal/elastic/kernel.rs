@@ -126,6 +126,7 @@ struct Quad([[f64; 4]; COEFS]);
 
 /// Whether this processor runs the AVX pass of [`poly_pass`] (detected once per process by
 /// the standard library, then a load).
+#[inline]
 fn wide_lanes() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
@@ -384,7 +385,7 @@ mod wide {
     use std::arch::x86_64::{
         __m128d, _mm_add_pd, _mm_setzero_pd, _mm_storeu_pd, _mm256_add_pd, _mm256_andnot_pd,
         _mm256_castpd256_pd128, _mm256_extractf128_pd, _mm256_load_pd, _mm256_loadu_pd,
-        _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd, _mm256_sub_pd,
+        _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd, _mm256_sub_pd,
     };
 
     /// See the module. Safety: the processor has AVX.
@@ -490,6 +491,35 @@ mod wide {
         let acc = lanes;
         pass_pairs::<MARGIN>(m, g, q, v, (qb, vb, amp), 2 * nq, acc)
     }
+
+    /// [`dots`]' four partial sums over the whole chunks of four (lane l: the terms j ≡ l
+    /// mod 4, in order), for `c·x` and `c·y`. Safety: the processor has AVX.
+    #[target_feature(enable = "avx")]
+    pub(super) unsafe fn partial_dots(c: &[f64], x: &[f64], y: &[f64]) -> ([f64; 4], [f64; 4]) {
+        let (cc, _) = c.as_chunks::<4>();
+        let (xc, _) = x.as_chunks::<4>();
+        let (yc, _) = y.as_chunks::<4>();
+        let (mut sx, mut sy) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+        for ((c, x), y) in cc.iter().zip(xc).zip(yc) {
+            // SAFETY: AVX (the caller); chunks of four values
+            let (c, x, y) = unsafe {
+                (
+                    _mm256_loadu_pd(c.as_ptr()),
+                    _mm256_loadu_pd(x.as_ptr()),
+                    _mm256_loadu_pd(y.as_ptr()),
+                )
+            };
+            sx = _mm256_add_pd(sx, _mm256_mul_pd(c, x));
+            sy = _mm256_add_pd(sy, _mm256_mul_pd(c, y));
+        }
+        let (mut ax, mut ay) = ([0.0; 4], [0.0; 4]);
+        // SAFETY: four values each
+        unsafe {
+            _mm256_storeu_pd(ax.as_mut_ptr(), sx);
+            _mm256_storeu_pd(ay.as_mut_ptr(), sy);
+        }
+        (ax, ay)
+    }
 }
 
 /// `Σ η̇² + ω²η²` of the state (q, v) with the arithmetic of [`poly_pass`]'s end sum (two
@@ -538,7 +568,9 @@ pub(super) fn poly_margins(
 
 /// `(c·x, c·y)` with the very arithmetic of [`crate::numerics::linalg::dot`] for each (a chain
 /// below 8 terms, else four partial sums, lanes 0 + 2 and 1 + 3 added last: the same bits),
-/// both in one pass that reads c once, the partial sums as two pairs of lanes.
+/// both in one pass that reads c once, the partial sums as two pairs of lanes (or, where the
+/// processor has AVX, as the four lanes of one register: each partial sum takes the same
+/// terms in the same order either way).
 #[inline(always)]
 pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     let n = c.len().min(x.len()).min(y.len());
@@ -550,6 +582,12 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
             sy += c[i] * y[i];
         }
         return (sx, sy);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if wide_lanes() {
+        // SAFETY: the processor has AVX
+        let (ax, ay) = unsafe { wide::partial_dots(c, x, y) };
+        return dots_tail(c, x, y, ax, ay);
     }
     let z = F2::zero();
     let (mut x01, mut x23, mut y01, mut y23) = (z, z, z, z);
@@ -565,7 +603,14 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     }
     let ([x0, x1], [x2, x3]) = (x01.get(), x23.get());
     let ([y0, y1], [y2, y3]) = (y01.get(), y23.get());
-    let (mut ax, mut ay) = ([x0, x1, x2, x3], [y0, y1, y2, y3]);
+    dots_tail(c, x, y, [x0, x1, x2, x3], [y0, y1, y2, y3])
+}
+
+/// [`dots`] from the four partial sums of its whole chunks of four: the last terms onto them,
+/// then lanes 0 + 2 and 1 + 3 added.
+#[inline(always)]
+fn dots_tail(c: &[f64], x: &[f64], y: &[f64], mut ax: [f64; 4], mut ay: [f64; 4]) -> (f64, f64) {
+    let n = c.len().min(x.len()).min(y.len());
     let r = n / 4 * 4;
     for i in 0..n - r {
         ax[i] += c[r + i] * x[r + i];
@@ -764,6 +809,88 @@ mod tests {
                 );
             }
         });
+    }
+
+    /// The pass four modes at a time (AVX, where this processor has it) is the two-lane pass
+    /// bit for bit: end states, margins, ground-work sums and energy sum, with and without
+    /// margins, for every mode count from 1 to 21 (no whole quad, whole quads, and each
+    /// remainder of pairs and odd modes after them), on modes, states and ground factors
+    /// that round. Without AVX there is nothing to compare (`poly_pass` is the two-lane pass):
+    /// the test says so.
+    #[test]
+    fn the_four_lane_pass_is_the_two_lane_pass_bit_for_bit() {
+        if !wide_lanes() {
+            eprintln!(
+                "no AVX on this processor: the four-lane pass is not taken, nothing to compare"
+            );
+            return;
+        }
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = |lo: f64, hi: f64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            let x = 10f64.powf(lo + (hi - lo) * u);
+            if seed & 1 == 0 { x } else { -x }
+        };
+        let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
+        for n in 1..=21 {
+            let h = 0.005;
+            let omega: Vec<f64> = (0..n).map(|_| next(-0.5, 3.0).abs()).collect();
+            let damp: Vec<f64> = omega
+                .iter()
+                .map(|w| 0.1 * w * next(-2.0, 0.0).abs())
+                .collect();
+            let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+            let inv_w2: Vec<f64> = w2.iter().map(|x| 1.0 / x).collect();
+            let la: Vec<f64> = (0..n).map(|_| next(-2.0, 3.0)).collect();
+            let lv: Vec<f64> = (0..n).map(|_| next(-3.0, 1.0)).collect();
+            let props: Vec<Prop> = (0..n).map(|j| propagator(omega[j], damp[j], h)).collect();
+            let herm: Vec<(f64, f64)> = (0..n)
+                .map(|_| (next(-8.0, 0.0).abs(), next(-9.0, -2.0).abs()))
+                .collect();
+            let loads = ModeLoads {
+                la: &la,
+                lv: &lv,
+                damp: &damp,
+                w2: &w2,
+                inv_w2: &inv_w2,
+            };
+            let map = PolyMap::new(loads, &props, &herm, h);
+            assert_eq!(map.quads.len(), n / 4, "n {n}: the quads are formed");
+            let q: Vec<f64> = (0..n).map(|_| next(-9.0, -1.0)).collect();
+            let v: Vec<f64> = (0..n).map(|_| next(-7.0, 0.0)).collect();
+            let g = (next(-2.0, 1.0), next(-3.0, 0.0), next(-1.0, 2.5));
+            for margin in [false, true] {
+                let (mut qa, mut va, mut aa) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                let (mut qb, mut vb, mut ab) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                let out_a = (&mut qa[..], &mut va[..], &mut aa[..]);
+                let out_b = (&mut qb[..], &mut vb[..], &mut ab[..]);
+                let ((sa, ea), (sb, eb)) = if margin {
+                    (
+                        poly_pass::<true>(&map, g, &q, &v, out_a),
+                        pass_pairs::<true>(&map, g, &q, &v, out_b, 0, [F2::zero(); 7]),
+                    )
+                } else {
+                    (
+                        poly_pass::<false>(&map, g, &q, &v, out_a),
+                        pass_pairs::<false>(&map, g, &q, &v, out_b, 0, [F2::zero(); 7]),
+                    )
+                };
+                assert_eq!(bits(&qa), bits(&qb), "n {n} margin {margin}: η");
+                assert_eq!(bits(&va), bits(&vb), "n {n} margin {margin}: η̇");
+                assert_eq!(bits(&aa), bits(&ab), "n {n} margin {margin}: margins");
+                assert_eq!(ea.to_bits(), eb.to_bits(), "n {n} margin {margin}: energy");
+                assert_eq!(
+                    format!("{sa:?}"),
+                    format!("{sb:?}"),
+                    "n {n} margin {margin}"
+                );
+                // (the states moved: a pass that wrote nothing would compare equal too)
+                assert!(qa.iter().zip(&q).all(|(a, b)| a != b), "n {n}");
+            }
+        }
     }
 
     /// [`dots`] is [`dot`] twice, bit for bit, at every length from 0 to 41 (the chain below
