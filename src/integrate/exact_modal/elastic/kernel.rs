@@ -77,6 +77,10 @@ pub(super) struct PolyMap {
     /// (as [`F2`], 16-byte aligned: each coefficient pair is an operand of its vector
     /// multiplication straight from memory, without a load of its own)
     pairs: Vec<[F2; COEFS]>,
+    /// The same coefficients four modes at a time (`quads[i].0[c]` = the coefficient c of
+    /// modes 4i … 4i + 3), for the pass in 256-bit registers where the processor has AVX
+    /// ([`poly_pass`]); empty without AVX, off x86-64 and below four modes.
+    quads: Vec<Quad>,
     /// Per contact level k, `G_k = √(Σ_j c_kj² (H0_j²/ω_j² + H1_j²))` (∞ where a mode with
     /// ω = 0 has a margin): empty until [`PolyMap::set_gains`].
     gain: Vec<f64>,
@@ -113,6 +117,26 @@ const B1: usize = 21;
 const H0: usize = 22;
 const H1: usize = 23;
 const COEFS: usize = 24;
+
+/// Every coefficient of four modes side by side (32-byte aligned: each is one AVX operand
+/// straight from memory).
+#[derive(Debug, Clone)]
+#[repr(align(32))]
+struct Quad([[f64; 4]; COEFS]);
+
+/// Whether this processor runs the AVX pass of [`poly_pass`] (detected once per process by
+/// the standard library, then a load).
+#[inline]
+fn wide_lanes() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
 
 /// Every mode's load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp` (2ζω,
 /// 1/s), `w2` (ω², 1/s²) and `inv_w2` (1/ω², s²), as [`GroundModes`] has them.
@@ -189,8 +213,20 @@ impl PolyMap {
             }
         }
         let pairs = cols.iter().map(|c| c.map(|x| F2::load(&x))).collect();
+        let quads = if wide_lanes() {
+            (0..n / 4)
+                .map(|i| {
+                    Quad(std::array::from_fn(|k| {
+                        std::array::from_fn(|l| cols[2 * i + l / 2][k][l % 2])
+                    }))
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         PolyMap {
             pairs,
+            quads,
             gain: Vec::new(),
             part: part.map(f64::sqrt),
         }
@@ -263,27 +299,50 @@ impl PolyMap {
 /// energy), each summed in two lanes (even and odd modes, added at the end). The start
 /// state's same sum, which [`PolyMap::margin_bounds`] needs, is the previous pass's end sum
 /// (or [`start_energy2`]): not formed again here.
-#[inline(always)]
 pub(super) fn poly_pass<const MARGIN: bool>(
+    m: &PolyMap,
+    g: (f64, f64, f64),
+    q: &[f64],
+    v: &[f64],
+    out: (&mut [f64], &mut [f64], &mut [f64]),
+) -> (PolySums, f64) {
+    #[cfg(target_arch = "x86_64")]
+    if !m.quads.is_empty() {
+        // SAFETY: `quads` is formed only where the processor has AVX (`PolyMap::new`)
+        return unsafe { wide::poly_pass_avx::<MARGIN>(m, g, q, v, out) };
+    }
+    pass_pairs::<MARGIN>(m, g, q, v, out, 0, [F2::zero(); 7])
+}
+
+/// [`poly_pass`] two modes at a time from the pair `from` on (modes 2·from …), onto the
+/// partial sums `acc` of the modes before it (even modes in lane 0, odd in lane 1).
+#[inline(always)]
+fn pass_pairs<const MARGIN: bool>(
     m: &PolyMap,
     (ag, vg, a1): (f64, f64, f64),
     q: &[f64],
     v: &[f64],
     (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+    from: usize,
+    mut acc: [F2; 7],
 ) -> (PolySums, f64) {
     let n = qb.len();
     // per lane: Σ la η, Σ lv η, Σ la/ω² D, Σ lv/ω² D, Σ lv/ω² η, Σ lv 2ζω/ω⁴ D (D = η̇ + 2ζωη),
     // Σ η̇² + ω²η² at the end
-    let mut acc = [F2::zero(); 7];
     let g = (F2::splat(ag), F2::splat(vg), F2::splat(a1));
     let (qp, _) = q[..n].as_chunks::<2>();
     let (vp, _) = v[..n].as_chunks::<2>();
     let (xp, _) = qb.as_chunks_mut::<2>();
     let (yp, _) = vb[..n].as_chunks_mut::<2>();
     let full = qp.len();
-    let rows = m.pairs[..full].iter().zip(qp.iter().zip(vp));
+    let from = from.min(full);
+    let rows = m.pairs[from..full]
+        .iter()
+        .zip(qp[from..].iter().zip(&vp[from..]));
+    let (xp, yp) = (&mut xp[from..], &mut yp[from..]);
     if MARGIN {
         let (ap, _) = amp[..n].as_chunks_mut::<2>();
+        let ap = &mut ap[from..];
         for ((c, (qj, vj)), (xb, (yb, ab))) in rows.zip(xp.iter_mut().zip(yp.iter_mut().zip(ap))) {
             let (x, y, a) = pair::<true>(c, g, F2::load(qj), F2::load(vj), &mut acc);
             (*xb, *yb, *ab) = (x.get(), y.get(), a.get());
@@ -313,6 +372,154 @@ pub(super) fn poly_pass<const MARGIN: bool>(
     let sum = |k: usize| acc[k][0] + acc[k][1];
     let ps = PolySums::from_parts([sum(0), sum(1), sum(2), sum(3), sum(4), sum(5)]);
     (ps, sum(6))
+}
+
+/// [`poly_pass`] four modes at a time in AVX's 256-bit registers: every lane does its mode's
+/// operations of [`pair`] in the same order, and each sum takes the quad's two pairs one
+/// after the other (its low half, then its high half, onto the two-lane partial sums), in
+/// the order of the two-lane pass: the same bits. The modes past the last full quad go on
+/// two at a time ([`pass_pairs`]).
+#[cfg(target_arch = "x86_64")]
+mod wide {
+    use super::*;
+    use std::arch::x86_64::{
+        __m128d, _mm_add_pd, _mm_setzero_pd, _mm_storeu_pd, _mm256_add_pd, _mm256_andnot_pd,
+        _mm256_castpd256_pd128, _mm256_extractf128_pd, _mm256_load_pd, _mm256_loadu_pd,
+        _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd, _mm256_sub_pd,
+    };
+
+    /// See the module. Safety: the processor has AVX.
+    #[target_feature(enable = "avx")]
+    pub(super) unsafe fn poly_pass_avx<const MARGIN: bool>(
+        m: &PolyMap,
+        g: (f64, f64, f64),
+        q: &[f64],
+        v: &[f64],
+        (qb, vb, amp): (&mut [f64], &mut [f64], &mut [f64]),
+    ) -> (PolySums, f64) {
+        let n = qb.len();
+        let (ga, gv, g1) = (
+            _mm256_set1_pd(g.0),
+            _mm256_set1_pd(g.1),
+            _mm256_set1_pd(g.2),
+        );
+        let sign = _mm256_set1_pd(-0.0);
+        let mut acc: [__m128d; 7] = [_mm_setzero_pd(); 7];
+        let (qc, _) = q[..n].as_chunks::<4>();
+        let (vc, _) = v[..n].as_chunks::<4>();
+        let (xc, _) = qb.as_chunks_mut::<4>();
+        let (yc, _) = vb[..n].as_chunks_mut::<4>();
+        let nq = qc.len().min(m.quads.len());
+        // (macros, not closures: every operation inlined in this function, with its AVX)
+        macro_rules! mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        macro_rules! add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        macro_rules! abs {
+            ($a:expr) => {
+                _mm256_andnot_pd(sign, $a)
+            };
+        }
+        for i in 0..nq {
+            let c = &m.quads[i].0;
+            // SAFETY: AVX (the caller); `Quad` is 32-byte aligned and every chunk holds four
+            // values
+            macro_rules! k {
+                ($j:expr) => {
+                    unsafe { _mm256_load_pd(c[$j].as_ptr()) }
+                };
+            }
+            let (qj, vj) = unsafe {
+                (
+                    _mm256_loadu_pd(qc[i].as_ptr()),
+                    _mm256_loadu_pd(vc[i].as_ptr()),
+                )
+            };
+            let x = add!(
+                add!(mul!(k!(P11), qj), mul!(k!(P12), vj)),
+                add!(add!(mul!(k!(QA), ga), mul!(k!(QV), gv)), mul!(k!(Q1), g1))
+            );
+            let y = add!(
+                add!(mul!(k!(P21), qj), mul!(k!(P22), vj)),
+                add!(add!(mul!(k!(VA), ga), mul!(k!(VV), gv)), mul!(k!(V1), g1))
+            );
+            if MARGIN {
+                let pa = add!(add!(mul!(k!(AA), ga), mul!(k!(AV), gv)), mul!(k!(A1), g1));
+                let pb = add!(mul!(k!(BA), ga), mul!(k!(B1), g1));
+                let a = add!(
+                    mul!(k!(H0), abs!(_mm256_sub_pd(qj, pa))),
+                    mul!(k!(H1), abs!(_mm256_sub_pd(vj, pb)))
+                );
+                let (ac, _) = amp[..n].as_chunks_mut::<4>();
+                // SAFETY: a chunk of four values
+                unsafe { _mm256_storeu_pd(ac[i].as_mut_ptr(), a) };
+            }
+            let u = add!(y, mul!(k!(DD), x));
+            let terms = [
+                mul!(k!(LA), x),
+                mul!(k!(LV), x),
+                mul!(k!(LAI), u),
+                mul!(k!(LVI), u),
+                mul!(k!(LVI), x),
+                mul!(k!(LVD), u),
+                add!(mul!(y, y), mul!(mul!(k!(W2), x), x)),
+            ];
+            for l in 0..7 {
+                // modes 4i, 4i + 1, then 4i + 2, 4i + 3: the two-lane pass's order
+                acc[l] = _mm_add_pd(acc[l], _mm256_castpd256_pd128(terms[l]));
+                acc[l] = _mm_add_pd(acc[l], _mm256_extractf128_pd::<1>(terms[l]));
+            }
+            // SAFETY: chunks of four values
+            unsafe {
+                _mm256_storeu_pd(xc[i].as_mut_ptr(), x);
+                _mm256_storeu_pd(yc[i].as_mut_ptr(), y);
+            }
+        }
+        let mut lanes = [F2::zero(); 7];
+        for l in 0..7 {
+            let mut two = [0.0; 2];
+            // SAFETY: two values
+            unsafe { _mm_storeu_pd(two.as_mut_ptr(), acc[l]) };
+            lanes[l] = F2::new(two[0], two[1]);
+        }
+        let acc = lanes;
+        pass_pairs::<MARGIN>(m, g, q, v, (qb, vb, amp), 2 * nq, acc)
+    }
+
+    /// [`dots`]' four partial sums over the whole chunks of four (lane l: the terms j ≡ l
+    /// mod 4, in order), for `c·x` and `c·y`. Safety: the processor has AVX.
+    #[target_feature(enable = "avx")]
+    pub(super) unsafe fn partial_dots(c: &[f64], x: &[f64], y: &[f64]) -> ([f64; 4], [f64; 4]) {
+        let (cc, _) = c.as_chunks::<4>();
+        let (xc, _) = x.as_chunks::<4>();
+        let (yc, _) = y.as_chunks::<4>();
+        let (mut sx, mut sy) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+        for ((c, x), y) in cc.iter().zip(xc).zip(yc) {
+            // SAFETY: AVX (the caller); chunks of four values
+            let (c, x, y) = unsafe {
+                (
+                    _mm256_loadu_pd(c.as_ptr()),
+                    _mm256_loadu_pd(x.as_ptr()),
+                    _mm256_loadu_pd(y.as_ptr()),
+                )
+            };
+            sx = _mm256_add_pd(sx, _mm256_mul_pd(c, x));
+            sy = _mm256_add_pd(sy, _mm256_mul_pd(c, y));
+        }
+        let (mut ax, mut ay) = ([0.0; 4], [0.0; 4]);
+        // SAFETY: four values each
+        unsafe {
+            _mm256_storeu_pd(ax.as_mut_ptr(), sx);
+            _mm256_storeu_pd(ay.as_mut_ptr(), sy);
+        }
+        (ax, ay)
+    }
 }
 
 /// `Σ η̇² + ω²η²` of the state (q, v) with the arithmetic of [`poly_pass`]'s end sum (two
@@ -361,7 +568,9 @@ pub(super) fn poly_margins(
 
 /// `(c·x, c·y)` with the very arithmetic of [`crate::numerics::linalg::dot`] for each (a chain
 /// below 8 terms, else four partial sums, lanes 0 + 2 and 1 + 3 added last: the same bits),
-/// both in one pass that reads c once, the partial sums as two pairs of lanes.
+/// both in one pass that reads c once, the partial sums as two pairs of lanes (or, where the
+/// processor has AVX, as the four lanes of one register: each partial sum takes the same
+/// terms in the same order either way).
 #[inline(always)]
 pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     let n = c.len().min(x.len()).min(y.len());
@@ -373,6 +582,12 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
             sy += c[i] * y[i];
         }
         return (sx, sy);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if wide_lanes() {
+        // SAFETY: the processor has AVX
+        let (ax, ay) = unsafe { wide::partial_dots(c, x, y) };
+        return dots_tail(c, x, y, ax, ay);
     }
     let z = F2::zero();
     let (mut x01, mut x23, mut y01, mut y23) = (z, z, z, z);
@@ -388,7 +603,14 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
     }
     let ([x0, x1], [x2, x3]) = (x01.get(), x23.get());
     let ([y0, y1], [y2, y3]) = (y01.get(), y23.get());
-    let (mut ax, mut ay) = ([x0, x1, x2, x3], [y0, y1, y2, y3]);
+    dots_tail(c, x, y, [x0, x1, x2, x3], [y0, y1, y2, y3])
+}
+
+/// [`dots`] from the four partial sums of its whole chunks of four: the last terms onto them,
+/// then lanes 0 + 2 and 1 + 3 added.
+#[inline(always)]
+fn dots_tail(c: &[f64], x: &[f64], y: &[f64], mut ax: [f64; 4], mut ay: [f64; 4]) -> (f64, f64) {
+    let n = c.len().min(x.len()).min(y.len());
     let r = n / 4 * 4;
     for i in 0..n - r {
         ax[i] += c[r + i] * x[r + i];
@@ -587,6 +809,88 @@ mod tests {
                 );
             }
         });
+    }
+
+    /// The pass four modes at a time (AVX, where this processor has it) is the two-lane pass
+    /// bit for bit: end states, margins, ground-work sums and energy sum, with and without
+    /// margins, for every mode count from 1 to 21 (no whole quad, whole quads, and each
+    /// remainder of pairs and odd modes after them), on modes, states and ground factors
+    /// that round. Without AVX there is nothing to compare (`poly_pass` is the two-lane pass):
+    /// the test says so.
+    #[test]
+    fn the_four_lane_pass_is_the_two_lane_pass_bit_for_bit() {
+        if !wide_lanes() {
+            eprintln!(
+                "no AVX on this processor: the four-lane pass is not taken, nothing to compare"
+            );
+            return;
+        }
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = |lo: f64, hi: f64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            let x = 10f64.powf(lo + (hi - lo) * u);
+            if seed & 1 == 0 { x } else { -x }
+        };
+        let bits = |x: &[f64]| x.iter().map(|y| y.to_bits()).collect::<Vec<_>>();
+        for n in 1..=21 {
+            let h = 0.005;
+            let omega: Vec<f64> = (0..n).map(|_| next(-0.5, 3.0).abs()).collect();
+            let damp: Vec<f64> = omega
+                .iter()
+                .map(|w| 0.1 * w * next(-2.0, 0.0).abs())
+                .collect();
+            let w2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+            let inv_w2: Vec<f64> = w2.iter().map(|x| 1.0 / x).collect();
+            let la: Vec<f64> = (0..n).map(|_| next(-2.0, 3.0)).collect();
+            let lv: Vec<f64> = (0..n).map(|_| next(-3.0, 1.0)).collect();
+            let props: Vec<Prop> = (0..n).map(|j| propagator(omega[j], damp[j], h)).collect();
+            let herm: Vec<(f64, f64)> = (0..n)
+                .map(|_| (next(-8.0, 0.0).abs(), next(-9.0, -2.0).abs()))
+                .collect();
+            let loads = ModeLoads {
+                la: &la,
+                lv: &lv,
+                damp: &damp,
+                w2: &w2,
+                inv_w2: &inv_w2,
+            };
+            let map = PolyMap::new(loads, &props, &herm, h);
+            assert_eq!(map.quads.len(), n / 4, "n {n}: the quads are formed");
+            let q: Vec<f64> = (0..n).map(|_| next(-9.0, -1.0)).collect();
+            let v: Vec<f64> = (0..n).map(|_| next(-7.0, 0.0)).collect();
+            let g = (next(-2.0, 1.0), next(-3.0, 0.0), next(-1.0, 2.5));
+            for margin in [false, true] {
+                let (mut qa, mut va, mut aa) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                let (mut qb, mut vb, mut ab) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                let out_a = (&mut qa[..], &mut va[..], &mut aa[..]);
+                let out_b = (&mut qb[..], &mut vb[..], &mut ab[..]);
+                let ((sa, ea), (sb, eb)) = if margin {
+                    (
+                        poly_pass::<true>(&map, g, &q, &v, out_a),
+                        pass_pairs::<true>(&map, g, &q, &v, out_b, 0, [F2::zero(); 7]),
+                    )
+                } else {
+                    (
+                        poly_pass::<false>(&map, g, &q, &v, out_a),
+                        pass_pairs::<false>(&map, g, &q, &v, out_b, 0, [F2::zero(); 7]),
+                    )
+                };
+                assert_eq!(bits(&qa), bits(&qb), "n {n} margin {margin}: η");
+                assert_eq!(bits(&va), bits(&vb), "n {n} margin {margin}: η̇");
+                assert_eq!(bits(&aa), bits(&ab), "n {n} margin {margin}: margins");
+                assert_eq!(ea.to_bits(), eb.to_bits(), "n {n} margin {margin}: energy");
+                assert_eq!(
+                    format!("{sa:?}"),
+                    format!("{sb:?}"),
+                    "n {n} margin {margin}"
+                );
+                // (the states moved: a pass that wrote nothing would compare equal too)
+                assert!(qa.iter().zip(&q).all(|(a, b)| a != b), "n {n}");
+            }
+        }
     }
 
     /// [`dots`] is [`dot`] twice, bit for bit, at every length from 0 to 41 (the chain below
