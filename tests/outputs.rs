@@ -19,6 +19,21 @@ fn scenario(dir: &Path) -> std::path::PathBuf {
     path
 }
 
+/// `pounding run SCENARIO --out OUT -q --no-check --no-plot`, which must succeed.
+fn run_quietly(scenario: &Path, out: &Path) {
+    let run = Command::new(env!("CARGO_BIN_EXE_pounding"))
+        .args(["run", scenario.to_str().unwrap(), "--out"])
+        .arg(out)
+        .args(["-q", "--no-check", "--no-plot"])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}
+
 /// Under umask 027 and then 002, every file `pounding run` writes (CSV files, pictures,
 /// summary.json) has exactly the mode of a file the shell creates under the same umask
 /// (`: > ref`, i.e. 0666 & !umask, what `File::create` gives): no output is owner-only (the
@@ -149,17 +164,7 @@ fn floors_csv_keeps_the_contact_stations_by_default() {
     .unwrap();
     let run = |p: &Path, out: &str| {
         let out = dir.path().join(out);
-        let status = Command::new(env!("CARGO_BIN_EXE_pounding"))
-            .args(["run", p.to_str().unwrap(), "--out"])
-            .arg(&out)
-            .args(["-q", "--no-check", "--no-plot"])
-            .output()
-            .unwrap();
-        assert!(
-            status.status.success(),
-            "{}",
-            String::from_utf8_lossy(&status.stderr)
-        );
+        run_quietly(p, &out);
         let read = |name: &str| -> (Vec<String>, Vec<Vec<f64>>) {
             let text = std::fs::read_to_string(out.join(name)).unwrap();
             let mut lines = text.lines();
@@ -260,17 +265,7 @@ fn summary_records_the_tolerances_of_the_methods_that_read_them() {
         let path = dir.path().join(format!("{method}.toml"));
         std::fs::write(&path, text).unwrap();
         let out = dir.path().join(method);
-        let run = Command::new(env!("CARGO_BIN_EXE_pounding"))
-            .args(["run", path.to_str().unwrap(), "--out"])
-            .arg(&out)
-            .args(["-q", "--no-check", "--no-plot"])
-            .output()
-            .unwrap();
-        assert!(
-            run.status.success(),
-            "{}",
-            String::from_utf8_lossy(&run.stderr)
-        );
+        run_quietly(&path, &out);
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();

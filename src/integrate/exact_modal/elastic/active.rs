@@ -380,43 +380,20 @@ mod tests {
         let sys = Scenario::from_toml(&text, "row.toml", std::path::Path::new("."))
             .unwrap_or_else(|e| panic!("{e}"))
             .system();
-        let settings = SolverSettings::new(Method::ExactModal, 0.005, 4.0);
-        let go = |pass: bool| {
-            let (q0, v0) = InitialState::default().resolved(sys.len());
-            let mut log = Log::default();
-            let mut r = Elastic::new(&sys, &settings, &mut log, None, 0.0, q0, v0, None);
-            r.row_pass = pass;
-            r.drive_here().expect("runs");
-            let t = &r.tally;
-            let out = (
-                t.impulse.clone(),
-                [t.input, t.damping, t.contact].map(f64::to_bits),
-                r.passive_steps,
-            );
-            drop(r);
-            (log, out)
-        };
-        let (general, (imp_g, flows_g, passive_g)) = go(false);
-        let (pass, (imp_p, flows_p, passive_p)) = go(true);
+        let (g, p) = (both_ways(&sys, false), both_ways(&sys, true));
         eprintln!(
-            "{} observations, {passive_p} contact steps with a passive structure, impulses {imp_p:?}",
-            pass.0.len()
+            "{} observations, {} contact steps with a passive structure, impulses {:?}",
+            p.seen.len(),
+            p.passive,
+            p.impulses
         );
         assert!(
-            imp_p.iter().all(|&i| i > 0.0),
-            "every pair pounds: {imp_p:?}"
+            p.impulses.iter().all(|&i| i > 0.0),
+            "every pair pounds: {:?}",
+            p.impulses
         );
-        assert!(passive_p > 100 && passive_p == passive_g, "{passive_p}");
-        assert_eq!(general.0.len(), pass.0.len());
-        for (x, y) in general.0.iter().zip(&pass.0) {
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(x.0.to_bits(), y.0.to_bits());
-            assert_eq!(bits(&x.1), bits(&y.1), "q at t = {}", x.0);
-            assert_eq!(bits(&x.2), bits(&y.2), "q̇ at t = {}", x.0);
-            assert_eq!(bits(&x.3), bits(&y.3), "forces at t = {}", x.0);
-        }
-        assert_eq!(imp_g, imp_p);
-        assert_eq!(flows_g, flows_p);
+        assert!(p.passive > 100 && p.passive == g.passive, "{}", p.passive);
+        assert_same_bits(&g, &p);
     }
 
     /// A pair with several contact levels under a recorded motion takes the row's one pass
@@ -447,43 +424,69 @@ mod tests {
             .unwrap_or_else(|e| panic!("{e}"))
             .system();
         assert_eq!((sys.structures.len(), sys.levels.len()), (2, 3));
-        let settings = SolverSettings::new(Method::ExactModal, 0.005, 4.0);
-        let go = |pass: bool| {
-            let (q0, v0) = InitialState::default().resolved(sys.len());
-            let mut log = Log::default();
-            let mut r = Elastic::new(&sys, &settings, &mut log, None, 0.0, q0, v0, None);
-            r.row_pass = pass;
-            let stats = r.drive_here().expect("runs");
-            let t = &r.tally;
-            let out = (
-                t.impulse.clone(),
-                [t.input, t.damping, t.contact].map(f64::to_bits),
-                stats.steps,
-            );
-            drop(r);
-            (log, out)
-        };
-        let (general, (imp_g, flows_g, steps_g)) = go(false);
-        let (pass, (imp_p, flows_p, steps_p)) = go(true);
+        let (g, p) = (both_ways(&sys, false), both_ways(&sys, true));
         eprintln!(
-            "{} observations, {steps_p} steps, impulses {imp_p:?}",
-            pass.0.len()
+            "{} observations, {} steps, impulses {:?}",
+            p.seen.len(),
+            p.steps,
+            p.impulses
         );
         assert!(
-            imp_p.iter().all(|&i| i > 0.0),
-            "every level pounds: {imp_p:?}"
+            p.impulses.iter().all(|&i| i > 0.0),
+            "every level pounds: {:?}",
+            p.impulses
         );
-        assert_eq!(steps_g, steps_p);
-        assert_eq!(general.0.len(), pass.0.len());
-        for (x, y) in general.0.iter().zip(&pass.0) {
+        assert_eq!(g.steps, p.steps);
+        assert_same_bits(&g, &p);
+    }
+
+    /// What a run of [`both_ways`] leaves: every observation, the tallies' bits and counts.
+    struct Ran {
+        seen: Vec<Seen>,
+        impulses: Vec<f64>,
+        flows: [u64; 3],
+        passive: usize,
+        steps: usize,
+    }
+
+    /// `sys` under `exact-modal` at 5 ms over 4 s, its accepted steps through the row's one
+    /// pass over the modes (`pass`) or the general loops.
+    fn both_ways(sys: &System, pass: bool) -> Ran {
+        let settings = SolverSettings::new(Method::ExactModal, 0.005, 4.0);
+        let (q0, v0) = InitialState::default().resolved(sys.len());
+        let mut log = Log::default();
+        let mut r = Elastic::new(sys, &settings, &mut log, None, 0.0, q0, v0, None);
+        r.row_pass = pass;
+        let stats = r.drive_here().expect("runs");
+        let t = &r.tally;
+        let (impulses, flows, passive) = (
+            t.impulse.clone(),
+            [t.input, t.damping, t.contact].map(f64::to_bits),
+            r.passive_steps,
+        );
+        drop(r);
+        Ran {
+            seen: log.0,
+            impulses,
+            flows,
+            passive,
+            steps: stats.steps,
+        }
+    }
+
+    /// Every observation (time, modal coordinates and velocities, level forces) and every
+    /// tally of `a` and `b` equal to the last bit.
+    fn assert_same_bits(a: &Ran, b: &Ran) {
+        assert_eq!(a.seen.len(), b.seen.len());
+        for (x, y) in a.seen.iter().zip(&b.seen) {
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(x.0.to_bits(), y.0.to_bits());
             assert_eq!(bits(&x.1), bits(&y.1), "q at t = {}", x.0);
             assert_eq!(bits(&x.2), bits(&y.2), "q̇ at t = {}", x.0);
             assert_eq!(bits(&x.3), bits(&y.3), "forces at t = {}", x.0);
         }
-        assert_eq!(imp_g, imp_p);
-        assert_eq!(flows_g, flows_p);
+        assert_eq!(a.impulses, b.impulses);
+        assert_eq!(a.flows, b.flows);
     }
 
     /// A row's step table filled for some active structures holds exactly what a step over
