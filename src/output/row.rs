@@ -1,7 +1,7 @@
 //! The files of a row of buildings' run (issue 29), written by the one writer of a run's files
 //! (`output::writer::RunWriter`, as a pair's): `history.csv` and `floors.csv` streamed
 //! during the run, then `impacts.csv` (one row per contact episode, naming its pair), the
-//! pictures ([`crate::figures::row`]) and `summary.json` last (the row's [`RowReport`]:
+//! pictures (`figures::row`) and `summary.json` last (the row's [`RowReport`]:
 //! `structures`, `pairs`, `verdict`, `accuracy`, …, with the solver's facts and the defaults
 //! applied). This module gives their contents.
 //!

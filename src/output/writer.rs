@@ -334,7 +334,7 @@ impl RunWriter {
     }
 
     /// Rename the history into place, write `impacts.csv` and `floors.csv`, then the pictures
-    /// (`draw`, e.g. [`crate::figures::run::run_pictures`], [`crate::figures::row::row_pictures`])
+    /// (`draw`, e.g. `figures::run::run_pictures`, `figures::row::row_pictures`)
     /// — or, without `draw`, remove the pictures ([`PICTURE_FILES`]) an earlier run left — and
     /// last `summary.json`. Returns the files written, in the order written (`summary.json`
     /// last). A failure at any point leaves no summary.

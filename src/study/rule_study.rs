@@ -2,7 +2,7 @@
 //! cite"): from a results table with `sep_time_history` (the exact separation) and the rules'
 //! columns (`sep_abs`, `sep_srss`, `sep_ddc` and the code columns `sep_asce7`, …), the fraction
 //! of cases where a rule is below the exact value and by how much it exceeds it when it is not;
-//! the figure of the ratio rule/exact over one axis is `crate::figures::rules`.
+//! the figure of the ratio rule/exact over one axis is `figures::rules`.
 //!
 //! Cases that failed, and cases whose exact separation is 0 (the structures never approach:
 //! identical structures), are left out: a ratio to 0 means nothing.

@@ -13,7 +13,7 @@
 //!   or EN 1998-1 §3.2.3.1.2 over the code's period range ([`scaling::SuiteScaling`]), and the
 //!   factor that brings a record to a target S_a at one period ([`scale_to_sa`]);
 //! - the tables and JSON of `pounding spectrum` and `pounding scale` are
-//!   [`crate::output::spectrum_report`], their pictures [`crate::figures::spectrum`].
+//!   `output::spectrum_report`, their pictures `figures::spectrum`.
 //!
 //! The record is the program's ground-motion model ([`crate::model::ground_motion::Record`]): linear
 //! between samples, zero after the last one; the oscillator starts at rest at t = 0 and its

@@ -3,7 +3,7 @@
 //! a scenario's `[ground_motion] scale_to_sa` applies when it reads the record
 //! ([`crate::model::ground_motion::scale::sa_factor`]), with the PSA before and after (the
 //! latter computed again from the scaled samples, not as f·PSA). Text and JSON:
-//! [`crate::output::sa_scaling`].
+//! `output::sa_scaling`.
 
 use serde::Serialize;
 

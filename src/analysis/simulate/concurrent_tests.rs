@@ -1,12 +1,12 @@
 //! The self-check beside the run ([`super::concurrent`]) against the same on one thread: the
 //! report (by its `Debug` text, which writes every f64 so that it reads back exactly), the
-//! streamed rows, what `beside` saw and every file of the run, byte for byte; and a check that
-//! fails on its thread gives the same verdict and warning as sequentially.
+//! streamed rows and what `beside` saw; and a check that fails on its thread gives the same
+//! verdict and warning as sequentially. (Every file of the run, byte for byte:
+//! tests/check_beside.rs, outside the library, which writes them.)
 
 use super::concurrent::{Runs, streaming_beside};
 use super::reuse_tests::{cantilevers, scenario, shear};
 use super::*;
-use crate::output::writer::RunWriter;
 
 /// The self-check's integration as the program does it.
 fn real(
@@ -142,54 +142,4 @@ fn a_run_failing_beside_its_check_is_the_same_error() {
     let mut capture = RunCapture::new();
     let e = simulate_streaming(&sc, true, &mut capture).expect_err("refused");
     assert_eq!(fast, format!("error: {e}"));
-}
-
-/// Every file of a run written as `pounding run` writes it (the files beside the check,
-/// summary.json last), into a fresh directory; their names and bytes.
-fn files(sc: &Scenario, concurrent: bool, dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
-    let mut writer = RunWriter::for_scenario(dir, sc).expect("a writer");
-    let beside = |w: &mut RunWriter, r: &Report| {
-        let draw = crate::figures::run::run_pictures(sc, r);
-        w.finish_files(r, Some(draw))
-    };
-    let (report, written) =
-        simulate_streaming_beside(sc, true, &mut writer, concurrent, beside).expect("runs");
-    let written = writer
-        .finish_summary(sc, &report, written.expect("files"))
-        .expect("summary");
-    assert!(written.last().is_some_and(|p| p.ends_with("summary.json")));
-    let mut out: Vec<_> = std::fs::read_dir(dir)
-        .expect("the run's directory")
-        .map(|e| {
-            let p = e.expect("an entry").path();
-            let name = p
-                .file_name()
-                .unwrap_or_default()
-                .to_string_lossy()
-                .into_owned();
-            (name, std::fs::read(&p).expect("a file"))
-        })
-        .collect();
-    out.sort();
-    out
-}
-
-#[test]
-fn every_file_is_byte_identical_with_the_check_beside_the_run() {
-    let tmp = tempfile::tempdir().expect("a temporary directory");
-    for (i, sc) in cases().iter().take(3).enumerate() {
-        let a = files(sc, true, &tmp.path().join(format!("concurrent-{i}")));
-        let b = files(sc, false, &tmp.path().join(format!("sequential-{i}")));
-        let names = |f: &[(String, Vec<u8>)]| f.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
-        assert_eq!(names(&a), names(&b));
-        assert!(
-            names(&a).iter().any(|n| n == "history.png"),
-            "{:?}",
-            names(&a)
-        );
-        for ((name, x), (_, y)) in a.iter().zip(&b) {
-            // (summary.json holds no timing: the whole file is compared)
-            assert!(x == y, "{}: {name} differs", sc.title);
-        }
-    }
 }

@@ -376,7 +376,7 @@ pub fn simulate_checked(scenario: &Scenario, check: bool) -> Result<Report, Solv
 /// [`simulate_checked`], streaming the history of both runs and the progress of every run to
 /// `sink` as they are computed (the self-check's runs report progress only). This is how a
 /// long run is written without holding its history in memory (see
-/// [`crate::output::writer::RunWriter`]).
+/// `output::writer::RunWriter`).
 pub fn simulate_streaming(
     scenario: &Scenario,
     check: bool,

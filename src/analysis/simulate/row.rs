@@ -160,7 +160,7 @@ pub fn simulate_row_checked(scenario: &Scenario, check: bool) -> Result<RowRepor
 
 /// [`simulate_row_checked`] streaming the two runs of the result to `sink` (the self-check's
 /// runs report progress only); how `pounding run` writes a row
-/// ([`crate::output::writer::RunWriter`]).
+/// (`output::writer::RunWriter`).
 pub fn simulate_row_streaming(
     scenario: &Scenario,
     check: bool,

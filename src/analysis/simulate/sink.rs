@@ -105,7 +105,7 @@ impl RunSink for NoSink {
 
 /// A [`RunSink`] that keeps every streamed sample of the two runs in memory, in the order
 /// they came, so that a run can be looked at as arrays and written later, exactly as if it
-/// had been streamed ([`RunCapture::replay`] into an [`crate::output::writer::RunWriter`]). Used by
+/// had been streamed ([`RunCapture::replay`] into an `output::writer::RunWriter`). Used by
 /// the Python package (`pounding.run`); memory grows with the duration (the CLI streams
 /// instead).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -173,7 +173,7 @@ impl RunCapture {
         }
     }
 
-    /// The columns of `history.csv` ([`crate::output::run::history_header`]): `t, w1, w2, force,
+    /// The columns of `history.csv` (`output::run::history_header`): `t, w1, w2, force,
     /// w1_free, w2_free` and, with several levels, `force_1 … force_k`; the same numbers the
     /// file holds (`force` summed as the file sums it; a row the run without contact did not
     /// reach is NaN there, as in the file).
@@ -203,7 +203,7 @@ impl RunCapture {
     }
 
     /// The columns of `floors.csv` for the floor `columns` of the run
-    /// ([`crate::output::run::floor_columns`]): `t`, each column with pounding, then each with
+    /// (`output::run::floor_columns`): `t`, each column with pounding, then each with
     /// `_free` (without); empty when the run recorded no floor rows.
     pub fn floor_columns(&self, columns: &[String]) -> Vec<(String, Vec<f64>)> {
         let width = self.floor_width;

@@ -8,7 +8,7 @@
 //! state and model the counts of exceedance per stripe, their lognormal fit by maximum
 //! likelihood and bootstrap intervals over records ([`fit`]); and from the runs without
 //! contact, P(pounding | IM, gap) for every gap at once ([`pounding`]). Files: [`write`];
-//! text: [`report`]; pictures: `crate::figures::fragility`.
+//! text: [`report`]; pictures: `figures::fragility`.
 //!
 //! Or an incremental dynamic analysis ([`ida`]): each record scaled up until every limit state
 //! is exceeded, each record's capacity bracketed (hunt and fill), the lognormal of the

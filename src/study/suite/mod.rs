@@ -7,7 +7,7 @@
 //! against the level's gap, the verdict at the level of least margin.
 //!
 //! The files are written by [`write`] (a pair's suite and a row's); the pictures by
-//! `crate::figures::suite`.
+//! `figures::suite`.
 
 pub mod report;
 pub mod row;
