@@ -77,7 +77,7 @@ pub enum Command {
     /// these laws (they are scale-free); defaults are the paper's k_h and 0.5 m/s.
     Laws(LawsArgs),
     /// Convergence study: the run with pounding for 1, 2, 3, 5, 10, 20, 50 modes and for a ladder
-    /// of steps (dt × 4 … ⅛; rtol 1e-6 … 1e-12 for `adaptive`, 1e-3 … 1e-9 for `exact-modal`), each with its change relative to
+    /// of steps (dt × 4 … ⅛; rtol 1e-6 … 1e-12 for `adaptive`, 1e-4 … 1e-8 and 1e-10 for `exact-modal`), each with its change relative to
     /// the finest, and a recommendation (fewest modes, largest step within the tolerance) that
     /// `pounding run` accepts — or "NOT CONVERGED" and what to try, when even the two finest runs
     /// of a ladder differ by more than the tolerance.
