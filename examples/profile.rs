@@ -13,7 +13,8 @@
 //! `check,floors`; without them the headline integration alone (`simulate_headline`, what a
 //! sweep row costs). A row of buildings (more than two structures) runs `simulate_row` (its
 //! two runs with the floors; `check` is refused, as `pounding run` refuses it for a row).
-//! Prints the best wall time, the steps and the peaks of the last run.
+//! Prints the best wall time, the recorder's observations (with and without contact:
+//! `RunRecord::steps`, not the solver's accepted steps) and the peaks of the last run.
 
 use std::time::Instant;
 
@@ -59,7 +60,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if let Some(r) = last {
             let impacts: usize = r.pairs.iter().map(|p| p.contact.impacts).sum();
             println!(
-                "best {:.3} ms; steps {} + {}; {} structures, {} impacts",
+                "best {:.3} ms; observations {} + {}; {} structures, {} impacts",
                 best * 1e3,
                 r.with_contact.steps,
                 r.without_contact.steps,
@@ -81,7 +82,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(r) = last {
         println!(
-            "best {:.3} ms; steps {} + {}; peaks {:.6} {:.6} m; peak force {:.6e} N",
+            "best {:.3} ms; observations {} + {}; peaks {:.6} {:.6} m; peak force {:.6e} N",
             best * 1e3,
             r.with_contact.steps,
             r.without_contact.steps,

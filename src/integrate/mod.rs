@@ -344,16 +344,17 @@ pub struct Stepped<'a> {
 /// Counters of one integration.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Stats {
-    /// Steps taken.
+    /// Steps accepted (summary.json's `solver.steps`; the recorder's count of observations,
+    /// which can be larger, is [`crate::recording::run_record::RunRecord::steps`]).
     pub steps: usize,
     /// Right-hand-side evaluations.
     pub evaluations: usize,
     /// Largest `ω_c·dt` met in contact, where `ω_c = √(k_t/m*)` is the contact's tangent
     /// frequency: above ≈2.8 an explicit step is locally unstable, above ≈0.5 inaccurate.
     pub max_contact_omega_dt: f64,
-    /// Steps rejected by error control (`adaptive`).
+    /// Steps rejected by error control (every method but `rk4`).
     pub rejected: usize,
-    /// Contact onsets and releases located as events (`adaptive`).
+    /// Contact onsets and releases located as events (every method but `rk4`).
     pub events: usize,
 }
 

@@ -93,7 +93,11 @@ pub struct RunRecord {
     pub history: History,
     /// Energy balance.
     pub energy: EnergyBalance,
-    /// Steps observed.
+    /// Observations the recorder took after the one at t = 0: one at every accepted step's
+    /// end and, with `exact-modal`, three more (the interior nodes) for each contact step whose
+    /// force peaks inside it. This is the recorder's count, not the solver's: the accepted and
+    /// rejected steps are [`crate::integrate::Stats`] (summary.json's `solver.steps` and
+    /// `solver.rejected`).
     pub steps: usize,
     /// Peaks over the height of every structure, in row order (floors, or a cantilever's
     /// stations; empty lists when not tracked).
