@@ -183,7 +183,7 @@ impl SolverSettings {
     }
 
     /// `rk4`'s step, s (`dt`): every step of the run has this length but the last, which ends
-    /// on the duration ([`StepPlan`]); checked against RK4's stability limit before the run
+    /// on the duration (the step plan); checked against RK4's stability limit before the run
     /// ([`SolverSettings::check_stability`]) and in every contact.
     pub fn fixed_step(&self) -> f64 {
         self.dt
@@ -191,7 +191,7 @@ impl SolverSettings {
 
     /// `exact-modal`'s base step, s (`dt`): each span of the ground load (the whole run, or one
     /// interval between a record's samples) is cut into equal steps no longer than this
-    /// ([`StepPlan`]); free flight takes them whole (exact for any length), and they are the
+    /// (the step plan); free flight takes them whole (exact for any length), and they are the
     /// grid of observations. Contact steps are dyadic fractions `dt·2^(−k/4)` of it (elastic
     /// structures) or `dt/2^m` sub-steps (yielding storeys), chosen by the error estimate.
     pub fn base_step(&self) -> f64 {

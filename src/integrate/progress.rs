@@ -27,9 +27,9 @@ pub(crate) const MAX_STALLS: u32 = 1000;
 pub enum StepFailure {
     /// An accepted step did not move time forward (its length is below the resolution of t).
     NoProgress,
-    /// [`MAX_STALLS`] steps in a row each moved time by less than its resolution.
+    /// `MAX_STALLS` steps in a row each moved time by less than its resolution.
     Stalled,
-    /// [`MAX_REJECTIONS`] trials in a row were rejected at one instant.
+    /// `MAX_REJECTIONS` trials in a row were rejected at one instant.
     Rejected,
 }
 

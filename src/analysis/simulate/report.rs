@@ -266,7 +266,7 @@ pub struct Report {
     /// Required separations at the main contact height.
     pub separation: Separations,
     /// The self-check: the headline numbers against a run at a 100× tighter tolerance
-    /// ([`simulate_checked`]); `checked: false` from [`simulate`].
+    /// ([`super::simulate_checked`]); `checked: false` from [`super::simulate`].
     pub accuracy: AccuracyCheck,
     /// Energy balance of the run with contact.
     pub energy: EnergyBalance,

@@ -24,7 +24,7 @@ pub(super) fn separations(models: &[ModalModel], without: &RunRecord) -> Separat
 }
 
 /// What the separation rules need, from the run without contact only (half the work of
-/// [`simulate`], whose `separation` and no-contact peaks it equals).
+/// [`super::simulate`], whose `separation` and no-contact peaks it equals).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SeparationReport {
     /// Peak |w₁|, |w₂| without contact at the main contact height, m.

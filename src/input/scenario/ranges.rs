@@ -22,8 +22,8 @@ pub fn physical_range(key: &str) -> Option<(f64, f64, &'static str)> {
 ///
 /// Some quantities are warned about once, where they are known in full rather than per key:
 /// the PGA (of a harmonic motion or a record, scaled or not: `ground_motion.pga`,
-/// `scale_to_pga` → [`PLAUSIBLE_PGA`], [`PLAUSIBLE_MIN_PGA`]), a record's sample spacing
-/// (`ground_motion.dt` or the file's own → [`USUAL_RECORD_DT`]), the gaps ([`PLAUSIBLE_GAP`]),
+/// `scale_to_pga` → [`super::PLAUSIBLE_PGA`], [`PLAUSIBLE_MIN_PGA`]), a record's sample spacing
+/// (`ground_motion.dt` or the file's own → [`USUAL_RECORD_DT`]), the gaps ([`super::PLAUSIBLE_GAP`]),
 /// a structure's stiffness (`bending_stiffness`, `tip_stiffness`: through the first-mode period
 /// it gives with the mass and height, [`USUAL_STRUCTURE_PERIOD`]) and physical damping
 /// (`strain_rate_damping`, `air_damping`: through the first-mode damping ratio,

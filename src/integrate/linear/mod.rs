@@ -12,7 +12,7 @@
 //!   at undamped resonance), and the polynomial `A + Bτ + Cτ²` within one interval of a recorded
 //!   motion (a_g linear, v_g quadratic in τ). With them, `y(t₁) = P(h)(y(t₀) − y_p(t₀)) + y_p(t₁)`
 //!   is exact for any step.
-//! - Exact energy flows over a step ([`tally`]: work of the ground load and of a polynomial contact load,
+//! - Exact energy flows over a step (`tally`: work of the ground load and of a polynomial contact load,
 //!   from moments of η obtained from the equation of motion itself), so that the tallies of
 //!   [`super::Tally`] need no quadrature of fast oscillations.
 

@@ -241,7 +241,7 @@ pub enum RecordError {
     NonUniformSpacing {
         /// The file and the line of the later of the two samples.
         at: Location,
-        /// The first time step, t[1] − t[0], s.
+        /// The first time step, `t[1] − t[0]`, s.
         dt: f64,
         /// The time step ending at this line, s.
         spacing: f64,

@@ -7,7 +7,7 @@
 //! (rayon). Per run the numbers the limit states need are kept ([`RunOutcome`]); per limit
 //! state and model the counts of exceedance per stripe, their lognormal fit by maximum
 //! likelihood and bootstrap intervals over records ([`fit`]); and from the runs without
-//! contact, P(pounding | IM, gap) for every gap at once ([`pounding`]). Files: [`write`];
+//! contact, P(pounding | IM, gap) for every gap at once ([`pounding`]). Files: [`mod@write`];
 //! text: [`report`]; pictures: `figures::fragility`.
 //!
 //! Or an incremental dynamic analysis ([`ida`]): each record scaled up until every limit state

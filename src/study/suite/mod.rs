@@ -6,7 +6,7 @@
 //! ([`statistics`]), and per contact level the code's design value of the required separation
 //! against the level's gap, the verdict at the level of least margin.
 //!
-//! The files are written by [`write`] (a pair's suite and a row's); the pictures by
+//! The files are written by [`mod@write`] (a pair's suite and a row's); the pictures by
 //! `figures::suite`.
 
 pub mod report;
@@ -64,7 +64,7 @@ pub enum SuiteError {
 /// the same names.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Headline {
-    /// (name, value) in the order of the columns of `suite.csv` ([`Headline::names`]).
+    /// (name, value) in the order of the columns of `suite.csv` (the names are those columns).
     pub values: Vec<(String, f64)>,
     /// The self-check: every number within 1 % of the tighter run (`None`: not checked).
     pub converged: Option<bool>,
@@ -117,7 +117,7 @@ impl Headline {
 /// One record's run of a suite: the file, its factor, its own scenario and its run by the
 /// driver of the suite's structures — a pair's [`Report`] ([`RecordRun`]) or a row's
 /// [`crate::analysis::simulate::RowReport`] ([`row::RowRecordRun`]): one pipeline for both
-/// ([`run_records`]).
+/// (`run_records`).
 #[derive(Debug, Clone)]
 pub struct MemberRun<R> {
     /// The file as the scenario names it.

@@ -7,7 +7,7 @@
 //! design value of the required separation against the level's gap — the verdict per pair
 //! (its governing level) and for the row (the pair and level of least margin).
 //!
-//! The design value at a level is the pair suite's ([`super::level_designs`]): the statistic
+//! The design value at a level is the pair suite's (`level_designs`): the statistic
 //! of the rule ([`DesignStatistic::for_rule`]) over the records' time-history required
 //! separations at that level of that pair (`RowReport::pairs[p].levels[k].required_gap`, from
 //! the row's run without contact, which is each pair's own: without contact a row is

@@ -6,8 +6,8 @@
 //! (`study::sweep`), the sweep pictures' axis labels (`figures::sweep::axis_label`) and
 //! docs/scenario-keys.md ([`markdown`], tested to be current).
 //!
-//! The entries are in [`structure`] (`[[structure]]` and its sub-tables), [`motion`]
-//! (`[ground_motion]` and its sub-tables) and [`run`] (the top level, `[contact]`, `[solver]`,
+//! The entries are in `structure` (`[[structure]]` and its sub-tables), `motion`
+//! (`[ground_motion]` and its sub-tables) and `run` (the top level, `[contact]`, `[solver]`,
 //! `[output]`, `[separation]`). Within a table, the entries are in the order in which messages
 //! list the table's valid keys.
 
@@ -91,7 +91,7 @@ pub const ALL_TABLES: [Table; 21] = [
 ];
 
 impl Table {
-    /// The table as messages name it ("unknown key `x` in [contact]").
+    /// The table as messages name it ("unknown key `x` in `[contact]`").
     pub const fn title(self) -> &'static str {
         match self {
             Table::Top => "the top level",

@@ -2,7 +2,7 @@
 //! acceleration per line (the time step then comes from the options). Blank lines and lines
 //! whose first non-blank character is `#` are skipped, and the first remaining line may be a
 //! non-numeric header such as `t,a` or `time (s), accel (g)` (recognised by its first field not
-//! being a number). Two-column files take dt = t[1] − t[0], uniform to [`DT_REL_TOLERANCE`], and
+//! being a number). Two-column files take dt = `t[1] − t[0]`, uniform to [`DT_REL_TOLERANCE`], and
 //! treat the first sample as t = 0. Units: m/s² unless the options say otherwise.
 
 use std::path::Path;

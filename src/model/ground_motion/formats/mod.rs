@@ -1,5 +1,5 @@
 //! Record files in every common layout, detected from the content (the first lines), not the
-//! file name: one reader per layout, one dispatcher ([`read`]) in front.
+//! file name: one reader per layout, one dispatcher (`read`) in front.
 //!
 //! | layout | recognised by | reader |
 //! |---|---|---|
@@ -124,8 +124,8 @@ impl Record {
     /// description of records without one, and, when the content matches no layout, to pick
     /// which layout's error to report (`.AT2`).
     ///
-    /// Two-column files take dt = t[1] − t[0] and treat the first sample as t = 0: a
-    /// nonzero t[0] is an offset that is ignored.
+    /// Two-column files take dt = `t[1] − t[0]` and treat the first sample as t = 0: a
+    /// nonzero `t[0]` is an offset that is ignored.
     pub fn parse(text: &str, path: &Path, opts: &RecordOptions) -> Result<Record, RecordError> {
         crate::model::ground_motion::formats::read(text, path, opts)
     }
