@@ -374,7 +374,6 @@ impl RunWriter {
         let history = self.dir.join("history.csv");
         if let Some(csv) = self.csv.take() {
             let tmp = csv.into_inner().map_err(|e| io(&history)(e.into_error()))?;
-            tmp.as_file().sync_all().map_err(io(&history))?;
             tmp.persist(&history).map_err(|e| io(&history)(e.error))?;
         }
         self.written(&history, &mut written);
