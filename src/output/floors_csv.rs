@@ -124,7 +124,7 @@ impl FloorsCsv {
         }
         if let Some(csv) = self.csv.take() {
             let tmp = csv.into_inner().map_err(|e| e.into_error())?;
-            tmp.persist(&self.path).map_err(|e| e.error)?;
+            crate::output::atomic::persist(tmp, &self.path)?;
         }
         Ok(self.path.clone())
     }
