@@ -1,6 +1,21 @@
 //! Files appear complete or not at all: every output is written to a temporary file in its
 //! target directory and renamed into place, so a reader never sees a half-written file; the
 //! temporary file gets the permissions an ordinary new file would.
+//!
+//! The files are not synced to disk (`fsync`) before the rename, and a file of an earlier run
+//! is removed just before the new one is renamed to its name ([`persist`]) rather than
+//! replaced by the rename. Both are wall time a user's run waited for and nothing a reader
+//! sees: the rename is what makes a file appear whole, and a process that dies (Ctrl-C, a
+//! kill, a panic) leaves its writes in the page cache, so the files stay whole and
+//! `summary.json` (removed when a run starts, written last) still means "every file of the run
+//! is complete". Measured on this project's ext4 machine (`strace -c -w -f`, the paper case's
+//! `pounding run` with pictures into a directory holding the previous run's files, loaded
+//! machine): the eight `fsync`s took 12–15 ms a run (a journal commit each), and without them
+//! the renames over the old files took 8 ms, ext4 flushing each new file when a rename
+//! replaces a file (`auto_da_alloc`); removing the old file first, they take ~0.2 ms. What
+//! this gives up is only a power loss's or a kernel crash's: files of the interrupted run may
+//! then be empty, beside no `summary.json` or an empty one. The sweep journal, which a resumed
+//! sweep reads back, still syncs its rows.
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -44,7 +59,7 @@ pub fn temp_file(
     b.tempfile_in(dir)
 }
 
-/// Write `bytes` to `path` atomically (temporary file in the same directory, then rename).
+/// Write `bytes` to `path` atomically (temporary file in the same directory, then [`persist`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     let io = |source| OutputError::Io {
         path: path.to_path_buf(),
@@ -56,7 +71,47 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
         .unwrap_or(Path::new("."));
     let mut tmp = temp_file(dir, ".pounding-", ".tmp").map_err(io)?;
     tmp.write_all(bytes).map_err(io)?;
-    tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
+    persist(tmp, path).map_err(io)
+}
+
+/// Rename the complete temporary file `tmp` to `path`, removing a file already there first
+/// (see the module: a rename that replaces a file waits for the new file's data on ext4).
+/// In between, a reader finds no file at `path`, never a partial one.
+pub fn persist(tmp: tempfile::NamedTempFile, path: &Path) -> std::io::Result<()> {
+    // (an error other than "not there", e.g. a directory at `path`, is the rename's to report)
+    let _ = std::fs::remove_file(path);
+    tmp.persist(path).map(drop).map_err(|e| e.error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file already at the path is replaced by the new content and no temporary file is
+    /// left; a directory at the path is an error that leaves the directory (and its content)
+    /// as it was, with no temporary file beside it.
+    #[test]
+    fn persist_replaces_a_file_and_refuses_a_directory() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.csv");
+        std::fs::write(&path, "old run, longer than the new one\n").unwrap();
+        write_atomic(&path, b"new\n").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"new\n");
+        let names = |d: &Path| {
+            let mut v: Vec<_> = std::fs::read_dir(d)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().into_string().unwrap())
+                .collect();
+            v.sort();
+            v
+        };
+        assert_eq!(names(dir.path()), ["out.csv"]);
+
+        let sub = dir.path().join("taken");
+        std::fs::create_dir(&sub).unwrap();
+        std::fs::write(sub.join("inside"), "kept").unwrap();
+        assert!(write_atomic(&sub, b"x").is_err());
+        assert_eq!(std::fs::read(sub.join("inside")).unwrap(), b"kept");
+        assert_eq!(names(dir.path()), ["out.csv", "taken"]);
+    }
 }

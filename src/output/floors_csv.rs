@@ -124,8 +124,7 @@ impl FloorsCsv {
         }
         if let Some(csv) = self.csv.take() {
             let tmp = csv.into_inner().map_err(|e| e.into_error())?;
-            tmp.as_file().sync_all()?;
-            tmp.persist(&self.path).map_err(|e| e.error)?;
+            crate::output::atomic::persist(tmp, &self.path)?;
         }
         Ok(self.path.clone())
     }

@@ -374,8 +374,7 @@ impl RunWriter {
         let history = self.dir.join("history.csv");
         if let Some(csv) = self.csv.take() {
             let tmp = csv.into_inner().map_err(|e| io(&history)(e.into_error()))?;
-            tmp.as_file().sync_all().map_err(io(&history))?;
-            tmp.persist(&history).map_err(|e| io(&history)(e.error))?;
+            crate::output::atomic::persist(tmp, &history).map_err(io(&history))?;
         }
         self.written(&history, &mut written);
         let impacts = self.dir.join("impacts.csv");

@@ -142,11 +142,11 @@ fn write_both<R: Render + Sync>(
     prefix.push(".tmp-");
     let temp =
         |suffix: &str| crate::output::atomic::temp_file(dir, &prefix, suffix).map_err(io_err(dir));
+    // not synced, an earlier run's file removed first (crate::output::atomic says why)
     let persist = |tmp: tempfile::NamedTempFile, to: &Path| {
-        tmp.as_file().sync_all().map_err(io_err(tmp.path()))?;
-        tmp.persist(to).map_err(|e| PlotError::Io {
+        crate::output::atomic::persist(tmp, to).map_err(|source| PlotError::Io {
             path: to.to_path_buf(),
-            source: e.error,
+            source,
         })
     };
     let (png, svg) = (with_ext(".png"), with_ext(".svg"));
