@@ -9,8 +9,11 @@
 //! are done. A result that never touched is its own check, as sequentially; the check's run
 //! with contact was then integrated in vain on the second core (one run with contact of the
 //! free system: about the result's own run with contact in instructions, and no wall time, as
-//! the result's two runs take longer). The sweeps and suites, which run cases in parallel
-//! already, keep to the sequential path.
+//! the result's two runs take longer). A check that integrates its own run without contact
+//! (`rk4`, yielding storeys) does so on a third thread beside its run with contact
+//! ([`beside_each_other`]). [`run_beside`] is the machinery, a row's too
+//! ([`super::simulate_row_streaming_beside`]). The sweeps, suites and fragility studies,
+//! which run cases in parallel already, keep to the sequential path.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -98,8 +101,8 @@ pub(super) fn check_runs(
 /// A self-check's run with contact (`with`) and, unless `exact`, its run without (`free`):
 /// on this thread one after the other, or with `split` the run without contact on a thread
 /// of its own (streaming its progress to `split`) while this one integrates the run with
-/// contact; its failure first, as in a row (sequentially, the run without contact would not
-/// have been integrated). A panic on the other thread is this thread's.
+/// contact; its failure first, as one after the other (where the run without contact would
+/// not have been integrated). A panic on the other thread is this thread's.
 pub(super) fn beside_each_other<W: Send, F: Send>(
     sink: &mut dyn RunSink,
     split: Option<&CheckProgress>,
