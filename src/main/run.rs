@@ -114,19 +114,29 @@ fn run_row_suite(
 }
 
 /// `pounding run` on a row of buildings (issue 29): the row with and without contact (and the
-/// self-check unless `--no-check`), streamed into history.csv and floors.csv, then impacts.csv,
-/// the pictures (unless `--no-plot`) and summary.json last.
+/// self-check unless `--no-check`, beside them on a second thread), streamed into history.csv
+/// and floors.csv, then impacts.csv, the pictures (unless `--no-plot`) and summary.json last.
 fn run_row(sc: &Scenario, name: &str, a: &args::RunArgs, quiet: bool) -> anyhow::Result<()> {
     pounding::output::budget::check_run(sc, a.max_output_size)?;
     let mut writer = pounding::output::writer::RunWriter::for_scenario(&a.out, sc)?;
     let bar = !quiet && std::io::stderr().is_terminal();
     let phases = if a.no_check { 2.0 } else { 4.0 };
     let mut sink = progress::RunProgress::new(&mut writer, bar, sc.solver.duration, phases);
-    let result = simulate::simulate_row_streaming(sc, !a.no_check, &mut sink);
+    // as a pair's: the self-check on a second thread while this one writes the result's files
+    // and draws its pictures (none of which reads the check); summary.json waits for it
+    let result = simulate::simulate_row_streaming_beside(
+        sc,
+        !a.no_check,
+        &mut sink,
+        true,
+        |sink, report| {
+            let draw = (!a.no_plot).then(|| pounding::figures::row::row_pictures(sc, report));
+            sink.writer().finish_files(report, draw)
+        },
+    );
     sink.finish();
-    let report = result?;
-    let draw = (!a.no_plot).then(|| pounding::figures::row::row_pictures(sc, &report));
-    let written = writer.finish(sc, &report, draw)?;
+    let (report, files) = result?;
+    let written = writer.finish_summary(sc, &report, files?)?;
     if !quiet {
         print!("{}", text::row_summary(sc, name, &report));
         println!("\nwrote {}", list_paths(&written));

@@ -11,6 +11,7 @@ mod reuse;
 #[cfg(test)]
 mod reuse_tests;
 mod row;
+mod row_beside;
 pub mod row_check;
 pub mod row_history;
 mod separation_only;
@@ -23,6 +24,7 @@ pub use report::{
 };
 use report::{contact_report, level_report, structure_report};
 pub use reuse::{FreeRunKey, FreeRuns, free_run_of};
+pub use row_beside::simulate_row_streaming_beside;
 use separation_only::separations;
 pub use separation_only::{SeparationReport, separation};
 use sink::PhaseSink;
@@ -274,6 +276,19 @@ fn integrate_without(
     {
         return Ok(r);
     }
+    integrate_free(scenario, system, sink, check, floors)
+}
+
+/// The run without contact of [`simulate_phases`], integrated (what [`integrate_without`]
+/// does without its shortcut; the self-check's beside its run with contact,
+/// `concurrent::check_runs`).
+fn integrate_free(
+    scenario: &Scenario,
+    system: &System,
+    sink: &mut dyn RunSink,
+    check: bool,
+    floors: bool,
+) -> Result<RunRecord, SolveError> {
     let (heights, pairs) = tracked(scenario);
     let phase = if check {
         Phase::CheckWithoutContact

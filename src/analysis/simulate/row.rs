@@ -241,11 +241,24 @@ fn simulate_row_run(
     } else {
         free.and_then(|f| f.check.as_ref()).map(|r| (r, &none))
     };
+    let check = simulate_row_phases(&tight, sink, true, reuse);
+    let check_run = conclude_row_check(scenario, &mut report, check);
+    Ok((report, check_run))
+}
+
+/// The self-check's verdict on a row's `report` (of `scenario`) from the `check` report at
+/// the tightened settings (`Err`: the check run failed), with its warnings; returns the
+/// check's run without contact when it integrated its own (not [`free_run_is_exact`]).
+pub(super) fn conclude_row_check(
+    scenario: &Scenario,
+    report: &mut RowReport,
+    check: Result<RowReport, SolveError>,
+) -> Option<RunRecord> {
     let mut check_run = None;
-    report.accuracy = match simulate_row_phases(&tight, sink, true, reuse) {
+    report.accuracy = match check {
         Ok(t) => {
-            let a = RowAccuracyCheck::compare(&report, &t, &scenario.solver);
-            if !exact {
+            let a = RowAccuracyCheck::compare(report, &t, &scenario.solver);
+            if !free_run_is_exact(scenario) {
                 check_run = Some(t.without_contact);
             }
             a
@@ -266,7 +279,7 @@ fn simulate_row_run(
             super::accuracy::MIN_ATOL
         ));
     }
-    Ok((report, check_run))
+    check_run
 }
 
 /// One integration of a row `system` with its recorder and (unless `check`) the row's sampler
@@ -320,7 +333,7 @@ fn run_row_phase(
 
 /// The two runs of a row (with `check`: the self-check's, `reuse` the run without contact and
 /// its history to take instead of integrating it again) and its report.
-fn simulate_row_phases(
+pub(super) fn simulate_row_phases(
     scenario: &Scenario,
     sink: &mut dyn RunSink,
     check: bool,
@@ -328,44 +341,87 @@ fn simulate_row_phases(
 ) -> Result<RowReport, SolveError> {
     no_spectrum(scenario)?;
     let system = scenario.system();
-    let free = system.without_contact();
-    let heights: Vec<f64> = system.levels.iter().map(|l| l.height).collect();
-    let pair_of: Vec<usize> = system.levels.iter().map(|l| l.pair).collect();
-    let interval = scenario.output_interval;
-    let (p1, p2) = if check {
-        (Phase::CheckWithContact, Phase::CheckWithoutContact)
-    } else {
-        (Phase::WithContact, Phase::WithoutContact)
+    let with = row_with(scenario, &system, sink, check)?;
+    let without = match reuse {
+        Some((r, h)) => (r.clone(), h.clone()),
+        None => row_free(scenario, &system, sink, check)?,
     };
-    let stations = (!check).then_some(scenario.floor_stations);
+    Ok(assemble_row(scenario, &system, with, without))
+}
+
+/// A row's levels: every level's height (m) and its pair (the left structure's index).
+fn row_levels(system: &System) -> (Vec<f64>, Vec<usize>) {
+    let heights = system.levels.iter().map(|l| l.height).collect();
+    let pair_of = system.levels.iter().map(|l| l.pair).collect();
+    (heights, pair_of)
+}
+
+/// A row's run with contact (with `check`: the self-check's) of `scenario`'s `system`, its
+/// counters and (not `check`) its history, streamed to `sink`.
+pub(super) fn row_with(
+    scenario: &Scenario,
+    system: &System,
+    sink: &mut dyn RunSink,
+    check: bool,
+) -> Result<(RunRecord, Stats, RowHistory), SolveError> {
+    let (heights, pair_of) = row_levels(system);
+    let phase = if check {
+        Phase::CheckWithContact
+    } else {
+        Phase::WithContact
+    };
     // (the self-check's run with contact records the floors too: its check compares them,
     // as a pair's does)
-    let (with, stats, history) = run_row_phase(
-        &system,
+    run_row_phase(
+        system,
         &scenario.solver,
         (&heights, &pair_of),
-        interval,
+        scenario.output_interval,
         sink,
-        p1,
+        phase,
         Some(scenario.floor_stations),
         check,
-    )?;
-    let (without, history_no_contact) = match reuse {
-        Some((r, h)) => (r.clone(), h.clone()),
-        None => {
-            let (r, _, h) = run_row_phase(
-                &free,
-                &scenario.solver,
-                (&heights, &pair_of),
-                interval,
-                sink,
-                p2,
-                stations,
-                check,
-            )?;
-            (r, h)
-        }
+    )
+}
+
+/// A row's run without contact (with `check`: the self-check's, without floors) of
+/// `scenario`'s `system` (with contact: its structures are taken), and (not `check`) its
+/// history, streamed to `sink`.
+pub(super) fn row_free(
+    scenario: &Scenario,
+    system: &System,
+    sink: &mut dyn RunSink,
+    check: bool,
+) -> Result<(RunRecord, RowHistory), SolveError> {
+    let free = system.without_contact();
+    let (heights, pair_of) = row_levels(system);
+    let phase = if check {
+        Phase::CheckWithoutContact
+    } else {
+        Phase::WithoutContact
     };
+    let (r, _, h) = run_row_phase(
+        &free,
+        &scenario.solver,
+        (&heights, &pair_of),
+        scenario.output_interval,
+        sink,
+        phase,
+        (!check).then_some(scenario.floor_stations),
+        check,
+    )?;
+    Ok((r, h))
+}
+
+/// The report of a row `scenario` (its `system`) from its run with contact (`with`: the
+/// record, its counters, its history) and without (the record, its history).
+pub(super) fn assemble_row(
+    scenario: &Scenario,
+    system: &System,
+    (with, stats, history): (RunRecord, Stats, RowHistory),
+    (without, history_no_contact): (RunRecord, RowHistory),
+) -> RowReport {
+    let (heights, pair_of) = row_levels(system);
     let n = system.structures.len();
     // each structure's headline level: its highest contact level with either neighbour
     let structures: Vec<StructureReport> = (0..n)
@@ -471,7 +527,7 @@ fn simulate_row_phases(
             }
         })
         .collect();
-    Ok(RowReport {
+    RowReport {
         title: scenario.title.clone(),
         verdict: row_verdict(&pairs),
         structures,
@@ -486,7 +542,7 @@ fn simulate_row_phases(
         without_contact: without,
         history,
         history_no_contact,
-    })
+    }
 }
 
 /// The run without contact at the levels `range` of one pair, as a pair's run record: those
