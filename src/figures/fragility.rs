@@ -206,7 +206,7 @@ pub fn fragility_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, 
     write_curves(&fig, &dir.join("fragility"))
 }
 
-/// `p-pounding.png/.svg` in `dir` (of a row: a panel per pair, [`row_pounding_figure`]).
+/// `p-pounding.png/.svg` in `dir` (of a row: a panel per pair, `row_pounding_figure`).
 pub fn pounding_figure(run: &FragilityRun, dir: &Path) -> Result<Vec<PathBuf>, PlotError> {
     let s = &run.study;
     if s.scenario.is_row() {

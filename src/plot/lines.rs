@@ -2,7 +2,7 @@
 //! figure, a sweep's line plots). plotters draws the axes, ticks, grid and axis labels; this
 //! module lays the panels out, puts each panel's legend beside its title (outside the data,
 //! which fills time histories edge to edge), and draws the lines themselves (see
-//! [`draw_line`] for why).
+//! `draw_line` for why).
 
 use std::path::{Path, PathBuf};
 

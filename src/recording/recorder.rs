@@ -625,7 +625,7 @@ impl Observer for Recorder<'_> {
     }
 
     /// A row's passive structures' floors are observed on the grid only
-    /// ([`FloorRecorder::observe_part`]); the rest as at every observation.
+    /// (`FloorRecorder::observe_part`); the rest as at every observation.
     fn observe_stepped(&mut self, system: &System, s: &StepView, stepped: &Stepped) {
         self.observe_part(system, s, Some(stepped));
     }

@@ -27,7 +27,7 @@
 //! Where that is negligible (below [`NEGLIGIBLE`] of the peak) the Hermite stands. Otherwise
 //! Q over the interval is bounded by the Hermite bound of its slow part (Q less the fast
 //! modes' ends) plus the fast modes' linear part at its larger end plus `Σ_fast |c_n| ρ_n`
-//! ([`SubGrid::station_sums`]); where that cannot reach the peak nothing changes, and where it
+//! (`SubGrid::station_sums`); where that cannot reach the peak nothing changes, and where it
 //! can the station's displacement, drift and storey force are evaluated from the model on a
 //! sub-grid of `m` equal parts with `ω_max h/m ≤ Θ` and refined on each part's cubic Hermite
 //! (as accurate there as the Hermite is for a slow mode).

@@ -37,7 +37,7 @@ use crate::recording::run_record::RunRecord;
 ///
 /// A check that integrates its own run without contact (`rk4`, yielding storeys) integrates
 /// it on a third thread beside its run with contact (the two are independent: see
-/// [`check_runs`]).
+/// `check_runs`).
 ///
 /// The check's progress reaches `sink` as its phases' [`RunSink::progress`] from this thread
 /// (while it integrates and while it waits for the check). A check run that fails gives the

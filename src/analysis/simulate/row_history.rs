@@ -4,14 +4,14 @@
 //! interval as a pair's history is.
 //!
 //! The recorder samples a pair's two displacements at the main contact height; a row has N
-//! structures and several heights. [`RowObserver`] runs a [`RowSampler`] beside the
+//! structures and several heights. `RowObserver` runs a `RowSampler` beside the
 //! [`Recorder`] on the recorder's public interface: at every observation the sampler keeps the
 //! state (q, q̇) of the previous observation, and at each sample time it projects both onto
 //! the mode shapes (`w = Σ φ_n(h) q_n`, summed in mode order from 0) and takes the cubic
 //! Hermite interpolant between them at θ = (τ − t₀)/h — the recorder's arithmetic, so that a
 //! row whose other gaps never close gives a pair's `w1`, `w2` to the last digit (tested). The
 //! projections happen at the samples only (a copy of the state per observation otherwise).
-//! Each sample goes to a queue that the recorder's history sink ([`RowPhaseSink`]) empties
+//! Each sample goes to a queue that the recorder's history sink (`RowPhaseSink`) empties
 //! when it emits the same sample with every level's force, so that one [`RunSink`] receives
 //! one row of a row's history at a time (the CSV writer streams it; nothing grows with the
 //! duration except the bounded in-memory [`RowHistory`]).

@@ -69,7 +69,7 @@ pub trait RunSink {
     fn free_floor_row(&mut self, t: f64, values: &[f64]) {
         let _ = (t, values);
     }
-    /// A history sample of a row's run with contact (issue 29, [`simulate_row_streaming`]):
+    /// A history sample of a row's run with contact (issue 29, [`super::simulate_row_streaming`]):
     /// `t` (s), every structure's displacement at its headline height (its highest contact
     /// level with either neighbour; m, row order), every level's force (N, pair by pair). All
     /// come before any of the run without contact. A row sends these instead of
@@ -87,7 +87,7 @@ pub trait RunSink {
     }
     /// Whether the sink uses the rows of the result's runs (false: progress at most), so
     /// that a run without contact the run with contact already is need not be integrated
-    /// to stream it ([`free_run_of`]).
+    /// to stream it (`free_run_of`).
     fn wants_rows(&self) -> bool {
         true
     }
@@ -139,7 +139,7 @@ impl RunCapture {
         RunCapture::default()
     }
 
-    /// Hand every captured sample to `sink`, in the order [`simulate_streaming`] gives them:
+    /// Hand every captured sample to `sink`, in the order [`super::simulate_streaming`] gives them:
     /// the run with contact (history and floor rows), then the run without.
     pub fn replay(&self, sink: &mut dyn RunSink) {
         let n = self.row_structures;

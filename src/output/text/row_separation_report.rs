@@ -1,5 +1,5 @@
 //! What `pounding separation` prints for a row of buildings: each adjacent pair's tables (a
-//! pair's, [`super::separation_report`]), then the row's verdict.
+//! pair's, [`mod@super::separation_report`]), then the row's verdict.
 
 use std::fmt::{self, Write as _};
 

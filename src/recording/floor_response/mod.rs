@@ -26,7 +26,7 @@
 //! sub-grid of each mode's closed form ([`crate::recording::subgrid`]). The absolute
 //! accelerations and the equilibrium value are taken at the observations and, where the fast
 //! modes ring enough to lift their peaks, on the same sub-grid (each mode's η̈ from its closed
-//! form and its equation with the interval's linear load, [`Between`]); where no mode is too
+//! form and its equation with the interval's linear load, `Between`); where no mode is too
 //! fast for the cubic Hermite, on the Hermite of their values and rates between the
 //! observations of a free flight (`between_on_hermite`); inside an impact pulse
 //! the observations are the contact sub-steps, and the accelerations and the equilibrium value
