@@ -8,11 +8,11 @@
 //! sees: the rename is what makes a file appear whole, and a process that dies (Ctrl-C, a
 //! kill, a panic) leaves its writes in the page cache, so the files stay whole and
 //! `summary.json` (removed when a run starts, written last) still means "every file of the run
-//! is complete". Measured on this project's ext4 machine (`strace -c -w -f`, the paper case's
-//! `pounding run` with pictures into a directory holding the previous run's files, loaded
-//! machine): the eight `fsync`s took 12–15 ms a run (a journal commit each), and without them
-//! the renames over the old files took 8 ms, ext4 flushing each new file when a rename
-//! replaces a file (`auto_da_alloc`); removing the old file first, they take ~0.2 ms. What
+//! is complete". Measured on this project's ext4 machine (`strace -f -c -w`, five runs of the
+//! paper case's `pounding run` with pictures into a directory holding the previous run's
+//! files, load ~7; README "Speed"): blocked in fsync + rename + unlink 30–50 ms a run with the
+//! eight `fsync`s (a journal commit each), 24–31 ms without them (ext4 flushes a new file
+//! whose rename replaces a file, `auto_da_alloc`), 6–9 ms removing the old file first. What
 //! this gives up is only a power loss's or a kernel crash's: files of the interrupted run may
 //! then be empty, beside no `summary.json` or an empty one. The sweep journal, which a resumed
 //! sweep reads back, still syncs its rows.

@@ -55,14 +55,10 @@ pub fn simulate_streaming_beside<S: RunSink, T>(
 
 /// What the self-check integrates, on whichever thread: the runs of `tight` (its `system`)
 /// with contact and, unless the result's is taken (`exact`), without; beside each other
-/// when given their progress (`split`: see [`check_runs`]).
-pub(super) type CheckIntegration = fn(
-    &Scenario,
-    &System,
-    &mut dyn RunSink,
-    Option<&CheckProgress>,
-    bool,
-) -> Result<Runs, SolveError>;
+/// when given their progress (`split`: see [`check_runs`]). `R` is a pair's [`Runs`] or a
+/// row's `RowRuns`.
+pub(super) type CheckIntegration<R = Runs> =
+    fn(&Scenario, &System, &mut dyn RunSink, Option<&CheckProgress>, bool) -> Result<R, SolveError>;
 
 /// The self-check's runs: with contact, its counters, and without (`None`: the result's).
 pub(super) struct Runs {

@@ -4,21 +4,10 @@
 //! verdict and warning as sequentially. (Every file of the run, byte for byte:
 //! tests/check_beside.rs, outside the library, which writes them.)
 
-use super::concurrent::{CheckIntegration, CheckProgress, Runs, streaming_beside};
+use super::concurrent::{CheckIntegration, CheckProgress, Runs, check_runs, streaming_beside};
 use super::reuse_tests::{cantilevers, scenario, shear};
-use super::row_beside::{RowCheckIntegration, RowRuns, row_check_runs, row_streaming_beside};
+use super::row_beside::{RowRuns, row_check_runs, row_streaming_beside};
 use super::*;
-
-/// The self-check's integration as the program does it.
-fn real(
-    tight: &Scenario,
-    system: &System,
-    sink: &mut dyn RunSink,
-    split: Option<&CheckProgress>,
-    exact: bool,
-) -> Result<Runs, SolveError> {
-    super::concurrent::check_runs(tight, system, sink, split, exact)
-}
 
 /// The self-check's integration failing after its run with contact, as a check run can
 /// (e.g. `rk4` refused at a contact, an `adaptive` step that cannot meet its tolerance).
@@ -29,7 +18,7 @@ fn failing(
     split: Option<&CheckProgress>,
     exact: bool,
 ) -> Result<Runs, SolveError> {
-    super::concurrent::check_runs(tight, system, sink, split, exact)?;
+    check_runs(tight, system, sink, split, exact)?;
     Err(SolveError::NoTimeHistory("a test's failing check"))
 }
 
@@ -76,8 +65,8 @@ fn the_check_beside_the_run_is_the_check_after_it() {
     for sc in cases() {
         for check in [false, true] {
             let what = format!("{} {:?} check {check}", sc.title, sc.solver.method);
-            let fast = streamed(&sc, check, true, real);
-            same(&fast, &streamed(&sc, check, false, real), &what);
+            let fast = streamed(&sc, check, true, check_runs);
+            same(&fast, &streamed(&sc, check, false, check_runs), &what);
             // and the report is simulate_streaming's, the sequential path the suites take
             let mut capture = RunCapture::new();
             let r = simulate_streaming(&sc, check, &mut capture).expect("runs");
@@ -134,9 +123,13 @@ fn a_run_failing_beside_its_check_is_the_same_error() {
     // the result's integration is refused, its check's at dt/√√100 too (still beyond it)
     let mut sc = scenario(&cantilevers("rk4", 0.001, 0.0127, 0.6, 2.0));
     sc.solver.dt = 0.05;
-    let fast = streamed(&sc, true, true, real);
+    let fast = streamed(&sc, true, true, check_runs);
     assert!(fast.starts_with("error: "), "{fast}");
-    same(&fast, &streamed(&sc, true, false, real), "rk4 refused");
+    same(
+        &fast,
+        &streamed(&sc, true, false, check_runs),
+        "rk4 refused",
+    );
     let mut capture = RunCapture::new();
     let e = simulate_streaming(&sc, true, &mut capture).expect_err("refused");
     assert_eq!(fast, format!("error: {e}"));
@@ -243,7 +236,7 @@ fn row_streamed(
     sc: &Scenario,
     check: bool,
     concurrent: bool,
-    integrate: RowCheckIntegration,
+    integrate: CheckIntegration<RowRuns>,
 ) -> String {
     let mut capture = RunCapture::new();
     let beside = |c: &mut RunCapture, r: &RowReport| format!("{c:?}\n{r:?}");

@@ -11,7 +11,7 @@
 //! rows streamed and every file). The sweeps, suites and fragility studies, which run cases
 //! in parallel already, keep to the sequential path.
 
-use super::concurrent::{CheckProgress, beside_each_other, run_beside};
+use super::concurrent::{CheckIntegration, CheckProgress, beside_each_other, run_beside};
 use super::row::{assemble_row, conclude_row_check, row_free, row_with, simulate_row_phases};
 use super::row_history::RowHistory;
 use super::{RowReport, RunSink, free_run_is_exact};
@@ -38,17 +38,6 @@ pub fn simulate_row_streaming_beside<S: RunSink, T>(
 ) -> Result<(RowReport, T), SolveError> {
     row_streaming_beside(scenario, (check, concurrent), sink, beside, row_check_runs)
 }
-
-/// What a row's self-check integrates, on whichever thread: the runs of `tight` (its
-/// `system`) with contact and, unless the result's is taken (`exact`), without; beside each
-/// other when given their progress (`split`).
-pub(super) type RowCheckIntegration = fn(
-    &Scenario,
-    &System,
-    &mut dyn RunSink,
-    Option<&CheckProgress>,
-    bool,
-) -> Result<RowRuns, SolveError>;
 
 /// A row's self-check runs: with contact (its record, counters and empty history), and
 /// without (`None`: the result's).
@@ -80,7 +69,7 @@ pub(super) fn row_streaming_beside<S: RunSink, T>(
     (check, concurrent): (bool, bool),
     sink: &mut S,
     beside: impl FnOnce(&mut S, &RowReport) -> T,
-    integrate: RowCheckIntegration,
+    integrate: CheckIntegration<RowRuns>,
 ) -> Result<(RowReport, T), SolveError> {
     let result = |sink: &mut dyn RunSink| simulate_row_phases(scenario, sink, false, None);
     if !check {
