@@ -597,3 +597,97 @@ fn sweep_records_the_self_check_and_no_check_says_so() {
         "{err}"
     );
 }
+
+/// `solver.rtol` and `solver.atol` are axis keys (a study's speed/accuracy dial, README
+/// "What a default tolerance can promise"): each case runs at the axis's tolerance, exactly as
+/// a scenario file giving that tolerance does, and the default's value reproduces a sweep
+/// without the axis.
+#[test]
+fn tolerances_are_axis_keys() {
+    let d = tempfile::tempdir().unwrap();
+    let exact = |text: &str| {
+        text.replace("method = \"rk4\"", "method = \"exact-modal\"")
+            .replace("dt = 0.001\n", "dt = 0.01\n")
+            .replace("duration = 20.0", "duration = 5.0")
+    };
+    write(&d.path().join("base.toml"), &exact(PAPER_C));
+    let sweep = |name: &str, axis: &str| {
+        let file = write(
+            &d.path().join(format!("{name}.toml")),
+            &format!("scenario = \"base.toml\"\n{axis}"),
+        );
+        let out = d.path().join(name);
+        ok(&pounding(&[
+            "sweep",
+            s(&file),
+            "--out",
+            s(&out),
+            "--no-plot",
+            "--no-check",
+            "-q",
+        ]));
+        std::fs::read_to_string(out.join("results.csv")).unwrap()
+    };
+    // the result columns of a row (after case, the axis columns and status)
+    let results = |csv: &str, row: usize, axes: usize| -> Vec<String> {
+        let line = data_rows(csv)[row];
+        line.split(',').skip(2 + axes).map(String::from).collect()
+    };
+    let column = |csv: &str, row: usize, col: &str| -> String {
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let i = header.iter().position(|h| *h == col).unwrap();
+        data_rows(csv)[row].split(',').nth(i).unwrap().to_string()
+    };
+    // what `pounding run` gives for the base with `line` added under [solver]
+    let run = |name: &str, line: &str| -> String {
+        let text = exact(PAPER_C).replace("[solver]\n", &format!("[solver]\n{line}\n"));
+        let sc = write(&d.path().join(format!("{name}-case.toml")), &text);
+        let dir = d.path().join(format!("{name}-run"));
+        ok(&pounding(&[
+            "run",
+            s(&sc),
+            "--out",
+            s(&dir),
+            "--no-plot",
+            "--no-check",
+            "-q",
+        ]));
+        // (the raw text of `contact.peak_force`, as the row writes it: the first one after
+        // the `"contact": {` object opens; the floors' pulses name theirs earlier)
+        let json = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+        let contact = json.find("\"contact\": {").unwrap();
+        let pat = "\"peak_force\": ";
+        let start = contact + json[contact..].find(pat).unwrap() + pat.len();
+        json[start..]
+            .split([',', '\n'])
+            .next()
+            .unwrap()
+            .trim()
+            .to_string()
+    };
+
+    let rtol = sweep(
+        "rtol",
+        "[[axis]]\nkey = \"solver.rtol\"\nvalues = [1e-4, 1e-8]\n",
+    );
+    let plain = sweep(
+        "plain",
+        "[[axis]]\nkey = \"contact.gap\"\nvalues = [0.0127]\n",
+    );
+    // 1e-8 is the default: the same numbers as the sweep that does not set it
+    assert_eq!(results(&rtol, 1, 1), results(&plain, 0, 1));
+    // 1e-4 took effect (paper-c's peak force moves by ~2e-5 between the two: a changed digit)
+    assert_ne!(
+        column(&rtol, 0, "peak_force"),
+        column(&rtol, 1, "peak_force")
+    );
+    // and is what a scenario file saying `rtol = 1e-4` gives, bit for bit
+    assert_eq!(column(&rtol, 0, "peak_force"), run("r4", "rtol = 1e-4"));
+
+    let atol = sweep("atol", "[[axis]]\nkey = \"solver.atol\"\nvalues = [1e-5]\n");
+    assert_eq!(column(&atol, 0, "peak_force"), run("a5", "atol = 1e-5"));
+    assert_ne!(
+        column(&atol, 0, "peak_force"),
+        column(&plain, 0, "peak_force")
+    );
+}

@@ -227,7 +227,8 @@ pub(super) const SOLVER: &[KeyInfo] = &[
         MIN_RTOL,
         1e-3,
         "a relative tolerance above 1e-3 gives rough results (the self-check says how rough)",
-    ),
+    )
+    .sweep(),
     KeyInfo::new(
         Solver,
         "atol",
@@ -239,7 +240,8 @@ pub(super) const SOLVER: &[KeyInfo] = &[
         MIN_ATOL,
         1e-3,
         "an absolute tolerance above 1 mm is coarser than the gaps it is meant to resolve",
-    ),
+    )
+    .sweep(),
 ];
 
 /// `[separation]` and its codes' tables (README, *Code separation rules*).
