@@ -7,7 +7,7 @@
 (from the repository's root; `--bin PATH` runs another `pounding` binary; `--jobs N` runs N
 processes at once, default 1; `--keep DIR` keeps the scenarios and the runs' outputs, otherwise
 they go to a temporary directory that is removed). The default run (3 intensities x 4 durations
-x 13 runs) takes ~1-2 min of one core.
+x 14 runs) takes well under a minute of one core.
 
 The case is issue 9's stiff Hertz case, the one `tests/error_control.rs` builds as `stiff(...)`
 and the doc comment of `EXACT_MODAL_DEFAULT_RTOL` (src/integrate/mod.rs) quotes: two uniform
@@ -18,7 +18,8 @@ default 3 6 12 24); `--stiffness K` and `--law hertzdamp|kelvin|jankowski` (with
 `--restitution`, default 0.6) build the other stiff contacts of issue 25. Each scenario is written as TOML and run with
 `pounding run FILE --out D --no-plot --no-check -q`; the numbers are read from D/summary.json
 (`contact.peak_force`, `contact.impacts`, `structures[i].peak_displacement`,
-`separation.time_history`) and D/history.csv (w1, w2 every 10 ms).
+`separation.time_history`, and `structures[i].floors[j].peak_shear`) and D/history.csv (w1, w2
+every 10 ms).
 
 For every (PGA, duration):
   * two references, `exact-modal` at rtol 1e-12 (MIN_RTOL, the tightest accepted) with dt 1 ms,
@@ -26,13 +27,20 @@ For every (PGA, duration):
     exact modal propagators. Their mutual difference ("refs") is how well the converged answer
     itself is defined at that duration in double precision;
   * `exact-modal`, dt 1 ms, at rtol 1e-4 ... 1e-11 by decades plus 2e-8 and 4e-8 around the
-    default 1e-8: relative difference of the peak force (F), of both peaks (w1, w2) and of the
-    required separation (sep) against the exact-modal reference, and the number of impacts.
+    default 1e-8: relative difference of the peak force (F), of both peaks (w1, w2), of the
+    required separation (sep) and the largest of the floors' peak shears (shear) against the
+    exact-modal reference, the number of impacts and the time of the largest impact.
   The summary line gives the largest rtol at or below which *every* rung is within 0.5 % of the
   reference on F, w1 and w2 ("ok <= rtol"), and whether the error of F falls monotonically as
   rtol shrinks (a rung whose error of F is larger than the looser rung's, and above 1e-5, is
   listed as rtol(xfactor); below 1e-5 a peak is at the resolution of its refinement between
   observations, whose spacing changes with rtol: tests/error_control.rs, `rtol_acts_down_to_1e_12`).
+
+The default is also run with its self-check (`pounding run` without `--no-check`: the same case
+at rtol/100, `converged` false when a number or the count of impacts moves by more than 1 %),
+and the summary line says whether it flags the cell, and on which quantity; the last line counts
+the cells where the default is off by more than 0.5 % (on F, w1, w2 or a floor shear) and how
+many of them, and of the others, the check flags.
 
 Then, per PGA, the horizon: the first time at which a run's w1 (history.csv) departs from the
 exact-modal reference's by more than 0.5 % of the reference's peak w1, at the longest
@@ -50,6 +58,7 @@ import csv
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -93,8 +102,9 @@ rtol = {rtol}
 """
 
 
-def run(args, name, pga, duration, method, dt, rtol):
-    """Writes the scenario, runs it, returns the numbers (dict)."""
+def run(args, name, pga, duration, method, dt, rtol, check=False):
+    """Writes the scenario, runs it (with its self-check when `check`), returns the numbers
+    (dict)."""
     scen = os.path.join(args.work, "scenarios", name + ".toml")
     out = os.path.join(args.work, "runs", name)
     with open(scen, "w") as f:
@@ -110,11 +120,11 @@ def run(args, name, pga, duration, method, dt, rtol):
                 rtol=rtol,
             )
         )
-    p = subprocess.run(
-        [args.bin, "run", scen, "--out", out, "--no-plot", "--no-check", "-q"],
-        capture_output=True,
-        text=True,
-    )
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [args.bin, "run", scen, "--out", out, "--no-plot", "-q"]
+    if not check:
+        cmd.append("--no-check")
+    p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"{name}: pounding exited {p.returncode}: {p.stderr.strip()}")
     with open(os.path.join(out, "summary.json")) as f:
@@ -128,9 +138,13 @@ def run(args, name, pga, duration, method, dt, rtol):
         "w1": s["structures"][0]["peak_displacement"],
         "w2": s["structures"][1]["peak_displacement"],
         "sep": s["separation"]["time_history"],
+        "shears": [f["peak_shear"] for st in s["structures"] for f in st["floors"]],
         "impacts": s["contact"]["impacts"],
         "tF": big["start"] if big else float("nan"),
         "steps": s["solver"]["steps"],
+        "converged": s["accuracy"]["converged"],
+        "check_change": s["accuracy"]["max_change"],
+        "check_what": s["accuracy"]["max_change_quantity"],
         "t": [float(r["t"]) for r in rows],
         "hist": [float(r["w1"]) for r in rows],
     }
@@ -138,6 +152,11 @@ def run(args, name, pga, duration, method, dt, rtol):
 
 def rel(a, b):
     return abs(a - b) / abs(b) if b != 0 else (0.0 if a == 0 else math.inf)
+
+
+def shear(r, ref):
+    """Largest relative difference of the floors' peak shears (summary.json floors)."""
+    return max(rel(a, b) for a, b in zip(r["shears"], ref["shears"]))
 
 
 def horizon(r, ref):
@@ -180,11 +199,13 @@ def main():
             plan.append((pga, dur, "ref", "exact-modal", 1e-3, REF_RTOL))
             for rt in RTOLS:
                 plan.append((pga, dur, rt, "exact-modal", 1e-3, rt))
+            # the default again, with its self-check (rtol/100): does it flag what is off?
+            plan.append((pga, dur, "checked", "exact-modal", 1e-3, DEFAULT_RTOL))
     res = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as ex:
         futs = {
             ex.submit(
-                run, args, f"pga{pga}-T{dur:g}-{lab}", pga, dur, m, dt, rt
+                run, args, f"pga{pga}-T{dur:g}-{lab}", pga, dur, m, dt, rt, lab == "checked"
             ): (pga, dur, lab)
             for (pga, dur, lab, m, dt, rt) in plan
         }
@@ -196,6 +217,8 @@ def main():
         f"exact-modal rtol 1e-12 (relative differences; bar {BAR:g})"
     )
     summary = []
+    # (default off by more than the bar on F, w1, w2 or a floor shear, its check flags it)
+    tally = {(a, b): 0 for a in (False, True) for b in (False, True)}
     for pga in args.pgas:
         for dur in args.durations:
             ref, ada = res[(pga, dur, "ref")], res[(pga, dur, "adaptive")]
@@ -203,14 +226,17 @@ def main():
                 f"\nPGA {pga:g} g, {dur:g} s: reference F {ref['F']:.6e} N at t {ref['tF']:.3f} s, "
                 f"w1 {ref['w1']:.6e}, w2 {ref['w2']:.6e} m, {ref['impacts']} impacts"
             )
-            print(f"{'rtol':>8} {'F':>9} {'w1':>9} {'w2':>9} {'sep':>9} {'impacts':>7} {'t(F)':>7}")
+            print(
+                f"{'rtol':>8} {'F':>9} {'w1':>9} {'w2':>9} {'sep':>9} {'shear':>9} "
+                f"{'impacts':>7} {'t(F)':>7}"
+            )
             rows = [(f"{rt:g}", res[(pga, dur, rt)]) for rt in RTOLS]
             rows.append(("refs", ada))
             for lab, r in rows:
                 print(
                     f"{lab:>8} {rel(r['F'], ref['F']):9.2e} {rel(r['w1'], ref['w1']):9.2e} "
                     f"{rel(r['w2'], ref['w2']):9.2e} {rel(r['sep'], ref['sep']):9.2e} "
-                    f"{r['impacts']:7d} {r['tF']:7.3f}"
+                    f"{shear(r, ref):9.2e} {r['impacts']:7d} {r['tF']:7.3f}"
                 )
             err = {
                 rt: max(
@@ -232,14 +258,22 @@ def main():
             refs = max(rel(ada[k], ref[k]) for k in ("F", "w1", "w2"))
             default_err = err[DEFAULT_RTOL]
             line = (
-                f"PGA {pga:g} g {dur:>4g} s: default error {default_err:.2e}, "
+                f"PGA {pga:g} g {dur:>4g} s: default error {default_err:.2e} "
+                f"(floor shears {shear(res[(pga, dur, DEFAULT_RTOL)], ref):.2e}), "
                 f"ok <= {ok if ok is None else f'{ok:g}'}, refs differ {refs:.2e}, "
                 f"monotone {'yes' if not bumps else 'no (' + ', '.join(bumps) + ')'}"
+            )
+            chk = res[(pga, dur, "checked")]
+            line += (
+                f", self-check at the default: {'converged' if chk['converged'] else 'NOT converged'}"
+                f" ({chk['check_what']} {chk['check_change']:.2e})"
             )
             if refs > BAR:
                 line += " -- the converged answer itself is not defined to the bar"
             print(line)
             summary.append(line)
+            off = max(default_err, shear(res[(pga, dur, DEFAULT_RTOL)], ref)) > BAR
+            tally[(off, chk["converged"] is False)] += 1
 
     longest = max(args.durations)
     print(
@@ -277,6 +311,11 @@ def main():
     print("\nsummary")
     for line in summary:
         print(line)
+    print(
+        f"the default off by > {BAR:g} (F, w1, w2 or a floor shear): {tally[(True, True)] + tally[(True, False)]} "
+        f"cells, its self-check flags {tally[(True, True)]} of them; within the bar: "
+        f"{tally[(False, True)] + tally[(False, False)]} cells, flagged {tally[(False, True)]}"
+    )
     if tmp:
         tmp.cleanup()
 
