@@ -143,8 +143,37 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.trial_general(k, h, piece)
     }
 
-    /// [`Self::trial`] for any number of contact levels.
+    /// [`Self::trial`] for any number of contact levels (its copy compiled for AVX where the
+    /// processor has it: [`crate::integrate::vex`], the same bits).
     pub(super) fn trial_general(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.trial_general_vex(k, h, piece) };
+        }
+        self.trial_general_body(k, h, piece)
+    }
+
+    /// [`Self::trial_general_body`] compiled for AVX. Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn trial_general_vex(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        self.trial_general_body(k, h, piece)
+    }
+
+    /// [`Self::trial_general`]'s work.
+    #[inline(always)]
+    fn trial_general_body(
         &mut self,
         k: Option<usize>,
         h: f64,
