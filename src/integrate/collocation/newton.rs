@@ -275,6 +275,41 @@ fn solve_one<const S: usize>(
     nodal: &mut [(f64, f64)],
     tol: f64,
 ) -> Result<usize, NoConvergence> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::integrate::vex::available() {
+        // SAFETY: the processor has AVX
+        return unsafe { solve_one_vex::<S>(sys, w, dfree, onset, force, nodal, tol) };
+    }
+    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
+}
+
+/// [`solve_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+/// the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn solve_one_vex<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
+}
+
+/// [`solve_one`]'s work.
+#[inline(always)]
+fn solve_one_body<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
     let onset = onset[0];
     match sys.levels[0].force {
         ContactForce::Hertz { k } => {
@@ -566,7 +601,7 @@ fn lu_solve_body(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// [`lu_solve`] for N unknowns (`a` row-major N×N, `b` of N): the very arithmetic of
 /// [`lu_any`] (pivot search, row exchange from the pivot's column on, the elimination that
 /// skips a zero factor, the back substitution in the same order).
-#[inline]
+#[inline(always)]
 fn lu_fixed<const N: usize>(a: &mut [f64], b: &mut [f64]) -> bool {
     let (rows, _) = a[..N * N].as_chunks_mut::<N>();
     let a: &mut [[f64; N]; N] = rows.try_into().expect("N rows");

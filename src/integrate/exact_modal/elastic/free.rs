@@ -328,6 +328,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// `sharp`: the margin weighted as Hermite's remainder is, `16 x²(1 − x)²` of its value at
     /// the middle (x = τ/h: zero at both ends, where the cubic is exact), instead of added at
     /// its largest everywhere — what lets the search clear a level that has just separated.
+    #[inline(always)]
     pub(super) fn free_bound(&self, h: f64, sharp: bool) -> f64 {
         let mut bound = f64::NEG_INFINITY;
         for k in 0..self.nl {
@@ -506,6 +507,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// before it (located on the exact free flight).
     #[inline(never)]
     pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.free_segment_vex() };
+        }
+        self.free_segment_body()
+    }
+
+    /// [`Self::free_segment`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn free_segment_vex(&mut self) -> Result<(), SolveError> {
+        self.free_segment_body()
+    }
+
+    /// [`Self::free_segment`]'s work.
+    #[inline(always)]
+    fn free_segment_body(&mut self) -> Result<(), SolveError> {
         let (piece, start, seg_end) = self.piece();
         let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
         let x = (self.t - start) / hh;
