@@ -105,6 +105,8 @@ impl PolyTally {
 
     /// The ground's work over a free step of length h (ground acceleration `ag`, velocity
     /// `vg` at its start, acceleration slope `a1`) from the sums at its start and end, J.
+    /// (Inlined, so that the free flight's commit compiled for AVX has it in its VEX form.)
+    #[inline(always)]
     pub fn input(
         &self,
         h: f64,

@@ -73,6 +73,50 @@ pub(in crate::integrate) fn solve<const S: usize>(
     if nl == 1 {
         return solve_one::<S>(sys, w, dfree, onset, force, nodal, tol);
     }
+    #[cfg(target_arch = "x86_64")]
+    if crate::integrate::vex::available() {
+        // SAFETY: the processor has AVX
+        return unsafe {
+            solve_levels_vex::<S>(sys, w, dfree, onset, force, nodal, scratch, tol, levels)
+        };
+    }
+    solve_levels::<S>(sys, w, dfree, onset, force, nodal, scratch, tol, levels)
+}
+
+/// [`solve_levels`] compiled for AVX ([`crate::integrate::vex`]: the same operations, the
+/// same bits). Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn solve_levels_vex<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    scratch: &mut Newton,
+    tol: f64,
+    levels: &[usize],
+) -> Result<usize, NoConvergence> {
+    solve_levels::<S>(sys, w, dfree, onset, force, nodal, scratch, tol, levels)
+}
+
+/// [`solve`] over several levels.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn solve_levels<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    scratch: &mut Newton,
+    tol: f64,
+    levels: &[usize],
+) -> Result<usize, NoConvergence> {
+    let nl = sys.levels.len();
     let m = S - 1;
     let dim = nl * m;
     scratch.rhs.resize(dim, 0.0);
@@ -223,6 +267,41 @@ pub(in crate::integrate) fn nodal_states<const S: usize>(
 /// kind, each calling [`ContactForce::force_jacobian`] of a value of that kind (the same
 /// function on the same arguments: the same bits).
 fn solve_one<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::integrate::vex::available() {
+        // SAFETY: the processor has AVX
+        return unsafe { solve_one_vex::<S>(sys, w, dfree, onset, force, nodal, tol) };
+    }
+    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
+}
+
+/// [`solve_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+/// the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn solve_one_vex<const S: usize>(
+    sys: &System,
+    w: &[(f64, f64)],
+    dfree: &[(f64, f64)],
+    onset: &[f64],
+    force: &mut [f64],
+    nodal: &mut [(f64, f64)],
+    tol: f64,
+) -> Result<usize, NoConvergence> {
+    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
+}
+
+/// [`solve_one`]'s work.
+#[inline(always)]
+fn solve_one_body<const S: usize>(
     sys: &System,
     w: &[(f64, f64)],
     dfree: &[(f64, f64)],
@@ -405,6 +484,7 @@ pub(in crate::integrate) fn solve_single<const S: usize>(
 /// instead of 12×12). The reduced rows are assembled from the weights over the levels sharing
 /// a structure with the row's own only (the others' entries are exact zeros). False if
 /// singular.
+#[inline(always)]
 pub(super) fn solve_touching<const S: usize>(
     sys: &System,
     w: &[(f64, f64)],
@@ -479,7 +559,28 @@ pub(super) fn solve_touching<const S: usize>(
 /// partial pivoting; false if singular. The systems of up to three levels in contact (n ≤ 12:
 /// four unknowns a level) take [`lu_fixed`], the same operations in the same order on arrays
 /// of their size (no bounds checks, loops the compiler can unroll): the same bits.
+///
+/// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]: the
+/// same bits).
 pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if crate::integrate::vex::available() {
+        // SAFETY: the processor has AVX
+        return unsafe { lu_solve_vex(a, b, n) };
+    }
+    lu_solve_body(a, b, n)
+}
+
+/// [`lu_solve`] compiled for AVX. Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn lu_solve_vex(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    lu_solve_body(a, b, n)
+}
+
+/// [`lu_solve`]'s work.
+#[inline(always)]
+fn lu_solve_body(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     match n {
         1 => lu_fixed::<1>(a, b),
         2 => lu_fixed::<2>(a, b),
@@ -500,7 +601,7 @@ pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// [`lu_solve`] for N unknowns (`a` row-major N×N, `b` of N): the very arithmetic of
 /// [`lu_any`] (pivot search, row exchange from the pivot's column on, the elimination that
 /// skips a zero factor, the back substitution in the same order).
-#[inline]
+#[inline(always)]
 fn lu_fixed<const N: usize>(a: &mut [f64], b: &mut [f64]) -> bool {
     let (rows, _) = a[..N * N].as_chunks_mut::<N>();
     let a: &mut [[f64; N]; N] = rows.try_into().expect("N rows");

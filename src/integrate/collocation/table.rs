@@ -141,6 +141,11 @@ pub(in crate::integrate) struct Table {
     /// `cstart[k]`, node i's row of it at `i·n_k` (see [`Table::cprop_at`]). The free
     /// flight's δ, δ̇ at the nodes are two dot products per node and level.
     cprop: Vec<[f64; 4]>,
+    /// `cprop` with two nodes side by side, for the four lanes of an AVX register: node pair
+    /// i/2 (nodes i, i + 1 of even i) of level k's mode j at `cstart[k]/2 + (i/2)·n_k + j`,
+    /// `[[a_i, c_i, a_{i+1}, c_{i+1}], [b_i, e_i, b_{i+1}, e_{i+1}]]` of `cprop`'s
+    /// `[a, c, b, e]` (see [`Table::cprop_pairs`]).
+    cprop2: Vec<[[f64; 4]; 2]>,
     /// Where each level's block of `cprop` starts (L + 1 entries).
     cstart: Vec<usize>,
     /// Per mode, see [`ModeStep`].
@@ -201,6 +206,7 @@ impl Table {
             h: f64::NAN,
             n: 0,
             cprop: Vec::new(),
+            cprop2: Vec::new(),
             cstart: Vec::new(),
             modes: Vec::new(),
             gammas: Vec::new(),
@@ -240,7 +246,12 @@ impl Table {
         let modes = sys.coupling_modes(k);
         let (w, at) = (modes.len(), self.cstart[k] + j - modes.start);
         for (i, p) in props.iter().enumerate() {
-            self.cprop[at + i * w] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
+            let [a, cc, b, e] = [c * p.p11, c * p.p21, c * p.p12, c * p.p22];
+            self.cprop[at + i * w] = [a, cc, b, e];
+            let pair = &mut self.cprop2[self.cstart[k] / 2 + (i / 2) * w + j - modes.start];
+            let lanes = 2 * (i % 2);
+            pair[0][lanes..lanes + 2].copy_from_slice(&[a, cc]);
+            pair[1][lanes..lanes + 2].copy_from_slice(&[b, e]);
         }
     }
 
@@ -345,6 +356,25 @@ impl Table {
         h: f64,
         active: &[bool],
     ) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.fill_for_vex(sys, big, h, active) };
+        }
+        self.fill_for_body(sys, big, h, active)
+    }
+
+    /// [`Self::fill_for`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn fill_for_vex(&mut self, sys: &System, big: Option<f64>, h: f64, active: &[bool]) {
+        self.fill_for_body(sys, big, h, active)
+    }
+
+    /// [`Self::fill_for`]'s work.
+    #[inline(always)]
+    fn fill_for_body(&mut self, sys: &System, big: Option<f64>, h: f64, active: &[bool]) {
         let (omega, damp) = (sys.omega(), sys.damping_coefficients());
         let n = sys.len();
         let nl = sys.levels.len();
@@ -372,6 +402,7 @@ impl Table {
             self.cstart.push(self.cstart[k] + 6 * w);
         }
         self.cprop.resize(self.cstart[nl], [0.0; 4]);
+        self.cprop2.resize(self.cstart[nl] / 2, [[0.0; 4]; 2]);
         self.modes.resize(n, ModeStep::default());
         self.gammas.resize(n, Gammas::default());
         let slots = sys.band_slots();
@@ -427,6 +458,7 @@ impl Table {
 
     /// Mode j's responses to the Lagrange loads (its [`ModeStep`] and Γ_j), from its
     /// propagators to the nodes.
+    #[inline(always)]
     fn fill_mode(&mut self, omega: f64, damp: f64, h: f64, j: usize, props: &[Prop; 6]) {
         let Bases { l8, l6, .. } = bases();
         {
@@ -539,6 +571,21 @@ impl Table {
     pub(in crate::integrate) fn cprop_rows(&self, sys: &System, k: usize) -> [&[[f64; 4]]; 6] {
         let w = sys.coupling_modes(k).len();
         let block = &self.cprop[self.cstart[k]..self.cstart[k] + 6 * w];
+        std::array::from_fn(|i| &block[i * w..(i + 1) * w])
+    }
+
+    /// Level k's coupled propagators as [`Table::cprop_rows`] has them, two nodes side by side
+    /// (nodes 0–1, 2–3, 4–5): each mode's `[[a_i, c_i, a_{i+1}, c_{i+1}], [b_i, e_i, b_{i+1},
+    /// e_{i+1}]]`.
+    #[inline]
+    pub(in crate::integrate) fn cprop_pairs(
+        &self,
+        sys: &System,
+        k: usize,
+    ) -> [&[[[f64; 4]; 2]]; 3] {
+        let w = sys.coupling_modes(k).len();
+        let start = self.cstart[k] / 2;
+        let block = &self.cprop2[start..start + 3 * w];
         std::array::from_fn(|i| &block[i * w..(i + 1) * w])
     }
 

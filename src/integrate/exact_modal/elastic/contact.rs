@@ -143,8 +143,37 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.trial_general(k, h, piece)
     }
 
-    /// [`Self::trial`] for any number of contact levels.
+    /// [`Self::trial`] for any number of contact levels (its copy compiled for AVX where the
+    /// processor has it: [`crate::integrate::vex`], the same bits).
     pub(super) fn trial_general(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.trial_general_vex(k, h, piece) };
+        }
+        self.trial_general_body(k, h, piece)
+    }
+
+    /// [`Self::trial_general_body`] compiled for AVX. Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn trial_general_vex(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        self.trial_general_body(k, h, piece)
+    }
+
+    /// [`Self::trial_general`]'s work.
+    #[inline(always)]
+    fn trial_general_body(
         &mut self,
         k: Option<usize>,
         h: f64,
@@ -266,20 +295,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
             // a·x + b·y, lane 1 c·x + e·y, the very operations of the scalar sums)
             let r = sys.coupling_modes(k);
             let (xs, ys) = (&x0s[r.clone()], &y0s[r]);
-            let w = xs.len().min(ys.len());
-            let rows: [&[[f64; 4]]; 6] = tab.cprop_rows(sys, k).map(|row| &row[..w]);
-            let mut acc = [F2::zero(); 6];
-            for jj in 0..w {
-                let (x, y) = (F2::splat(xs[jj]), F2::splat(ys[jj]));
-                for (s, row) in acc.iter_mut().zip(&rows) {
-                    let [a, c, b, e] = row[jj];
-                    *s = *s + (F2::new(a, c) * x + F2::new(b, e) * y);
-                }
-            }
-            let acc = acc.map(|s| {
-                let [s0, s1] = s.get();
-                (s0, s1)
-            });
+            #[cfg(target_arch = "x86_64")]
+            let acc = if crate::integrate::vex::available() {
+                // SAFETY: the processor has AVX
+                unsafe { node_sums::node_sums_avx(tab.cprop_pairs(sys, k), xs, ys) }
+            } else {
+                node_sums::node_sums(tab.cprop_rows(sys, k), xs, ys)
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let acc = node_sums::node_sums(tab.cprop_rows(sys, k), xs, ys);
             // the sums hold −c·η; δ = −c·η − d through the one penetration (−(−s) is s
             // exactly, so this is the former `s − d` bit for bit)
             let lv = &sys.levels[k];
@@ -403,6 +427,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// passes; a step in which a level's δ changes sign (an onset, a release) ends there.
     #[inline(never)]
     pub(super) fn contact_step(&mut self) -> Result<(), SolveError> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.contact_step_vex() };
+        }
+        self.contact_step_body()
+    }
+
+    /// [`Self::contact_step`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn contact_step_vex(&mut self) -> Result<(), SolveError> {
+        self.contact_step_body()
+    }
+
+    /// [`Self::contact_step`]'s work.
+    #[inline(always)]
+    fn contact_step_body(&mut self) -> Result<(), SolveError> {
         let (piece, pstart, span_end) = self.piece();
         let limit = span_end - self.t;
         if limit <= 0.0 {

@@ -59,8 +59,49 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// bound of them, [`PolyMap::margin_bounds`], else 0), and what the step's exact tallies
     /// need (`fsums`, `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos
     /// at the end.
+    ///
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]:
+    /// the same bits).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn free_prop(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        tr0: Trig,
+        t0: f64,
+        h: f64,
+        from_search: bool,
+        margin: bool,
+    ) -> Trig {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.free_prop_vex(fd, piece, tr0, t0, h, from_search, margin) };
+        }
+        self.free_prop_body(fd, piece, tr0, t0, h, from_search, margin)
+    }
+
+    /// [`Self::free_prop`] compiled for AVX. Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn free_prop_vex(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        tr0: Trig,
+        t0: f64,
+        h: f64,
+        from_search: bool,
+        margin: bool,
+    ) -> Trig {
+        self.free_prop_body(fd, piece, tr0, t0, h, from_search, margin)
+    }
+
+    /// [`Self::free_prop`]'s work.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn free_prop_body(
         &mut self,
         fd: Option<usize>,
         piece: &Piece,
@@ -287,6 +328,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// `sharp`: the margin weighted as Hermite's remainder is, `16 x²(1 − x)²` of its value at
     /// the middle (x = τ/h: zero at both ends, where the cubic is exact), instead of added at
     /// its largest everywhere — what lets the search clear a level that has just separated.
+    #[inline(always)]
     pub(super) fn free_bound(&self, h: f64, sharp: bool) -> f64 {
         let mut bound = f64::NEG_INFINITY;
         for k in 0..self.nl {
@@ -324,7 +366,42 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
     /// tallies (the ground's work; the dissipation from the modal energy balance), the new
     /// state (no observation).
+    ///
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]:
+    /// the same bits).
     pub(super) fn commit_free(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        h: f64,
+        t_end: f64,
+        tr1: Trig,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.commit_free_vex(fd, piece, h, t_end, tr1) };
+        }
+        self.commit_free_body(fd, piece, h, t_end, tr1)
+    }
+
+    /// [`Self::commit_free`] compiled for AVX. Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn commit_free_vex(
+        &mut self,
+        fd: Option<usize>,
+        piece: &Piece,
+        h: f64,
+        t_end: f64,
+        tr1: Trig,
+    ) {
+        self.commit_free_body(fd, piece, h, t_end, tr1)
+    }
+
+    /// [`Self::commit_free`]'s work.
+    #[inline(always)]
+    fn commit_free_body(
         &mut self,
         fd: Option<usize>,
         piece: &Piece,
@@ -430,6 +507,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// before it (located on the exact free flight).
     #[inline(never)]
     pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.free_segment_vex() };
+        }
+        self.free_segment_body()
+    }
+
+    /// [`Self::free_segment`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn free_segment_vex(&mut self) -> Result<(), SolveError> {
+        self.free_segment_body()
+    }
+
+    /// [`Self::free_segment`]'s work.
+    #[inline(always)]
+    fn free_segment_body(&mut self) -> Result<(), SolveError> {
         let (piece, start, seg_end) = self.piece();
         let EqualSteps { steps, h: hh, .. } = EqualSteps::new(start, seg_end, self.dt);
         let x = (self.t - start) / hh;

@@ -38,6 +38,7 @@ mod active;
 mod contact;
 mod free;
 mod kernel;
+mod node_sums;
 mod onset;
 mod row_pass;
 mod single;

@@ -21,8 +21,62 @@ use crate::numerics::lanes::F2;
 /// particular solutions' coefficients and the ground load per mode; `forces`: the nodal forces
 /// `[k·5 + p]` and each level's moments. Returns the ground's work and the change of the modal
 /// energy over the step, J.
+/// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]: the
+/// same bits).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn row_poly_pass(
+    sys: &System,
+    gm: &GroundModes,
+    modes: &[ModeStep],
+    start: (&[f64], &[f64], &[f64], &[f64]),
+    loads: (&[[f64; 3]], &[[f64; 3]]),
+    cpl_t: &[f64],
+    mode_act: &[bool],
+    forces: (&[f64], &[(f64, f64)]),
+    h: f64,
+    ends: (&mut [f64], &mut [f64]),
+    proj: &mut [(f64, f64)],
+) -> (f64, f64) {
+    #[cfg(target_arch = "x86_64")]
+    if crate::integrate::vex::available() {
+        // SAFETY: the processor has AVX
+        return unsafe {
+            row_poly_pass_vex(
+                sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
+            )
+        };
+    }
+    row_poly_pass_body(
+        sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
+    )
+}
+
+/// [`row_poly_pass`] compiled for AVX. Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn row_poly_pass_vex(
+    sys: &System,
+    gm: &GroundModes,
+    modes: &[ModeStep],
+    start: (&[f64], &[f64], &[f64], &[f64]),
+    loads: (&[[f64; 3]], &[[f64; 3]]),
+    cpl_t: &[f64],
+    mode_act: &[bool],
+    forces: (&[f64], &[(f64, f64)]),
+    h: f64,
+    ends: (&mut [f64], &mut [f64]),
+    proj: &mut [(f64, f64)],
+) -> (f64, f64) {
+    row_poly_pass_body(
+        sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
+    )
+}
+
+/// [`row_poly_pass`]'s work.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn row_poly_pass_body(
     sys: &System,
     gm: &GroundModes,
     modes: &[ModeStep],

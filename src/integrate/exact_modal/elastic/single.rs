@@ -32,6 +32,35 @@ impl<'a, O: Observer> Elastic<'a, O> {
         h: f64,
         piece: &Piece,
     ) -> Result<Trial, NoConvergence> {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.trial_one_vex(k, h, piece) };
+        }
+        self.trial_one_body(k, h, piece)
+    }
+
+    /// [`Self::trial_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn trial_one_vex(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
+        self.trial_one_body(k, h, piece)
+    }
+
+    /// [`Self::trial_one`]'s work.
+    #[inline(always)]
+    fn trial_one_body(
+        &mut self,
+        k: Option<usize>,
+        h: f64,
+        piece: &Piece,
+    ) -> Result<Trial, NoConvergence> {
         debug_assert!(self.single_level());
         let n = self.n;
         let sys = self.sys;
@@ -180,6 +209,25 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// same arithmetic, the per-mode loops split per kind of ground motion and the level loops
     /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
     pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        #[cfg(target_arch = "x86_64")]
+        if crate::integrate::vex::available() {
+            // SAFETY: the processor has AVX
+            return unsafe { self.accept_one_vex(piece, trial, t_end) };
+        }
+        self.accept_one_body(piece, trial, t_end)
+    }
+
+    /// [`Self::accept_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn accept_one_vex(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
+        self.accept_one_body(piece, trial, t_end)
+    }
+
+    /// [`Self::accept_one`]'s work.
+    #[inline(always)]
+    fn accept_one_body(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         debug_assert!(self.single_level());
         let t0 = self.t;
         let tr0 = self.exact_trig(t0);
