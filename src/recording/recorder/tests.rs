@@ -241,25 +241,45 @@ fn impulses_without_penetration() {
     assert_eq!(found[0].impulse, 80.0);
 }
 
-/// A tracked height's two projections in one loop ([`project_pair`]) are [`project`]'s, bit
-/// for bit: every pair of lengths from 0 to 29 (equal ones in the fused loop from
-/// [`LANES_FROM`] on, every remainder; unequal ones one after the other), on values that round.
+/// Every tracked height's projections formed structure by structure ([`Tracks`]) are
+/// [`project`]'s, bit for bit, in AVX (where the processor has it) and in SSE2 pairs: every
+/// mode count from 0 to 29 (one chain below [`LANES_FROM`], four lanes from it on, every
+/// remainder), one to six entries per structure (blocks of four and what is left), two
+/// structures of different mode counts, on values that round.
 #[test]
-fn paired_projections_are_the_single_ones_bit_for_bit() {
+fn tracks_are_the_single_projections_bit_for_bit() {
     let vals = |n: usize, a: f64, b: f64| -> Vec<f64> {
         (0..n)
             .map(|j| ((j as f64) * a + b).sin() / (j as f64 + b))
             .collect()
     };
     for n1 in 0..30 {
-        for n2 in [n1, n1 / 2, n1 + 3] {
-            let (p1, q1, v1) = (vals(n1, 1.1, 0.3), vals(n1, 0.7, 1.9), vals(n1, 2.3, 0.8));
-            let (p2, q2, v2) = (vals(n2, 0.4, 2.2), vals(n2, 1.7, 0.6), vals(n2, 0.9, 1.3));
-            let (a, b) = project_pair((&p1, &q1, &v1), (&p2, &q2, &v2));
-            let (x, y) = (project(&p1, &q1, &v1), project(&p2, &q2, &v2));
-            let bits = |p: (f64, f64)| (p.0.to_bits(), p.1.to_bits());
-            assert_eq!(bits(a), bits(x), "{n1} and {n2} modes");
-            assert_eq!(bits(b), bits(y), "{n1} and {n2} modes");
+        for (n2, count) in [(n1, 1), (n1 / 2, 2), (n1 + 3, 3), (n1, 5), (n1 + 1, 6)] {
+            let (q, v) = (vals(n1 + n2, 0.7, 1.9), vals(n1 + n2, 2.3, 0.8));
+            let rows = |n: usize, k: usize| -> Vec<Vec<f64>> {
+                (0..k)
+                    .map(|e| vals(n, 1.1 + 0.3 * e as f64, 0.3 + e as f64))
+                    .collect()
+            };
+            let (r1, r2) = (rows(n1, count), rows(n2, 4));
+            // tracked heights pairing entries of both structures (the same entry twice too)
+            let of: Vec<[usize; 2]> = (0..count + 1).map(|k| [k % count, count + k % 4]).collect();
+            for wide in [false, true] {
+                let mut t = Tracks::from_groups(
+                    vec![(0, n1, r1.clone()), (n1, n2, r2.clone())],
+                    of.clone(),
+                    wide,
+                );
+                t.project(&q, &v);
+                for (k, &[a, b]) in of.iter().enumerate() {
+                    let (x, y) = t.at(k);
+                    let one = project(&r1[a], &q[..n1], &v[..n1]);
+                    let two = project(&r2[b - count], &q[n1..], &v[n1..]);
+                    let bits = |p: (f64, f64)| (p.0.to_bits(), p.1.to_bits());
+                    assert_eq!(bits(x), bits(one), "{n1} modes, entry {a}, wide {wide}");
+                    assert_eq!(bits(y), bits(two), "{n2} modes, entry {b}, wide {wide}");
+                }
+            }
         }
     }
 }
