@@ -359,6 +359,7 @@ impl<'s> Recorder<'s> {
     /// History samples at multiples of the interval in (previous step, this step]: cubic
     /// Hermite in the displacements (4th-order accurate like the step), linear in the forces.
     /// Returns whether a sample was taken.
+    #[inline(always)]
     fn sample(&mut self, s: &StepView, now: &Sample) -> bool {
         if self.next_time > s.t + 1e-9 * self.interval {
             // (most observations of a run in contact: no sample due)
@@ -467,6 +468,26 @@ impl Recorder<'_> {
     /// contact step left the others in free flight (see [`Observer::observe_stepped`]).
     #[inline]
     fn observe_part(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
+        #[cfg(target_arch = "x86_64")]
+        if self.tracks.wide() {
+            // SAFETY: `wide` only where the processor has AVX
+            unsafe { self.observe_avx(system, s, stepped) };
+            return;
+        }
+        self.observe_body(system, s, stepped);
+    }
+
+    /// [`Recorder::observe_part`] compiled for AVX: the same operations, encoded with three
+    /// operands (no register copies before each) and the projections inlined. Safety: the
+    /// processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn observe_avx(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
+        self.observe_body(system, s, stepped);
+    }
+
+    #[inline(always)]
+    fn observe_body(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
         if self.floors_pending.is_some() {
             self.build_floors(system);
         }

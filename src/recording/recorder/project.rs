@@ -240,7 +240,7 @@ impl Tracks {
     }
 
     /// Form every entry's `(w, ẇ)` from the modal state (`q`, `v`: every mode of the system).
-    #[inline]
+    #[inline(always)]
     pub(super) fn project(&mut self, q: &[f64], v: &[f64]) {
         #[cfg(target_arch = "x86_64")]
         if self.wide {
@@ -274,6 +274,7 @@ impl Tracks {
     /// [`Tracks::project`] with AVX. Safety: the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
+    #[inline]
     unsafe fn project_avx(&mut self, q: &[f64], v: &[f64]) {
         for g in &self.groups {
             let (q, v) = (&q[g.start..g.start + g.n], &v[g.start..g.start + g.n]);
@@ -298,6 +299,12 @@ impl Tracks {
                 e0 += m;
             }
         }
+    }
+
+    /// Whether the projections run in AVX (the processor has it).
+    #[inline(always)]
+    pub(super) fn wide(&self) -> bool {
+        self.wide
     }
 
     /// `(w₁, ẇ₁)` and `(w₂, ẇ₂)` of tracked height k at the current observation.
