@@ -576,6 +576,20 @@ impl SubGrid {
     }
 }
 
+/// Whether this processor has AVX (detected once per process by the standard library, then
+/// a load): the floor recorder's per-observation pass is then compiled for it
+/// ([`modal_sums_avx`]).
+pub(crate) fn wide_lanes() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 /// `s[j] += c · lin[j]` for the six sums (in pairs: [`F2`], each lane the scalar operation).
 #[inline(always)]
 fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
@@ -600,6 +614,20 @@ pub(crate) fn modal_sums<const K: usize>(
     out: [&mut [f64]; K],
     start: Option<(f64, &[f64])>,
 ) {
+    modal_sums_from(c, ns, x, out, start, 0);
+}
+
+/// [`modal_sums`] of the stations from `first` on (the ones before it formed elsewhere:
+/// [`modal_sums_avx`]).
+#[inline(always)]
+fn modal_sums_from<const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+    first: usize,
+) {
     if ns == 0 {
         return;
     }
@@ -608,9 +636,9 @@ pub(crate) fn modal_sums<const K: usize>(
     // (every input cut to the modes once: no bounds check per term)
     let x: [&[f64]; K] = std::array::from_fn(|k| &x[k][..nm]);
     let m0 = usize::from(start.is_none());
-    let pairs = ns / 2;
+    let pairs = (ns - first) / 2;
     for p in 0..pairs {
-        let i = 2 * p;
+        let i = first + 2 * p;
         // the first term: `s·w_f`, or the first mode's
         let mut acc: [F2; K] = match start {
             Some((s, w)) => [F2::splat(s) * F2::new(w[i], w[i + 1]); K],
@@ -627,7 +655,7 @@ pub(crate) fn modal_sums<const K: usize>(
             (out[k][i], out[k][i + 1]) = (a, b);
         }
     }
-    if ns % 2 == 1 {
+    if (ns - first) % 2 == 1 {
         let i = ns - 1;
         for k in 0..K {
             let mut o = match start {
@@ -640,6 +668,70 @@ pub(crate) fn modal_sums<const K: usize>(
             out[k][i] = o;
         }
     }
+}
+
+/// [`modal_sums`] four stations to an AVX operation (each lane the scalar operation of its
+/// station, in the modes' order: the same bits), the stations after the last group of four
+/// as [`modal_sums`] has them. Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+pub(crate) unsafe fn modal_sums_avx<const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    use std::arch::x86_64::{
+        _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd,
+        _mm256_storeu_pd,
+    };
+    if ns == 0 {
+        return;
+    }
+    let nm = c.len() / ns;
+    let c = &c[..nm * ns];
+    let mut xs = x;
+    for k in 0..K {
+        xs[k] = &x[k][..nm];
+    }
+    let x = xs;
+    let m0 = usize::from(start.is_none());
+    let quads = ns / 4;
+    for p in 0..quads {
+        let i = 4 * p;
+        // (a macro, not a closure: every operation inlined here, with its AVX)
+        macro_rules! load {
+            ($a:expr) => {
+                // SAFETY: AVX (the caller); four values in bounds (the slice is cut to them)
+                unsafe { _mm256_loadu_pd($a[..4].as_ptr()) }
+            };
+        }
+        // the first term: `s·w_f`, or the first mode's
+        let mut acc = [_mm256_setzero_pd(); K];
+        match start {
+            Some((s, w)) => acc = [_mm256_mul_pd(_mm256_set1_pd(s), load!(&w[i..])); K],
+            None => {
+                let c0 = load!(&c[i..]);
+                for k in 0..K {
+                    acc[k] = _mm256_mul_pd(_mm256_set1_pd(x[k][0]), c0);
+                }
+            }
+        }
+        for j in m0..nm {
+            let cj = load!(&c[j * ns + i..]);
+            for k in 0..K {
+                acc[k] = _mm256_add_pd(acc[k], _mm256_mul_pd(cj, _mm256_set1_pd(x[k][j])));
+            }
+        }
+        for k in 0..K {
+            let o = &mut out[k][i..i + 4];
+            // SAFETY: AVX (the caller); four values in bounds
+            unsafe { _mm256_storeu_pd(o.as_mut_ptr(), acc[k]) };
+        }
+    }
+    modal_sums_from(c, ns, x, out, start, 4 * quads);
 }
 
 /// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k, each sum

@@ -11,12 +11,33 @@ use super::between::{Between, between_on_hermite, between_on_subgrid};
 use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
+#[cfg(target_arch = "x86_64")]
+use crate::recording::subgrid::modal_sums_avx;
 use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
 pub(super) fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
     dst.clear();
     dst.extend_from_slice(src);
+}
+
+/// [`modal_sums`], four stations to an AVX operation ([`modal_sums_avx`]) where `WIDE` (called
+/// from [`Stations::observe_avx`] only: the processor has AVX).
+#[inline(always)]
+fn sums<const WIDE: bool, const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: `WIDE` only inside `Stations::observe_avx`, where the processor has AVX
+        unsafe { modal_sums_avx(c, ns, x, out, start) };
+        return;
+    }
+    modal_sums(c, ns, x, out, start);
 }
 
 /// How closely (relative to the row's largest term) a floor's storey-force row must be `k_j`
@@ -151,6 +172,8 @@ pub(super) struct Stations {
     /// `level_stations[level_at[k]..level_at[k + 1]]`, lowest first.
     pub(super) level_stations: Vec<usize>,
     pub(super) level_at: Vec<usize>,
+    /// Whether the processor has AVX ([`Stations::observe`] compiled for it).
+    pub(super) wide: bool,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -382,6 +405,7 @@ impl Stations {
             point: vec![0.0; 2 * ns],
             level_stations,
             level_at,
+            wide: crate::recording::subgrid::wide_lanes(),
         }
     }
 
@@ -389,6 +413,40 @@ impl Stations {
     /// every station takes the full update (tests).
     #[inline]
     pub(super) fn observe(
+        &mut self,
+        system: &System,
+        at: &At,
+        full: bool,
+        resolution: Option<f64>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if self.wide {
+            // SAFETY: `wide` only where the processor has AVX
+            unsafe { self.observe_avx(system, at, full, resolution) };
+            return;
+        }
+        self.observe_body::<false>(system, at, full, resolution);
+    }
+
+    /// [`Stations::observe`] compiled for AVX: the same IEEE operations in the same order
+    /// (three-operand encoding, and the stations' sums over the modes four stations to an
+    /// operation, [`modal_sums_avx`]). Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn observe_avx(
+        &mut self,
+        system: &System,
+        at: &At,
+        full: bool,
+        resolution: Option<f64>,
+    ) {
+        self.observe_body::<true>(system, at, full, resolution);
+    }
+
+    /// [`Stations::observe`]; `WIDE`: compiled for AVX (called from [`Stations::observe_avx`]
+    /// only).
+    #[inline(always)]
+    fn observe_body<const WIDE: bool>(
         &mut self,
         system: &System,
         at: &At,
@@ -427,7 +485,7 @@ impl Stations {
         let (vf, rest) = rest.split_at_mut(ns);
         let (vfd, inertia) = rest.split_at_mut(ns);
         let phi = &st.phi[..ns * nm];
-        modal_sums(phi, ns, [q, v, a], [u, ud, ua], None);
+        sums::<WIDE, 3>(phi, ns, [q, v, a], [u, ud, ua], None);
         // the storey force from the modes' equivalent static forces (springs: at the end)
         let rows = match &st.force {
             StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
@@ -441,7 +499,7 @@ impl Stations {
             );
         }
         if let Some(rows) = rows {
-            modal_sums(rows, ns, [q, v], [vf, vfd], None);
+            sums::<WIDE, 2>(rows, ns, [q, v], [vf, vfd], None);
         }
         // the previous observation's (u, u̇) become the one before: swap, then overwrite
         std::mem::swap(&mut st.prev, &mut st.before);
@@ -606,7 +664,7 @@ impl Stations {
             Equilibrium::Continuous { m, integral, above } => {
                 // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
                 let above = &above[..ns];
-                modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
+                sums::<WIDE, 1>(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
                 for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
                     let mut v_sec = -m * x;
                     contact(&mut v_sec, f);
