@@ -7,6 +7,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::FloorPeaks;
+#[cfg(target_arch = "x86_64")]
+use super::between::between_on_hermite_avx;
 use super::between::{Between, between_on_hermite, between_on_subgrid};
 use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
@@ -38,6 +40,40 @@ fn sums<const WIDE: bool, const K: usize>(
         return;
     }
     modal_sums(c, ns, x, out, start);
+}
+
+/// [`SubGrid::jerks`], compiled for AVX where `WIDE` (as [`sums`]).
+#[inline(always)]
+fn jerks<'g, const WIDE: bool>(
+    grid: &'g mut SubGrid,
+    h: f64,
+    va: (&[f64], &[f64]),
+    (omega, damp): (&[f64], &[f64]),
+) -> Option<(&'g [f64], &'g [f64])> {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: as in `sums`
+        return unsafe { grid.jerks_avx(h, va, omega, damp) };
+    }
+    grid.jerks(h, va, omega, damp)
+}
+
+/// [`between_on_hermite`], compiled for AVX where `WIDE` (as [`sums`]).
+#[inline(always)]
+fn hermite_between<const WIDE: bool>(
+    peaks: (&mut [FloorPeaks], &mut [f64]),
+    bt: &Between,
+    now: (&[f64], &[f64]),
+    jerks: (&[f64], &[f64], &[f64]),
+    times: (f64, f64, f64),
+) {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: as in `sums`
+        unsafe { between_on_hermite_avx(peaks, bt, now, jerks, times) };
+        return;
+    }
+    between_on_hermite(peaks, bt, now, jerks, times);
 }
 
 /// How closely (relative to the row's largest term) a floor's storey-force row must be `k_j`
@@ -756,12 +792,12 @@ impl Stations {
         if let (Some(h), Some(_), false) = (h, resolution, ringing)
             && !loaded
             && !st.between.prev_loaded
-            && let Some((j0, j1)) = st.grid.jerks(h, (v, a), omega, damp)
+            && let Some((j0, j1)) = jerks::<WIDE>(&mut st.grid, h, (v, a), (omega, damp))
         {
             let la = &system.ground_load()[st.offset..st.offset + nm];
             let bt = &mut st.between;
             bt.fill_ground_gain(&st.phi, la, (ns, nm));
-            between_on_hermite(
+            hermite_between::<WIDE>(
                 (&mut st.peaks[..ns], &mut st.hold[..ns]),
                 &st.between,
                 (&st.abs_now[..ns], &st.phi[..ns * nm]),
