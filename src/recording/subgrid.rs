@@ -798,6 +798,102 @@ fn combine(
 mod tests {
     use super::*;
 
+    /// The stations' sums four stations to an AVX operation ([`modal_sums_avx`]) are
+    /// [`modal_sums`]' bit for bit: every station count 0–13 (groups of four, a pair and a
+    /// single one left), 1–9 modes, one to three sums, from the first mode's term and from a
+    /// start `s·w`, on values that round. (Skipped without AVX.)
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn avx_sums_are_the_pairs_bit_for_bit() {
+        if !wide_lanes() {
+            return;
+        }
+        let vals = |n: usize, a: f64, b: f64| -> Vec<f64> {
+            (0..n)
+                .map(|j| ((j as f64) * a + b).sin() / (j as f64 + b))
+                .collect()
+        };
+        for ns in 0..14 {
+            for nm in 1..10 {
+                let c = vals(ns * nm, 1.3, 0.7);
+                let x = [vals(nm, 0.9, 1.1), vals(nm, 2.1, 0.4), vals(nm, 0.3, 2.5)];
+                let w = vals(ns, 1.7, 0.2);
+                for start in [None, Some((-0.37, &w[..]))] {
+                    let (mut a, mut b) = (
+                        [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
+                        [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
+                    );
+                    let [a0, a1, a2] = &mut a;
+                    modal_sums(&c, ns, [&x[0], &x[1], &x[2]], [a0, a1, a2], start);
+                    let [b0, b1, b2] = &mut b;
+                    // SAFETY: the processor has AVX (tested above)
+                    unsafe { modal_sums_avx(&c, ns, [&x[0], &x[1], &x[2]], [b0, b1, b2], start) };
+                    let (mut a1s, mut b1s) = (vec![0.0; ns], vec![0.0; ns]);
+                    modal_sums(&c, ns, [&x[1]], [&mut a1s], start);
+                    // SAFETY: as above
+                    unsafe { modal_sums_avx(&c, ns, [&x[1]], [&mut b1s], start) };
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    for k in 0..3 {
+                        assert_eq!(bits(&a[k]), bits(&b[k]), "{ns} stations, {nm} modes");
+                    }
+                    assert_eq!(bits(&a1s), bits(&b1s), "{ns} stations, {nm} modes, one sum");
+                    assert_eq!(bits(&a1s), bits(&a[1]), "one sum as three");
+                }
+            }
+        }
+    }
+
+    /// [`SubGrid::jerks`] compiled for AVX (four modes to an operation) gives the scalar
+    /// formula's bits, `η⃛ = ḟ − 2σ η̈ − ω² η̇` with ḟ = (f₁ − f₀)/h, at both ends, for 1–11
+    /// modes. (Skipped without AVX.)
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn avx_jerks_are_the_scalar_formula() {
+        if !wide_lanes() {
+            return;
+        }
+        for nm in 1..12 {
+            let vals = |a: f64, b: f64| -> Vec<f64> {
+                (0..nm)
+                    .map(|j| ((j as f64) * a + b).sin() * (1.0 + j as f64))
+                    .collect()
+            };
+            let (omega, c) = (
+                vals(0.0, 1.0)
+                    .iter()
+                    .map(|x| 3.0 + x.abs() * 40.0)
+                    .collect::<Vec<_>>(),
+                vals(0.7, 0.3).iter().map(|x| x.abs()).collect::<Vec<_>>(),
+            );
+            let (q0, v0, a0) = (vals(1.1, 0.2), vals(0.3, 1.7), vals(2.2, 0.9));
+            let (q1, v1, a1) = (vals(0.5, 2.2), vals(1.9, 0.1), vals(0.8, 1.4));
+            let h = 0.013;
+            let mut g = SubGrid::new(nm);
+            g.prepare(None, 0.5, (&q0, &v0, &a0), &omega, &c, 0.0);
+            g.advance(&q0, &v0);
+            g.prepare(Some(h), 0.5, (&q1, &v1, &a1), &omega, &c, 0.0);
+            // SAFETY: the processor has AVX (tested above)
+            let (j0, j1) = unsafe { g.jerks_avx(h, (&v1, &a1), &omega, &c) }.expect("an interval");
+            for n in 0..nm {
+                let w2 = omega[n] * omega[n];
+                let f0 = a0[n] + c[n] * v0[n] + w2 * q0[n];
+                let f1 = a1[n] + c[n] * v1[n] + w2 * q1[n];
+                let slope = (f1 - f0) / h;
+                let s0 = f0 - c[n] * v0[n] - w2 * q0[n];
+                assert_eq!(
+                    j0[n].to_bits(),
+                    (slope - c[n] * s0 - w2 * v0[n]).to_bits(),
+                    "{nm}: {n}"
+                );
+                assert_eq!(
+                    j1[n].to_bits(),
+                    (slope - c[n] * a1[n] - w2 * v1[n]).to_bits(),
+                    "{nm}: {n}"
+                );
+            }
+        }
+    }
+
     /// The closed form of one mode against the damped oscillator's own solution under a
     /// linear load, written here (RK4 at 1e-6 of the interval): ζ = 0.02, ω = 300 rad/s over
     /// 10 ms (ωh = 3, far beyond the Hermite), values and rates at every point to 1e-9 of

@@ -301,6 +301,12 @@ impl Tracks {
         }
     }
 
+    /// The SSE2 pass even where the processor has AVX (tests: both passes agree).
+    #[cfg(test)]
+    pub(super) fn narrow(&mut self) {
+        self.wide = false;
+    }
+
     /// Whether the projections run in AVX (the processor has it).
     #[inline(always)]
     pub(super) fn wide(&self) -> bool {
