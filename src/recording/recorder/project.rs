@@ -425,7 +425,7 @@ impl Group {
                 d[i] = _mm256_add_pd(d[i], _mm256_mul_pd(p, v));
             }
         }
-        if self.n % 4 == 0 {
+        if self.n.is_multiple_of(4) {
             for (i, o) in out.iter_mut().enumerate().take(M) {
                 let s = _mm256_hadd_pd(w[i], d[i]);
                 let t = _mm_add_pd(_mm256_castpd256_pd128(s), _mm256_extractf128_pd::<1>(s));
