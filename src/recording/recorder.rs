@@ -334,6 +334,7 @@ impl<'s> Recorder<'s> {
 
     /// One history sample (forces in `row_forces`): to the sink, and into the bounded
     /// in-memory history.
+    #[inline(always)]
     fn keep(&mut self, t: f64, w: [f64; 2]) {
         if let Some(sink) = self.sink.as_deref_mut() {
             sink.row(t, w, &self.row_forces);
@@ -466,7 +467,7 @@ impl Observer for Recorder<'_> {
 impl Recorder<'_> {
     /// [`Observer::observe`], the floors of the structures `stepped.active` only where a row's
     /// contact step left the others in free flight (see [`Observer::observe_stepped`]).
-    #[inline]
+    #[inline(always)]
     fn observe_part(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
         #[cfg(target_arch = "x86_64")]
         if self.tracks.wide() {

@@ -135,6 +135,8 @@ pub(super) struct Tracks {
     values: Vec<(f64, f64)>,
     /// Whether the processor runs the AVX pass.
     wide: bool,
+    /// Whether every structure has fewer than [`LANES_FROM`] modes (one chain per sum).
+    chains: bool,
 }
 
 /// One structure's tracked heights.
@@ -232,6 +234,7 @@ impl Tracks {
             first += rows.len();
         }
         Tracks {
+            chains: groups.iter().all(|g| g.n < LANES_FROM),
             groups,
             of,
             values: vec![(0.0, 0.0); first],
@@ -242,6 +245,14 @@ impl Tracks {
     /// Form every entry's `(w, ẇ)` from the modal state (`q`, `v`: every mode of the system).
     #[inline(always)]
     pub(super) fn project(&mut self, q: &[f64], v: &[f64]) {
+        if self.chains {
+            // (a few modes a structure: the chains here, without a call)
+            for g in &self.groups {
+                let (q, v) = (&q[g.start..g.start + g.n], &v[g.start..g.start + g.n]);
+                g.chain(q, v, &mut self.values[g.first..g.first + g.count]);
+            }
+            return;
+        }
         #[cfg(target_arch = "x86_64")]
         if self.wide {
             // SAFETY: `wide` only where the processor has AVX (`wide_lanes`)
@@ -338,17 +349,44 @@ impl Group {
     /// Below [`LANES_FROM`] modes: every entry's sums in one chain in the modes' order.
     #[inline(always)]
     fn chain(&self, q: &[f64], v: &[f64], out: &mut [(f64, f64)]) {
+        // (the mode counts of most structures, unrolled)
+        match self.n {
+            1 => self.chain_of::<1>(q, v, out),
+            2 => self.chain_of::<2>(q, v, out),
+            3 => self.chain_of::<3>(q, v, out),
+            4 => self.chain_of::<4>(q, v, out),
+            _ => self.chain_any(q, v, out),
+        }
+    }
+
+    /// [`Group::chain`] of `N` modes.
+    #[inline(always)]
+    fn chain_of<const N: usize>(&self, q: &[f64], v: &[f64], out: &mut [(f64, f64)]) {
+        let (q, v) = (&q[..N], &v[..N]);
+        let (rows, _) = self.rest.as_chunks::<N>();
+        for (o, phi) in out.iter_mut().zip(rows) {
+            let (mut w, mut wd) = (0.0, 0.0);
+            for j in 0..N {
+                w += phi[j] * q[j];
+                wd += phi[j] * v[j];
+            }
+            *o = (w, wd);
+        }
+    }
+
+    /// [`Group::chain`] of any number of modes.
+    #[inline(always)]
+    fn chain_any(&self, q: &[f64], v: &[f64], out: &mut [(f64, f64)]) {
         let n = self.n;
-        for (o, phi) in out.iter_mut().zip(self.rest.chunks_exact(n.max(1))) {
+        let (q, v) = (&q[..n], &v[..n]);
+        for (e, o) in out.iter_mut().enumerate() {
+            let phi = &self.rest[e * n..(e + 1) * n];
             let (mut w, mut wd) = (0.0, 0.0);
             for j in 0..n {
                 w += phi[j] * q[j];
                 wd += phi[j] * v[j];
             }
             *o = (w, wd);
-        }
-        if n == 0 {
-            out.fill((0.0, 0.0));
         }
     }
 
