@@ -14,11 +14,15 @@ use crate::numerics::hermite::{
     Basis, HERMITE_REACH, big, hermite, hermite_abs_max, hermite_bound, hermite_max, hermite_slope,
     small,
 };
-use crate::numerics::lanes::F2;
 use crate::recording::floor_response::FloorRecorder;
 use crate::recording::history::{Envelope, History, HistorySink, MAX_KEPT_SAMPLES, sample_count};
 use crate::recording::run_record::{EnergyBalance, Impact, LevelRecord, RunRecord};
 use crate::recording::storey_record::StoreyTracker;
+
+mod project;
+#[cfg(test)]
+use project::{LANES_FROM, project};
+use project::{Tracks, modal_energy};
 
 #[derive(Debug, Clone, Copy)]
 struct Open {
@@ -35,18 +39,9 @@ pub struct Recorder<'s> {
     /// Index of the main (highest) tracked height. Heights tracked: the contact levels' (for the
     /// no-contact run the same heights are passed in, so that both runs report the same places).
     main: usize,
-    /// φ of the left and the right structure of each tracked height's pair at that height:
-    /// rows of n_left and n_right.
-    phi1: Vec<Vec<f64>>,
-    phi2: Vec<Vec<f64>>,
-    /// Per tracked height, where its pair's modes are in the state: the left structure's
-    /// `[0]..[1]`, the right one's `[1]..[2]` (a pair: `[0, n₁, n]`).
-    spans: Vec<[usize; 3]>,
-    /// Per tracked height, for its left and right structure: the earlier track (`2·k` for
-    /// level k's left structure, `2·k + 1` its right one) of the same structure at the same
-    /// height, whose projection an observation takes once (a row's building is tracked at
-    /// the same heights with both neighbours).
-    same: Vec<[Option<usize>; 2]>,
+    /// The tracked heights' displacements and velocities at an observation, formed structure
+    /// by structure ([`Tracks`]).
+    tracks: Tracks,
     /// Number of structures (the length of `RunRecord::floors`).
     structures: usize,
     levels: Vec<LevelRecord>,
@@ -140,26 +135,6 @@ impl<'s> Recorder<'s> {
             .enumerate()
             .fold(0, |best, (i, &h)| if h > heights[best] { i } else { best });
         let st = &system.structures;
-        let phi1 = (heights.iter().zip(pairs))
-            .map(|(&h, &p)| st[p].shapes_at(h))
-            .collect();
-        let phi2 = (heights.iter().zip(pairs))
-            .map(|(&h, &p)| st[p + 1].shapes_at(h))
-            .collect();
-        let spans = pairs
-            .iter()
-            .map(|&p| {
-                let (l, r) = (system.modes_of(p), system.modes_of(p + 1));
-                [l.start, r.start, r.end]
-            })
-            .collect();
-        let key = |t: usize| {
-            let k = t / 2;
-            (pairs[k] + t % 2, heights[k].to_bits())
-        };
-        let same = (0..heights.len())
-            .map(|k| [0, 1].map(|side| (0..2 * k + side).find(|&t| key(t) == key(2 * k + side))))
-            .collect();
         let samples = usize::try_from(sample_count(interval, duration)).unwrap_or(usize::MAX);
         let stride = if samples <= MAX_KEPT_SAMPLES {
             1
@@ -175,10 +150,7 @@ impl<'s> Recorder<'s> {
         let nl = system.levels.len();
         Recorder {
             main,
-            phi1,
-            phi2,
-            spans,
-            same,
+            tracks: Tracks::new(system, heights, pairs),
             structures: st.len(),
             levels: heights
                 .iter()
@@ -362,6 +334,7 @@ impl<'s> Recorder<'s> {
 
     /// One history sample (forces in `row_forces`): to the sink, and into the bounded
     /// in-memory history.
+    #[inline(always)]
     fn keep(&mut self, t: f64, w: [f64; 2]) {
         if let Some(sink) = self.sink.as_deref_mut() {
             sink.row(t, w, &self.row_forces);
@@ -387,6 +360,7 @@ impl<'s> Recorder<'s> {
     /// History samples at multiples of the interval in (previous step, this step]: cubic
     /// Hermite in the displacements (4th-order accurate like the step), linear in the forces.
     /// Returns whether a sample was taken.
+    #[inline(always)]
     fn sample(&mut self, s: &StepView, now: &Sample) -> bool {
         if self.next_time > s.t + 1e-9 * self.interval {
             // (most observations of a run in contact: no sample due)
@@ -478,147 +452,6 @@ impl HistorySink for Picked<'_, '_> {
     }
 }
 
-/// Below this many modes a sum runs in one chain (as it always did); from it on in four
-/// lanes, which the compiler turns into vector operations.
-const LANES_FROM: usize = 8;
-
-/// `(φ·η, φ·η̇)` in one pass (from [`LANES_FROM`] modes on in four lanes: the same products
-/// added in another order, so the values move by round-off only).
-#[inline(always)]
-fn project(phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
-    let n = phi.len().min(q.len()).min(v.len());
-    let (phi, q, v) = (&phi[..n], &q[..n], &v[..n]);
-    if n < LANES_FROM {
-        let (mut w, mut wd) = (0.0, 0.0);
-        for j in 0..n {
-            w += phi[j] * q[j];
-            wd += phi[j] * v[j];
-        }
-        return (w, wd);
-    }
-    // four lanes as two pairs, (0, 1) and (2, 3), for w and for ẇ, each pair one vector
-    // operation ([`F2`]), where with four-lane arrays the compiler paired w with ẇ and
-    // shuffled every product into place (29 instructions per four modes); the same products
-    // in the same lanes, added in the same order: the same bits
-    let z = F2::zero();
-    let mut acc = [z; 4];
-    let (cp, _) = phi.as_chunks::<4>();
-    let (cq, _) = q.as_chunks::<4>();
-    let (cv, _) = v.as_chunks::<4>();
-    for ((p, q), v) in cp.iter().zip(cq).zip(cv) {
-        lanes4(&mut acc, p, q, v);
-    }
-    lanes_end(acc, phi, q, v)
-}
-
-/// One group of four modes of [`project`]'s lanes: `acc` = (w lanes 0–1, w lanes 2–3, ẇ lanes
-/// 0–1, ẇ lanes 2–3).
-#[inline(always)]
-fn lanes4(acc: &mut [F2; 4], p: &[f64; 4], q: &[f64; 4], v: &[f64; 4]) {
-    let (p01, p23) = (F2::new(p[0], p[1]), F2::new(p[2], p[3]));
-    acc[0] = acc[0] + p01 * F2::new(q[0], q[1]);
-    acc[1] = acc[1] + p23 * F2::new(q[2], q[3]);
-    acc[2] = acc[2] + p01 * F2::new(v[0], v[1]);
-    acc[3] = acc[3] + p23 * F2::new(v[2], v[3]);
-}
-
-/// [`project`]'s end: the modes after the last group of four, each into its lane, and the
-/// lanes added as (0 + 1) + (2 + 3).
-#[inline(always)]
-fn lanes_end(acc: [F2; 4], phi: &[f64], q: &[f64], v: &[f64]) -> (f64, f64) {
-    let n = phi.len().min(q.len()).min(v.len());
-    let ([w0, w1], [w2, w3]) = (acc[0].get(), acc[1].get());
-    let ([d0, d1], [d2, d3]) = (acc[2].get(), acc[3].get());
-    let (mut w, mut wd) = ([w0, w1, w2, w3], [d0, d1, d2, d3]);
-    let r = n / 4 * 4;
-    for l in 0..n - r {
-        w[l] += phi[r + l] * q[r + l];
-        wd[l] += phi[r + l] * v[r + l];
-    }
-    (
-        (w[0] + w[1]) + (w[2] + w[3]),
-        (wd[0] + wd[1]) + (wd[2] + wd[3]),
-    )
-}
-
-/// [`project`] of a tracked height's two structures, `(φ₁, η₁, η̇₁)` and `(φ₂, η₂, η̇₂)`: where
-/// both have as many modes (from [`LANES_FROM`] on), in one loop over both (each sum's lanes
-/// take the same products in the same order: the same bits); else one after the other.
-#[inline(always)]
-fn project_pair(
-    (p1, q1, v1): (&[f64], &[f64], &[f64]),
-    (p2, q2, v2): (&[f64], &[f64], &[f64]),
-) -> ((f64, f64), (f64, f64)) {
-    let n = p1.len().min(q1.len()).min(v1.len());
-    if n < LANES_FROM || p2.len().min(q2.len()).min(v2.len()) != n {
-        return (project(p1, q1, v1), project(p2, q2, v2));
-    }
-    let (p1, q1, v1) = (&p1[..n], &q1[..n], &v1[..n]);
-    let (p2, q2, v2) = (&p2[..n], &q2[..n], &v2[..n]);
-    let z = F2::zero();
-    let (mut a1, mut a2) = ([z; 4], [z; 4]);
-    let one = p1
-        .as_chunks::<4>()
-        .0
-        .iter()
-        .zip(q1.as_chunks::<4>().0)
-        .zip(v1.as_chunks::<4>().0);
-    let two = p2
-        .as_chunks::<4>()
-        .0
-        .iter()
-        .zip(q2.as_chunks::<4>().0)
-        .zip(v2.as_chunks::<4>().0);
-    for (((p, q), v), ((pp, qq), vv)) in one.zip(two) {
-        lanes4(&mut a1, p, q, v);
-        lanes4(&mut a2, pp, qq, vv);
-    }
-    (lanes_end(a1, p1, q1, v1), lanes_end(a2, p2, q2, v2))
-}
-
-/// The modal energy `Σ ½(η̇² + ω²η²)` (J; `w2`: ω² of every mode), as
-/// [`System::modal_energy`] forms it, in four lanes from [`LANES_FROM`] modes on.
-#[inline]
-fn modal_energy(w2: &[f64], q: &[f64], v: &[f64]) -> f64 {
-    let n = w2.len().min(q.len()).min(v.len());
-    let (w2, q, v) = (&w2[..n], &q[..n], &v[..n]);
-    if n < LANES_FROM {
-        let mut e = 0.0;
-        for j in 0..n {
-            e += 0.5 * (v[j] * v[j] + w2[j] * q[j] * q[j]);
-        }
-        return e;
-    }
-    // (as `project`: two pairs of lanes, the same lanes and order as four-lane arrays)
-    let (half, z) = (F2::splat(0.5), F2::zero());
-    let (mut e01, mut e23) = (z, z);
-    let (cw, _) = w2.as_chunks::<4>();
-    let (cq, _) = q.as_chunks::<4>();
-    let (cv, _) = v.as_chunks::<4>();
-    for ((w, q), v) in cw.iter().zip(cq).zip(cv) {
-        let (w01, q01, v01) = (
-            F2::new(w[0], w[1]),
-            F2::new(q[0], q[1]),
-            F2::new(v[0], v[1]),
-        );
-        let (w23, q23, v23) = (
-            F2::new(w[2], w[3]),
-            F2::new(q[2], q[3]),
-            F2::new(v[2], v[3]),
-        );
-        e01 = e01 + half * (v01 * v01 + w01 * q01 * q01);
-        e23 = e23 + half * (v23 * v23 + w23 * q23 * q23);
-    }
-    let ([a, b], [c, d]) = (e01.get(), e23.get());
-    let mut e = [a, b, c, d];
-    let r = n / 4 * 4;
-    for l in 0..n - r {
-        let (w, q, v) = (w2[r + l], q[r + l], v[r + l]);
-        e[l] += 0.5 * (v * v + w * q * q);
-    }
-    (e[0] + e[1]) + (e[2] + e[3])
-}
-
 impl Observer for Recorder<'_> {
     fn observe(&mut self, system: &System, s: &StepView) {
         self.observe_part(system, s, None);
@@ -634,8 +467,28 @@ impl Observer for Recorder<'_> {
 impl Recorder<'_> {
     /// [`Observer::observe`], the floors of the structures `stepped.active` only where a row's
     /// contact step left the others in free flight (see [`Observer::observe_stepped`]).
-    #[inline]
+    #[inline(always)]
     fn observe_part(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
+        #[cfg(target_arch = "x86_64")]
+        if self.tracks.wide() {
+            // SAFETY: `wide` only where the processor has AVX
+            unsafe { self.observe_avx(system, s, stepped) };
+            return;
+        }
+        self.observe_body(system, s, stepped);
+    }
+
+    /// [`Recorder::observe_part`] compiled for AVX: the same operations, encoded with three
+    /// operands (no register copies before each) and the projections inlined. Safety: the
+    /// processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn observe_avx(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
+        self.observe_body(system, s, stepped);
+    }
+
+    #[inline(always)]
+    fn observe_body(&mut self, system: &System, s: &StepView, stepped: Option<&Stepped>) {
         if self.floors_pending.is_some() {
             self.build_floors(system);
         }
@@ -670,30 +523,9 @@ impl Recorder<'_> {
         let h = s.t - self.last_t;
         let refine = self.prev.is_some() && h > 0.0;
         let reach = HERMITE_REACH * h;
+        self.tracks.project(q, s.v);
         for k in 0..self.levels.len() {
-            let [a, b, c] = self.spans[k];
-            // (a structure at a height tracked before, at a lower level index: its projection,
-            // already taken at this observation, is the same sums of the same state)
-            let taken = |p: usize| {
-                let (x, o) = (self.prev_w[p / 2], 2 * (p % 2));
-                (x[o], x[o + 1])
-            };
-            let ((w1, w1d), (w2, w2d)) = match self.same[k] {
-                [None, None] => project_pair(
-                    (&self.phi1[k], &q[a..b], &s.v[a..b]),
-                    (&self.phi2[k], &q[b..c], &s.v[b..c]),
-                ),
-                [s1, s2] => (
-                    match s1 {
-                        Some(p) => taken(p),
-                        None => project(&self.phi1[k], &q[a..b], &s.v[a..b]),
-                    },
-                    match s2 {
-                        Some(p) => taken(p),
-                        None => project(&self.phi2[k], &q[b..c], &s.v[b..c]),
-                    },
-                ),
-            };
+            let ((w1, w1d), (w2, w2d)) = self.tracks.at(k);
             let (prev_w, l) = (&mut self.prev_w[k], &mut self.levels[k]);
             raise(&mut l.peak_w1, w1.abs());
             raise(&mut l.peak_w2, w2.abs());

@@ -539,6 +539,31 @@ impl SubGrid {
     pub(crate) fn jerks(
         &mut self,
         h: f64,
+        va: (&[f64], &[f64]),
+        omega: &[f64],
+        c: &[f64],
+    ) -> Option<(&[f64], &[f64])> {
+        self.jerks_body(h, va, omega, c)
+    }
+
+    /// [`SubGrid::jerks`] compiled for AVX (four modes to an operation, the same IEEE
+    /// operations lane by lane). Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    pub(crate) unsafe fn jerks_avx(
+        &mut self,
+        h: f64,
+        va: (&[f64], &[f64]),
+        omega: &[f64],
+        c: &[f64],
+    ) -> Option<(&[f64], &[f64])> {
+        self.jerks_body(h, va, omega, c)
+    }
+
+    #[inline(always)]
+    fn jerks_body(
+        &mut self,
+        h: f64,
         (v, a): (&[f64], &[f64]),
         omega: &[f64],
         c: &[f64],
@@ -547,22 +572,17 @@ impl SubGrid {
             return None;
         }
         let nm = self.prev_q.len();
-        let (v, a, omega, c) = (&v[..nm], &a[..nm], &omega[..nm], &c[..nm]);
-        let (j0, j1) = (&mut self.jerk0[..nm], &mut self.jerk1[..nm]);
-        let (q0, v0, f0, f1) = (
-            &self.prev_q[..nm],
-            &self.prev_v[..nm],
-            &self.prev_f[..nm],
-            &self.now_f[..nm],
+        jerk_pass(
+            h,
+            (&mut self.jerk0[..nm], &mut self.jerk1[..nm]),
+            (&v[..nm], &a[..nm], &omega[..nm], &c[..nm]),
+            (
+                &self.prev_q[..nm],
+                &self.prev_v[..nm],
+                &self.prev_f[..nm],
+                &self.now_f[..nm],
+            ),
         );
-        for n in 0..nm {
-            let w2 = omega[n] * omega[n];
-            let slope = (f1[n] - f0[n]) / h;
-            // η̈ at the start from the mode's equation (the previous observation's)
-            let a0 = f0[n] - c[n] * v0[n] - w2 * q0[n];
-            j0[n] = slope - c[n] * a0 - w2 * v0[n];
-            j1[n] = slope - c[n] * a[n] - w2 * v[n];
-        }
         Some((&self.jerk0[..nm], &self.jerk1[..nm]))
     }
 
@@ -573,6 +593,42 @@ impl SubGrid {
         self.prev_v.copy_from_slice(&v[..nm]);
         std::mem::swap(&mut self.prev_f, &mut self.now_f);
         self.have_prev = true;
+    }
+}
+
+/// [`SubGrid::jerks`]' pass over the modes (its slices as arguments: the compiler knows the
+/// outputs alias none of the inputs, and vectorises without run-time overlap checks).
+#[inline(always)]
+fn jerk_pass(
+    h: f64,
+    (j0, j1): (&mut [f64], &mut [f64]),
+    (v, a, omega, c): (&[f64], &[f64], &[f64], &[f64]),
+    (q0, v0, f0, f1): (&[f64], &[f64], &[f64], &[f64]),
+) {
+    let nm = j0.len();
+    let (j1, v, a, omega, c) = (&mut j1[..nm], &v[..nm], &a[..nm], &omega[..nm], &c[..nm]);
+    let (q0, v0, f0, f1) = (&q0[..nm], &v0[..nm], &f0[..nm], &f1[..nm]);
+    for n in 0..nm {
+        let w2 = omega[n] * omega[n];
+        let slope = (f1[n] - f0[n]) / h;
+        // η̈ at the start from the mode's equation (the previous observation's)
+        let a0 = f0[n] - c[n] * v0[n] - w2 * q0[n];
+        j0[n] = slope - c[n] * a0 - w2 * v0[n];
+        j1[n] = slope - c[n] * a[n] - w2 * v[n];
+    }
+}
+
+/// Whether this processor has AVX (detected once per process by the standard library, then
+/// a load): the floor recorder's per-observation pass is then compiled for it
+/// ([`modal_sums_avx`]).
+pub(crate) fn wide_lanes() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
     }
 }
 
@@ -600,6 +656,20 @@ pub(crate) fn modal_sums<const K: usize>(
     out: [&mut [f64]; K],
     start: Option<(f64, &[f64])>,
 ) {
+    modal_sums_from(c, ns, x, out, start, 0);
+}
+
+/// [`modal_sums`] of the stations from `first` on (the ones before it formed elsewhere:
+/// [`modal_sums_avx`]).
+#[inline(always)]
+fn modal_sums_from<const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+    first: usize,
+) {
     if ns == 0 {
         return;
     }
@@ -608,9 +678,9 @@ pub(crate) fn modal_sums<const K: usize>(
     // (every input cut to the modes once: no bounds check per term)
     let x: [&[f64]; K] = std::array::from_fn(|k| &x[k][..nm]);
     let m0 = usize::from(start.is_none());
-    let pairs = ns / 2;
+    let pairs = (ns - first) / 2;
     for p in 0..pairs {
-        let i = 2 * p;
+        let i = first + 2 * p;
         // the first term: `s·w_f`, or the first mode's
         let mut acc: [F2; K] = match start {
             Some((s, w)) => [F2::splat(s) * F2::new(w[i], w[i + 1]); K],
@@ -627,7 +697,7 @@ pub(crate) fn modal_sums<const K: usize>(
             (out[k][i], out[k][i + 1]) = (a, b);
         }
     }
-    if ns % 2 == 1 {
+    if (ns - first) % 2 == 1 {
         let i = ns - 1;
         for k in 0..K {
             let mut o = match start {
@@ -640,6 +710,70 @@ pub(crate) fn modal_sums<const K: usize>(
             out[k][i] = o;
         }
     }
+}
+
+/// [`modal_sums`] four stations to an AVX operation (each lane the scalar operation of its
+/// station, in the modes' order: the same bits), the stations after the last group of four
+/// as [`modal_sums`] has them. Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+pub(crate) unsafe fn modal_sums_avx<const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    use std::arch::x86_64::{
+        _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd,
+        _mm256_storeu_pd,
+    };
+    if ns == 0 {
+        return;
+    }
+    let nm = c.len() / ns;
+    let c = &c[..nm * ns];
+    let mut xs = x;
+    for k in 0..K {
+        xs[k] = &x[k][..nm];
+    }
+    let x = xs;
+    let m0 = usize::from(start.is_none());
+    let quads = ns / 4;
+    for p in 0..quads {
+        let i = 4 * p;
+        // (a macro, not a closure: every operation inlined here, with its AVX)
+        macro_rules! load {
+            ($a:expr) => {
+                // SAFETY: AVX (the caller); four values in bounds (the slice is cut to them)
+                unsafe { _mm256_loadu_pd($a[..4].as_ptr()) }
+            };
+        }
+        // the first term: `s·w_f`, or the first mode's
+        let mut acc = [_mm256_setzero_pd(); K];
+        match start {
+            Some((s, w)) => acc = [_mm256_mul_pd(_mm256_set1_pd(s), load!(&w[i..])); K],
+            None => {
+                let c0 = load!(&c[i..]);
+                for k in 0..K {
+                    acc[k] = _mm256_mul_pd(_mm256_set1_pd(x[k][0]), c0);
+                }
+            }
+        }
+        for j in m0..nm {
+            let cj = load!(&c[j * ns + i..]);
+            for k in 0..K {
+                acc[k] = _mm256_add_pd(acc[k], _mm256_mul_pd(cj, _mm256_set1_pd(x[k][j])));
+            }
+        }
+        for k in 0..K {
+            let o = &mut out[k][i..i + 4];
+            // SAFETY: AVX (the caller); four values in bounds
+            unsafe { _mm256_storeu_pd(o.as_mut_ptr(), acc[k]) };
+        }
+    }
+    modal_sums_from(c, ns, x, out, start, 4 * quads);
 }
 
 /// `y[k·ns + f] = Σ_n coeff[n·ns + f] η[k·nm + n]` (and ẏ from η̇) at every point k, each sum
@@ -663,6 +797,102 @@ fn combine(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The stations' sums four stations to an AVX operation ([`modal_sums_avx`]) are
+    /// [`modal_sums`]' bit for bit: every station count 0–13 (groups of four, a pair and a
+    /// single one left), 1–9 modes, one to three sums, from the first mode's term and from a
+    /// start `s·w`, on values that round. (Skipped without AVX.)
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn avx_sums_are_the_pairs_bit_for_bit() {
+        if !wide_lanes() {
+            return;
+        }
+        let vals = |n: usize, a: f64, b: f64| -> Vec<f64> {
+            (0..n)
+                .map(|j| ((j as f64) * a + b).sin() / (j as f64 + b))
+                .collect()
+        };
+        for ns in 0..14 {
+            for nm in 1..10 {
+                let c = vals(ns * nm, 1.3, 0.7);
+                let x = [vals(nm, 0.9, 1.1), vals(nm, 2.1, 0.4), vals(nm, 0.3, 2.5)];
+                let w = vals(ns, 1.7, 0.2);
+                for start in [None, Some((-0.37, &w[..]))] {
+                    let (mut a, mut b) = (
+                        [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
+                        [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]],
+                    );
+                    let [a0, a1, a2] = &mut a;
+                    modal_sums(&c, ns, [&x[0], &x[1], &x[2]], [a0, a1, a2], start);
+                    let [b0, b1, b2] = &mut b;
+                    // SAFETY: the processor has AVX (tested above)
+                    unsafe { modal_sums_avx(&c, ns, [&x[0], &x[1], &x[2]], [b0, b1, b2], start) };
+                    let (mut a1s, mut b1s) = (vec![0.0; ns], vec![0.0; ns]);
+                    modal_sums(&c, ns, [&x[1]], [&mut a1s], start);
+                    // SAFETY: as above
+                    unsafe { modal_sums_avx(&c, ns, [&x[1]], [&mut b1s], start) };
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    for k in 0..3 {
+                        assert_eq!(bits(&a[k]), bits(&b[k]), "{ns} stations, {nm} modes");
+                    }
+                    assert_eq!(bits(&a1s), bits(&b1s), "{ns} stations, {nm} modes, one sum");
+                    assert_eq!(bits(&a1s), bits(&a[1]), "one sum as three");
+                }
+            }
+        }
+    }
+
+    /// [`SubGrid::jerks`] compiled for AVX (four modes to an operation) gives the scalar
+    /// formula's bits, `η⃛ = ḟ − 2σ η̈ − ω² η̇` with ḟ = (f₁ − f₀)/h, at both ends, for 1–11
+    /// modes. (Skipped without AVX.)
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn avx_jerks_are_the_scalar_formula() {
+        if !wide_lanes() {
+            return;
+        }
+        for nm in 1..12 {
+            let vals = |a: f64, b: f64| -> Vec<f64> {
+                (0..nm)
+                    .map(|j| ((j as f64) * a + b).sin() * (1.0 + j as f64))
+                    .collect()
+            };
+            let (omega, c) = (
+                vals(0.0, 1.0)
+                    .iter()
+                    .map(|x| 3.0 + x.abs() * 40.0)
+                    .collect::<Vec<_>>(),
+                vals(0.7, 0.3).iter().map(|x| x.abs()).collect::<Vec<_>>(),
+            );
+            let (q0, v0, a0) = (vals(1.1, 0.2), vals(0.3, 1.7), vals(2.2, 0.9));
+            let (q1, v1, a1) = (vals(0.5, 2.2), vals(1.9, 0.1), vals(0.8, 1.4));
+            let h = 0.013;
+            let mut g = SubGrid::new(nm);
+            g.prepare(None, 0.5, (&q0, &v0, &a0), &omega, &c, 0.0);
+            g.advance(&q0, &v0);
+            g.prepare(Some(h), 0.5, (&q1, &v1, &a1), &omega, &c, 0.0);
+            // SAFETY: the processor has AVX (tested above)
+            let (j0, j1) = unsafe { g.jerks_avx(h, (&v1, &a1), &omega, &c) }.expect("an interval");
+            for n in 0..nm {
+                let w2 = omega[n] * omega[n];
+                let f0 = a0[n] + c[n] * v0[n] + w2 * q0[n];
+                let f1 = a1[n] + c[n] * v1[n] + w2 * q1[n];
+                let slope = (f1 - f0) / h;
+                let s0 = f0 - c[n] * v0[n] - w2 * q0[n];
+                assert_eq!(
+                    j0[n].to_bits(),
+                    (slope - c[n] * s0 - w2 * v0[n]).to_bits(),
+                    "{nm}: {n}"
+                );
+                assert_eq!(
+                    j1[n].to_bits(),
+                    (slope - c[n] * a1[n] - w2 * v1[n]).to_bits(),
+                    "{nm}: {n}"
+                );
+            }
+        }
+    }
 
     /// The closed form of one mode against the damped oscillator's own solution under a
     /// linear load, written here (RK4 at 1e-6 of the interval): ζ = 0.02, ω = 300 rad/s over

@@ -225,6 +225,31 @@ pub(super) fn between_on_subgrid(
 /// also counts towards the next floor history sample.
 #[inline(never)]
 pub(super) fn between_on_hermite(
+    peaks: (&mut [FloorPeaks], &mut [f64]),
+    bt: &Between,
+    now: (&[f64], &[f64]),
+    jerks: (&[f64], &[f64], &[f64]),
+    times: (f64, f64, f64),
+) {
+    hermite_body(peaks, bt, now, jerks, times);
+}
+
+/// [`between_on_hermite`] compiled for AVX (the same IEEE operations in the same order).
+/// Safety: the processor has AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+pub(super) unsafe fn between_on_hermite_avx(
+    peaks: (&mut [FloorPeaks], &mut [f64]),
+    bt: &Between,
+    now: (&[f64], &[f64]),
+    jerks: (&[f64], &[f64], &[f64]),
+    times: (f64, f64, f64),
+) {
+    hermite_body(peaks, bt, now, jerks, times);
+}
+
+#[inline(always)]
+fn hermite_body(
     (peaks, hold): (&mut [FloorPeaks], &mut [f64]),
     bt: &Between,
     (abs_now, phi): (&[f64], &[f64]),

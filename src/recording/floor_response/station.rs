@@ -7,16 +7,73 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::FloorPeaks;
+#[cfg(target_arch = "x86_64")]
+use super::between::between_on_hermite_avx;
 use super::between::{Between, between_on_hermite, between_on_subgrid};
 use super::bounds::{raise, reach, refine_on_subgrid, ring_bound, update_station};
 use crate::model::modal::{ModalModel, Shapes};
 use crate::model::system::{LevelState, System};
+#[cfg(target_arch = "x86_64")]
+use crate::recording::subgrid::modal_sums_avx;
 use crate::recording::subgrid::{NEGLIGIBLE, SubGrid, modal_sums};
 
 /// `dst` = `src` (resized: no allocation once grown).
 pub(super) fn copy_into(dst: &mut Vec<f64>, src: &[f64]) {
     dst.clear();
     dst.extend_from_slice(src);
+}
+
+/// [`modal_sums`], four stations to an AVX operation ([`modal_sums_avx`]) where `WIDE` (called
+/// from [`Stations::observe_avx`] only: the processor has AVX).
+#[inline(always)]
+fn sums<const WIDE: bool, const K: usize>(
+    c: &[f64],
+    ns: usize,
+    x: [&[f64]; K],
+    out: [&mut [f64]; K],
+    start: Option<(f64, &[f64])>,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: `WIDE` only inside `Stations::observe_avx`, where the processor has AVX
+        unsafe { modal_sums_avx(c, ns, x, out, start) };
+        return;
+    }
+    modal_sums(c, ns, x, out, start);
+}
+
+/// [`SubGrid::jerks`], compiled for AVX where `WIDE` (as [`sums`]).
+#[inline(always)]
+fn jerks<'g, const WIDE: bool>(
+    grid: &'g mut SubGrid,
+    h: f64,
+    va: (&[f64], &[f64]),
+    (omega, damp): (&[f64], &[f64]),
+) -> Option<(&'g [f64], &'g [f64])> {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: as in `sums`
+        return unsafe { grid.jerks_avx(h, va, omega, damp) };
+    }
+    grid.jerks(h, va, omega, damp)
+}
+
+/// [`between_on_hermite`], compiled for AVX where `WIDE` (as [`sums`]).
+#[inline(always)]
+fn hermite_between<const WIDE: bool>(
+    peaks: (&mut [FloorPeaks], &mut [f64]),
+    bt: &Between,
+    now: (&[f64], &[f64]),
+    jerks: (&[f64], &[f64], &[f64]),
+    times: (f64, f64, f64),
+) {
+    #[cfg(target_arch = "x86_64")]
+    if WIDE {
+        // SAFETY: as in `sums`
+        unsafe { between_on_hermite_avx(peaks, bt, now, jerks, times) };
+        return;
+    }
+    between_on_hermite(peaks, bt, now, jerks, times);
 }
 
 /// How closely (relative to the row's largest term) a floor's storey-force row must be `k_j`
@@ -151,6 +208,8 @@ pub(super) struct Stations {
     /// `level_stations[level_at[k]..level_at[k + 1]]`, lowest first.
     pub(super) level_stations: Vec<usize>,
     pub(super) level_at: Vec<usize>,
+    /// Whether the processor has AVX ([`Stations::observe`] compiled for it).
+    pub(super) wide: bool,
 }
 
 /// One observation's data as a structure's stations read it: the time (s), the modal state and
@@ -382,6 +441,7 @@ impl Stations {
             point: vec![0.0; 2 * ns],
             level_stations,
             level_at,
+            wide: crate::recording::subgrid::wide_lanes(),
         }
     }
 
@@ -389,6 +449,40 @@ impl Stations {
     /// every station takes the full update (tests).
     #[inline]
     pub(super) fn observe(
+        &mut self,
+        system: &System,
+        at: &At,
+        full: bool,
+        resolution: Option<f64>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if self.wide {
+            // SAFETY: `wide` only where the processor has AVX
+            unsafe { self.observe_avx(system, at, full, resolution) };
+            return;
+        }
+        self.observe_body::<false>(system, at, full, resolution);
+    }
+
+    /// [`Stations::observe`] compiled for AVX: the same IEEE operations in the same order
+    /// (three-operand encoding, and the stations' sums over the modes four stations to an
+    /// operation, [`modal_sums_avx`]). Safety: the processor has AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn observe_avx(
+        &mut self,
+        system: &System,
+        at: &At,
+        full: bool,
+        resolution: Option<f64>,
+    ) {
+        self.observe_body::<true>(system, at, full, resolution);
+    }
+
+    /// [`Stations::observe`]; `WIDE`: compiled for AVX (called from [`Stations::observe_avx`]
+    /// only).
+    #[inline(always)]
+    fn observe_body<const WIDE: bool>(
         &mut self,
         system: &System,
         at: &At,
@@ -427,7 +521,7 @@ impl Stations {
         let (vf, rest) = rest.split_at_mut(ns);
         let (vfd, inertia) = rest.split_at_mut(ns);
         let phi = &st.phi[..ns * nm];
-        modal_sums(phi, ns, [q, v, a], [u, ud, ua], None);
+        sums::<WIDE, 3>(phi, ns, [q, v, a], [u, ud, ua], None);
         // the storey force from the modes' equivalent static forces (springs: at the end)
         let rows = match &st.force {
             StoreyForce::Rows(rows) => Some(&rows[..ns * nm]),
@@ -441,7 +535,7 @@ impl Stations {
             );
         }
         if let Some(rows) = rows {
-            modal_sums(rows, ns, [q, v], [vf, vfd], None);
+            sums::<WIDE, 2>(rows, ns, [q, v], [vf, vfd], None);
         }
         // the previous observation's (u, u̇) become the one before: swap, then overwrite
         std::mem::swap(&mut st.prev, &mut st.before);
@@ -606,7 +700,7 @@ impl Stations {
             Equilibrium::Continuous { m, integral, above } => {
                 // ag (L − x) + Σ_n (∫_x^L φ_n) η̈_n, in that order
                 let above = &above[..ns];
-                modal_sums(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
+                sums::<WIDE, 1>(&integral[..ns * nm], ns, [a], [inertia], Some((ag, above)));
                 for (f, (p, &x)) in st.peaks[..ns].iter_mut().zip(&inertia[..ns]).enumerate() {
                     let mut v_sec = -m * x;
                     contact(&mut v_sec, f);
@@ -698,12 +792,12 @@ impl Stations {
         if let (Some(h), Some(_), false) = (h, resolution, ringing)
             && !loaded
             && !st.between.prev_loaded
-            && let Some((j0, j1)) = st.grid.jerks(h, (v, a), omega, damp)
+            && let Some((j0, j1)) = jerks::<WIDE>(&mut st.grid, h, (v, a), (omega, damp))
         {
             let la = &system.ground_load()[st.offset..st.offset + nm];
             let bt = &mut st.between;
             bt.fill_ground_gain(&st.phi, la, (ns, nm));
-            between_on_hermite(
+            hermite_between::<WIDE>(
                 (&mut st.peaks[..ns], &mut st.hold[..ns]),
                 &st.between,
                 (&st.abs_now[..ns], &st.phi[..ns * nm]),

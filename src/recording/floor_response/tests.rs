@@ -113,6 +113,81 @@ fn the_skip_changes_no_peak() {
     }
 }
 
+/// The AVX pass of the stations ([`Stations::observe`] compiled for AVX, four stations to a
+/// sum's operation) changes no peak and no floor history value: two floor recorders observe
+/// the same runs, one with the pass the processor takes and one with the SSE2 pass, and
+/// their peaks and rows are equal to the last bit — two cantilevers (ten stations and the
+/// contact height: groups of four and the rest) and two shear buildings pounding under a
+/// harmonic motion, with `exact-modal` (contact sub-steps, the free flight's Hermite of the
+/// accelerations and the jerks) and `rk4`. (Without AVX both take the SSE2 pass.)
+#[test]
+fn the_avx_pass_changes_no_peak() {
+    use crate::integrate::{InitialState, Method, Observer, SolverSettings, integrate};
+    use crate::model::contact::ContactLaw;
+    use crate::model::ground_motion::{GroundMotion, Harmonic};
+    use crate::model::structure::{Cantilever, Damping, Stiffness};
+    use crate::model::system::ContactLevel;
+    #[derive(Default)]
+    struct Rows(Vec<(u64, Vec<u64>)>);
+    impl crate::recording::history::HistorySink for Rows {
+        fn row(&mut self, _: f64, _: [f64; 2], _: &[f64]) {}
+        fn floor_row(&mut self, t: f64, values: &[f64]) {
+            self.0
+                .push((t.to_bits(), values.iter().map(|x| x.to_bits()).collect()));
+        }
+    }
+    struct Both(FloorRecorder, FloorRecorder, Rows, Rows);
+    impl Observer for Both {
+        fn observe(&mut self, system: &System, s: &StepView) {
+            self.0.observe(system, s, Some(&mut self.2));
+            self.1.observe(system, s, Some(&mut self.3));
+        }
+    }
+    let cantilever = |period: f64| {
+        Cantilever {
+            name: "c".into(),
+            length: 10.0,
+            mass: 2.0e6,
+            stiffness: Stiffness::Period(period),
+            modes: 5,
+            damping: Damping::Modal(vec![0.05]),
+        }
+        .modal()
+    };
+    let law = ContactLaw::Hertz { stiffness: 2.8e10 };
+    let ground = GroundMotion::Harmonic(Harmonic::from_pga_g(0.5, 0.5));
+    let level = |height: f64| ContactLevel { height, gap: 0.01 };
+    let pairs = [
+        ([cantilever(0.4), cantilever(0.7)], 9.5),
+        ([shear_building(4), shear_building(3)], 12.0),
+    ];
+    for ([a, b], height) in pairs {
+        let sys = System::new([a, b], &law, &[level(height)], ground.clone());
+        for (method, dt) in [(Method::ExactModal, 0.01), (Method::Rk4, 0.001)] {
+            let mut both = Both(
+                FloorRecorder::new(&sys, &[height], 0.01),
+                FloorRecorder::new(&sys, &[height], 0.01),
+                Rows::default(),
+                Rows::default(),
+            );
+            for st in &mut both.1.stations {
+                st.wide = false;
+            }
+            let settings = SolverSettings::new(method, dt, 6.0);
+            integrate(&sys, &settings, &InitialState::default(), &mut both).unwrap();
+            let (rows, narrow_rows) = (std::mem::take(&mut both.2), std::mem::take(&mut both.3));
+            let (wide, narrow) = (both.0.finish(), both.1.finish());
+            assert!(wide[0][0].displacement > 0.0, "the run moved");
+            assert!(rows.0.len() > 500, "{} rows", rows.0.len());
+            assert_eq!(wide, narrow, "{method:?}, pair at {height} m");
+            assert!(
+                rows.0 == narrow_rows.0,
+                "{method:?}, pair at {height} m: rows"
+            );
+        }
+    }
+}
+
 /// A shear building's modes, all of them or the first two, are recognised as storey
 /// springs with its own stiffnesses (to 1e-9), and the modes' equivalent static forces
 /// `Σ_{g ≥ j} m_g φ_n(g) ω_n²` are `k_j (φ_n(j) − φ_n(j−1))` mode by mode; a structure whose
