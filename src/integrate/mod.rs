@@ -24,7 +24,6 @@ mod plan;
 mod poly_tally;
 mod progress;
 mod rk4;
-mod vex;
 
 pub use exact_modal::SUBSTEP_ALPHA;
 pub use progress::StepFailure;

@@ -618,20 +618,6 @@ fn jerk_pass(
     }
 }
 
-/// Whether this processor has AVX (detected once per process by the standard library, then
-/// a load): the floor recorder's per-observation pass is then compiled for it
-/// ([`modal_sums_avx`]).
-pub(crate) fn wide_lanes() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
 /// `s[j] += c · lin[j]` for the six sums (in pairs: [`F2`], each lane the scalar operation).
 #[inline(always)]
 fn add_six(s: &mut [f64; 6], c: f64, lin: &[F2; 3]) {
@@ -805,7 +791,7 @@ mod tests {
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn avx_sums_are_the_pairs_bit_for_bit() {
-        if !wide_lanes() {
+        if !crate::numerics::vex::available() {
             return;
         }
         let vals = |n: usize, a: f64, b: f64| -> Vec<f64> {
@@ -849,7 +835,7 @@ mod tests {
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn avx_jerks_are_the_scalar_formula() {
-        if !wide_lanes() {
+        if !crate::numerics::vex::available() {
             return;
         }
         for nm in 1..12 {

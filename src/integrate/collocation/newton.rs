@@ -74,7 +74,7 @@ pub(in crate::integrate) fn solve<const S: usize>(
         return solve_one::<S>(sys, w, dfree, onset, force, nodal, tol);
     }
     #[cfg(target_arch = "x86_64")]
-    if crate::integrate::vex::available() {
+    if crate::numerics::vex::available() {
         // SAFETY: the processor has AVX
         return unsafe {
             solve_levels_vex::<S>(sys, w, dfree, onset, force, nodal, scratch, tol, levels)
@@ -83,7 +83,7 @@ pub(in crate::integrate) fn solve<const S: usize>(
     solve_levels::<S>(sys, w, dfree, onset, force, nodal, scratch, tol, levels)
 }
 
-/// [`solve_levels`] compiled for AVX ([`crate::integrate::vex`]: the same operations, the
+/// [`solve_levels`] compiled for AVX ([`crate::numerics::vex`]: the same operations, the
 /// same bits). Safety: the processor has AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
@@ -276,14 +276,14 @@ fn solve_one<const S: usize>(
     tol: f64,
 ) -> Result<usize, NoConvergence> {
     #[cfg(target_arch = "x86_64")]
-    if crate::integrate::vex::available() {
+    if crate::numerics::vex::available() {
         // SAFETY: the processor has AVX
         return unsafe { solve_one_vex::<S>(sys, w, dfree, onset, force, nodal, tol) };
     }
     solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
 }
 
-/// [`solve_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+/// [`solve_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
 /// the processor has AVX.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
@@ -560,11 +560,11 @@ pub(super) fn solve_touching<const S: usize>(
 /// four unknowns a level) take [`lu_fixed`], the same operations in the same order on arrays
 /// of their size (no bounds checks, loops the compiler can unroll): the same bits.
 ///
-/// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]: the
+/// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
 /// same bits).
 pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     #[cfg(target_arch = "x86_64")]
-    if crate::integrate::vex::available() {
+    if crate::numerics::vex::available() {
         // SAFETY: the processor has AVX
         return unsafe { lu_solve_vex(a, b, n) };
     }

@@ -357,14 +357,14 @@ impl Table {
         active: &[bool],
     ) {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.fill_for_vex(sys, big, h, active) };
         }
         self.fill_for_body(sys, big, h, active)
     }
 
-    /// [`Self::fill_for`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// [`Self::fill_for`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
     /// the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]

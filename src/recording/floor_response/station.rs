@@ -441,7 +441,7 @@ impl Stations {
             point: vec![0.0; 2 * ns],
             level_stations,
             level_at,
-            wide: crate::recording::subgrid::wide_lanes(),
+            wide: crate::numerics::vex::available(),
         }
     }
 

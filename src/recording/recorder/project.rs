@@ -192,7 +192,7 @@ impl Tracks {
             .zip(pairs)
             .map(|(&h, &p)| [entry(p, h), entry(p + 1, h)])
             .collect();
-        Tracks::from_groups(spans, of, wide_lanes())
+        Tracks::from_groups(spans, of, crate::numerics::vex::available())
     }
 
     /// The projections of every structure `(start, n, rows)` (its modes `start..start + n` in
@@ -238,7 +238,7 @@ impl Tracks {
             groups,
             of,
             values: vec![(0.0, 0.0); first],
-            wide: wide && wide_lanes(),
+            wide: wide && crate::numerics::vex::available(),
         }
     }
 
@@ -255,7 +255,7 @@ impl Tracks {
         }
         #[cfg(target_arch = "x86_64")]
         if self.wide {
-            // SAFETY: `wide` only where the processor has AVX (`wide_lanes`)
+            // SAFETY: `wide` only where the processor has AVX ([`crate::numerics::vex::available`])
             unsafe { self.project_avx(q, v) };
             return;
         }
@@ -329,19 +329,6 @@ impl Tracks {
     pub(super) fn at(&self, k: usize) -> ((f64, f64), (f64, f64)) {
         let [a, b] = self.of[k];
         (self.values[a], self.values[b])
-    }
-}
-
-/// Whether this processor runs the AVX pass (detected once per process by the standard
-/// library, then a load).
-fn wide_lanes() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
     }
 }
 

@@ -92,11 +92,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// [`Self::accept`] for any number of contact levels (its copy compiled for AVX where the
-    /// processor has it: [`crate::integrate::vex`], the same bits).
+    /// processor has it: [`crate::numerics::vex`], the same bits).
     #[inline(never)]
     pub(super) fn accept_general(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.accept_general_vex(piece, trial, t_end) };
         }

@@ -144,7 +144,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     }
 
     /// [`Self::trial`] for any number of contact levels (its copy compiled for AVX where the
-    /// processor has it: [`crate::integrate::vex`], the same bits).
+    /// processor has it: [`crate::numerics::vex`], the same bits).
     pub(super) fn trial_general(
         &mut self,
         k: Option<usize>,
@@ -152,7 +152,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         piece: &Piece,
     ) -> Result<Trial, NoConvergence> {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.trial_general_vex(k, h, piece) };
         }
@@ -296,7 +296,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
             let r = sys.coupling_modes(k);
             let (xs, ys) = (&x0s[r.clone()], &y0s[r]);
             #[cfg(target_arch = "x86_64")]
-            let acc = if crate::integrate::vex::available() {
+            let acc = if crate::numerics::vex::available() {
                 // SAFETY: the processor has AVX
                 unsafe { node_sums::node_sums_avx(tab.cprop_pairs(sys, k), xs, ys) }
             } else {
@@ -428,14 +428,14 @@ impl<'a, O: Observer> Elastic<'a, O> {
     #[inline(never)]
     pub(super) fn contact_step(&mut self) -> Result<(), SolveError> {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.contact_step_vex() };
         }
         self.contact_step_body()
     }
 
-    /// [`Self::contact_step`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// [`Self::contact_step`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
     /// the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]

@@ -60,7 +60,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// need (`fsums`, `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos
     /// at the end.
     ///
-    /// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]:
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
     /// the same bits).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn free_prop(
@@ -74,7 +74,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         margin: bool,
     ) -> Trig {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.free_prop_vex(fd, piece, tr0, t0, h, from_search, margin) };
         }
@@ -367,7 +367,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// tallies (the ground's work; the dissipation from the modal energy balance), the new
     /// state (no observation).
     ///
-    /// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]:
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
     /// the same bits).
     pub(super) fn commit_free(
         &mut self,
@@ -378,7 +378,7 @@ impl<'a, O: Observer> Elastic<'a, O> {
         tr1: Trig,
     ) {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.commit_free_vex(fd, piece, h, t_end, tr1) };
         }
@@ -508,14 +508,14 @@ impl<'a, O: Observer> Elastic<'a, O> {
     #[inline(never)]
     pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.free_segment_vex() };
         }
         self.free_segment_body()
     }
 
-    /// [`Self::free_segment`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// [`Self::free_segment`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
     /// the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]

@@ -124,20 +124,6 @@ const COEFS: usize = 24;
 #[repr(align(32))]
 struct Quad([[f64; 4]; COEFS]);
 
-/// Whether this processor runs the AVX pass of [`poly_pass`] (detected once per process by
-/// the standard library, then a load).
-#[inline]
-fn wide_lanes() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
 /// Every mode's load coefficients `la` (of a_g, kg^½) and `lv` (of v_g, kg^½/s), `damp` (2ζω,
 /// 1/s), `w2` (ω², 1/s²) and `inv_w2` (1/ω², s²), as [`GroundModes`] has them.
 #[derive(Debug, Clone, Copy)]
@@ -213,7 +199,7 @@ impl PolyMap {
             }
         }
         let pairs = cols.iter().map(|c| c.map(|x| F2::load(&x))).collect();
-        let quads = if wide_lanes() {
+        let quads = if crate::numerics::vex::available() {
             (0..n / 4)
                 .map(|i| {
                     Quad(std::array::from_fn(|k| {
@@ -584,7 +570,7 @@ pub(super) fn dots(c: &[f64], x: &[f64], y: &[f64]) -> (f64, f64) {
         return (sx, sy);
     }
     #[cfg(target_arch = "x86_64")]
-    if wide_lanes() {
+    if crate::numerics::vex::available() {
         // SAFETY: the processor has AVX
         let (ax, ay) = unsafe { wide::partial_dots(c, x, y) };
         return dots_tail(c, x, y, ax, ay);
@@ -819,7 +805,7 @@ mod tests {
     /// the test says so.
     #[test]
     fn the_four_lane_pass_is_the_two_lane_pass_bit_for_bit() {
-        if !wide_lanes() {
+        if !crate::numerics::vex::available() {
             eprintln!(
                 "no AVX on this processor: the four-lane pass is not taken, nothing to compare"
             );

@@ -79,7 +79,7 @@ mod tests {
     fn two_nodes_in_four_lanes_are_the_two_lane_sums_bit_for_bit() {
         #[cfg(target_arch = "x86_64")]
         {
-            if !crate::integrate::vex::available() {
+            if !crate::numerics::vex::available() {
                 eprintln!("no AVX on this processor: the four-lane path is not compared");
                 return;
             }

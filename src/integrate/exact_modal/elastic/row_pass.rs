@@ -21,7 +21,7 @@ use crate::numerics::lanes::F2;
 /// particular solutions' coefficients and the ground load per mode; `forces`: the nodal forces
 /// `[k·5 + p]` and each level's moments. Returns the ground's work and the change of the modal
 /// energy over the step, J.
-/// Where the processor has AVX, its copy compiled for it runs ([`crate::integrate::vex`]: the
+/// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
 /// same bits).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn row_poly_pass(
@@ -38,7 +38,7 @@ pub(super) fn row_poly_pass(
     proj: &mut [(f64, f64)],
 ) -> (f64, f64) {
     #[cfg(target_arch = "x86_64")]
-    if crate::integrate::vex::available() {
+    if crate::numerics::vex::available() {
         // SAFETY: the processor has AVX
         return unsafe {
             row_poly_pass_vex(

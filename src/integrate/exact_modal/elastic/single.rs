@@ -33,14 +33,14 @@ impl<'a, O: Observer> Elastic<'a, O> {
         piece: &Piece,
     ) -> Result<Trial, NoConvergence> {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.trial_one_vex(k, h, piece) };
         }
         self.trial_one_body(k, h, piece)
     }
 
-    /// [`Self::trial_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// [`Self::trial_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
     /// the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
@@ -210,14 +210,14 @@ impl<'a, O: Observer> Elastic<'a, O> {
     /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
     pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
         #[cfg(target_arch = "x86_64")]
-        if crate::integrate::vex::available() {
+        if crate::numerics::vex::available() {
             // SAFETY: the processor has AVX
             return unsafe { self.accept_one_vex(piece, trial, t_end) };
         }
         self.accept_one_body(piece, trial, t_end)
     }
 
-    /// [`Self::accept_one`] compiled for AVX ([`crate::integrate::vex`]: the same bits). Safety:
+    /// [`Self::accept_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
     /// the processor has AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]

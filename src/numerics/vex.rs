@@ -1,4 +1,5 @@
-//! Whether the hot passes of the contact steps run as their copies compiled for AVX: the same
+//! Whether the hot passes (the contact steps and the free flight, the recorder's projections,
+//! the floors' stations) run as their copies compiled for AVX: the same
 //! Rust code, the same IEEE operations lane by lane and in the same order (AVX brings no fused
 //! multiply–add, and none is enabled), only encoded in the three-operand VEX form (`vmulpd`
 //! with a destination of its own), so that the register copies the two-operand SSE2 form
