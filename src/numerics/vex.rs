@@ -19,3 +19,67 @@ pub(crate) fn available() -> bool {
         false
     }
 }
+
+/// Defines `fn $name` as a dispatcher to `$body` (the work, `#[inline(always)]`, written once)
+/// compiled twice: as `$vex`, with `#[target_feature(enable = "avx")]`, where [`available`],
+/// else as it is. The same Rust code on both paths (module doc: the same bits). Two forms: a
+/// method on `&mut self`, or a free function with an optional const parameter.
+///
+/// ```ignore
+/// avx_copy! {
+///     /// Docs of the dispatcher.
+///     pub(super) fn step(&mut self, h: f64) -> bool => step_vex, step_body
+/// }
+/// ```
+macro_rules! avx_copy {
+    (
+        $(#[$attr:meta])*
+        $vis:vis fn $name:ident(&mut self $(, $arg:ident: $ty:ty)* $(,)?) $(-> $ret:ty)?
+        => $vex:ident, $body:ident
+    ) => {
+        $(#[$attr])*
+        $vis fn $name(&mut self $(, $arg: $ty)*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            if $crate::numerics::vex::available() {
+                // SAFETY: the processor has AVX
+                return unsafe { self.$vex($($arg),*) };
+            }
+            self.$body($($arg),*)
+        }
+
+        /// The dispatcher's AVX copy (`numerics::vex`: the same bits). Safety: the processor
+        /// has AVX.
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $vex(&mut self $(, $arg: $ty)*) $(-> $ret)? {
+            self.$body($($arg),*)
+        }
+    };
+    (
+        $(#[$attr:meta])*
+        $vis:vis fn $name:ident $(<const $c:ident: $cty:ty>)? ($($arg:ident: $ty:ty),* $(,)?)
+            $(-> $ret:ty)?
+        => $vex:ident, $body:ident
+    ) => {
+        $(#[$attr])*
+        $vis fn $name $(<const $c: $cty>)? ($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            if $crate::numerics::vex::available() {
+                // SAFETY: the processor has AVX
+                return unsafe { $vex $(::<$c>)? ($($arg),*) };
+            }
+            $body $(::<$c>)? ($($arg),*)
+        }
+
+        /// The dispatcher's AVX copy (`numerics::vex`: the same bits). Safety: the processor
+        /// has AVX.
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx")]
+        #[allow(clippy::too_many_arguments)]
+        unsafe fn $vex $(<const $c: $cty>)? ($($arg: $ty),*) $(-> $ret)? {
+            $body $(::<$c>)? ($($arg),*)
+        }
+    };
+}
+pub(crate) use avx_copy;

@@ -261,42 +261,21 @@ pub(in crate::integrate) fn nodal_states<const S: usize>(
     }
 }
 
-/// [`solve`] for a single contact level (the common case): the same iterations on stack
-/// arrays, the elimination unrolled by the compiler for the scheme's S − 1 unknowns. The law's
-/// kind is matched once per solve, not once per node and pass: [`solve_law`] is compiled per
-/// kind, each calling [`ContactForce::force_jacobian`] of a value of that kind (the same
-/// function on the same arguments: the same bits).
-fn solve_one<const S: usize>(
-    sys: &System,
-    w: &[(f64, f64)],
-    dfree: &[(f64, f64)],
-    onset: &[f64],
-    force: &mut [f64],
-    nodal: &mut [(f64, f64)],
-    tol: f64,
-) -> Result<usize, NoConvergence> {
-    #[cfg(target_arch = "x86_64")]
-    if crate::numerics::vex::available() {
-        // SAFETY: the processor has AVX
-        return unsafe { solve_one_vex::<S>(sys, w, dfree, onset, force, nodal, tol) };
-    }
-    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
-}
-
-/// [`solve_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-/// the processor has AVX.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-unsafe fn solve_one_vex<const S: usize>(
-    sys: &System,
-    w: &[(f64, f64)],
-    dfree: &[(f64, f64)],
-    onset: &[f64],
-    force: &mut [f64],
-    nodal: &mut [(f64, f64)],
-    tol: f64,
-) -> Result<usize, NoConvergence> {
-    solve_one_body::<S>(sys, w, dfree, onset, force, nodal, tol)
+crate::numerics::vex::avx_copy! {
+    /// [`solve`] for a single contact level (the common case): the same iterations on stack
+    /// arrays, the elimination unrolled by the compiler for the scheme's S − 1 unknowns. The law's
+    /// kind is matched once per solve, not once per node and pass: [`solve_law`] is compiled per
+    /// kind, each calling [`ContactForce::force_jacobian`] of a value of that kind (the same
+    /// function on the same arguments: the same bits).
+    fn solve_one<const S: usize>(
+        sys: &System,
+        w: &[(f64, f64)],
+        dfree: &[(f64, f64)],
+        onset: &[f64],
+        force: &mut [f64],
+        nodal: &mut [(f64, f64)],
+        tol: f64,
+    ) -> Result<usize, NoConvergence> => solve_one_vex, solve_one_body
 }
 
 /// [`solve_one`]'s work.
@@ -555,27 +534,15 @@ pub(super) fn solve_touching<const S: usize>(
     true
 }
 
-/// Solve `a·x = b` in place (b becomes x; `a` is destroyed) by Gaussian elimination with
-/// partial pivoting; false if singular. The systems of up to three levels in contact (n ≤ 12:
-/// four unknowns a level) take [`lu_fixed`], the same operations in the same order on arrays
-/// of their size (no bounds checks, loops the compiler can unroll): the same bits.
-///
-/// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
-/// same bits).
-pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if crate::numerics::vex::available() {
-        // SAFETY: the processor has AVX
-        return unsafe { lu_solve_vex(a, b, n) };
-    }
-    lu_solve_body(a, b, n)
-}
-
-/// [`lu_solve`] compiled for AVX. Safety: the processor has AVX.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-unsafe fn lu_solve_vex(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    lu_solve_body(a, b, n)
+crate::numerics::vex::avx_copy! {
+    /// Solve `a·x = b` in place (b becomes x; `a` is destroyed) by Gaussian elimination with
+    /// partial pivoting; false if singular. The systems of up to three levels in contact (n ≤ 12:
+    /// four unknowns a level) take [`lu_fixed`], the same operations in the same order on arrays
+    /// of their size (no bounds checks, loops the compiler can unroll): the same bits.
+    ///
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
+    /// same bits).
+    pub(super) fn lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool => lu_solve_vex, lu_solve_body
 }
 
 /// [`lu_solve`]'s work.

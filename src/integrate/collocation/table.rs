@@ -343,33 +343,20 @@ impl Table {
             .all(|&x| x);
     }
 
-    /// Recompute for step length `h` (the buffers are reused): every mode's propagators to the
-    /// nodes (the free flight to them, and the state of a mode no contact force acts on), and
-    /// the responses to the Lagrange loads of the structures `active` marks only — of a row,
-    /// the structures of the pairs in (or near) contact: a mode of any other structure carries
-    /// no contact force over the step (its responses would multiply zeros), and a level-table
-    /// slot is summed only when every structure it sums over is filled. A pair: both.
-    pub(in crate::integrate) fn fill_for(
-        &mut self,
-        sys: &System,
-        big: Option<f64>,
-        h: f64,
-        active: &[bool],
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.fill_for_vex(sys, big, h, active) };
-        }
-        self.fill_for_body(sys, big, h, active)
-    }
-
-    /// [`Self::fill_for`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-    /// the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn fill_for_vex(&mut self, sys: &System, big: Option<f64>, h: f64, active: &[bool]) {
-        self.fill_for_body(sys, big, h, active)
+    crate::numerics::vex::avx_copy! {
+        /// Recompute for step length `h` (the buffers are reused): every mode's propagators to the
+        /// nodes (the free flight to them, and the state of a mode no contact force acts on), and
+        /// the responses to the Lagrange loads of the structures `active` marks only — of a row,
+        /// the structures of the pairs in (or near) contact: a mode of any other structure carries
+        /// no contact force over the step (its responses would multiply zeros), and a level-table
+        /// slot is summed only when every structure it sums over is filled. A pair: both.
+        pub(in crate::integrate) fn fill_for(
+            &mut self,
+            sys: &System,
+            big: Option<f64>,
+            h: f64,
+            active: &[bool],
+        ) => fill_for_vex, fill_for_body
     }
 
     /// [`Self::fill_for`]'s work.

@@ -91,23 +91,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.accept_general(piece, trial, t_end)
     }
 
-    /// [`Self::accept`] for any number of contact levels (its copy compiled for AVX where the
-    /// processor has it: [`crate::numerics::vex`], the same bits).
-    #[inline(never)]
-    pub(super) fn accept_general(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.accept_general_vex(piece, trial, t_end) };
-        }
-        self.accept_general_body(piece, trial, t_end)
-    }
-
-    /// [`Self::accept_general_body`] compiled for AVX. Safety: the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn accept_general_vex(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
-        self.accept_general_body(piece, trial, t_end)
+    crate::numerics::vex::avx_copy! {
+        /// [`Self::accept`] for any number of contact levels (its copy compiled for AVX where the
+        /// processor has it: [`crate::numerics::vex`], the same bits).
+        #[inline(never)]
+        pub(super) fn accept_general(&mut self, piece: &Piece, trial: Trial, t_end: f64) => accept_general_vex, accept_general_body
     }
 
     /// [`Self::accept_general`]'s work.

@@ -143,32 +143,15 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.trial_general(k, h, piece)
     }
 
-    /// [`Self::trial`] for any number of contact levels (its copy compiled for AVX where the
-    /// processor has it: [`crate::numerics::vex`], the same bits).
-    pub(super) fn trial_general(
-        &mut self,
-        k: Option<usize>,
-        h: f64,
-        piece: &Piece,
-    ) -> Result<Trial, NoConvergence> {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.trial_general_vex(k, h, piece) };
-        }
-        self.trial_general_body(k, h, piece)
-    }
-
-    /// [`Self::trial_general_body`] compiled for AVX. Safety: the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn trial_general_vex(
-        &mut self,
-        k: Option<usize>,
-        h: f64,
-        piece: &Piece,
-    ) -> Result<Trial, NoConvergence> {
-        self.trial_general_body(k, h, piece)
+    crate::numerics::vex::avx_copy! {
+        /// [`Self::trial`] for any number of contact levels (its copy compiled for AVX where the
+        /// processor has it: [`crate::numerics::vex`], the same bits).
+        pub(super) fn trial_general(
+            &mut self,
+            k: Option<usize>,
+            h: f64,
+            piece: &Piece,
+        ) -> Result<Trial, NoConvergence> => trial_general_vex, trial_general_body
     }
 
     /// [`Self::trial_general`]'s work.
@@ -423,24 +406,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
     }
 
-    /// One accepted contact step from the current state, retried shorter until its estimate
-    /// passes; a step in which a level's δ changes sign (an onset, a release) ends there.
-    #[inline(never)]
-    pub(super) fn contact_step(&mut self) -> Result<(), SolveError> {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.contact_step_vex() };
-        }
-        self.contact_step_body()
-    }
-
-    /// [`Self::contact_step`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-    /// the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn contact_step_vex(&mut self) -> Result<(), SolveError> {
-        self.contact_step_body()
+    crate::numerics::vex::avx_copy! {
+        /// One accepted contact step from the current state, retried shorter until its estimate
+        /// passes; a step in which a level's δ changes sign (an onset, a release) ends there.
+        #[inline(never)]
+        pub(super) fn contact_step(&mut self) -> Result<(), SolveError> => contact_step_vex, contact_step_body
     }
 
     /// [`Self::contact_step`]'s work.

@@ -52,50 +52,28 @@ impl<'a, O: Observer> Elastic<'a, O> {
         Some(i)
     }
 
-    /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
-    /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
-    /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
-    /// (`amp`) and every level's (`fmargin`; without `margin`, under a recorded motion an upper
-    /// bound of them, [`PolyMap::margin_bounds`], else 0), and what the step's exact tallies
-    /// need (`fsums`, `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos
-    /// at the end.
-    ///
-    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
-    /// the same bits).
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn free_prop(
-        &mut self,
-        fd: Option<usize>,
-        piece: &Piece,
-        tr0: Trig,
-        t0: f64,
-        h: f64,
-        from_search: bool,
-        margin: bool,
-    ) -> Trig {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.free_prop_vex(fd, piece, tr0, t0, h, from_search, margin) };
-        }
-        self.free_prop_body(fd, piece, tr0, t0, h, from_search, margin)
-    }
-
-    /// [`Self::free_prop`] compiled for AVX. Safety: the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    #[allow(clippy::too_many_arguments)]
-    unsafe fn free_prop_vex(
-        &mut self,
-        fd: Option<usize>,
-        piece: &Piece,
-        tr0: Trig,
-        t0: f64,
-        h: f64,
-        from_search: bool,
-        margin: bool,
-    ) -> Trig {
-        self.free_prop_body(fd, piece, tr0, t0, h, from_search, margin)
+    crate::numerics::vex::avx_copy! {
+        /// The free flight over [t0, t0 + h] from the state (`from_search`: the search state
+        /// (qs, vs), else (q, v)) into (qb, vb), in one pass over the modes that also gives every
+        /// level's projections of the end state (`fproj`), with `margin` each mode's Hermite margin
+        /// (`amp`) and every level's (`fmargin`; without `margin`, under a recorded motion an upper
+        /// bound of them, [`PolyMap::margin_bounds`], else 0), and what the step's exact tallies
+        /// need (`fsums`, `fpsums`, `fenergy`). `tr0`: sin, cos at t0 (harmonic). Returns sin, cos
+        /// at the end.
+        ///
+        /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
+        /// the same bits).
+        #[allow(clippy::too_many_arguments)]
+        pub(super) fn free_prop(
+            &mut self,
+            fd: Option<usize>,
+            piece: &Piece,
+            tr0: Trig,
+            t0: f64,
+            h: f64,
+            from_search: bool,
+            margin: bool,
+        ) -> Trig => free_prop_vex, free_prop_body
     }
 
     /// [`Self::free_prop`]'s work.
@@ -362,41 +340,22 @@ impl<'a, O: Observer> Elastic<'a, O> {
         }
     }
 
-    /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
-    /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
-    /// tallies (the ground's work; the dissipation from the modal energy balance), the new
-    /// state (no observation).
-    ///
-    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
-    /// the same bits).
-    pub(super) fn commit_free(
-        &mut self,
-        fd: Option<usize>,
-        piece: &Piece,
-        h: f64,
-        t_end: f64,
-        tr1: Trig,
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.commit_free_vex(fd, piece, h, t_end, tr1) };
-        }
-        self.commit_free_body(fd, piece, h, t_end, tr1)
-    }
-
-    /// [`Self::commit_free`] compiled for AVX. Safety: the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn commit_free_vex(
-        &mut self,
-        fd: Option<usize>,
-        piece: &Piece,
-        h: f64,
-        t_end: f64,
-        tr1: Trig,
-    ) {
-        self.commit_free_body(fd, piece, h, t_end, tr1)
+    crate::numerics::vex::avx_copy! {
+        /// Commit the free flight in (qb, vb) over [t, t_end] (h = t_end − t, end trig `tr1`,
+        /// free data `fd`, the pass's sums in `fsums`, `fpsums`, `fenergy`, `fproj`): exact
+        /// tallies (the ground's work; the dissipation from the modal energy balance), the new
+        /// state (no observation).
+        ///
+        /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]:
+        /// the same bits).
+        pub(super) fn commit_free(
+            &mut self,
+            fd: Option<usize>,
+            piece: &Piece,
+            h: f64,
+            t_end: f64,
+            tr1: Trig,
+        ) => commit_free_vex, commit_free_body
     }
 
     /// [`Self::commit_free`]'s work.
@@ -503,24 +462,11 @@ impl<'a, O: Observer> Elastic<'a, O> {
             .sum()
     }
 
-    /// The free flight from the current time to the next grid point, or to the first onset
-    /// before it (located on the exact free flight).
-    #[inline(never)]
-    pub(super) fn free_segment(&mut self) -> Result<(), SolveError> {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.free_segment_vex() };
-        }
-        self.free_segment_body()
-    }
-
-    /// [`Self::free_segment`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-    /// the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn free_segment_vex(&mut self) -> Result<(), SolveError> {
-        self.free_segment_body()
+    crate::numerics::vex::avx_copy! {
+        /// The free flight from the current time to the next grid point, or to the first onset
+        /// before it (located on the exact free flight).
+        #[inline(never)]
+        pub(super) fn free_segment(&mut self) -> Result<(), SolveError> => free_segment_vex, free_segment_body
     }
 
     /// [`Self::free_segment`]'s work.

@@ -9,68 +9,35 @@ use super::*;
 use crate::integrate::collocation::ModeStep;
 use crate::numerics::lanes::F2;
 
-/// The pass over the modes of a row's (or a several-level pair's) accepted step under a
-/// recorded motion without dense output ([`Elastic::accept_general`]): each mode's end state, its levels' projections of it,
-/// its ground work and its change of energy in one pass, structure by structure — a
-/// structure's modes share their levels ([`System::levels_of_mode`]) and whether a contact
-/// force reaches them, so that the passive structures' modes (most of a row's) take the
-/// propagator, the particular solution and the tallies without the contact load's terms.
-/// A structure's modes go two at a time in the lanes of [`F2`] (an odd one last, alone).
-/// Every value is the general loops' (the same operations in the same order, each sum over
-/// the modes in mode order): the same bits. `start`: (x0, y0, q0, v0) per mode; `loads`: the
-/// particular solutions' coefficients and the ground load per mode; `forces`: the nodal forces
-/// `[k·5 + p]` and each level's moments. Returns the ground's work and the change of the modal
-/// energy over the step, J.
-/// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
-/// same bits).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn row_poly_pass(
-    sys: &System,
-    gm: &GroundModes,
-    modes: &[ModeStep],
-    start: (&[f64], &[f64], &[f64], &[f64]),
-    loads: (&[[f64; 3]], &[[f64; 3]]),
-    cpl_t: &[f64],
-    mode_act: &[bool],
-    forces: (&[f64], &[(f64, f64)]),
-    h: f64,
-    ends: (&mut [f64], &mut [f64]),
-    proj: &mut [(f64, f64)],
-) -> (f64, f64) {
-    #[cfg(target_arch = "x86_64")]
-    if crate::numerics::vex::available() {
-        // SAFETY: the processor has AVX
-        return unsafe {
-            row_poly_pass_vex(
-                sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
-            )
-        };
-    }
-    row_poly_pass_body(
-        sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
-    )
-}
-
-/// [`row_poly_pass`] compiled for AVX. Safety: the processor has AVX.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn row_poly_pass_vex(
-    sys: &System,
-    gm: &GroundModes,
-    modes: &[ModeStep],
-    start: (&[f64], &[f64], &[f64], &[f64]),
-    loads: (&[[f64; 3]], &[[f64; 3]]),
-    cpl_t: &[f64],
-    mode_act: &[bool],
-    forces: (&[f64], &[(f64, f64)]),
-    h: f64,
-    ends: (&mut [f64], &mut [f64]),
-    proj: &mut [(f64, f64)],
-) -> (f64, f64) {
-    row_poly_pass_body(
-        sys, gm, modes, start, loads, cpl_t, mode_act, forces, h, ends, proj,
-    )
+crate::numerics::vex::avx_copy! {
+    /// The pass over the modes of a row's (or a several-level pair's) accepted step under a
+    /// recorded motion without dense output ([`Elastic::accept_general`]): each mode's end state, its levels' projections of it,
+    /// its ground work and its change of energy in one pass, structure by structure — a
+    /// structure's modes share their levels ([`System::levels_of_mode`]) and whether a contact
+    /// force reaches them, so that the passive structures' modes (most of a row's) take the
+    /// propagator, the particular solution and the tallies without the contact load's terms.
+    /// A structure's modes go two at a time in the lanes of [`F2`] (an odd one last, alone).
+    /// Every value is the general loops' (the same operations in the same order, each sum over
+    /// the modes in mode order): the same bits. `start`: (x0, y0, q0, v0) per mode; `loads`: the
+    /// particular solutions' coefficients and the ground load per mode; `forces`: the nodal forces
+    /// `[k·5 + p]` and each level's moments. Returns the ground's work and the change of the modal
+    /// energy over the step, J.
+    /// Where the processor has AVX, its copy compiled for it runs ([`crate::numerics::vex`]: the
+    /// same bits).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn row_poly_pass(
+        sys: &System,
+        gm: &GroundModes,
+        modes: &[ModeStep],
+        start: (&[f64], &[f64], &[f64], &[f64]),
+        loads: (&[[f64; 3]], &[[f64; 3]]),
+        cpl_t: &[f64],
+        mode_act: &[bool],
+        forces: (&[f64], &[(f64, f64)]),
+        h: f64,
+        ends: (&mut [f64], &mut [f64]),
+        proj: &mut [(f64, f64)],
+    ) -> (f64, f64) => row_poly_pass_vex, row_poly_pass_body
 }
 
 /// [`row_poly_pass`]'s work.

@@ -22,35 +22,17 @@ impl<'a, O: Observer> Elastic<'a, O> {
         self.nl == 1 && self.sys.structures.len() == 2
     }
 
-    /// [`Elastic::trial_general`] for one contact level of a pair ([`Self::single_level`]):
-    /// the same trial (free flight to the six nodes, both collocations, the estimate) with the
-    /// same arithmetic, on stack arrays. Harmonic motion with a mode at undamped resonance (its
-    /// particular solutions at every node: rare) takes the general path.
-    pub(super) fn trial_one(
-        &mut self,
-        k: Option<usize>,
-        h: f64,
-        piece: &Piece,
-    ) -> Result<Trial, NoConvergence> {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.trial_one_vex(k, h, piece) };
-        }
-        self.trial_one_body(k, h, piece)
-    }
-
-    /// [`Self::trial_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-    /// the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn trial_one_vex(
-        &mut self,
-        k: Option<usize>,
-        h: f64,
-        piece: &Piece,
-    ) -> Result<Trial, NoConvergence> {
-        self.trial_one_body(k, h, piece)
+    crate::numerics::vex::avx_copy! {
+        /// [`Elastic::trial_general`] for one contact level of a pair ([`Self::single_level`]):
+        /// the same trial (free flight to the six nodes, both collocations, the estimate) with the
+        /// same arithmetic, on stack arrays. Harmonic motion with a mode at undamped resonance (its
+        /// particular solutions at every node: rare) takes the general path.
+        pub(super) fn trial_one(
+            &mut self,
+            k: Option<usize>,
+            h: f64,
+            piece: &Piece,
+        ) -> Result<Trial, NoConvergence> => trial_one_vex, trial_one_body
     }
 
     /// [`Self::trial_one`]'s work.
@@ -204,25 +186,12 @@ impl<'a, O: Observer> Elastic<'a, O> {
         Ok(Trial { err, h, k })
     }
 
-    /// [`Elastic::accept_general`] for one contact level of a pair ([`Self::single_level`]):
-    /// the same commit (end state, dense output, tallies, the law's work, level state) with the
-    /// same arithmetic, the per-mode loops split per kind of ground motion and the level loops
-    /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
-    pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
-        #[cfg(target_arch = "x86_64")]
-        if crate::numerics::vex::available() {
-            // SAFETY: the processor has AVX
-            return unsafe { self.accept_one_vex(piece, trial, t_end) };
-        }
-        self.accept_one_body(piece, trial, t_end)
-    }
-
-    /// [`Self::accept_one`] compiled for AVX ([`crate::numerics::vex`]: the same bits). Safety:
-    /// the processor has AVX.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx")]
-    unsafe fn accept_one_vex(&mut self, piece: &Piece, trial: Trial, t_end: f64) {
-        self.accept_one_body(piece, trial, t_end)
+    crate::numerics::vex::avx_copy! {
+        /// [`Elastic::accept_general`] for one contact level of a pair ([`Self::single_level`]):
+        /// the same commit (end state, dense output, tallies, the law's work, level state) with the
+        /// same arithmetic, the per-mode loops split per kind of ground motion and the level loops
+        /// gone. Harmonic motion with a mode at undamped resonance takes the general path.
+        pub(super) fn accept_one(&mut self, piece: &Piece, trial: Trial, t_end: f64) => accept_one_vex, accept_one_body
     }
 
     /// [`Self::accept_one`]'s work.
